@@ -1,0 +1,38 @@
+# Thin driver over CMake. `make figures` and `make test` are the front door.
+BUILD      ?= build
+BUILD_TYPE ?= Release
+JOBS       ?= $(shell nproc)
+CMAKE_ARGS ?=
+
+.PHONY: all deps build figures test bench goldens clean
+
+all: build
+
+deps:
+	@scripts/deps.sh
+
+$(BUILD)/CMakeCache.txt: | deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CMAKE_ARGS)
+
+build: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS)
+
+# Regenerates every figure described under figures/ into out/; only the
+# figures whose description or program changed are rendered again.
+figures: build
+	cmake --build $(BUILD) --target figures -j $(JOBS)
+
+test: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+bench: build
+	cmake --build $(BUILD) --target figgen_bench -j $(JOBS)
+	$(BUILD)/bench/figgen_bench
+
+# Rewrites the image-checksum goldens under tests/golden/ from this machine's
+# renderer. Explicit only: CI never runs it.
+goldens: build
+	$(BUILD)/tests/figgen_goldens tests/golden
+
+clean:
+	rm -rf $(BUILD) out

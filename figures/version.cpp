@@ -1,0 +1,4 @@
+#include "figures/version.hpp"
+namespace figures {
+const char* version() { return "0.1.0"; }
+}

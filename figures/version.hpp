@@ -1,0 +1,4 @@
+#pragma once
+namespace figures {
+const char* version();  // figgen's version, written into every output's metadata
+}

@@ -1,0 +1,88 @@
+#include "render/canvas.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render/gl_context.hpp"
+
+namespace render {
+
+Canvas::Canvas(int width, int height, int samples)
+    : width_(width), height_(height), samples_(std::min(samples, GlContext::get().max_samples())) {
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+    if (width < 1 || height < 1 || width > max_size || height > max_size)
+        throw std::invalid_argument("canvas size " + std::to_string(width) + "x" + std::to_string(height) +
+                                    " is out of range: allowed 1.." + std::to_string(max_size) + " pixels a side");
+    // y down: the top edge of the canvas is y = 0.
+    projection_ = glm::ortho(0.0f, float(width), float(height), 0.0f, -1.0f, 1.0f);
+
+    glGenRenderbuffers(1, &msaa_colour_);
+    glBindRenderbuffer(GL_RENDERBUFFER, msaa_colour_);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples_, GL_RGBA8, width, height);
+    glGenFramebuffers(1, &msaa_fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_colour_);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("multisampled framebuffer incomplete");
+
+    glGenRenderbuffers(1, &resolve_colour_);
+    glBindRenderbuffer(GL_RENDERBUFFER, resolve_colour_);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+    glGenFramebuffers(1, &resolve_fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, resolve_fbo_);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_colour_);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("resolve framebuffer incomplete");
+    bind();
+    check_gl("Canvas");
+}
+
+Canvas::~Canvas() {
+    glDeleteFramebuffers(1, &resolve_fbo_);
+    glDeleteRenderbuffers(1, &resolve_colour_);
+    glDeleteFramebuffers(1, &msaa_fbo_);
+    glDeleteRenderbuffers(1, &msaa_colour_);
+}
+
+void Canvas::bind() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
+    glViewport(0, 0, width_, height_);
+    // Straight alpha for colour, and coverage accumulates in alpha so the
+    // resolved image over a white background stays opaque.
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glEnable(GL_MULTISAMPLE);
+}
+
+void Canvas::clear(const glm::vec4& colour) {
+    bind();
+    glClearColor(colour.r, colour.g, colour.b, colour.a);
+    glClear(GL_COLOR_BUFFER_BIT);
+}
+
+Image Canvas::read() const {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
+    glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_);
+    glFinish();  // llvmpipe renders lazily: wait before reading
+    Image image(width_, height_);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    // GL's rows run bottom-up; read each into its top-down place.
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+    const std::size_t stride = static_cast<std::size_t>(width_) * 4;
+    for (int y = 0; y < height_ / 2; ++y) {
+        std::uint8_t* a = &image.rgba[y * stride];
+        std::uint8_t* b = &image.rgba[(height_ - 1 - y) * stride];
+        std::swap_ranges(a, a + stride, b);
+    }
+    check_gl("Canvas::read");
+    bind();
+    return image;
+}
+
+}  // namespace render

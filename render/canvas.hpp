@@ -1,0 +1,45 @@
+#pragma once
+// A drawing surface of a given size: a 4x multisampled framebuffer (the most
+// llvmpipe offers) that read() resolves into a single-sample one and reads
+// back. Coordinates everywhere in render/ are pixels, origin at the top left,
+// y down, as in the PNG that comes out.
+
+#include <glm/glm.hpp>
+
+#include "render/gl.hpp"
+#include "render/image.hpp"
+
+namespace render {
+
+struct Rect {
+    float x = 0, y = 0, w = 0, h = 0;  // top-left corner and size, pixels
+    float right() const { return x + w; }
+    float bottom() const { return y + h; }
+    glm::vec2 centre() const { return {x + w / 2, y + h / 2}; }
+};
+
+class Canvas {
+public:
+    Canvas(int width, int height, int samples = 4);
+    ~Canvas();
+    Canvas(const Canvas&) = delete;
+    Canvas& operator=(const Canvas&) = delete;
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    int samples() const { return samples_; }
+    // Pixel coordinates (top-left origin, y down) to clip space.
+    const glm::mat4& projection() const { return projection_; }
+
+    void bind() const;                   // makes this canvas the draw target
+    void clear(const glm::vec4& colour);  // also binds
+    Image read() const;                  // resolves the samples and reads RGBA
+
+private:
+    int width_, height_, samples_;
+    glm::mat4 projection_;
+    GLuint msaa_fbo_ = 0, msaa_colour_ = 0;
+    GLuint resolve_fbo_ = 0, resolve_colour_ = 0;
+};
+
+}  // namespace render

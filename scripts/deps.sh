@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Makes sure every Debian 12 package figgen builds with is installed.
+# Installs the missing ones with apt-get (through sudo when not root);
+# when that is impossible, names the first missing package and the command
+# that installs it, and fails.
+set -eu
+
+packages=(
+  g++ make cmake pkg-config
+  libosmesa6-dev libglm-dev
+  libpng-dev zlib1g-dev
+  libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
+  libfreetype-dev fonts-dejavu-core
+  libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  catch2 libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  # dpkg-query prints "install ok installed" only for a fully installed package.
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [ "$status" = "install ok installed" ] || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+if [ "$(id -u)" -eq 0 ]; then
+  sudo=()
+elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+  sudo=(sudo -n)
+else
+  echo "figgen: missing Debian package ${missing[0]} (all missing: ${missing[*]}); install with: sudo apt-get install -y ${missing[*]}" >&2
+  exit 1
+fi
+
+echo "figgen: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -q >/dev/null
+"${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,33 @@
+#include "sim/check.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "sim/boundary.hpp"
+
+namespace sim {
+
+void require_number(const char* name, double value, double low, double high) {
+    if (std::isfinite(value) && value >= low && value <= high) return;
+    std::ostringstream message;
+    message << name << " = " << value << " is not allowed: " << name << " must be a number from " << low << " to "
+            << high;
+    throw std::invalid_argument(message.str());
+}
+
+void require_integer(const char* name, long long value, long long low, long long high) {
+    if (value >= low && value <= high) return;
+    std::ostringstream message;
+    message << name << " = " << value << " is not allowed: " << name << " must be an integer from " << low
+            << " to " << high;
+    throw std::invalid_argument(message.str());
+}
+
+Boundary parse_boundary(std::string_view text) {
+    if (text == "zero") return Boundary::zero;
+    if (text == "wrap") return Boundary::wrap;
+    throw std::invalid_argument("boundary = \"" + std::string(text) + "\" is not allowed: use \"zero\" or \"wrap\"");
+}
+
+}  // namespace sim

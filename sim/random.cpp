@@ -1,0 +1,45 @@
+#include "sim/random.hpp"
+
+namespace sim {
+namespace {
+
+constexpr std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+
+}  // namespace
+
+std::uint64_t SplitMix64::next() {
+    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+Random::Random(std::uint64_t seed) {
+    SplitMix64 mix(seed);
+    for (auto& word : s_) word = mix.next();  // never all zero: SplitMix64 is a bijection of distinct counters
+}
+
+std::uint64_t Random::next() {
+    const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
+    const std::uint64_t t = s_[1] << 17;
+    s_[2] ^= s_[0];
+    s_[3] ^= s_[1];
+    s_[1] ^= s_[2];
+    s_[0] ^= s_[3];
+    s_[2] ^= t;
+    s_[3] = rotl(s_[3], 45);
+    return result;
+}
+
+double Random::uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+std::uint64_t Random::below(std::uint64_t n) {
+    // 2^64 mod n, computed without 128-bit arithmetic.
+    const std::uint64_t threshold = (0 - n) % n;
+    for (;;) {
+        const std::uint64_t x = next();
+        if (x >= threshold) return x % n;  // [threshold, 2^64) holds a whole number of blocks of n
+    }
+}
+
+}  // namespace sim

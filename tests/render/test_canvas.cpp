@@ -1,0 +1,40 @@
+#include <catch2/catch.hpp>
+
+#include "render/canvas.hpp"
+#include "render/gl_context.hpp"
+#include "render/shapes.hpp"
+
+using render::Canvas;
+
+TEST_CASE("the OSMesa context is core profile 3.3 or later with 4x multisampling") {
+    const auto& gl = render::GlContext::get();
+    int major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    CHECK(major * 10 + minor >= 33);
+    GLint profile = 0;
+    glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+    CHECK((profile & GL_CONTEXT_CORE_PROFILE_BIT) != 0);
+    CHECK(gl.max_samples() >= 4);
+    CHECK(&render::GlContext::get() == &gl);  // one context per process
+}
+
+TEST_CASE("a filled rectangle lands on the pixels it covers, top-left origin") {
+    Canvas canvas(40, 30);
+    CHECK(canvas.samples() == 4);
+    canvas.clear({1, 1, 1, 1});
+    render::Shapes shapes;
+    shapes.rect({10, 5, 20, 10}, {1, 0, 0, 1});  // x 10..30, y 5..15
+    shapes.draw(canvas);
+    const render::Image image = canvas.read();
+    REQUIRE(image.width == 40);
+    REQUIRE(image.height == 30);
+    const auto* inside = image.pixel(20, 10);
+    CHECK(int(inside[0]) == 255);
+    CHECK(int(inside[1]) == 0);
+    CHECK(int(inside[3]) == 255);
+    const auto* above = image.pixel(20, 4);  // white background above the rectangle
+    CHECK(int(above[1]) == 255);
+    const auto* below = image.pixel(20, 15);
+    CHECK(int(below[1]) == 255);
+}
