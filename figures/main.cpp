@@ -1,1 +1,97 @@
-int main() { return 0; }
+// figgen: the command line. Lists the catalog and renders figures; all the
+// work is in the figures library.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+
+#include <CLI/CLI.hpp>
+
+#include "figures/catalog.hpp"
+#include "figures/description.hpp"
+#include "figures/scene.hpp"
+#include "figures/version.hpp"
+
+namespace {
+
+constexpr int exit_runtime_error = 1;  // a failure while running or writing
+constexpr int exit_usage_error = 2;    // the command, a description or a value is wrong
+
+int list_figures() {
+    for (const auto& file : figures::catalog_files()) {
+        const figures::Description d = figures::load_description(file);
+        std::printf("%-20s %s\n", d.id.c_str(), d.title.c_str());
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"figgen: publication figures and animations of complex-systems models, headless."};
+    app.set_version_flag("--version", figures::version());
+    app.require_subcommand(1);
+
+    CLI::App* list = app.add_subcommand("list", "List the figure ids and titles of the catalog");
+
+    CLI::App* render = app.add_subcommand("render", "Render figures by id or description file");
+    std::vector<std::string> targets;
+    std::string out_dir = "out";
+    std::vector<std::string> overrides;
+    std::optional<std::uint64_t> seed;
+    double scale = 1.0;
+    bool no_video = false, frames = false;
+    render->add_option("figures", targets, "Figure ids (see `figgen list`) or .toml description files")->required();
+    render->add_option("--out", out_dir, "Output folder, created if missing")->capture_default_str();
+    render->add_option("--set", overrides,
+                       "Override a value: key=value for [params], or section.key=value (style, figure, animation)");
+    render->add_option("--seed", seed, "Seed of the random generator (0..2^63-1)");
+    render->add_option("--scale", scale, "Scale every pixel size by X (0.1..8)")->capture_default_str();
+    render->add_flag("--no-video", no_video, "Do not write the MP4 animation");
+    render->add_flag("--frames", frames, "Also write the animation as a PNG sequence");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "figgen: error: %s; see figgen --help\n", e.what());
+        return exit_usage_error;
+    }
+
+    try {
+        if (*list) return list_figures();
+
+        if (!(scale >= 0.1 && scale <= 8.0)) {  // also false for NaN
+            std::fprintf(stderr, "figgen: error: --scale %g is not allowed: use a number from 0.1 to 8\n", scale);
+            return exit_usage_error;
+        }
+        if (seed && *seed > static_cast<std::uint64_t>(INT64_MAX)) {
+            std::fprintf(stderr, "figgen: error: --seed is not allowed: use 0..2^63-1\n");
+            return exit_usage_error;
+        }
+        figures::OutputOptions options;
+        options.dir = out_dir;
+        options.scale = scale;
+        options.video = !no_video;
+        options.frames = frames;
+        // Load every description first, so a typo in the last one fails before
+        // minutes of rendering the first.
+        std::vector<figures::Description> descriptions;
+        for (const std::string& target : targets)
+            descriptions.push_back(figures::load_description(figures::resolve_figure(target), overrides, seed));
+        figures::Progress progress = figures::Progress::for_stderr();
+        for (const auto& d : descriptions) figures::render_figure(d, options, progress);
+        return 0;
+    } catch (const figures::UsageError& e) {
+        std::fprintf(stderr, "figgen: error: %s\n", e.what());
+        return exit_usage_error;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "figgen: error: %s\n", e.what());
+        return exit_runtime_error;
+    }
+}

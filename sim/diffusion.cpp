@@ -1,6 +1,8 @@
 #include "sim/diffusion.hpp"
 
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "sim/check.hpp"
 
@@ -21,6 +23,16 @@ Diffusion::Diffusion(const DiffusionParams& params) : params_(params) {
     next_ = a_;
     for (int i = 0; i < params_.block_size; ++i)
         for (int j = 0; j < params_.block_size; ++j) a_(params_.block_row + i, params_.block_col + j) = params_.block_value;
+}
+
+Diffusion::Diffusion(const DiffusionParams& params, Grid<double> initial) : params_(params) {
+    params_.validate();
+    if (initial.rows() != params_.n || initial.cols() != params_.n)
+        throw std::invalid_argument("initial field is " + std::to_string(initial.rows()) + "x" +
+                                    std::to_string(initial.cols()) + ", not n x n = " + std::to_string(params_.n) +
+                                    "x" + std::to_string(params_.n));
+    a_ = std::move(initial);
+    next_ = a_;
 }
 
 void Diffusion::step() {

@@ -26,6 +26,8 @@ struct DiffusionParams {
 class Diffusion {
 public:
     explicit Diffusion(const DiffusionParams& params);
+    // Starts from `initial` (n x n) instead of the block.
+    Diffusion(const DiffusionParams& params, Grid<double> initial);
 
     void step();
     int steps() const { return steps_; }               // steps taken so far

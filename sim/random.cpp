@@ -1,5 +1,7 @@
 #include "sim/random.hpp"
 
+#include <stdexcept>
+
 namespace sim {
 namespace {
 
@@ -17,6 +19,14 @@ std::uint64_t SplitMix64::next() {
 Random::Random(std::uint64_t seed) {
     SplitMix64 mix(seed);
     for (auto& word : s_) word = mix.next();  // never all zero: SplitMix64 is a bijection of distinct counters
+}
+
+Random Random::from_state(const std::array<std::uint64_t, 4>& state) {
+    if (state[0] == 0 && state[1] == 0 && state[2] == 0 && state[3] == 0)
+        throw std::invalid_argument("xoshiro256** state must not be all zero");
+    Random r;
+    for (int i = 0; i < 4; ++i) r.s_[i] = state[i];
+    return r;
 }
 
 std::uint64_t Random::next() {

@@ -5,6 +5,7 @@
 // seed gives the same bits with any compiler or standard library
 // (std::uniform_*_distribution is not portable and is never used).
 
+#include <array>
 #include <cstdint>
 
 namespace sim {
@@ -22,6 +23,9 @@ private:
 class Random {
 public:
     explicit Random(std::uint64_t seed);
+    // A generator resuming from a saved state (not all zero).
+    static Random from_state(const std::array<std::uint64_t, 4>& state);
+    std::array<std::uint64_t, 4> state() const { return {s_[0], s_[1], s_[2], s_[3]}; }
 
     std::uint64_t next();  // 64 random bits
     // Uniform in [0, 1): the top 53 bits of next() times 2^-53, so every
@@ -34,6 +38,7 @@ public:
     bool bernoulli(double p) { return uniform() < p; }  // true with probability p
 
 private:
+    Random() = default;
     std::uint64_t s_[4];
 };
 

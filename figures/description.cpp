@@ -1,0 +1,165 @@
+#include "figures/description.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
+
+namespace figures {
+namespace {
+
+const std::vector<Key> top_level_keys = {
+    {"id", "the figure's id, also the output file name"},
+    {"title", "one line for `figgen list`"},
+    {"source", "the printed figure reproduced"},
+    {"model", "the scene that draws it"},
+    {"seed", "seed of the random generator, 0..2^63-1"},
+    {"caption", "decisions and notes"},
+    {"params", "[params] section"},
+    {"style", "[style] section"},
+    {"figure", "[figure] section"},
+    {"animation", "[animation] section"},
+};
+
+const std::vector<Key> figure_keys = {
+    {"panels", "steps shown in the panels, ascending"},
+    {"size", "[width, height] in pixels"},
+    {"panel_title", "title above each panel; {step} is the step shown"},
+};
+
+const std::vector<Key> animation_keys = {
+    {"steps", "[first, last] steps of the animation"},
+    {"stride", "steps between frames, >= 1"},
+    {"fps", "frames per second, 1..120"},
+    {"size", "[width, height] in pixels"},
+    {"title", "title above each frame; {step} is the step shown"},
+};
+
+// A command-line value as TOML would read it ("0.2" a float, "[1,2]" a list,
+// "true" a boolean), or as a plain string when it is not TOML ("wrap").
+toml::node_view<toml::node> parse_value(const std::string& text, toml::table& holder) {
+    try {
+        holder = toml::parse("v = " + text);
+    } catch (const toml::parse_error&) {
+        holder = toml::table{{"v", text}};
+    }
+    return holder["v"];
+}
+
+void apply_override(toml::table& root, const std::string& assignment) {
+    const auto eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw UsageError("--set " + assignment + ": expected key=value, e.g. --set r=0.2 or --set figure.panels=[0,5]");
+    std::string key = assignment.substr(0, eq);
+    std::string section = "params";
+    if (const auto dot = key.find('.'); dot != std::string::npos) {
+        section = key.substr(0, dot);
+        key = key.substr(dot + 1);
+    }
+    if (section != "params" && section != "style" && section != "figure" && section != "animation")
+        throw UsageError("--set " + assignment + ": unknown section '" + section +
+                         "'; allowed: params, style, figure, animation");
+    if (!root.contains(section)) root.insert(section, toml::table{});
+    toml::table* table = root[section].as_table();
+    if (!table) throw UsageError("--set " + assignment + ": '" + section + "' is not a section");
+    toml::table holder;
+    auto value = parse_value(assignment.substr(eq + 1), holder);
+    table->insert_or_assign(key, *value.node());
+}
+
+std::pair<int, int> size_pair(Settings& s, const std::string& key, std::pair<int, int> fallback) {
+    const auto v = s.integers(key, {fallback.first, fallback.second});
+    if (v.size() != 2 || v[0] < 2 || v[1] < 2 || v[0] > 16384 || v[1] > 16384)
+        throw UsageError(s.section() + "." + key + " is not allowed: expected [width, height], each 2..16384");
+    return {static_cast<int>(v[0]), static_cast<int>(v[1])};
+}
+
+int checked_int(const std::string& what, long long value, long long low, long long high) {
+    if (value < low || value > high) {
+        std::ostringstream message;
+        message << what << " = " << value << " is not allowed: expected an integer from " << low << " to " << high;
+        throw UsageError(message.str());
+    }
+    return static_cast<int>(value);
+}
+
+const toml::table& section_table(const toml::table& root, const char* name) {
+    static const toml::table empty;
+    const toml::node* node = root.get(name);
+    if (!node) return empty;
+    if (!node->is_table()) throw UsageError(std::string(name) + " must be a [" + name + "] section");
+    return *node->as_table();
+}
+
+}  // namespace
+
+int Description::last_step(bool with_animation) const {
+    int last = panels.empty() ? 0 : panels.back();
+    if (with_animation && animation) last = std::max(last, animation->last);
+    return last;
+}
+
+std::string format_step(const std::string& pattern, int step) {
+    std::string text = pattern;
+    for (auto at = text.find("{step}"); at != std::string::npos; at = text.find("{step}"))
+        text.replace(at, 6, std::to_string(step));
+    return text;
+}
+
+Description load_description(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                             std::optional<std::uint64_t> seed) {
+    toml::table root;
+    try {
+        root = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        std::ostringstream message;
+        message << file.string() << ":" << e.source().begin.line << ": " << e.description();
+        throw UsageError(message.str());
+    }
+    for (const std::string& assignment : overrides) apply_override(root, assignment);
+
+    Description d;
+    d.file = file;
+    const std::string where = file.filename().string() + ": ";
+    try {
+        Settings top("description", root, top_level_keys);
+        d.id = top.text("id", file.stem().string());
+        d.title = top.text("title", d.id);
+        d.source = top.text("source", "");
+        d.model = top.text("model", "");
+        d.caption = top.text("caption", "");
+        const long long seed_value = top.integer("seed", 0);
+        if (seed_value < 0) throw UsageError("seed = " + std::to_string(seed_value) + " is not allowed: expected 0..2^63-1");
+        d.seed = seed ? *seed : static_cast<std::uint64_t>(seed_value);
+        if (d.model.empty()) throw UsageError("model is missing");
+        d.params = section_table(root, "params");
+        d.style = section_table(root, "style");
+
+        Settings figure("figure", section_table(root, "figure"), figure_keys);
+        for (long long step : figure.integers("panels", {}))
+            d.panels.push_back(checked_int("figure.panels step", step, 0, 100'000'000));
+        if (!std::is_sorted(d.panels.begin(), d.panels.end()))
+            throw UsageError("figure.panels must be in ascending order");
+        std::tie(d.width, d.height) = size_pair(figure, "size", {d.width, d.height});
+        d.panel_title = figure.text("panel_title", d.panel_title);
+
+        if (root.contains("animation")) {
+            Settings anim("animation", section_table(root, "animation"), animation_keys);
+            Animation a;
+            const auto steps = anim.integers("steps", {0, 0});
+            if (steps.size() != 2 || steps[0] < 0 || steps[1] < steps[0] || steps[1] > 100'000'000)
+                throw UsageError("animation.steps is not allowed: expected [first, last] with 0 <= first <= last");
+            a.first = static_cast<int>(steps[0]);
+            a.last = static_cast<int>(steps[1]);
+            a.stride = checked_int("animation.stride", anim.integer("stride", a.stride), 1, 100'000'000);
+            a.fps = checked_int("animation.fps", anim.integer("fps", a.fps), 1, 120);
+            std::tie(a.width, a.height) = size_pair(anim, "size", {a.width, a.height});
+            a.title = anim.text("title", a.title);
+            d.animation = a;
+        }
+    } catch (const UsageError& e) {
+        throw UsageError(where + e.what());
+    }
+    return d;
+}
+
+}  // namespace figures

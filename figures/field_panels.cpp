@@ -1,0 +1,28 @@
+#include "figures/field_panels.hpp"
+
+#include "render/canvas.hpp"
+
+namespace figures {
+
+render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale) {
+    render::Canvas canvas(width, height);
+    canvas.clear({1, 1, 1, 1});
+    render::PanelRowStyle style;
+    style.scale = static_cast<float>(scale);
+    const FieldLayer& first = panels.front().layers.front();
+    style.aspect = float(first.cols) / float(first.rows);
+    std::vector<std::string> titles;
+    bool titled = false;
+    for (const FieldPanel& p : panels) {
+        titles.push_back(p.title);
+        titled = titled || !p.title.empty();
+    }
+    const auto rects = render::panel_row(width, height, static_cast<int>(panels.size()), titled, style);
+    for (std::size_t i = 0; i < panels.size(); ++i)
+        for (const FieldLayer& layer : panels[i].layers)
+            render::draw_field(canvas, rects[i], layer.rows, layer.cols, layer.values, layer.style);
+    render::draw_panel_decorations(canvas, rects, titles, style);
+    return canvas.read();
+}
+
+}  // namespace figures

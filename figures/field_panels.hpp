@@ -1,0 +1,28 @@
+#pragma once
+// Drawing arrays the way the book's imshow calls do: each panel one or more
+// field layers stacked (Gray-Scott draws A and B), framed, titled.
+
+#include <string>
+#include <vector>
+
+#include "render/field.hpp"
+#include "render/image.hpp"
+#include "render/layout.hpp"
+
+namespace figures {
+
+struct FieldLayer {
+    int rows = 0, cols = 0;
+    std::vector<double> values;  // rows * cols, row 0 at the top
+    render::FieldStyle style;
+};
+
+struct FieldPanel {
+    std::string title;
+    std::vector<FieldLayer> layers;  // drawn first to last
+};
+
+// A row of panels on a white width x height page (pixels, already scaled).
+render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale);
+
+}  // namespace figures

@@ -1,0 +1,30 @@
+#include "figures/scene.hpp"
+
+#include <system_error>
+
+namespace figures {
+
+const std::vector<SceneInfo>& scenes() {
+    static const std::vector<SceneInfo> all = {
+        {"diffusion", render_diffusion},
+    };
+    return all;
+}
+
+void render_figure(const Description& d, const OutputOptions& options, Progress& progress) {
+    for (const SceneInfo& scene : scenes()) {
+        if (scene.model != d.model) continue;
+        std::error_code ec;
+        std::filesystem::create_directories(options.dir, ec);
+        if (ec || !std::filesystem::is_directory(options.dir))
+            throw UsageError("--out " + options.dir.string() + ": cannot create the folder: " +
+                             (ec ? ec.message() : "not a directory"));
+        scene.render(d, options, progress);
+        return;
+    }
+    std::string allowed;
+    for (const SceneInfo& scene : scenes()) allowed += (allowed.empty() ? "" : ", ") + scene.model;
+    throw UsageError(d.file.filename().string() + ": model \"" + d.model + "\" is unknown; allowed: " + allowed);
+}
+
+}  // namespace figures

@@ -1,0 +1,32 @@
+#pragma once
+// Scenes: one per model family, the only code that knows both a model (sim/)
+// and how to draw it (render/). A scene reads its [params] and [style],
+// runs the model once to the last step any output needs, and writes the
+// outputs through outputs.hpp.
+
+#include <string>
+#include <vector>
+
+#include "figures/description.hpp"
+#include "figures/outputs.hpp"
+#include "figures/progress.hpp"
+
+namespace figures {
+
+using SceneFunction = void (*)(const Description&, const OutputOptions&, Progress&);
+
+struct SceneInfo {
+    std::string model;       // the description's `model`
+    SceneFunction render;
+};
+
+const std::vector<SceneInfo>& scenes();
+
+// Renders one figure; throws UsageError for bad descriptions or parameters,
+// std::runtime_error for failures while writing.
+void render_figure(const Description& d, const OutputOptions& options, Progress& progress);
+
+// The scenes, each in its own file.
+void render_diffusion(const Description& d, const OutputOptions& options, Progress& progress);
+
+}  // namespace figures

@@ -1,0 +1,105 @@
+#include "figures/settings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace figures {
+
+std::string key_list(const std::vector<Key>& keys) {
+    std::string list;
+    for (const Key& k : keys) list += (list.empty() ? "" : ", ") + k.name;
+    return list.empty() ? "(none)" : list;
+}
+
+Settings::Settings(std::string section, const toml::table& table, std::vector<Key> allowed)
+    : section_(std::move(section)), table_(table), allowed_(std::move(allowed)) {
+    for (const auto& [key, value] : table_) {
+        const bool known = std::any_of(allowed_.begin(), allowed_.end(), [&](const Key& k) { return k.name == key.str(); });
+        if (!known)
+            throw UsageError("unknown key " + section_ + "." + std::string(key.str()) + "; allowed: " +
+                             key_list(allowed_));
+    }
+}
+
+const toml::node* Settings::find(const std::string& key) const {
+    const bool known = std::any_of(allowed_.begin(), allowed_.end(), [&](const Key& k) { return k.name == key; });
+    if (!known) throw std::logic_error("scene reads undeclared key " + section_ + "." + key);
+    return table_.get(key);
+}
+
+void Settings::wrong_type(const std::string& key, const char* expected) const {
+    std::ostringstream message;
+    message << section_ << "." << key << " = ";
+    table_.get(key)->visit([&](const auto& node) { message << node; });
+    message << " is not allowed: expected " << expected;
+    throw UsageError(message.str());
+}
+
+long long Settings::integer(const std::string& key, long long fallback) {
+    long long value = fallback;
+    if (const toml::node* node = find(key)) {
+        if (!node->is_integer()) wrong_type(key, "an integer");
+        value = node->as_integer()->get();
+    }
+    used_[key] = value;
+    return value;
+}
+
+int Settings::count(const std::string& key, int fallback) {
+    const long long value = integer(key, fallback);
+    if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max())
+        wrong_type(key, "an integer of at most 10 digits");
+    return static_cast<int>(value);
+}
+
+double Settings::number(const std::string& key, double fallback) {
+    double value = fallback;
+    if (const toml::node* node = find(key)) {
+        if (node->is_integer()) value = static_cast<double>(node->as_integer()->get());
+        else if (node->is_floating_point()) value = node->as_floating_point()->get();
+        else wrong_type(key, "a number");
+        // TOML admits nan and inf; no figure parameter does.
+        if (!std::isfinite(value)) wrong_type(key, "a finite number");
+    }
+    used_[key] = value;
+    return value;
+}
+
+std::string Settings::text(const std::string& key, const std::string& fallback) {
+    std::string value = fallback;
+    if (const toml::node* node = find(key)) {
+        if (!node->is_string()) wrong_type(key, "a string");
+        value = node->as_string()->get();
+    }
+    used_[key] = value;
+    return value;
+}
+
+bool Settings::flag(const std::string& key, bool fallback) {
+    bool value = fallback;
+    if (const toml::node* node = find(key)) {
+        if (!node->is_boolean()) wrong_type(key, "true or false");
+        value = node->as_boolean()->get();
+    }
+    used_[key] = value;
+    return value;
+}
+
+std::vector<long long> Settings::integers(const std::string& key, const std::vector<long long>& fallback) {
+    std::vector<long long> values = fallback;
+    if (const toml::node* node = find(key)) {
+        const toml::array* array = node->as_array();
+        if (!array) wrong_type(key, "a list of integers");
+        values.clear();
+        for (const toml::node& item : *array) {
+            if (!item.is_integer()) wrong_type(key, "a list of integers");
+            values.push_back(item.as_integer()->get());
+        }
+    }
+    used_[key] = values;
+    return values;
+}
+
+}  // namespace figures

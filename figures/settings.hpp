@@ -1,0 +1,56 @@
+#pragma once
+// One section of a figure description ([params], [style], ...) read through
+// the list of keys its scene allows. Unknown keys and values of the wrong
+// type are errors naming the key and what is allowed; a key that is absent
+// keeps the caller's default. Every value read is recorded for the metadata.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <toml++/toml.h>
+
+namespace figures {
+
+// Thrown for any mistake in a description or a command-line value: the
+// command reports it on one line and exits with status 2.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct Key {
+    std::string name;  // as written in the description, e.g. "r"
+    std::string help;  // one line: meaning and allowed values
+};
+
+class Settings {
+public:
+    // Throws UsageError if `table` holds a key not in `allowed`.
+    Settings(std::string section, const toml::table& table, std::vector<Key> allowed);
+
+    long long integer(const std::string& key, long long fallback);
+    int count(const std::string& key, int fallback);  // an integer that fits an int
+    double number(const std::string& key, double fallback);  // accepts integers too
+    std::string text(const std::string& key, const std::string& fallback);
+    bool flag(const std::string& key, bool fallback);
+    std::vector<long long> integers(const std::string& key, const std::vector<long long>& fallback);
+
+    const std::string& section() const { return section_; }
+    const std::vector<Key>& allowed() const { return allowed_; }
+    const nlohmann::json& used() const { return used_; }  // every key read, with its effective value
+
+private:
+    const toml::node* find(const std::string& key) const;
+    [[noreturn]] void wrong_type(const std::string& key, const char* expected) const;
+
+    std::string section_;
+    toml::table table_;
+    std::vector<Key> allowed_;
+    nlohmann::json used_ = nlohmann::json::object();
+};
+
+// "a, b, c": the allowed names, for error messages.
+std::string key_list(const std::vector<Key>& keys);
+
+}  // namespace figures

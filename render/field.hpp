@@ -1,0 +1,32 @@
+#pragma once
+// A scalar field drawn into a rectangle through a colormap, as matplotlib's
+// imshow does: row 0 at the top, each value normalised by vmin/vmax and looked
+// up in the colormap's 256-entry table, blended over what is below at `alpha`.
+// Interpolation happens on the data, before the colormap (matplotlib's
+// interpolation_stage="data").
+
+#include <span>
+
+#include "render/canvas.hpp"
+#include "render/colormap.hpp"
+
+namespace render {
+
+enum class Sampling {
+    nearest,  // each cell a flat square: imshow(interpolation="nearest")
+    smooth,   // cubic B-spline through the cells: imshow(interpolation="bicubic"), Agg's bicubic filter
+};
+
+struct FieldStyle {
+    const Colormap* colormap = nullptr;  // required
+    double vmin = 0.0;                   // value drawn with the first colour
+    double vmax = 1.0;                   // value drawn with the last colour
+    float alpha = 1.0f;                  // opacity over what lies below
+    Sampling sampling = Sampling::nearest;
+};
+
+// Draws a rows x cols field (row-major, row 0 at the top) to fill `where`.
+void draw_field(const Canvas& canvas, const Rect& where, int rows, int cols, std::span<const double> values,
+                const FieldStyle& style);
+
+}  // namespace render

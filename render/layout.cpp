@@ -1,0 +1,62 @@
+#include "render/layout.hpp"
+
+#include <algorithm>
+#include <map>
+#include <memory>
+
+#include "render/shapes.hpp"
+#include "render/text.hpp"
+
+namespace render {
+namespace {
+
+// Fonts are costly to set up (a glyph atlas each); keep one per size.
+Font& font_of_size(float pixels) {
+    static std::map<float, std::unique_ptr<Font>> fonts;
+    auto& font = fonts[pixels];
+    if (!font) font = std::make_unique<Font>(pixels);
+    return *font;
+}
+
+}  // namespace
+
+std::vector<Rect> panel_row(int width, int height, int count, bool titled, const PanelRowStyle& style) {
+    const float s = style.scale;
+    const float margin = style.margin * s, gap = style.gap * s;
+    const float title_band = titled ? (style.title_size * 1.25f + style.title_pad) * s : 0.0f;
+    const float free_w = (float(width) - 2 * margin - float(count - 1) * gap) / float(count);
+    const float free_h = float(height) - 2 * margin - title_band;
+    float w = std::max(1.0f, free_w), h = w / style.aspect;
+    if (h > free_h) {
+        h = std::max(1.0f, free_h);
+        w = h * style.aspect;
+    }
+    // Whole pixels: cell edges of nearest-neighbour fields then fall on a
+    // stable grid, and the frame lines stay crisp.
+    w = std::floor(w);
+    h = std::floor(h);
+    const float row_w = float(count) * w + float(count - 1) * gap;
+    const float x0 = std::round((float(width) - row_w) / 2);
+    const float y0 = std::round((float(height) - h - title_band) / 2 + title_band);
+    std::vector<Rect> panels;
+    for (int i = 0; i < count; ++i) panels.push_back({x0 + float(i) * (w + std::round(gap)), y0, w, h});
+    return panels;
+}
+
+void draw_panel_decorations(const Canvas& canvas, const std::vector<Rect>& panels,
+                            const std::vector<std::string>& titles, const PanelRowStyle& style) {
+    const glm::vec4 black{0, 0, 0, 1};
+    Shapes frames;
+    for (const Rect& r : panels) frames.frame(r, style.frame_width * style.scale, black);
+    frames.draw(canvas);
+    Text text;
+    Font& font = font_of_size(std::round(style.title_size * style.scale));
+    for (std::size_t i = 0; i < panels.size() && i < titles.size(); ++i) {
+        const Rect& r = panels[i];
+        text.add(font, titles[i], {r.x + r.w / 2, r.y - style.title_pad * style.scale}, black, Align::centre,
+                 Baseline::baseline);
+    }
+    text.draw(canvas);
+}
+
+}  // namespace render

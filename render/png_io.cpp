@@ -1,0 +1,140 @@
+#include "render/png_io.hpp"
+
+#include <png.h>
+
+#include <cerrno>
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+
+#include "render/atomic_file.hpp"
+
+namespace render {
+namespace {
+
+struct FileCloser {
+    void operator()(std::FILE* f) const { if (f) std::fclose(f); }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+// libpng reports errors through a callback; we keep its message and longjmp
+// back to the setjmp in the caller, which turns it into an exception.
+struct ErrorState {
+    std::jmp_buf jump;
+    char message[256] = "";
+};
+
+[[noreturn]] void on_error(png_structp png, png_const_charp message) {
+    auto* state = static_cast<ErrorState*>(png_get_error_ptr(png));
+    std::snprintf(state->message, sizeof state->message, "%s", message);
+    std::longjmp(state->jump, 1);
+}
+
+void on_warning(png_structp, png_const_charp) {}
+
+// Encodes `image` into `out`. Kept free of C++ objects with destructors, as
+// code between setjmp and longjmp must be; returns false with state.message set.
+bool encode(std::FILE* out, png_bytep* rows, const Image& image, png_text* records, int record_count,
+            ErrorState& state) {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, on_error, on_warning);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!info) {
+        png_destroy_write_struct(&png, nullptr);
+        std::snprintf(state.message, sizeof state.message, "out of memory");
+        return false;
+    }
+    if (setjmp(state.jump)) {
+        png_destroy_write_struct(&png, &info);
+        return false;
+    }
+    png_init_io(png, out);
+    png_set_IHDR(png, info, image.width, image.height, 8, PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    if (record_count > 0) png_set_text(png, info, records, record_count);
+    png_write_info(png, info);
+    png_write_image(png, rows);
+    png_write_end(png, info);
+    png_destroy_write_struct(&png, &info);
+    return true;
+}
+
+// Decodes `in` into `result` (8-bit RGBA whatever the stored format). Like
+// encode(), free of objects with destructors between setjmp and longjmp.
+bool decode(std::FILE* in, PngFile& result, ErrorState& state) {
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, on_error, on_warning);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!info) {
+        png_destroy_read_struct(&png, nullptr, nullptr);
+        std::snprintf(state.message, sizeof state.message, "out of memory");
+        return false;
+    }
+    if (setjmp(state.jump)) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        return false;
+    }
+    png_init_io(png, in);
+    png_read_info(png, info);
+    png_set_expand(png);
+    png_set_strip_16(png);
+    png_set_gray_to_rgb(png);
+    png_set_add_alpha(png, 0xff, PNG_FILLER_AFTER);
+    const int passes = png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    const int width = static_cast<int>(png_get_image_width(png, info));
+    const int height = static_cast<int>(png_get_image_height(png, info));
+    result.image = Image(width, height);
+    for (int pass = 0; pass < passes; ++pass)
+        for (int y = 0; y < height; ++y) png_read_row(png, result.image.pixel(0, y), nullptr);
+    png_read_end(png, info);
+    png_textp records = nullptr;
+    const int count = png_get_text(png, info, &records, nullptr);
+    for (int i = 0; i < count; ++i) result.text.emplace_back(records[i].key, records[i].text);
+    png_destroy_read_struct(&png, &info, nullptr);
+    return true;
+}
+
+}  // namespace
+
+void write_png(const std::filesystem::path& path, const Image& image, const TextChunks& text) {
+    if (image.width < 1 || image.height < 1 ||
+        image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4)
+        throw std::invalid_argument("write_png: image is empty or its pixel buffer has the wrong size");
+    AtomicFile file(path);
+    File out(std::fopen(file.temp_path().c_str(), "wb"));
+    if (!out) throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(errno));
+
+    std::vector<png_bytep> rows(image.height);
+    for (int y = 0; y < image.height; ++y)
+        rows[y] = const_cast<png_bytep>(image.rgba.data() + static_cast<std::size_t>(y) * image.width * 4);
+    std::vector<png_text> records(text.size());
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        records[i].compression = PNG_TEXT_COMPRESSION_NONE;
+        records[i].key = const_cast<char*>(text[i].first.c_str());
+        records[i].text = const_cast<char*>(text[i].second.c_str());
+    }
+    ErrorState state;
+    if (!encode(out.get(), rows.data(), image, records.data(), static_cast<int>(records.size()), state))
+        throw std::runtime_error("cannot write " + path.string() + ": " + state.message);
+
+    // A full disk often shows only when the buffered bytes are flushed.
+    if (std::fflush(out.get()) != 0 || std::ferror(out.get()))
+        throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(errno));
+    if (std::fclose(out.release()) != 0)
+        throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(errno));
+    file.commit();
+}
+
+
+PngFile read_png(const std::filesystem::path& path) {
+    File in(std::fopen(path.c_str(), "rb"));
+    if (!in) throw std::runtime_error("cannot read " + path.string() + ": " + std::strerror(errno));
+    PngFile result;
+    ErrorState state;
+    if (!decode(in.get(), result, state))
+        throw std::runtime_error("cannot read " + path.string() + ": " + state.message);
+    return result;
+}
+
+}  // namespace render

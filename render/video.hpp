@@ -1,0 +1,68 @@
+#pragma once
+// The MP4 sink: streams RGBA frames through libswscale and libavcodec into an
+// MP4 one frame at a time, so an animation never holds all its frames in
+// memory. H.264 (libx264) when FFmpeg has it, MPEG-4 part 2 otherwise.
+// The reading side (probe_video, decode_frame) is what the tests check an MP4
+// with: decoded frames, never the file's bytes.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "render/image.hpp"
+
+namespace render {
+
+struct VideoOptions {
+    int fps = 30;                // frames per second, >= 1
+    int threads = 2;             // encoder threads, pinned: the output bytes depend on it
+    int crf = 18;                // x264 quality 0..51 (lower is better); mpeg4 maps it to a fixed qscale
+    std::string codec = "auto";  // "auto" (libx264, else mpeg4), "libx264" or "mpeg4"
+};
+
+class VideoWriter {
+public:
+    // Throws std::invalid_argument for an odd or non-positive size or bad
+    // options, std::runtime_error (naming the path) when FFmpeg fails.
+    VideoWriter(const std::filesystem::path& path, int width, int height, const VideoOptions& options = {});
+    ~VideoWriter();  // without finish(), discards the temporary file: no half-written MP4 under the real name
+    VideoWriter(const VideoWriter&) = delete;
+    VideoWriter& operator=(const VideoWriter&) = delete;
+    VideoWriter(VideoWriter&&) noexcept;
+    VideoWriter& operator=(VideoWriter&&) noexcept;
+
+    void add(const Image& frame);  // width x height RGBA, rows top-down; else std::invalid_argument
+    void finish();                 // flushes the encoder, writes the trailer (faststart), renames temp -> final
+
+    const std::string& codec_name() const { return codec_name_; }  // "libx264" or "mpeg4"
+    int frames() const { return frames_; }                         // frames added so far
+
+private:
+    struct Encoder;  // the FFmpeg objects, kept out of this header
+    std::unique_ptr<Encoder> encoder_;
+    std::filesystem::path path_;
+    int width_ = 0;
+    int height_ = 0;
+    std::string codec_name_;
+    int frames_ = 0;
+};
+
+struct VideoInfo {
+    int frames = 0;                 // frames actually decoded, not the container's claim
+    int width = 0;                  // pixels
+    int height = 0;                 // pixels
+    std::string pixel_format;       // FFmpeg's name, e.g. "yuv420p"
+    std::string codec;              // FFmpeg's codec name, e.g. "h264" or "mpeg4"
+    double duration_seconds = 0.0;  // the video stream's duration
+    double fps = 0.0;               // the stream's average frame rate
+};
+
+// Opens the file and decodes every frame; throws std::runtime_error naming
+// the path when it cannot.
+VideoInfo probe_video(const std::filesystem::path& path);
+
+// Decodes frame `index` (0-based, display order) back to RGBA; throws
+// std::out_of_range when the video has fewer frames.
+Image decode_frame(const std::filesystem::path& path, int index);
+
+}  // namespace render

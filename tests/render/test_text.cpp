@@ -1,0 +1,277 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+#include "render/canvas.hpp"
+#include "render/text.hpp"
+#include "render/utf8.hpp"
+
+using render::Align;
+using render::Baseline;
+using render::Canvas;
+using render::Font;
+using render::Image;
+using render::Text;
+
+namespace {
+
+const glm::vec4 black{0, 0, 0, 1};
+const glm::vec4 white{1, 1, 1, 1};
+
+// The bounding box of the pixels darker than the white background by more
+// than `threshold` (0..255), with their count: the ink a string left.
+struct Ink {
+    int left = INT_MAX, top = INT_MAX, right = INT_MIN, bottom = INT_MIN;  // inclusive pixel indices
+    int count = 0;
+    bool empty() const { return count == 0; }
+    int width() const { return right - left + 1; }
+    int height() const { return bottom - top + 1; }
+    float centre_x() const { return (left + right + 1) / 2.0f; }  // pixel edges, not indices
+    float centre_y() const { return (top + bottom + 1) / 2.0f; }
+};
+
+Ink ink(const Image& image, int threshold = 32) {
+    Ink box;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const auto* p = image.pixel(x, y);
+            const int darkness = 255 - std::min({int(p[0]), int(p[1]), int(p[2])});
+            if (darkness <= threshold) continue;
+            box.left = std::min(box.left, x), box.right = std::max(box.right, x);
+            box.top = std::min(box.top, y), box.bottom = std::max(box.bottom, y);
+            ++box.count;
+        }
+    return box;
+}
+
+// Draws one string in black on a white canvas and returns what it left.
+Image render_one(Font& font, const std::string& s, glm::vec2 at, Align align = Align::left,
+                 Baseline baseline = Baseline::baseline, float rotation = 0, int w = 200, int h = 120) {
+    Canvas canvas(w, h);
+    canvas.clear(white);
+    Text text;
+    text.add(font, s, at, black, align, baseline, rotation);
+    text.draw(canvas);
+    return canvas.read();
+}
+
+}  // namespace
+
+TEST_CASE("UTF-8 decoding gives the code points of tick labels, Greek and Latin-1", "[text]") {
+    CHECK(render::decode_utf8("10⁻³ α×β") == std::u32string{U'1', U'0', 0x207B, 0x00B3, U' ', 0x03B1, 0x00D7, 0x03B2});
+    CHECK(render::decode_utf8("−2 °C, µ²") == std::u32string{0x2212, U'2', U' ', 0x00B0, U'C', U',', U' ', 0x00B5, 0x00B2});
+    CHECK(render::decode_utf8("λμπστφγδ") == U"λμπστφγδ");
+    CHECK(render::decode_utf8("Ångström, naïve") == U"Ångström, naïve");
+    CHECK(render::decode_utf8("⁰¹²³⁴⁵⁶⁷⁸⁹") == std::u32string{0x2070, 0xB9, 0xB2, 0xB3, 0x2074, 0x2075, 0x2076,
+                                                               0x2077, 0x2078, 0x2079});
+    CHECK(render::decode_utf8("\xF0\x9F\x98\x80") == std::u32string{0x1F600});  // four bytes
+    CHECK(render::decode_utf8("").empty());
+}
+
+TEST_CASE("malformed UTF-8 becomes U+FFFD and decoding resumes", "[text]") {
+    const char32_t bad = render::replacement_character;
+    CHECK(render::decode_utf8("a\x80z") == std::u32string{U'a', bad, U'z'});          // stray continuation
+    CHECK(render::decode_utf8("a\xE2\x81z") == std::u32string{U'a', bad, U'z'});      // truncated by a new character
+    CHECK(render::decode_utf8("a\xE2\x81") == std::u32string{U'a', bad});             // truncated by the end
+    CHECK(render::decode_utf8("\xC0\xAF") == std::u32string{bad});                    // overlong '/'
+    CHECK(render::decode_utf8("\xED\xA0\x80") == std::u32string{bad});                // a surrogate
+    CHECK(render::decode_utf8("\xF4\x90\x80\x80") == std::u32string{bad});            // above U+10FFFF
+    CHECK(render::decode_utf8("\xFF!") == std::u32string{bad, U'!'});
+}
+
+TEST_CASE("a font that cannot be loaded throws naming its path", "[text]") {
+    const std::string path = "/nonexistent/fonts/NoSuchFont.ttf";
+    CHECK_THROWS_WITH(Font(12, path), Catch::Contains(path));
+    CHECK_THROWS_AS(Font(0), std::invalid_argument);
+    CHECK_THROWS_AS(Font(-3), std::invalid_argument);
+}
+
+TEST_CASE("DejaVu Sans metrics scale with the pixel size", "[text]") {
+    const Font font(20);
+    CHECK(font.pixel_size() == 20);
+    CHECK(font.path() == FIGGEN_FONT_PATH);
+    // DejaVu Sans: 2048 units per em, ascender 1901, descender -483, line gap 0, capitals 1493.
+    CHECK(font.ascender() == Approx(20 * 1901 / 2048.0).epsilon(1e-4));
+    CHECK(font.descender() == Approx(20 * -483 / 2048.0).epsilon(1e-4));
+    CHECK(font.line_height() == Approx(font.ascender() - font.descender()).epsilon(1e-4));
+    CHECK(font.cap_height() == Approx(20 * 1493 / 2048.0).epsilon(1e-3));
+}
+
+TEST_CASE("advance widths: narrow and wide letters, kerning, linear in size", "[text]") {
+    Font font(20);
+    CHECK(font.width("") == 0);
+    CHECK(font.width("ii") < font.width("MM"));
+    CHECK(font.width("ii") == Approx(2 * font.width("i")));  // no kerning between these
+    CHECK(font.width("Hello") > 3 * 20 * 0.5);                // five letters of about half an em or more
+    CHECK(font.width("Hello") < 5 * 20);
+    // DejaVu Sans kerns A against V: the pair is tighter than its letters.
+    CHECK(font.width("AV") < font.width("A") + font.width("V") - 0.5f);
+    // Unhinted advances: the same string at another size scales in proportion.
+    Font big(47);
+    for (const char* s : {"Hello", "step 15", "10⁻³ α×β", "AVAVAV"})
+        CHECK(big.width(s) == Approx(font.width(s) * 47 / 20).epsilon(0.02));
+    // Non-ASCII characters have real advances, and an unknown one draws the .notdef box, not nothing.
+    CHECK(font.width("α") > 5);
+    CHECK(font.width("\xEE\x80\x80") > 5);  // U+E000, private use: not in the font
+}
+
+TEST_CASE("a black string on white leaves ink only inside its line box", "[text]") {
+    Font font(24);
+    const glm::vec2 at{20.3f, 60};
+    const Image image = render_one(font, "step 15", at);
+    const Ink box = ink(image, 8);  // even faint anti-aliasing counts here
+    REQUIRE(!box.empty());
+    const float w = font.width("step 15");
+    CHECK(box.left >= at.x - 2);
+    CHECK(box.right + 1 <= at.x + w + 2);
+    CHECK(box.top >= at.y - font.ascender() - 2);
+    CHECK(box.bottom + 1 <= at.y - font.descender() + 2);
+    // "p" descends below the baseline, "t" and "1" rise near the capitals.
+    CHECK(box.bottom + 1 > at.y + 2);
+    CHECK(box.top < at.y - font.cap_height() + 2);
+    CHECK(box.width() > w - 4);
+    // Strokes about 2.5 px thick: the ink is a fraction of the box, neither a smudge nor a fill.
+    const Ink dark = ink(image, 128);
+    const float area = w * font.line_height();
+    CHECK(dark.count > 0.08 * area);
+    CHECK(dark.count < 0.40 * area);
+    // Solid black where strokes are: the coverage reaches full strength.
+    int darkest = 255;
+    for (int y = box.top; y <= box.bottom; ++y)
+        for (int x = box.left; x <= box.right; ++x) darkest = std::min(darkest, int(image.pixel(x, y)[1]));
+    CHECK(darkest < 20);
+    CHECK(int(image.pixel(box.left, box.top)[3]) == 255);  // alpha stays opaque over the background
+}
+
+TEST_CASE("alignment anchors the line at its left, centre or right", "[text]") {
+    Font font(24);
+    const glm::vec2 at{100.4f, 60};
+    const float w = font.width("step 15");
+    const Ink centred = ink(render_one(font, "step 15", at, Align::centre));
+    CHECK(std::abs(centred.centre_x() - at.x) <= 1.5);
+    const Ink right = ink(render_one(font, "step 15", at, Align::right));
+    CHECK(right.right + 1 <= at.x + 1);
+    CHECK(right.right + 1 >= at.x - 3);
+    CHECK(right.left >= at.x - w - 1);
+    const Ink left = ink(render_one(font, "step 15", at, Align::left));
+    CHECK(left.left >= at.x - 1);
+    CHECK(left.left <= at.x + 3);
+    // The three are the same ink moved sideways.
+    CHECK(std::abs(left.count - centred.count) < left.count / 20);
+    CHECK(std::abs(left.count - right.count) < left.count / 20);
+}
+
+TEST_CASE("vertical anchors: top and bottom of the line box, middle of the capitals", "[text]") {
+    Font font(30);
+    const glm::vec2 at{20, 60};
+    const Ink top = ink(render_one(font, "HÉg", at, Align::left, Baseline::top));
+    CHECK(top.top >= at.y - 1);  // the accent stays under the line box's top
+    CHECK(top.bottom + 1 <= at.y + font.line_height() + 1);
+    const Ink bottom = ink(render_one(font, "HÉg", at, Align::left, Baseline::bottom));
+    CHECK(bottom.bottom + 1 <= at.y + 1);
+    CHECK(bottom.bottom + 1 >= at.y + font.descender() * 0.3f);  // "g" reaches well into the descender
+    const Ink middle = ink(render_one(font, "HIH", at, Align::left, Baseline::middle));
+    CHECK(std::abs(middle.centre_y() - at.y) <= 1);
+    const Ink on_baseline = ink(render_one(font, "HIH", at));
+    CHECK(on_baseline.bottom + 1 == Approx(at.y).margin(1));
+    CHECK(on_baseline.height() == Approx(font.cap_height()).margin(1.5));
+}
+
+TEST_CASE("a line turned 90 degrees reads bottom to top beside its anchor", "[text]") {
+    Font font(24);
+    const glm::vec2 at{60, 180};
+    const float w = font.width("step 15");
+    const Ink box = ink(render_one(font, "step 15", at, Align::left, Baseline::baseline, 90, 120, 200));
+    REQUIRE(!box.empty());
+    CHECK(box.height() > 2 * box.width());
+    CHECK(box.height() > w - 4);
+    // Counter-clockwise: the text runs up from the anchor, its letters' tops point left.
+    CHECK(box.bottom + 1 <= at.y + 2);
+    CHECK(box.top >= at.y - w - 2);
+    CHECK(box.left >= at.x - font.ascender() - 2);
+    CHECK(box.right + 1 <= at.x - font.descender() + 2);
+    CHECK(box.right + 1 > at.x + 2);  // only "p" reaches past the baseline, to the right
+    // Same ink as the upright line, give or take the filtering at other offsets.
+    const Ink upright = ink(render_one(font, "step 15", {20, 60}));
+    CHECK(std::abs(box.count - upright.count) < upright.count / 10);
+    // A centred y-axis label centres along the axis.
+    const Ink centred = ink(render_one(font, "step 15", {60, 100}, Align::centre, Baseline::bottom, 90, 120, 200));
+    CHECK(std::abs(centred.centre_y() - 100) <= 1.5);
+    CHECK(centred.right + 1 <= 60 + 1);
+}
+
+TEST_CASE("superscripts and symbols are real glyphs, not .notdef boxes", "[text]") {
+    Font font(40);
+    const glm::vec2 at{20, 80};
+    // Superscript minus and three float above the baseline.
+    const Ink sup = ink(render_one(font, "⁻³", at));
+    REQUIRE(!sup.empty());
+    CHECK(sup.bottom + 1 < at.y - 0.25f * font.cap_height());
+    // A .notdef box sits on the baseline; the degree sign does not.
+    const Ink degree = ink(render_one(font, "°", at));
+    CHECK(degree.bottom + 1 < at.y - 0.4f * font.cap_height());
+    const Ink unknown = ink(render_one(font, "\xEE\x80\x80", at));
+    REQUIRE(!unknown.empty());
+    CHECK(unknown.bottom + 1 >= at.y);  // DejaVu's box reaches into the descender
+    // Greek letters have ink of their own.
+    const Ink greek = ink(render_one(font, "αβγδλμπστφ", {4, 80}, Align::left, Baseline::baseline, 0, 400, 120));
+    CHECK(greek.width() > 8 * font.pixel_size() * 0.4);
+}
+
+TEST_CASE("colour and alpha reach the pixels", "[text]") {
+    Font font(32);
+    Canvas canvas(120, 60);
+    canvas.clear(white);
+    Text text;
+    text.add(font, "IIII", {10, 45}, {1, 0, 0, 1});
+    text.add(font, "IIII", {70, 45}, {0, 0, 1, 0.5f});
+    text.draw(canvas);
+    const Image image = canvas.read();
+    int reddest = 0, blue_min_red = 255;
+    for (int y = 0; y < 60; ++y) {
+        for (int x = 0; x < 60; ++x) {
+            const auto* p = image.pixel(x, y);
+            CHECK(int(p[0]) == 255);  // red over white keeps full red
+            reddest = std::max(reddest, 255 - int(p[1]));
+        }
+        for (int x = 60; x < 120; ++x) blue_min_red = std::min(blue_min_red, int(image.pixel(x, y)[0]));
+    }
+    CHECK(reddest > 240);
+    // Half-transparent blue over white: the strongest pixel is half way.
+    CHECK(blue_min_red == Approx(128).margin(8));
+}
+
+TEST_CASE("one batch holds several fonts and the atlas grows without losing glyphs", "[text]") {
+    Font small(16), big(150);
+    Canvas canvas(300, 200);
+    canvas.clear(white);
+    Text text;
+    text.add(big, "A", {20, 170}, black);
+    text.add(small, "A", {200, 40}, black);
+    text.draw(canvas);
+    const Image before = canvas.read();
+    const Ink big_a = ink(before);
+    REQUIRE(!big_a.empty());
+    CHECK(big_a.height() > 100);  // the big "A" ...
+    CHECK(big_a.left < 100);
+    int small_ink = 0;            // ... and the small one, elsewhere
+    for (int y = 20; y < 45; ++y)
+        for (int x = 195; x < 220; ++x) small_ink += before.pixel(x, y)[1] < 128 ? 1 : 0;
+    CHECK(small_ink > 10);
+
+    // Many glyphs at 150 px overflow the starting atlas, which must grow and
+    // still hold the "A" placed first.
+    std::string alphabet;
+    for (char c = 'B'; c <= 'Z'; ++c) alphabet += c;
+    for (char c = 'a'; c <= 'z'; ++c) alphabet += c;
+    CHECK(big.width(alphabet) > 0);  // rasterises them all
+    canvas.clear(white);
+    text.draw(canvas);
+    const Image after = canvas.read();
+    CHECK(after.rgba == before.rgba);
+}

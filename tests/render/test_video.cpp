@@ -1,0 +1,207 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "render/video.hpp"
+
+namespace fs = std::filesystem;
+using render::Image;
+using render::VideoOptions;
+using render::VideoWriter;
+
+namespace {
+
+constexpr int kWidth = 64;
+constexpr int kHeight = 48;
+constexpr int kFrames = 25;
+constexpr int kBarWidth = 8;
+constexpr std::uint8_t kBackground[3] = {40, 90, 200};  // blue
+
+// Frame i: a white vertical bar, kBarWidth wide, starting at x = 2i, on blue.
+Image moving_bar(int i) {
+    Image image(kWidth, kHeight);
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            std::uint8_t* p = image.pixel(x, y);
+            const bool bar = x >= 2 * i && x < 2 * i + kBarWidth;
+            for (int c = 0; c < 3; ++c) p[c] = bar ? 255 : kBackground[c];
+            p[3] = 255;
+        }
+    return image;
+}
+
+fs::path scratch(const std::string& name) {
+    const fs::path dir = fs::path(FIGGEN_TEST_ARTIFACT_DIR) / "video";
+    fs::create_directories(dir);
+    const fs::path path = dir / name;
+    fs::remove(path);
+    return path;
+}
+
+std::string encode_bar(const fs::path& path, const VideoOptions& options = {}) {
+    VideoWriter writer(path, kWidth, kHeight, options);
+    for (int i = 0; i < kFrames; ++i) writer.add(moving_bar(i));
+    CHECK(writer.frames() == kFrames);
+    writer.finish();
+    return writer.codec_name();
+}
+
+// Mean of one channel over the columns [x0, x1) of the whole height.
+double mean_channel(const Image& image, int x0, int x1, int channel) {
+    double sum = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = x0; x < x1; ++x) sum += image.pixel(x, y)[channel];
+    return sum / (double(x1 - x0) * image.height);
+}
+
+double mean_luma(const Image& image, int x0, int x1) {  // BT.709 weights
+    return 0.2126 * mean_channel(image, x0, x1, 0) + 0.7152 * mean_channel(image, x0, x1, 1) +
+           0.0722 * mean_channel(image, x0, x1, 2);
+}
+
+std::string read_bytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Files in `path`'s folder whose names start with `path`'s name: the final
+// file and any temporary ("<name>.tmp-<pid>").
+int files_named_like(const fs::path& path) {
+    int n = 0;
+    for (const auto& entry : fs::directory_iterator(path.parent_path()))
+        if (entry.path().filename().string().rfind(path.filename().string(), 0) == 0) ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("an encoded video decodes back to its frame count, size, format and duration", "[video]") {
+    const fs::path path = scratch("bar.mp4");
+    const std::string codec = encode_bar(path);
+    CHECK((codec == "libx264" || codec == "mpeg4"));
+    REQUIRE(fs::exists(path));
+    const render::VideoInfo info = render::probe_video(path);
+    CHECK(info.frames == kFrames);
+    CHECK(info.width == kWidth);
+    CHECK(info.height == kHeight);
+    CHECK(info.pixel_format == "yuv420p");
+    CHECK(info.codec == (codec == "libx264" ? "h264" : "mpeg4"));
+    CHECK(info.fps == Approx(30.0));
+    CHECK(info.duration_seconds == Approx(kFrames / 30.0).margin(0.5 / 30));
+    CHECK(files_named_like(path) == 1);  // no temporary left beside it
+}
+
+TEST_CASE("a decoded frame keeps the pattern's colours and position", "[video]") {
+    const fs::path path = scratch("bar_colour.mp4");
+    encode_bar(path);
+    const Image frame = render::decode_frame(path, 12);  // bar at x = 24..31
+    REQUIRE(frame.width == kWidth);
+    REQUIRE(frame.height == kHeight);
+    // Inside the bar, away from its edges: white.
+    CHECK(mean_luma(frame, 26, 30) == Approx(255).margin(4));
+    // Far from the bar: the blue background, channel by channel.
+    for (int c = 0; c < 3; ++c) CHECK(mean_channel(frame, 40, 60, c) == Approx(kBackground[c]).margin(4));
+    CHECK(mean_luma(frame, 2, 20) ==
+          Approx(0.2126 * kBackground[0] + 0.7152 * kBackground[1] + 0.0722 * kBackground[2]).margin(3));
+    // The bar of frame 11 (x = 22..29) or 13 (x = 26..33) would light these.
+    CHECK(mean_luma(frame, 20, 22) < 120);
+    CHECK(mean_luma(frame, 34, 36) < 120);
+    CHECK(mean_luma(frame, 24, 25) > 200);
+    CHECK(mean_luma(frame, 31, 32) > 200);
+    CHECK_THROWS_AS(render::decode_frame(path, kFrames), std::out_of_range);
+}
+
+TEST_CASE("the mpeg4 fallback encodes the same frames", "[video]") {
+    const fs::path path = scratch("bar_mpeg4.mp4");
+    VideoOptions options;
+    options.codec = "mpeg4";
+    options.fps = 25;
+    CHECK(encode_bar(path, options) == "mpeg4");
+    const render::VideoInfo info = render::probe_video(path);
+    CHECK(info.frames == kFrames);
+    CHECK(info.width == kWidth);
+    CHECK(info.height == kHeight);
+    CHECK(info.pixel_format == "yuv420p");
+    CHECK(info.codec == "mpeg4");
+    CHECK(info.fps == Approx(25.0));
+    CHECK(info.duration_seconds == Approx(1.0).margin(0.5 / 25));
+    const Image frame = render::decode_frame(path, 12);
+    CHECK(mean_luma(frame, 26, 30) == Approx(255).margin(6));
+    for (int c = 0; c < 3; ++c) CHECK(mean_channel(frame, 40, 60, c) == Approx(kBackground[c]).margin(6));
+}
+
+TEST_CASE("odd or empty video sizes and bad options are refused", "[video]") {
+    const fs::path path = scratch("odd.mp4");
+    CHECK_THROWS_WITH(VideoWriter(path, 101, 50),
+                      "video size 101x50 is not allowed: width and height must be even and positive");
+    CHECK_THROWS_AS(VideoWriter(path, 64, 47), std::invalid_argument);
+    CHECK_THROWS_AS(VideoWriter(path, 0, 48), std::invalid_argument);
+    CHECK_THROWS_AS(VideoWriter(path, -64, 48), std::invalid_argument);
+    VideoOptions options;
+    options.codec = "vp9";
+    CHECK_THROWS_AS(VideoWriter(path, 64, 48, options), std::invalid_argument);
+    options = {};
+    options.threads = 0;  // "auto" would make the bytes depend on the machine
+    CHECK_THROWS_AS(VideoWriter(path, 64, 48, options), std::invalid_argument);
+    options = {};
+    options.fps = 0;
+    CHECK_THROWS_AS(VideoWriter(path, 64, 48, options), std::invalid_argument);
+    CHECK(files_named_like(path) == 0);
+}
+
+TEST_CASE("a frame of the wrong size is refused", "[video]") {
+    const fs::path path = scratch("wrong_frame.mp4");
+    VideoWriter writer(path, kWidth, kHeight);
+    CHECK_THROWS_WITH(writer.add(Image(32, 48)), "video frame is 32x48, expected 64x48 RGBA");
+    Image short_buffer = moving_bar(0);
+    short_buffer.rgba.resize(short_buffer.rgba.size() - 4);
+    CHECK_THROWS_AS(writer.add(short_buffer), std::invalid_argument);
+    writer.add(moving_bar(0));  // the writer is still usable
+    CHECK(writer.frames() == 1);
+}
+
+TEST_CASE("a writer destroyed without finish leaves neither the file nor a temporary", "[video]") {
+    const fs::path path = scratch("abandoned.mp4");
+    {
+        VideoWriter writer(path, kWidth, kHeight);
+        for (int i = 0; i < 5; ++i) writer.add(moving_bar(i));
+        CHECK(files_named_like(path) == 1);  // the temporary, being written
+        CHECK_FALSE(fs::exists(path));
+    }
+    CHECK(files_named_like(path) == 0);
+}
+
+TEST_CASE("a video in a missing folder fails naming the path", "[video]") {
+    const fs::path path = fs::path(FIGGEN_TEST_ARTIFACT_DIR) / "no-such-folder" / "x.mp4";
+    try {
+        VideoWriter writer(path, kWidth, kHeight);
+        FAIL("no exception");
+    } catch (const std::runtime_error& e) {
+        const std::string what = e.what();
+        CHECK(what.find(path.string()) != std::string::npos);
+        CHECK(what.find("No such file or directory") != std::string::npos);
+        CHECK(what.find('\n') == std::string::npos);
+    }
+    CHECK_FALSE(fs::exists(path.parent_path()));
+}
+
+TEST_CASE("a missing video cannot be probed", "[video]") {
+    const fs::path path = scratch("missing.mp4");
+    CHECK_THROWS_AS(render::probe_video(path), std::runtime_error);
+}
+
+TEST_CASE("the same frames with the same options give the same bytes", "[video]") {
+    const fs::path a = scratch("same_a.mp4");
+    const fs::path b = scratch("same_b.mp4");
+    encode_bar(a);
+    encode_bar(b);
+    const std::string bytes_a = read_bytes(a);
+    CHECK(bytes_a.size() > 1000);
+    CHECK(bytes_a == read_bytes(b));
+    // faststart: the index ("moov") comes before the frames ("mdat").
+    CHECK(bytes_a.find("moov") < bytes_a.find("mdat"));
+}
