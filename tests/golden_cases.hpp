@@ -1,0 +1,29 @@
+#pragma once
+// The images that have goldens: a test pattern exercising every drawing
+// primitive, and every figure description of the catalog rendered small.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "render/image.hpp"
+
+namespace testkit {
+
+struct GoldenCase {
+    std::string name;                     // golden file stem
+    std::function<render::Image()> make;  // renders it
+};
+
+// Shapes, both field samplings, two colormaps, text: 160 x 96 pixels.
+render::Image test_pattern();
+
+// Renders figure `id` of the catalog at `scale` without video, through the
+// same code as `figgen render`, and returns the PNG's decoded pixels.
+render::Image render_catalog_figure(const std::string& id, double scale);
+
+inline constexpr double golden_scale = 0.5;  // figures are checked at half size: small goldens
+
+std::vector<GoldenCase> golden_cases();
+
+}  // namespace testkit

@@ -1,0 +1,21 @@
+// `make goldens`: renders every golden case and rewrites tests/golden/.
+// Run by hand after a deliberate change to how things look; CI never runs it.
+#include <cstdio>
+#include <exception>
+
+#include "golden_cases.hpp"
+#include "image_check.hpp"
+
+int main(int argc, char** argv) {
+    const char* dir = argc > 1 ? argv[1] : FIGGEN_TEST_GOLDEN_DIR;
+    try {
+        for (const auto& c : testkit::golden_cases()) {
+            testkit::write_golden(dir, c.name, c.make());
+            std::printf("wrote %s/%s.png and .sha256\n", dir, c.name.c_str());
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "figgen_goldens: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,82 @@
+#include <catch2/catch.hpp>
+
+#include "render/canvas.hpp"
+#include "render/colormap.hpp"
+#include "render/field.hpp"
+
+// Reference colours: the end points of ColorBrewer's 9-class sequential
+// schemes (Reds #fff5f0 .. #67000d, Blues #f7fbff .. #08306b, Greens
+// #f7fcf5 .. #00441b) that matplotlib interpolates, and viridis's published
+// first and last entries (0.267004, 0.004874, 0.329415), (0.993248, 0.906157, 0.143936).
+
+namespace {
+void check_rgb(glm::vec3 actual, int r, int g, int b) {
+    CHECK(actual.r * 255 == Approx(r).margin(0.01));
+    CHECK(actual.g * 255 == Approx(g).margin(0.01));
+    CHECK(actual.b * 255 == Approx(b).margin(0.01));
+}
+}  // namespace
+
+TEST_CASE("colormaps hold matplotlib's tables", "[colormap]") {
+    check_rgb(render::colormap("Reds").at(0.0), 0xff, 0xf5, 0xf0);
+    check_rgb(render::colormap("Reds").at(1.0), 0x67, 0x00, 0x0d);
+    check_rgb(render::colormap("Blues").at(0.0), 0xf7, 0xfb, 0xff);
+    check_rgb(render::colormap("Blues").at(1.0), 0x08, 0x30, 0x6b);
+    check_rgb(render::colormap("Greens").at(0.0), 0xf7, 0xfc, 0xf5);
+    check_rgb(render::colormap("Greens").at(1.0), 0x00, 0x44, 0x1b);
+    const glm::vec3 v0 = render::colormap("viridis").at(0.0), v1 = render::colormap("viridis").at(1.0);
+    CHECK(v0.r == Approx(0.267004).margin(1e-6));
+    CHECK(v0.b == Approx(0.329415).margin(1e-6));
+    CHECK(v1.r == Approx(0.993248).margin(1e-6));
+    CHECK(v1.b == Approx(0.143936).margin(1e-6));
+}
+
+TEST_CASE("colormap lookup quantises like matplotlib and clips out-of-range values", "[colormap]") {
+    const auto& reds = render::colormap("Reds");
+    CHECK(reds.at(-3.0) == reds.at(0.0));
+    CHECK(reds.at(7.0) == reds.at(1.0));
+    CHECK(reds.at(0.5) == glm::vec3(reds.table[128][0], reds.table[128][1], reds.table[128][2]));
+    CHECK(reds.at(0.5 - 1e-9) == glm::vec3(reds.table[127][0], reds.table[127][1], reds.table[127][2]));
+}
+
+TEST_CASE("an unknown colormap is an error listing the known ones", "[colormap]") {
+    CHECK_THROWS_WITH(render::colormap("jet"), "colormap \"jet\" is unknown: allowed are Reds, Blues, Greens, viridis");
+}
+
+TEST_CASE("a nearest-sampled field paints each cell its colour, alpha-blended over white", "[colormap][field]") {
+    render::Canvas canvas(40, 40);
+    canvas.clear({1, 1, 1, 1});
+    const std::vector<double> values = {0.0, 1.0, 0.5, 0.25};  // 2x2, row 0 at the top
+    const auto& reds = render::colormap("Reds");
+    render::draw_field(canvas, {0, 0, 40, 40}, 2, 2, values, {&reds, 0.0, 1.0, 0.7f, render::Sampling::nearest});
+    const render::Image image = canvas.read();
+    auto expect_cell = [&](int x, int y, double value) {
+        const glm::vec3 c = reds.at(value);
+        for (int ch = 0; ch < 3; ++ch) {
+            const double over_white = 0.7 * c[ch] + 0.3;  // straight alpha over an opaque white page
+            CHECK(int(image.pixel(x, y)[ch]) == Approx(over_white * 255).margin(1.5));  // 8-bit blending rounds twice
+        }
+        CHECK(int(image.pixel(x, y)[3]) == 255);
+    };
+    expect_cell(10, 10, 0.0);   // top-left cell
+    expect_cell(30, 10, 1.0);   // top-right
+    expect_cell(10, 30, 0.5);   // bottom-left
+    expect_cell(30, 30, 0.25);  // bottom-right
+}
+
+TEST_CASE("smooth sampling keeps a constant field constant and blends across an edge", "[field]") {
+    render::Canvas canvas(64, 16);
+    canvas.clear({1, 1, 1, 1});
+    const auto& viridis = render::colormap("viridis");
+    // 1 x 8 cells: 0 0 0 0 1 1 1 1.
+    const std::vector<double> step = {0, 0, 0, 0, 1, 1, 1, 1};
+    render::draw_field(canvas, {0, 0, 64, 16}, 1, 8, step, {&viridis, 0.0, 1.0, 1.0f, render::Sampling::smooth});
+    const render::Image image = canvas.read();
+    const glm::vec3 low = viridis.at(0.0), high = viridis.at(1.0);
+    CHECK(int(image.pixel(2, 8)[0]) == Approx(low.r * 255).margin(1.0));   // far from the edge: flat
+    CHECK(int(image.pixel(61, 8)[0]) == Approx(high.r * 255).margin(1.0));
+    // At the edge (x = 32) the B-spline gives 0.5: viridis's middle colour.
+    const glm::vec3 mid = viridis.at(0.5);
+    CHECK(int(image.pixel(32, 8)[0]) == Approx(mid.r * 255).margin(12.0));
+    CHECK(int(image.pixel(32, 8)[1]) == Approx(mid.g * 255).margin(12.0));
+}
