@@ -147,7 +147,7 @@ TEST_CASE("render writes the PNG with its text chunks and the metadata JSON, and
     CHECK_FALSE(meta.contains("animation"));
 }
 
-TEST_CASE("--frames writes the animation as a numbered PNG sequence", "[cli]") {
+TEST_CASE("render with --frames writes the animation as a numbered PNG sequence", "[cli]") {
     const fs::path out = fresh_dir("frames");
     const Run run = figgen("render tc7-1 --no-video --frames --scale 0.25 --set animation.steps=[0,9] --out " +
                            out.string());

@@ -33,7 +33,7 @@ TEST_CASE("diffusion's first steps equal the values worked out by hand", "[diffu
     CHECK(d.steps() == 2);
 }
 
-TEST_CASE("wrap conserves the total; zero-fill loses it once mass reaches the edge", "[diffusion]") {
+TEST_CASE("wrap conserves the total and zero-fill loses it once mass reaches the edge", "[diffusion]") {
     DiffusionParams wrap = book();
     wrap.boundary = sim::Boundary::wrap;
     Diffusion w(wrap), z(book());

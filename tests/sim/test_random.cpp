@@ -41,7 +41,7 @@ TEST_CASE("a seeded generator reproduces fixed known outputs", "[random]") {
     for (std::uint64_t e : expected) CHECK(b.below(10) == e);
 }
 
-TEST_CASE("same seed, same bits; different seeds differ", "[random]") {
+TEST_CASE("same seed gives same bits and different seeds differ", "[random]") {
     sim::Random a(2024), b(2024), c(2025);
     bool all_same_as_c = true;
     for (int i = 0; i < 1000; ++i) {
@@ -52,7 +52,7 @@ TEST_CASE("same seed, same bits; different seeds differ", "[random]") {
     CHECK_FALSE(all_same_as_c);
 }
 
-TEST_CASE("uniform draws stay in [0, 1) with the right mean", "[random]") {
+TEST_CASE("uniform draws stay in the unit interval with the right mean", "[random]") {
     sim::Random g(1);
     double sum = 0;
     const int n = 200000;
