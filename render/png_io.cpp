@@ -2,6 +2,7 @@
 
 #include <png.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
@@ -110,7 +111,11 @@ void write_png(const std::filesystem::path& path, const Image& image, const Text
         rows[y] = const_cast<png_bytep>(image.rgba.data() + static_cast<std::size_t>(y) * image.width * 4);
     std::vector<png_text> records(text.size());
     for (std::size_t i = 0; i < text.size(); ++i) {
-        records[i].compression = PNG_TEXT_COMPRESSION_NONE;
+        // tEXt holds Latin-1 only; anything beyond ASCII goes in an iTXt
+        // chunk, which is UTF-8, as our strings are.
+        const bool ascii = std::all_of(text[i].second.begin(), text[i].second.end(),
+                                       [](char c) { return static_cast<unsigned char>(c) < 0x80; });
+        records[i].compression = ascii ? PNG_TEXT_COMPRESSION_NONE : PNG_ITXT_COMPRESSION_NONE;
         records[i].key = const_cast<char*>(text[i].first.c_str());
         records[i].text = const_cast<char*>(text[i].second.c_str());
     }

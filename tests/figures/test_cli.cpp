@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/png_io.hpp"
+#include "render/video.hpp"
 
 namespace fs = std::filesystem;
 
@@ -165,4 +166,24 @@ TEST_CASE("render with --frames writes the animation as a numbered PNG sequence"
     const auto meta = nlohmann::json::parse(in);
     CHECK(meta["animation"]["frames"] == 10);
     CHECK(meta["animation"]["png_sequence"] == "tc7-1-frames");
+}
+
+TEST_CASE("render writes an MP4 that decodes to every animation step", "[cli]") {
+    const fs::path out = fresh_dir("video");
+    const Run run = figgen("render tc7-1 --scale 0.5 --out " + out.string());
+    REQUIRE(run.status == 0);
+    const auto info = render::probe_video(out / "tc7-1.mp4");
+    CHECK(info.frames == 61);  // steps 0..60
+    CHECK(info.width == 240);
+    CHECK(info.height == 260);
+    CHECK(info.pixel_format == "yuv420p");
+    CHECK(info.codec == "h264");
+    CHECK(info.duration_seconds == Approx(6.1).margin(1e-6));  // 61 frames at 10 fps
+    // The first frame is step 0: the block's centre is Reds' darkest colour
+    // at alpha 0.8 over white, (133, 51, 61), give or take the YUV round trip.
+    const render::Image first = render::decode_frame(out / "tc7-1.mp4", 0);
+    const std::uint8_t* centre = first.pixel(first.width / 2, first.height / 2 + 10);
+    CHECK(int(centre[0]) == Approx(133).margin(8));
+    CHECK(int(centre[1]) == Approx(51).margin(8));
+    CHECK(int(centre[2]) == Approx(61).margin(8));
 }

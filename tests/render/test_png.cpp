@@ -30,17 +30,19 @@ TEST_CASE("a PNG written and read back gives the same pixels and text chunks", "
             p[3] = static_cast<std::uint8_t>(255 - x);
         }
     const fs::path path = scratch("round-trip.png");
-    render::write_png(path, image, {{"Title", "round trip"}, {"figgen:seed", "42"}});
+    const render::TextChunks chunks = {{"Title", "round trip"}, {"figgen:seed", "42"}, {"Caption", "10⁻³ α"}};
+    render::write_png(path, image, chunks);
     const render::PngFile back = render::read_png(path);
     CHECK(back.image.width == 7);
     CHECK(back.image.height == 5);
     CHECK(back.image.rgba == image.rgba);
-    REQUIRE(back.text.size() == 2);
+    REQUIRE(back.text.size() == 3);
+    CHECK(back.text[2] == std::pair<std::string, std::string>{"Caption", "10⁻³ α"});  // UTF-8 via iTXt
     CHECK(back.text[0] == std::pair<std::string, std::string>{"Title", "round trip"});
     CHECK(back.text[1] == std::pair<std::string, std::string>{"figgen:seed", "42"});
     // Same image, same bytes: no timestamp chunk.
     const fs::path again = scratch("round-trip-2.png");
-    render::write_png(again, image, {{"Title", "round trip"}, {"figgen:seed", "42"}});
+    render::write_png(again, image, chunks);
     std::ifstream a(path, std::ios::binary), b(again, std::ios::binary);
     CHECK(std::string(std::istreambuf_iterator<char>(a), {}) == std::string(std::istreambuf_iterator<char>(b), {}));
 }
