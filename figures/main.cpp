@@ -1,8 +1,6 @@
 // figgen: the command line. Lists the catalog and renders figures; all the
 // work is in the figures library.
-#include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <optional>
 
 #include <CLI/CLI.hpp>

@@ -1,0 +1,53 @@
+// Rendering and encoding throughput: what a figure's frames cost.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+
+#include "figures/field_panels.hpp"
+#include "render/png_io.hpp"
+#include "render/video.hpp"
+#include "sim/diffusion.hpp"
+
+namespace {
+
+figures::FieldPanel diffusion_panel(int n) {
+    sim::DiffusionParams p;
+    p.n = n;
+    p.block_row = p.block_col = n / 3;
+    p.block_size = n / 3;
+    sim::Diffusion model(p);
+    for (int i = 0; i < 10; ++i) model.step();
+    return {"step 10", {{n, n, model.field().cells(), {&render::colormap("Reds"), 0, 1, 0.8f, render::Sampling::nearest}}}};
+}
+
+}  // namespace
+
+// One 900x450 three-panel figure: canvas, fields, frames, titles, read-back.
+static void draw_three_panels(benchmark::State& state) {
+    const auto panel = diffusion_panel(static_cast<int>(state.range(0)));
+    for (auto _ : state) benchmark::DoNotOptimize(figures::draw_field_panels({panel, panel, panel}, 900, 450, 1.0));
+}
+BENCHMARK(draw_three_panels)->Arg(9)->Arg(300)->Unit(benchmark::kMillisecond);
+
+// Encoding a 480x520 frame with libx264 (2 pinned threads).
+static void encode_frame(benchmark::State& state) {
+    const auto frame = figures::draw_field_panels({diffusion_panel(9)}, 480, 520, 1.0);
+    const auto path = std::filesystem::temp_directory_path() / "figgen-bench.mp4";
+    {
+        render::VideoWriter video(path, frame.width, frame.height);
+        for (auto _ : state) video.add(frame);
+        video.finish();
+    }
+    std::filesystem::remove(path);
+    state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(encode_frame)->Unit(benchmark::kMillisecond);
+
+// Writing the 900x450 figure PNG.
+static void write_figure_png(benchmark::State& state) {
+    const auto image = figures::draw_field_panels({diffusion_panel(9)}, 900, 450, 1.0);
+    const auto path = std::filesystem::temp_directory_path() / "figgen-bench.png";
+    for (auto _ : state) render::write_png(path, image);
+    std::filesystem::remove(path);
+}
+BENCHMARK(write_figure_png)->Unit(benchmark::kMillisecond);
