@@ -56,4 +56,10 @@ void Program::set(const char* name, const glm::mat4& value) const {
     glUniformMatrix4fv(uniform(name), 1, GL_FALSE, glm::value_ptr(value));
 }
 
+StreamPipeline::StreamPipeline(const char* vertex_source, const char* fragment_source)
+    : program(vertex_source, fragment_source) {
+    glGenVertexArrays(1, &vao);
+    glGenBuffers(1, &vbo);
+}
+
 }  // namespace render

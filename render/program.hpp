@@ -29,4 +29,12 @@ private:
     GLuint id_ = 0;
 };
 
+// A program with one vertex array and one vertex buffer refilled per draw:
+// what each batch kind (shapes, text) draws with. Lives as long as the context.
+struct StreamPipeline {
+    Program program;
+    GLuint vao = 0, vbo = 0;
+    StreamPipeline(const char* vertex_source, const char* fragment_source);
+};
+
 }  // namespace render

@@ -23,18 +23,9 @@ in vec4 v_colour;
 out vec4 out_colour;
 void main() { out_colour = v_colour; })";
 
-// GL objects shared by every Shapes batch; they live as long as the context.
-struct Pipeline {
-    Program program{vertex_shader, fragment_shader};
-    GLuint vao = 0, vbo = 0;
-    Pipeline() {
-        glGenVertexArrays(1, &vao);
-        glGenBuffers(1, &vbo);
-    }
-};
-
-Pipeline& pipeline() {
-    static Pipeline p;
+// Shared by every batch of this kind, created on first use.
+StreamPipeline& pipeline() {
+    static StreamPipeline p{vertex_shader, fragment_shader};
     return p;
 }
 
@@ -70,7 +61,7 @@ void Shapes::line(glm::vec2 a, glm::vec2 b, float width, const glm::vec4& colour
 
 void Shapes::draw(const Canvas& canvas) const {
     if (vertices_.empty()) return;
-    Pipeline& p = pipeline();
+    StreamPipeline& p = pipeline();
     canvas.bind();
     p.program.use();
     p.program.set("projection", canvas.projection());

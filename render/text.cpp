@@ -50,18 +50,9 @@ void main() {
     out_colour = vec4(v_colour.rgb, v_colour.a * coverage);
 })";
 
-// GL objects shared by every Text batch; they live as long as the context.
-struct Pipeline {
-    Program program{vertex_shader, fragment_shader};
-    GLuint vao = 0, vbo = 0;
-    Pipeline() {
-        glGenVertexArrays(1, &vao);
-        glGenBuffers(1, &vbo);
-    }
-};
-
-Pipeline& pipeline() {
-    static Pipeline p;
+// Shared by every batch of this kind, created on first use.
+StreamPipeline& pipeline() {
+    static StreamPipeline p{vertex_shader, fragment_shader};
     return p;
 }
 
@@ -293,7 +284,7 @@ void Text::add(Font& font, std::string_view utf8, glm::vec2 position, const glm:
 
 void Text::draw(const Canvas& canvas) const {
     if (batches_.empty()) return;
-    Pipeline& p = pipeline();
+    StreamPipeline& p = pipeline();
     canvas.bind();
     p.program.use();
     p.program.set("projection", canvas.projection());
