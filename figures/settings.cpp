@@ -102,4 +102,36 @@ std::vector<long long> Settings::integers(const std::string& key, const std::vec
     return values;
 }
 
+std::vector<double> Settings::numbers(const std::string& key, const std::vector<double>& fallback) {
+    std::vector<double> values = fallback;
+    if (const toml::node* node = find(key)) {
+        const toml::array* array = node->as_array();
+        if (!array) wrong_type(key, "a list of numbers");
+        values.clear();
+        for (const toml::node& item : *array) {
+            if (item.is_integer()) values.push_back(static_cast<double>(item.as_integer()->get()));
+            else if (item.is_floating_point() && std::isfinite(item.as_floating_point()->get()))
+                values.push_back(item.as_floating_point()->get());
+            else wrong_type(key, "a list of finite numbers");
+        }
+    }
+    used_[key] = values;
+    return values;
+}
+
+std::vector<std::string> Settings::texts(const std::string& key, const std::vector<std::string>& fallback) {
+    std::vector<std::string> values = fallback;
+    if (const toml::node* node = find(key)) {
+        const toml::array* array = node->as_array();
+        if (!array) wrong_type(key, "a list of strings");
+        values.clear();
+        for (const toml::node& item : *array) {
+            if (!item.is_string()) wrong_type(key, "a list of strings");
+            values.push_back(item.as_string()->get());
+        }
+    }
+    used_[key] = values;
+    return values;
+}
+
 }  // namespace figures

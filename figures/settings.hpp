@@ -35,6 +35,9 @@ public:
     std::string text(const std::string& key, const std::string& fallback);
     bool flag(const std::string& key, bool fallback);
     std::vector<long long> integers(const std::string& key, const std::vector<long long>& fallback);
+    std::vector<double> numbers(const std::string& key, const std::vector<double>& fallback);
+    std::vector<std::string> texts(const std::string& key, const std::vector<std::string>& fallback);
+    bool has(const std::string& key) const { return find(key) != nullptr; }
 
     const std::string& section() const { return section_; }
     const std::vector<Key>& allowed() const { return allowed_; }

@@ -7,15 +7,36 @@
 namespace render {
 namespace {
 
-const std::array<Colormap, 4>& all() {
-    static const std::array<Colormap, 4> maps{{
-        {"Reds", tables::Reds},
-        {"Blues", tables::Blues},
-        {"Greens", tables::Greens},
-        {"viridis", tables::viridis},
-    }};
+Colormap from_table(std::string name, const float (*table)[3]) {
+    Colormap map{std::move(name), {}};
+    for (int i = 0; i < Colormap::size; ++i) map.colours[i] = {table[i][0], table[i][1], table[i][2]};
+    return map;
+}
+
+const std::vector<Colormap>& builtins() {
+    static const std::vector<Colormap> maps = {
+        from_table("Reds", tables::Reds),
+        from_table("Blues", tables::Blues),
+        from_table("Greens", tables::Greens),
+        from_table("viridis", tables::viridis),
+    };
     return maps;
 }
+
+// matplotlib's CSS4 values for the names figures use.
+struct NamedColour {
+    const char* name;
+    glm::vec3 rgb;
+};
+constexpr NamedColour named_colours[] = {
+    {"white", {1, 1, 1}},
+    {"black", {0, 0, 0}},
+    {"green", {0, 128 / 255.0f, 0}},
+    {"orange", {1, 165 / 255.0f, 0}},
+    {"red", {1, 0, 0}},
+    {"blue", {0, 0, 1}},
+    {"gray", {128 / 255.0f, 128 / 255.0f, 128 / 255.0f}},
+};
 
 }  // namespace
 
@@ -23,21 +44,50 @@ glm::vec3 Colormap::at(double t) const {
     // matplotlib: xa = int(t * N), then t == 1 lands on N - 1, and out of range clips.
     const double scaled = std::floor(t * size);
     const int i = scaled < 0 ? 0 : scaled >= size ? size - 1 : static_cast<int>(scaled);
-    return {table[i][0], table[i][1], table[i][2]};
+    return colours[i];
 }
 
 const Colormap& colormap(std::string_view name) {
-    for (const Colormap& map : all())
+    for (const Colormap& map : builtins())
         if (map.name == name) return map;
     std::string allowed;
-    for (const Colormap& map : all()) allowed += (allowed.empty() ? "" : ", ") + map.name;
+    for (const Colormap& map : builtins()) allowed += (allowed.empty() ? "" : ", ") + map.name;
     throw std::invalid_argument("colormap \"" + std::string(name) + "\" is unknown: allowed are " + allowed);
 }
 
 std::vector<std::string> colormap_names() {
     std::vector<std::string> names;
-    for (const Colormap& map : all()) names.push_back(map.name);
+    for (const Colormap& map : builtins()) names.push_back(map.name);
     return names;
+}
+
+Colormap listed_colormap(std::string name, const std::vector<glm::vec3>& colours) {
+    if (colours.empty() || colours.size() > Colormap::size)
+        throw std::invalid_argument("a listed colormap needs 1 to 256 colours");
+    Colormap map{std::move(name), {}};
+    // Entry i of the 256 stands for t in [i/256, (i+1)/256): colour floor(t * N).
+    for (int i = 0; i < Colormap::size; ++i) map.colours[i] = colours[i * colours.size() / Colormap::size];
+    return map;
+}
+
+glm::vec3 parse_colour(std::string_view text) {
+    auto hex = [](char c) -> int {
+        if (c >= '0' && c <= '9') return c - '0';
+        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+        return -1;
+    };
+    if (text.size() == 7 && text[0] == '#') {
+        int v[6];
+        for (int i = 0; i < 6; ++i) v[i] = hex(text[i + 1]);
+        if (std::all_of(v, v + 6, [](int x) { return x >= 0; }))
+            return glm::vec3(v[0] * 16 + v[1], v[2] * 16 + v[3], v[4] * 16 + v[5]) / 255.0f;
+    }
+    for (const NamedColour& c : named_colours)
+        if (text == c.name) return c.rgb;
+    std::string names;
+    for (const NamedColour& c : named_colours) names += std::string(names.empty() ? "" : ", ") + c.name;
+    throw std::invalid_argument("colour \"" + std::string(text) + "\" is not allowed: use #rrggbb or one of " + names);
 }
 
 }  // namespace render

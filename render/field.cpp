@@ -68,7 +68,6 @@ void main() {
 struct Pipeline {
     Program program{vertex_shader, fragment_shader};
     GLuint vao = 0, field_texture = 0, colormap_texture = 0;
-    const Colormap* loaded_colormap = nullptr;
     Pipeline() {
         glGenVertexArrays(1, &vao);
         glGenTextures(1, &field_texture);
@@ -103,14 +102,13 @@ void draw_field(const Canvas& canvas, const Rect& where, int rows, int cols, std
 
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, p.colormap_texture);
-    if (p.loaded_colormap != style.colormap) {
+    {  // 256 texels: cheaper to send each time than to track which map is loaded
         std::vector<float> rgba(Colormap::size * 4);
         for (int i = 0; i < Colormap::size; ++i) {
-            for (int c = 0; c < 3; ++c) rgba[i * 4 + c] = style.colormap->table[i][c];
+            for (int c = 0; c < 3; ++c) rgba[i * 4 + c] = style.colormap->colours[i][c];
             rgba[i * 4 + 3] = 1.0f;
         }
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, Colormap::size, 1, 0, GL_RGBA, GL_FLOAT, rgba.data());
-        p.loaded_colormap = style.colormap;
     }
 
     // Normalise on the CPU in double precision and upload as floats relative

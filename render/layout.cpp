@@ -20,12 +20,12 @@ Font& font_of_size(float pixels) {
 
 }  // namespace
 
-std::vector<Rect> panel_row(int width, int height, int count, bool titled, const PanelRowStyle& style) {
+std::vector<Rect> panel_row(const Rect& area, int count, bool titled, const PanelRowStyle& style) {
     const float s = style.scale;
     const float margin = style.margin * s, gap = style.gap * s;
     const float title_band = titled ? (style.title_size * 1.25f + style.title_pad) * s : 0.0f;
-    const float free_w = (float(width) - 2 * margin - float(count - 1) * gap) / float(count);
-    const float free_h = float(height) - 2 * margin - title_band;
+    const float free_w = (area.w - 2 * margin - float(count - 1) * gap) / float(count);
+    const float free_h = area.h - 2 * margin - title_band;
     float w = std::max(1.0f, free_w), h = w / style.aspect;
     if (h > free_h) {
         h = std::max(1.0f, free_h);
@@ -36,10 +36,27 @@ std::vector<Rect> panel_row(int width, int height, int count, bool titled, const
     w = std::floor(w);
     h = std::floor(h);
     const float row_w = float(count) * w + float(count - 1) * gap;
-    const float x0 = std::round((float(width) - row_w) / 2);
-    const float y0 = std::round((float(height) - h - title_band) / 2 + title_band);
+    const float x0 = area.x + std::round((area.w - row_w) / 2);
+    const float y0 = area.y + std::round((area.h - h - title_band) / 2 + title_band);
     std::vector<Rect> panels;
     for (int i = 0; i < count; ++i) panels.push_back({x0 + float(i) * (w + std::round(gap)), y0, w, h});
+    return panels;
+}
+
+std::vector<Rect> panel_row(int width, int height, int count, bool titled, const PanelRowStyle& style) {
+    return panel_row(Rect{0, 0, float(width), float(height)}, count, titled, style);
+}
+
+std::vector<Rect> panel_grid(const Rect& area, int count, int columns, bool titled, const PanelRowStyle& style) {
+    const int rows = (count + columns - 1) / columns;
+    const float band = area.h / float(rows);
+    std::vector<Rect> panels;
+    for (int r = 0; r < rows; ++r) {
+        // Every row is laid out for `columns` panels, so a short last row keeps the same panel size.
+        auto row = panel_row(Rect{area.x, area.y + float(r) * band, area.w, band}, columns, titled, style);
+        const int in_row = std::min(columns, count - r * columns);
+        panels.insert(panels.end(), row.begin(), row.begin() + in_row);
+    }
     return panels;
 }
 

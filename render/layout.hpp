@@ -19,9 +19,13 @@ struct PanelRowStyle {
     float aspect = 1.0f;       // panel width / height
 };
 
-// Where each of `count` panels goes on a width x height page: as large as fits,
-// centred, with room above for titles when `titled`.
+// Where each of `count` panels goes in `area`: as large as fits, centred,
+// with room above for titles when `titled`.
+std::vector<Rect> panel_row(const Rect& area, int count, bool titled, const PanelRowStyle& style);
+// The same on a whole width x height page.
 std::vector<Rect> panel_row(int width, int height, int count, bool titled, const PanelRowStyle& style);
+// `count` panels in rows of `columns`, the area split into equal bands.
+std::vector<Rect> panel_grid(const Rect& area, int count, int columns, bool titled, const PanelRowStyle& style);
 
 // The frames and titles of the panels, drawn over their contents.
 void draw_panel_decorations(const Canvas& canvas, const std::vector<Rect>& panels,

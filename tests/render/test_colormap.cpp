@@ -35,8 +35,20 @@ TEST_CASE("colormap lookup quantises like matplotlib and clips out-of-range valu
     const auto& reds = render::colormap("Reds");
     CHECK(reds.at(-3.0) == reds.at(0.0));
     CHECK(reds.at(7.0) == reds.at(1.0));
-    CHECK(reds.at(0.5) == glm::vec3(reds.table[128][0], reds.table[128][1], reds.table[128][2]));
-    CHECK(reds.at(0.5 - 1e-9) == glm::vec3(reds.table[127][0], reds.table[127][1], reds.table[127][2]));
+    CHECK(reds.at(0.5) == reds.colours[128]);
+    CHECK(reds.at(0.5 - 1e-9) == reds.colours[127]);
+}
+
+TEST_CASE("a listed colormap gives integer states their own colours as matplotlib does", "[colormap]") {
+    // ListedColormap(['white', 'green', 'orange']) with vmin 0, vmax 2.
+    const auto forest = render::listed_colormap("forest", {render::parse_colour("white"), render::parse_colour("green"),
+                                                           render::parse_colour("#ffa500")});
+    CHECK(forest.at(0.0 / 2) == glm::vec3(1, 1, 1));
+    CHECK(forest.at(1.0 / 2) == glm::vec3(0, 128 / 255.0f, 0));
+    CHECK(forest.at(2.0 / 2) == glm::vec3(1, 165 / 255.0f, 0));
+    CHECK(forest.at(0.33) == glm::vec3(1, 1, 1));  // floor(0.33 * 3) = 0
+    CHECK(forest.at(0.34) == glm::vec3(0, 128 / 255.0f, 0));
+    CHECK_THROWS_WITH(render::parse_colour("#12345"), Catch::Contains("use #rrggbb or one of white"));
 }
 
 TEST_CASE("an unknown colormap is an error listing the known ones", "[colormap]") {

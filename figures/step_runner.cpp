@@ -1,0 +1,35 @@
+#include "figures/step_runner.hpp"
+
+#include <algorithm>
+
+namespace figures {
+
+StepRunner::StepRunner(const Description& d, const OutputOptions& options, Progress& progress)
+    : description_(d), progress_(progress) {
+    const bool animate = d.animation && options.animates();
+    last_ = d.last_step(animate);
+    if (animate) {
+        frame_width_ = scaled_even(d.animation->width, options.scale);
+        frame_height_ = scaled_even(d.animation->height, options.scale);
+        sink_ = std::make_unique<FrameSink>(d, options, frame_width_, frame_height_);
+    }
+    progress_.start(d.id, last_ + 1 + (animate ? d.animation->frame_count() : 0));
+}
+
+bool StepRunner::is_panel(int step) const {
+    return std::binary_search(description_.panels.begin(), description_.panels.end(), step);
+}
+
+void StepRunner::frame(const render::Image& image, int step) {
+    sink_->add(image, step);
+    progress_.advance();
+}
+
+void StepRunner::stepped() { progress_.advance(); }
+
+nlohmann::json StepRunner::finish() { return sink_ ? sink_->finish() : nlohmann::json(); }
+
+int figure_width(const Description& d, const OutputOptions& options) { return scaled_even(d.width, options.scale); }
+int figure_height(const Description& d, const OutputOptions& options) { return scaled_even(d.height, options.scale); }
+
+}  // namespace figures

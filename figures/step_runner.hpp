@@ -1,0 +1,44 @@
+#pragma once
+// The one run of a stepping model that feeds every output of a figure: it
+// knows which steps are panels, which are animation frames, and the last
+// step any output needs, so the model never runs past it. Frames go straight
+// to the MP4 / PNG sequence as they are drawn.
+
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "figures/description.hpp"
+#include "figures/outputs.hpp"
+#include "figures/progress.hpp"
+#include "render/image.hpp"
+
+namespace figures {
+
+class StepRunner {
+public:
+    StepRunner(const Description& d, const OutputOptions& options, Progress& progress);
+
+    int last_step() const { return last_; }
+    bool is_panel(int step) const;
+    bool wants_frame(int step) const { return sink_ && description_.animation->shows(step); }
+    int frame_width() const { return frame_width_; }    // pixels, scaled, even
+    int frame_height() const { return frame_height_; }
+
+    void frame(const render::Image& image, int step);  // hands a drawn frame to the sinks
+    void stepped();                                    // counts one model step for the progress bar
+    nlohmann::json finish();                           // completes the animation; its metadata, or null
+
+private:
+    const Description& description_;
+    Progress& progress_;
+    int last_ = 0;
+    int frame_width_ = 0, frame_height_ = 0;
+    std::unique_ptr<FrameSink> sink_;
+};
+
+// Figure size in pixels at the output scale.
+int figure_width(const Description& d, const OutputOptions& options);
+int figure_height(const Description& d, const OutputOptions& options);
+
+}  // namespace figures
