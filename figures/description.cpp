@@ -98,12 +98,17 @@ int Description::last_step(bool with_animation) const {
     return last;
 }
 
-std::string format_step(const std::string& pattern, int step) {
+std::string expand(const std::string& pattern, const std::vector<std::pair<std::string, std::string>>& values) {
     std::string text = pattern;
-    for (auto at = text.find("{step}"); at != std::string::npos; at = text.find("{step}"))
-        text.replace(at, 6, std::to_string(step));
+    for (const auto& [name, value] : values) {
+        const std::string field = "{" + name + "}";
+        for (auto at = text.find(field); at != std::string::npos; at = text.find(field, at + value.size()))
+            text.replace(at, field.size(), value);
+    }
     return text;
 }
+
+std::string format_step(const std::string& pattern, int step) { return expand(pattern, {{"step", std::to_string(step)}}); }
 
 Description load_description(const std::filesystem::path& file, const std::vector<std::string>& overrides,
                              std::optional<std::uint64_t> seed) {

@@ -57,6 +57,8 @@ struct Description {
 Description load_description(const std::filesystem::path& file, const std::vector<std::string>& overrides = {},
                              std::optional<std::uint64_t> seed = std::nullopt);
 
+// `pattern` with each {name} replaced by its value, e.g. "rule {rule}, step {step}".
+std::string expand(const std::string& pattern, const std::vector<std::pair<std::string, std::string>>& values);
 // "step {step}" with {step} replaced.
 std::string format_step(const std::string& pattern, int step);
 

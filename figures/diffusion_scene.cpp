@@ -50,23 +50,26 @@ void render_diffusion(const Description& d, const OutputOptions& options, Progre
     sim::Diffusion model(p);
     std::vector<FieldPanel> panels;
     nlohmann::json panel_meta = nlohmann::json::array();
-    for (int step = 0;; ++step) {
-        const bool is_panel = run.is_panel(step), is_frame = run.wants_frame(step);
-        if (is_panel || is_frame) require_finite(model.field(), "diffusion", step);
-        if (is_panel) {
-            panels.push_back({format_step(d.panel_title, step), {field_layer(model.field(), spec)}});
-            panel_meta.push_back({{"step", step},
-                                  {"statistics", field_statistics(model.field())},
-                                  {"state_sha256", state_hash(model.field())}});
-        }
-        if (is_frame)
-            run.frame(draw_field_panels({{format_step(d.animation->title, step), {field_layer(model.field(), spec)}}},
-                                        run.frame_width(), run.frame_height(), options.scale),
-                      step);
-        if (step == run.last_step()) break;
-        model.step();
-        run.stepped();
-    }
+    run.run({
+        .check = [&](int step) { require_finite(model.field(), "diffusion", step); },
+        .panel =
+            [&](int step) {
+                panels.push_back({format_step(d.panel_title, step), {field_layer(model.field(), spec)}});
+                panel_meta.push_back({{"step", step},
+                                      {"statistics", field_statistics(model.field())},
+                                      {"state_sha256", state_hash(model.field())}});
+            },
+        .frame =
+            [&](int step) {
+                return draw_field_panels({{format_step(d.animation->title, step), {field_layer(model.field(), spec)}}},
+                                         run.frame_width(), run.frame_height(), options.scale);
+            },
+        .advance =
+            [&] {
+                model.step();
+                return true;
+            },
+    });
     nlohmann::json meta = {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}};
     if (auto animation = run.finish(); !animation.is_null()) meta["animation"] = animation;
     write_figure(d, options, draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale),

@@ -7,6 +7,9 @@ namespace figures {
 const std::vector<SceneInfo>& scenes() {
     static const std::vector<SceneInfo> all = {
         {"diffusion", render_diffusion},
+        {"gray_scott", render_gray_scott},
+        {"percolation", render_percolation},
+        {"percolation_sizes", render_percolation_sizes},
     };
     return all;
 }

@@ -20,6 +20,25 @@ bool StepRunner::is_panel(int step) const {
     return std::binary_search(description_.panels.begin(), description_.panels.end(), step);
 }
 
+int StepRunner::run(const StepHooks& hooks) {
+    for (int step = 0;; ++step) {
+        const bool is_panel = this->is_panel(step), is_frame = wants_frame(step);
+        if ((is_panel || is_frame) && hooks.check) hooks.check(step);
+        if (is_panel) hooks.panel(step);
+        if (is_frame) frame(hooks.frame(step), step);
+        if (step == last_) return step;
+        const bool going = hooks.advance();
+        stepped();
+        if (!going) {
+            // The state no longer changes: show it as the final frame if the
+            // animation would have gone on, then stop.
+            if (sink_ && step + 1 <= description_.animation->last && !wants_frame(step + 1))
+                frame(hooks.frame(step + 1), step + 1);
+            return step + 1;
+        }
+    }
+}
+
 void StepRunner::frame(const render::Image& image, int step) {
     sink_->add(image, step);
     progress_.advance();

@@ -4,6 +4,7 @@
 // step any output needs, so the model never runs past it. Frames go straight
 // to the MP4 / PNG sequence as they are drawn.
 
+#include <functional>
 #include <memory>
 
 #include <nlohmann/json.hpp>
@@ -15,6 +16,14 @@
 
 namespace figures {
 
+// What a scene does at each step of the run.
+struct StepHooks {
+    std::function<void(int step)> check;           // before any drawing: throws if the model went unstable
+    std::function<void(int step)> panel;           // keep what a panel at this step shows
+    std::function<render::Image(int step)> frame;  // draw the animation frame of this step
+    std::function<bool()> advance;                 // one model step; false when the model has stopped (a fixed point)
+};
+
 class StepRunner {
 public:
     StepRunner(const Description& d, const OutputOptions& options, Progress& progress);
@@ -24,6 +33,10 @@ public:
     bool wants_frame(int step) const { return sink_ && description_.animation->shows(step); }
     int frame_width() const { return frame_width_; }    // pixels, scaled, even
     int frame_height() const { return frame_height_; }
+
+    // Runs from step 0 to last_step() or until advance() says the model
+    // stopped; returns the last step reached.
+    int run(const StepHooks& hooks);
 
     void frame(const render::Image& image, int step);  // hands a drawn frame to the sinks
     void stepped();                                    // counts one model step for the progress bar
