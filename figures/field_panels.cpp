@@ -1,12 +1,9 @@
 #include "figures/field_panels.hpp"
 
-#include "render/canvas.hpp"
-
 namespace figures {
 
-render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale) {
-    render::Canvas canvas(width, height);
-    canvas.clear({1, 1, 1, 1});
+void draw_field_panels(const render::Canvas& canvas, const render::Rect& area, const std::vector<FieldPanel>& panels,
+                       int columns, double scale) {
     render::PanelRowStyle style;
     style.scale = static_cast<float>(scale);
     const FieldLayer& first = panels.front().layers.front();
@@ -17,11 +14,17 @@ render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width
         titles.push_back(p.title);
         titled = titled || !p.title.empty();
     }
-    const auto rects = render::panel_row(width, height, static_cast<int>(panels.size()), titled, style);
+    const auto rects = render::panel_grid(area, static_cast<int>(panels.size()), columns, titled, style);
     for (std::size_t i = 0; i < panels.size(); ++i)
         for (const FieldLayer& layer : panels[i].layers)
             render::draw_field(canvas, rects[i], layer.rows, layer.cols, layer.values, layer.style);
     render::draw_panel_decorations(canvas, rects, titles, style);
+}
+
+render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale) {
+    render::Canvas canvas(width, height);
+    canvas.clear({1, 1, 1, 1});
+    draw_field_panels(canvas, {0, 0, float(width), float(height)}, panels, static_cast<int>(panels.size()), scale);
     return canvas.read();
 }
 

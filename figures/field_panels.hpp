@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "render/canvas.hpp"
 #include "render/field.hpp"
 #include "render/image.hpp"
 #include "render/layout.hpp"
@@ -24,5 +25,9 @@ struct FieldPanel {
 
 // A row of panels on a white width x height page (pixels, already scaled).
 render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale);
+
+// The same panels in `columns` columns inside `area` of a canvas being drawn.
+void draw_field_panels(const render::Canvas& canvas, const render::Rect& area, const std::vector<FieldPanel>& panels,
+                       int columns, double scale);
 
 }  // namespace figures

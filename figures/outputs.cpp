@@ -15,6 +15,9 @@ int scaled_even(int pixels, double scale) {
     return std::max(2, scaled + (scaled % 2));
 }
 
+int figure_width(const Description& d, const OutputOptions& options) { return scaled_even(d.width, options.scale); }
+int figure_height(const Description& d, const OutputOptions& options) { return scaled_even(d.height, options.scale); }
+
 FrameSink::FrameSink(const Description& d, const OutputOptions& options, int width, int height)
     : description_(d), options_(options), width_(width), height_(height) {
     if (options.video)

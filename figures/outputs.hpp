@@ -30,6 +30,9 @@ struct OutputOptions {
 
 // Pixel size at the given scale, rounded up to even (what H.264 in yuv420p needs).
 int scaled_even(int pixels, double scale);
+// The figure's size in pixels at the output scale.
+int figure_width(const Description& d, const OutputOptions& options);
+int figure_height(const Description& d, const OutputOptions& options);
 
 // Receives the animation's frames as the model runs and passes each on at
 // once: nothing is kept in memory but the frame being encoded.

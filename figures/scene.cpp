@@ -10,6 +10,7 @@ const std::vector<SceneInfo>& scenes() {
         {"gray_scott", render_gray_scott},
         {"percolation", render_percolation},
         {"percolation_sizes", render_percolation_sizes},
+        {"cell1d", render_cell1d},
     };
     return all;
 }

@@ -31,5 +31,6 @@ void render_diffusion(const Description& d, const OutputOptions& options, Progre
 void render_gray_scott(const Description& d, const OutputOptions& options, Progress& progress);
 void render_percolation(const Description& d, const OutputOptions& options, Progress& progress);
 void render_percolation_sizes(const Description& d, const OutputOptions& options, Progress& progress);
+void render_cell1d(const Description& d, const OutputOptions& options, Progress& progress);
 
 }  // namespace figures

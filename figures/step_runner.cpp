@@ -48,7 +48,4 @@ void StepRunner::stepped() { progress_.advance(); }
 
 nlohmann::json StepRunner::finish() { return sink_ ? sink_->finish() : nlohmann::json(); }
 
-int figure_width(const Description& d, const OutputOptions& options) { return scaled_even(d.width, options.scale); }
-int figure_height(const Description& d, const OutputOptions& options) { return scaled_even(d.height, options.scale); }
-
 }  // namespace figures

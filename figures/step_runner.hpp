@@ -50,8 +50,4 @@ private:
     std::unique_ptr<FrameSink> sink_;
 };
 
-// Figure size in pixels at the output scale.
-int figure_width(const Description& d, const OutputOptions& options);
-int figure_height(const Description& d, const OutputOptions& options);
-
 }  // namespace figures
