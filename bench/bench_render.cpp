@@ -1,6 +1,7 @@
 // Rendering and encoding throughput: what a figure's frames cost.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "figures/field_panels.hpp"
@@ -51,3 +52,24 @@ static void write_figure_png(benchmark::State& state) {
     std::filesystem::remove(path);
 }
 BENCHMARK(write_figure_png)->Unit(benchmark::kMillisecond);
+
+// One Gray-Scott animation frame: two smoothly sampled 100x100 layers, 480x520.
+static void draw_smooth_frame(benchmark::State& state) {
+    std::vector<double> values(100 * 100);
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = 0.5 + 0.5 * std::sin(0.37 * double(i));
+    figures::FieldPanel panel{"step 1000", {}};
+    for (const char* map : {"Reds", "Blues"})
+        panel.layers.push_back({100, 100, values, {&render::colormap(map), 0, 1, 0.7f, render::Sampling::smooth}});
+    for (auto _ : state) benchmark::DoNotOptimize(figures::draw_field_panels({panel}, 480, 520, 1.0));
+}
+BENCHMARK(draw_smooth_frame)->Unit(benchmark::kMillisecond);
+
+// An empty 480x520 canvas: creating its framebuffers, clearing, resolving, reading back.
+static void empty_canvas(benchmark::State& state) {
+    for (auto _ : state) {
+        render::Canvas canvas(480, 520);
+        canvas.clear({1, 1, 1, 1});
+        benchmark::DoNotOptimize(canvas.read());
+    }
+}
+BENCHMARK(empty_canvas)->Unit(benchmark::kMillisecond);

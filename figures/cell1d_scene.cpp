@@ -32,7 +32,8 @@ void render_cell1d(const Description& d, const OutputOptions& options, Progress&
         throw UsageError(d.id + ": " + e.what());
     }
     if (automata.empty()) throw UsageError(d.id + ": params.rules is empty");
-    const FieldSpec spec = read_field_spec(style, {render::colormap("Blues"), 0.0, 1.0, 0.7f, render::Sampling::nearest});
+    const FieldSpec spec =
+        read_field_spec(style, {render::colormap("Blues"), 0.0, 1.0, 0.7f, render::Sampling::nearest});
     progress.start(d.id, static_cast<long long>(automata.size()));
 
     std::vector<FieldPanel> panels;

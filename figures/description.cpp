@@ -108,7 +108,9 @@ std::string expand(const std::string& pattern, const std::vector<std::pair<std::
     return text;
 }
 
-std::string format_step(const std::string& pattern, int step) { return expand(pattern, {{"step", std::to_string(step)}}); }
+std::string format_step(const std::string& pattern, int step) {
+    return expand(pattern, {{"step", std::to_string(step)}});
+}
 
 Description load_description(const std::filesystem::path& file, const std::vector<std::string>& overrides,
                              std::optional<std::uint64_t> seed) {
@@ -133,7 +135,8 @@ Description load_description(const std::filesystem::path& file, const std::vecto
         d.model = top.text("model", "");
         d.caption = top.text("caption", "");
         const long long seed_value = top.integer("seed", 0);
-        if (seed_value < 0) throw UsageError("seed = " + std::to_string(seed_value) + " is not allowed: expected 0..2^63-1");
+        if (seed_value < 0)
+            throw UsageError("seed = " + std::to_string(seed_value) + " is not allowed: expected 0..2^63-1");
         d.seed = seed ? *seed : static_cast<std::uint64_t>(seed_value);
         if (d.model.empty()) throw UsageError("model is missing");
         d.params = section_table(root, "params");

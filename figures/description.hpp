@@ -10,41 +10,41 @@
 // Values given on the command line (--set key=value, --seed) are written
 // into the table before it is read, so they pass the same checks.
 
+#include <toml++/toml.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <toml++/toml.h>
-
 #include "figures/settings.hpp"
 
 namespace figures {
 
 struct Animation {
-    int first = 0;                          // first step shown
-    int last = 0;                           // last step shown
-    int stride = 1;                         // steps between frames
-    int fps = 30;                           // frames per second
-    int width = 640, height = 640;          // pixels at scale 1
-    std::string title = "step {step}";      // drawn above the frame; {step} is the true step
+    int first = 0;                      // first step shown
+    int last = 0;                       // last step shown
+    int stride = 1;                     // steps between frames
+    int fps = 30;                       // frames per second
+    int width = 640, height = 640;      // pixels at scale 1
+    std::string title = "step {step}";  // drawn above the frame; {step} is the true step
     int frame_count() const { return (last - first) / stride + 1; }
     bool shows(int step) const { return step >= first && step <= last && (step - first) % stride == 0; }
 };
 
 struct Description {
-    std::filesystem::path file;             // where it was read from
-    std::string id;                         // e.g. "tc7-1": the output files' names
-    std::string title;                      // one line, for `figgen list`
-    std::string source;                     // the printed figure it reproduces
-    std::string model;                      // which scene draws it
-    std::string caption;                    // decisions and notes, copied into the metadata
-    std::uint64_t seed = 0;                 // for the project's generator
-    toml::table params;                     // [params], read by the scene through Settings
-    toml::table style;                      // [style], likewise
-    std::vector<int> panels;                // steps of the figure's panels, ascending
-    int width = 900, height = 450;          // figure size in pixels at scale 1
+    std::filesystem::path file;     // where it was read from
+    std::string id;                 // e.g. "tc7-1": the output files' names
+    std::string title;              // one line, for `figgen list`
+    std::string source;             // the printed figure it reproduces
+    std::string model;              // which scene draws it
+    std::string caption;            // decisions and notes, copied into the metadata
+    std::uint64_t seed = 0;         // for the project's generator
+    toml::table params;             // [params], read by the scene through Settings
+    toml::table style;              // [style], likewise
+    std::vector<int> panels;        // steps of the figure's panels, ascending
+    int width = 900, height = 450;  // figure size in pixels at scale 1
     std::string panel_title = "step {step}";
     std::optional<Animation> animation;
 

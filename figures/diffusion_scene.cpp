@@ -43,7 +43,8 @@ void render_diffusion(const Description& d, const OutputOptions& options, Progre
     } catch (const std::invalid_argument& e) {
         throw UsageError(d.id + ": " + e.what());
     }
-    const FieldSpec spec = read_field_spec(style, {render::colormap("Reds"), 0.0, 1.0, 0.7f, render::Sampling::nearest});
+    const FieldSpec spec =
+        read_field_spec(style, {render::colormap("Reds"), 0.0, 1.0, 0.7f, render::Sampling::nearest});
     if (d.panels.empty()) throw UsageError(d.id + ": figure.panels is empty");
 
     StepRunner run(d, options, progress);
@@ -61,8 +62,9 @@ void render_diffusion(const Description& d, const OutputOptions& options, Progre
             },
         .frame =
             [&](int step) {
-                return draw_field_panels({{format_step(d.animation->title, step), {field_layer(model.field(), spec)}}},
-                                         run.frame_width(), run.frame_height(), options.scale);
+                return draw_field_panels(run.frame_canvas(),
+                                         {{format_step(d.animation->title, step), {field_layer(model.field(), spec)}}},
+                                         options.scale);
             },
         .advance =
             [&] {
@@ -72,8 +74,8 @@ void render_diffusion(const Description& d, const OutputOptions& options, Progre
     });
     nlohmann::json meta = {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}};
     if (auto animation = run.finish(); !animation.is_null()) meta["animation"] = animation;
-    write_figure(d, options, draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale),
-                 meta);
+    write_figure(d, options,
+                 draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale), meta);
     progress.finish();
 }
 

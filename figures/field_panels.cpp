@@ -21,11 +21,16 @@ void draw_field_panels(const render::Canvas& canvas, const render::Rect& area, c
     render::draw_panel_decorations(canvas, rects, titles, style);
 }
 
+render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale) {
+    canvas.clear({1, 1, 1, 1});
+    draw_field_panels(canvas, {0, 0, float(canvas.width()), float(canvas.height())}, panels,
+                      static_cast<int>(panels.size()), scale);
+    return canvas.read();
+}
+
 render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale) {
     render::Canvas canvas(width, height);
-    canvas.clear({1, 1, 1, 1});
-    draw_field_panels(canvas, {0, 0, float(width), float(height)}, panels, static_cast<int>(panels.size()), scale);
-    return canvas.read();
+    return draw_field_panels(canvas, panels, scale);
 }
 
 }  // namespace figures

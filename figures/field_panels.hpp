@@ -26,6 +26,10 @@ struct FieldPanel {
 // A row of panels on a white width x height page (pixels, already scaled).
 render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale);
 
+// The same on an existing canvas of the page's size (reused frame after
+// frame, saving its framebuffers' set-up): clears it, draws, reads it back.
+render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale);
+
 // The same panels in `columns` columns inside `area` of a canvas being drawn.
 void draw_field_panels(const render::Canvas& canvas, const render::Rect& area, const std::vector<FieldPanel>& panels,
                        int columns, double scale);

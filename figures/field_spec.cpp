@@ -39,7 +39,8 @@ FieldSpec read_field_spec(Settings& style, const FieldSpec& defaults, const std:
     const std::string sampling =
         style.text(prefix + "sampling", defaults.sampling == render::Sampling::smooth ? "smooth" : "nearest");
     if (sampling != "nearest" && sampling != "smooth")
-        throw UsageError("style." + prefix + "sampling = \"" + sampling + "\" is not allowed: use \"nearest\" or \"smooth\"");
+        throw UsageError("style." + prefix + "sampling = \"" + sampling +
+                         "\" is not allowed: use \"nearest\" or \"smooth\"");
     spec.sampling = sampling == "smooth" ? render::Sampling::smooth : render::Sampling::nearest;
     return spec;
 }

@@ -15,9 +15,9 @@
 namespace figures {
 
 struct FieldSpec {
-    render::Colormap colormap;                     // a named map, or colours listed in [style]
-    std::optional<double> vmin, vmax;              // absent: autoscale per panel
-    float alpha = 0.7f;                            // the book's draw_array default
+    render::Colormap colormap;         // a named map, or colours listed in [style]
+    std::optional<double> vmin, vmax;  // absent: autoscale per panel
+    float alpha = 0.7f;                // the book's draw_array default
     render::Sampling sampling = render::Sampling::nearest;
 };
 

@@ -2,9 +2,8 @@
 // Per-panel numbers for a real-valued field: what the metadata records and
 // what guards against writing an image of a model that blew up.
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "sim/grid.hpp"
 

@@ -95,8 +95,9 @@ void render_gray_scott(const Description& d, const OutputOptions& options, Progr
             },
         .frame =
             [&](int step) {
-                return draw_field_panels({panel_of(model, a_spec, b_spec, format_step(d.animation->title, step))},
-                                         run.frame_width(), run.frame_height(), options.scale);
+                return draw_field_panels(run.frame_canvas(),
+                                         {panel_of(model, a_spec, b_spec, format_step(d.animation->title, step))},
+                                         options.scale);
             },
         .advance =
             [&] {
@@ -106,8 +107,8 @@ void render_gray_scott(const Description& d, const OutputOptions& options, Progr
     });
     nlohmann::json meta = {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}};
     if (auto animation = run.finish(); !animation.is_null()) meta["animation"] = animation;
-    write_figure(d, options, draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale),
-                 meta);
+    write_figure(d, options,
+                 draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale), meta);
     progress.finish();
 }
 

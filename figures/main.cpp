@@ -1,9 +1,8 @@
 // figgen: the command line. Lists the catalog and renders figures; all the
 // work is in the figures library.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <optional>
-
-#include <CLI/CLI.hpp>
 
 #include "figures/catalog.hpp"
 #include "figures/description.hpp"

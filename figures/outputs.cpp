@@ -15,18 +15,21 @@ int scaled_even(int pixels, double scale) {
     return std::max(2, scaled + (scaled % 2));
 }
 
-int figure_width(const Description& d, const OutputOptions& options) { return scaled_even(d.width, options.scale); }
-int figure_height(const Description& d, const OutputOptions& options) { return scaled_even(d.height, options.scale); }
+int figure_width(const Description& d, const OutputOptions& options) {
+    return scaled_even(d.width, options.scale);
+}
+int figure_height(const Description& d, const OutputOptions& options) {
+    return scaled_even(d.height, options.scale);
+}
 
 FrameSink::FrameSink(const Description& d, const OutputOptions& options, int width, int height)
     : description_(d), options_(options), width_(width), height_(height) {
     if (options.video)
-        video_ = std::make_unique<render::VideoWriter>(options.dir / (d.id + ".mp4"), width, height,
-                                                       [&] {
-                                                           render::VideoOptions v = options.video_options;
-                                                           v.fps = d.animation->fps;
-                                                           return v;
-                                                       }());
+        video_ = std::make_unique<render::VideoWriter>(options.dir / (d.id + ".mp4"), width, height, [&] {
+            render::VideoOptions v = options.video_options;
+            v.fps = d.animation->fps;
+            return v;
+        }());
     if (options.frames) {
         frames_dir_ = options.dir / (d.id + "-frames");
         std::error_code ec;

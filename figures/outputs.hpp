@@ -8,9 +8,8 @@
 
 #include <filesystem>
 #include <memory>
-#include <optional>
-
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "figures/description.hpp"
 #include "render/image.hpp"

@@ -18,7 +18,8 @@ StopRule read_stop(Settings& s) {
     const std::string stop = s.text("stop", "bottom_or_fixed_point");
     if (stop == "bottom_or_fixed_point") return StopRule::bottom_or_fixed_point;
     if (stop == "fixed_point") return StopRule::fixed_point;
-    throw UsageError("params.stop = \"" + stop + "\" is not allowed: use \"bottom_or_fixed_point\" (the book's test_perc) or \"fixed_point\"");
+    throw UsageError("params.stop = \"" + stop +
+                     "\" is not allowed: use \"bottom_or_fixed_point\" (the book's test_perc) or \"fixed_point\"");
 }
 
 // One step under the stop rule: false once the run is over.
@@ -38,8 +39,8 @@ nlohmann::json panel_metadata(const sim::Percolation& model, StopRule stop, bool
         {"state_sha256", render::sha256_hex(cells.data(), cells.size())},
     };
     if (stopped)
-        meta["stopped"] = model.bottom_row_wet() && stop == StopRule::bottom_or_fixed_point ? "bottom row wet"
-                                                                                            : "fixed point";
+        meta["stopped"] =
+            model.bottom_row_wet() && stop == StopRule::bottom_or_fixed_point ? "bottom row wet" : "fixed point";
     return meta;
 }
 
@@ -50,7 +51,8 @@ const FieldSpec default_spec{render::colormap("Blues"), 0.0, 5.0, 0.6f, render::
 // tc7-5: one small model, panels after the first steps, the animation to the end.
 void render_percolation(const Description& d, const OutputOptions& options, Progress& progress) {
     Settings params("params", d.params,
-                    {{"n", "grid size"}, {"q", "probability that a cell is porous"},
+                    {{"n", "grid size"},
+                     {"q", "probability that a cell is porous"},
                      {"stop", "\"bottom_or_fixed_point\" or \"fixed_point\""}});
     Settings style("style", d.style, field_spec_keys());
     sim::PercolationParams p;
@@ -83,8 +85,9 @@ void render_percolation(const Description& d, const OutputOptions& options, Prog
             },
         .frame =
             [&](int) {
-                return draw_field_panels({{title(d.animation->title), {field_layer(model.cells(), spec)}}},
-                                         run.frame_width(), run.frame_height(), options.scale);
+                return draw_field_panels(run.frame_canvas(),
+                                         {{title(d.animation->title), {field_layer(model.cells(), spec)}}},
+                                         options.scale);
             },
         .advance =
             [&] {
@@ -101,8 +104,8 @@ void render_percolation(const Description& d, const OutputOptions& options, Prog
         }
     nlohmann::json meta = {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}};
     if (auto animation = run.finish(); !animation.is_null()) meta["animation"] = animation;
-    write_figure(d, options, draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale),
-                 meta);
+    write_figure(d, options,
+                 draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale), meta);
     progress.finish();
 }
 
@@ -110,7 +113,8 @@ void render_percolation(const Description& d, const OutputOptions& options, Prog
 // (largest) run's wetting front as it happens.
 void render_percolation_sizes(const Description& d, const OutputOptions& options, Progress& progress) {
     Settings params("params", d.params,
-                    {{"sizes", "grid sizes, one panel each"}, {"q", "probability that a cell is porous"},
+                    {{"sizes", "grid sizes, one panel each"},
+                     {"q", "probability that a cell is porous"},
                      {"stop", "\"bottom_or_fixed_point\" or \"fixed_point\""}});
     Settings style("style", d.style, field_spec_keys());
     std::vector<sim::PercolationParams> runs;
@@ -135,7 +139,11 @@ void render_percolation_sizes(const Description& d, const OutputOptions& options
     std::unique_ptr<FrameSink> sink;
     const int fw = animate ? scaled_even(d.animation->width, options.scale) : 0;
     const int fh = animate ? scaled_even(d.animation->height, options.scale) : 0;
-    if (animate) sink = std::make_unique<FrameSink>(d, options, fw, fh);
+    std::unique_ptr<render::Canvas> film_canvas;
+    if (animate) {
+        sink = std::make_unique<FrameSink>(d, options, fw, fh);
+        film_canvas = std::make_unique<render::Canvas>(fw, fh);
+    }
     progress.start(d.id, static_cast<long long>(runs.size()));
 
     sim::Random rng(d.seed);  // the runs draw from one stream, in order
@@ -145,24 +153,25 @@ void render_percolation_sizes(const Description& d, const OutputOptions& options
         sim::Percolation model(runs[i], rng);
         const bool film = sink && i + 1 == runs.size();
         auto film_frame = [&] {
-            const auto title = expand(d.animation->title, {{"n", std::to_string(runs[i].n)},
-                                                           {"step", std::to_string(model.steps())}});
-            sink->add(draw_field_panels({{title, {field_layer(model.cells(), spec)}}}, fw, fh, options.scale),
+            const auto title =
+                expand(d.animation->title, {{"n", std::to_string(runs[i].n)}, {"step", std::to_string(model.steps())}});
+            sink->add(draw_field_panels(*film_canvas, {{title, {field_layer(model.cells(), spec)}}}, options.scale),
                       model.steps());
         };
         if (film && d.animation->shows(0)) film_frame();
         while (step_until_stop(model, stop))
             if (film && d.animation->shows(model.steps())) film_frame();
         if (film && !d.animation->shows(model.steps())) film_frame();  // the final state ends the film
-        panels.push_back({expand(d.panel_title, {{"n", std::to_string(runs[i].n)}, {"step", std::to_string(model.steps())}}),
-                          {field_layer(model.cells(), spec)}});
+        panels.push_back(
+            {expand(d.panel_title, {{"n", std::to_string(runs[i].n)}, {"step", std::to_string(model.steps())}}),
+             {field_layer(model.cells(), spec)}});
         panel_meta.push_back(panel_metadata(model, stop, true));
         progress.advance();
     }
     nlohmann::json meta = {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}};
     if (sink) meta["animation"] = sink->finish();
-    write_figure(d, options, draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale),
-                 meta);
+    write_figure(d, options,
+                 draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale), meta);
     progress.finish();
 }
 

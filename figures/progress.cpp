@@ -8,7 +8,9 @@ namespace figures {
 
 Progress::Progress(bool enabled) : enabled_(enabled) {}
 
-Progress Progress::for_stderr() { return Progress(::isatty(STDERR_FILENO) == 1); }
+Progress Progress::for_stderr() {
+    return Progress(::isatty(STDERR_FILENO) == 1);
+}
 
 void Progress::start(const std::string& label, long long total) {
     label_ = label;
@@ -40,8 +42,8 @@ void Progress::draw(bool force) {
     const double fraction = done_ >= total_ ? 1.0 : double(done_) / double(total_);
     const int filled = static_cast<int>(fraction * width);
     const double seconds = std::chrono::duration<double>(now - started_).count();
-    std::fprintf(stderr, "\r%-12s [%.*s%*s] %3d%% %6.1fs", label_.c_str(), filled,
-                 "##############################", width - filled, "", static_cast<int>(fraction * 100), seconds);
+    std::fprintf(stderr, "\r%-12s [%.*s%*s] %3d%% %6.1fs", label_.c_str(), filled, "##############################",
+                 width - filled, "", static_cast<int>(fraction * 100), seconds);
     std::fflush(stderr);
 }
 

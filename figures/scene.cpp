@@ -11,6 +11,11 @@ const std::vector<SceneInfo>& scenes() {
         {"percolation", render_percolation},
         {"percolation_sizes", render_percolation_sizes},
         {"cell1d", render_cell1d},
+        {"cell_counts", render_cell_counts},
+        {"percolation_scaling", render_percolation_scaling},
+        {"percolation_phase", render_percolation_phase},
+        {"forest_fire", render_forest_fire},
+        {"cell1d_survey", render_cell1d_survey},
     };
     return all;
 }
@@ -21,8 +26,8 @@ void render_figure(const Description& d, const OutputOptions& options, Progress&
         std::error_code ec;
         std::filesystem::create_directories(options.dir, ec);
         if (ec || !std::filesystem::is_directory(options.dir))
-            throw UsageError("--out " + options.dir.string() + ": cannot create the folder: " +
-                             (ec ? ec.message() : "not a directory"));
+            throw UsageError("--out " + options.dir.string() +
+                             ": cannot create the folder: " + (ec ? ec.message() : "not a directory"));
         scene.render(d, options, progress);
         return;
     }

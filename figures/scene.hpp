@@ -16,7 +16,7 @@ namespace figures {
 using SceneFunction = void (*)(const Description&, const OutputOptions&, Progress&);
 
 struct SceneInfo {
-    std::string model;       // the description's `model`
+    std::string model;  // the description's `model`
     SceneFunction render;
 };
 
@@ -32,5 +32,10 @@ void render_gray_scott(const Description& d, const OutputOptions& options, Progr
 void render_percolation(const Description& d, const OutputOptions& options, Progress& progress);
 void render_percolation_sizes(const Description& d, const OutputOptions& options, Progress& progress);
 void render_cell1d(const Description& d, const OutputOptions& options, Progress& progress);
+void render_cell_counts(const Description& d, const OutputOptions& options, Progress& progress);
+void render_percolation_scaling(const Description& d, const OutputOptions& options, Progress& progress);
+void render_percolation_phase(const Description& d, const OutputOptions& options, Progress& progress);
+void render_forest_fire(const Description& d, const OutputOptions& options, Progress& progress);
+void render_cell1d_survey(const Description& d, const OutputOptions& options, Progress& progress);
 
 }  // namespace figures

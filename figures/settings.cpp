@@ -16,10 +16,11 @@ std::string key_list(const std::vector<Key>& keys) {
 Settings::Settings(std::string section, const toml::table& table, std::vector<Key> allowed)
     : section_(std::move(section)), table_(table), allowed_(std::move(allowed)) {
     for (const auto& [key, value] : table_) {
-        const bool known = std::any_of(allowed_.begin(), allowed_.end(), [&](const Key& k) { return k.name == key.str(); });
+        const bool known =
+            std::any_of(allowed_.begin(), allowed_.end(), [&](const Key& k) { return k.name == key.str(); });
         if (!known)
-            throw UsageError("unknown key " + section_ + "." + std::string(key.str()) + "; allowed: " +
-                             key_list(allowed_));
+            throw UsageError("unknown key " + section_ + "." + std::string(key.str()) +
+                             "; allowed: " + key_list(allowed_));
     }
 }
 
@@ -57,9 +58,12 @@ int Settings::count(const std::string& key, int fallback) {
 double Settings::number(const std::string& key, double fallback) {
     double value = fallback;
     if (const toml::node* node = find(key)) {
-        if (node->is_integer()) value = static_cast<double>(node->as_integer()->get());
-        else if (node->is_floating_point()) value = node->as_floating_point()->get();
-        else wrong_type(key, "a number");
+        if (node->is_integer())
+            value = static_cast<double>(node->as_integer()->get());
+        else if (node->is_floating_point())
+            value = node->as_floating_point()->get();
+        else
+            wrong_type(key, "a number");
         // TOML admits nan and inf; no figure parameter does.
         if (!std::isfinite(value)) wrong_type(key, "a finite number");
     }
@@ -109,10 +113,12 @@ std::vector<double> Settings::numbers(const std::string& key, const std::vector<
         if (!array) wrong_type(key, "a list of numbers");
         values.clear();
         for (const toml::node& item : *array) {
-            if (item.is_integer()) values.push_back(static_cast<double>(item.as_integer()->get()));
+            if (item.is_integer())
+                values.push_back(static_cast<double>(item.as_integer()->get()));
             else if (item.is_floating_point() && std::isfinite(item.as_floating_point()->get()))
                 values.push_back(item.as_floating_point()->get());
-            else wrong_type(key, "a list of finite numbers");
+            else
+                wrong_type(key, "a list of finite numbers");
         }
     }
     used_[key] = values;

@@ -4,12 +4,12 @@
 // type are errors naming the key and what is allowed; a key that is absent
 // keeps the caller's default. Every value read is recorded for the metadata.
 
+#include <toml++/toml.h>
+
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
-#include <toml++/toml.h>
 
 namespace figures {
 
@@ -30,7 +30,7 @@ public:
     Settings(std::string section, const toml::table& table, std::vector<Key> allowed);
 
     long long integer(const std::string& key, long long fallback);
-    int count(const std::string& key, int fallback);  // an integer that fits an int
+    int count(const std::string& key, int fallback);         // an integer that fits an int
     double number(const std::string& key, double fallback);  // accepts integers too
     std::string text(const std::string& key, const std::string& fallback);
     bool flag(const std::string& key, bool fallback);

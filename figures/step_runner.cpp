@@ -44,8 +44,17 @@ void StepRunner::frame(const render::Image& image, int step) {
     progress_.advance();
 }
 
-void StepRunner::stepped() { progress_.advance(); }
+render::Canvas& StepRunner::frame_canvas() {
+    if (!frame_canvas_) frame_canvas_ = std::make_unique<render::Canvas>(frame_width_, frame_height_);
+    return *frame_canvas_;
+}
 
-nlohmann::json StepRunner::finish() { return sink_ ? sink_->finish() : nlohmann::json(); }
+void StepRunner::stepped() {
+    progress_.advance();
+}
+
+nlohmann::json StepRunner::finish() {
+    return sink_ ? sink_->finish() : nlohmann::json();
+}
 
 }  // namespace figures

@@ -6,12 +6,12 @@
 
 #include <functional>
 #include <memory>
-
 #include <nlohmann/json.hpp>
 
 #include "figures/description.hpp"
 #include "figures/outputs.hpp"
 #include "figures/progress.hpp"
+#include "render/canvas.hpp"
 #include "render/image.hpp"
 
 namespace figures {
@@ -31,8 +31,10 @@ public:
     int last_step() const { return last_; }
     bool is_panel(int step) const;
     bool wants_frame(int step) const { return sink_ && description_.animation->shows(step); }
-    int frame_width() const { return frame_width_; }    // pixels, scaled, even
+    int frame_width() const { return frame_width_; }  // pixels, scaled, even
     int frame_height() const { return frame_height_; }
+    // A canvas of the frame's size, made once and drawn on for every frame.
+    render::Canvas& frame_canvas();
 
     // Runs from step 0 to last_step() or until advance() says the model
     // stopped; returns the last step reached.
@@ -48,6 +50,7 @@ private:
     int last_ = 0;
     int frame_width_ = 0, frame_height_ = 0;
     std::unique_ptr<FrameSink> sink_;
+    std::unique_ptr<render::Canvas> frame_canvas_;
 };
 
 }  // namespace figures

@@ -1,6 +1,9 @@
 #include "render/shapes.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <numbers>
 
 #include "render/gl_context.hpp"
 #include "render/program.hpp"
@@ -57,6 +60,120 @@ void Shapes::line(glm::vec2 a, glm::vec2 b, float width, const glm::vec4& colour
     const glm::vec2 n = glm::vec2(-d.y, d.x) * (0.5f * width / length);
     triangle(a + n, b + n, b - n, colour);
     triangle(a + n, b - n, a - n, colour);
+}
+
+void Shapes::disc(glm::vec2 centre, float radius, const glm::vec4& colour) {
+    if (!(radius > 0)) return;
+    // Chords of about two pixels: finer than the 4x multisampling can show.
+    const int n = std::clamp(int(std::ceil(std::numbers::pi_v<float> * radius)), 12, 96);
+    glm::vec2 previous = centre + glm::vec2(radius, 0);
+    for (int i = 1; i <= n; ++i) {
+        const float a = 2 * std::numbers::pi_v<float> * float(i) / float(n);
+        const glm::vec2 next = centre + radius * glm::vec2(std::cos(a), std::sin(a));
+        triangle(centre, previous, next, colour);
+        previous = next;
+    }
+}
+
+void Shapes::convex_polygon(std::span<const glm::vec2> points, const glm::vec4& colour) {
+    for (std::size_t i = 2; i < points.size(); ++i) triangle(points[0], points[i - 1], points[i], colour);
+}
+
+void Shapes::polyline(std::span<const glm::vec2> points, float width, const glm::vec4& colour,
+                      std::span<const float> dash, float dash_offset, LineCap cap) {
+    if (!(width > 0) || points.size() < 2) return;
+    std::vector<float> pattern(dash.begin(), dash.end());
+    if (pattern.size() % 2 == 1) pattern.insert(pattern.end(), dash.begin(), dash.end());
+    float period = 0;
+    for (float d : pattern) period += std::max(0.0f, d);
+    if (pattern.empty() || !(period > 1e-3f)) return solid_polyline(points, width, colour, cap);
+
+    // Where in the pattern the line starts: entry k with `left` pixels of it to go.
+    float phase = std::fmod(dash_offset, period);
+    if (phase < 0) phase += period;
+    std::size_t k = 0;
+    while (phase >= std::max(0.0f, pattern[k])) phase -= std::max(0.0f, pattern[k]), k = (k + 1) % pattern.size();
+    float left = std::max(0.0f, pattern[k]) - phase;
+    std::vector<glm::vec2> piece;
+    if (k % 2 == 0) piece.push_back(points[0]);
+    for (std::size_t i = 1; i < points.size(); ++i) {
+        const glm::vec2 a = points[i - 1], b = points[i];
+        const float length = glm::length(b - a);
+        float done = 0;
+        while (length - done > left) {  // the pattern switches inside this segment
+            done += left;
+            const glm::vec2 at = a + (b - a) * (done / length);
+            if (k % 2 == 0) {
+                piece.push_back(at);
+                solid_polyline(piece, width, colour, cap);
+                piece.clear();
+            } else {
+                piece.push_back(at);
+            }
+            k = (k + 1) % pattern.size();
+            left = std::max(0.0f, pattern[k]);
+        }
+        left -= length - done;
+        if (k % 2 == 0) piece.push_back(b);
+    }
+    if (k % 2 == 0) solid_polyline(piece, width, colour, cap);
+}
+
+void Shapes::solid_polyline(std::span<const glm::vec2> input, float width, const glm::vec4& colour, LineCap cap) {
+    std::vector<glm::vec2> p;  // without repeated points, which have no direction
+    for (glm::vec2 q : input)
+        if (p.empty() || glm::length(q - p.back()) > 1e-4f) p.push_back(q);
+    if (p.size() < 2) return;
+    const float h = width / 2;
+    const std::size_t n = p.size();
+    std::vector<glm::vec2> along(n - 1), normal(n - 1);
+    std::vector<float> length(n - 1);
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+        length[i] = glm::length(p[i + 1] - p[i]);
+        along[i] = (p[i + 1] - p[i]) / length[i];
+        normal[i] = {-along[i].y, along[i].x};
+    }
+    auto quad = [&](glm::vec2 l0, glm::vec2 r0, glm::vec2 l1, glm::vec2 r1) {
+        triangle(l0, l1, r1, colour);
+        triangle(l0, r1, r0, colour);
+    };
+    const glm::vec2 start = cap == LineCap::square ? p[0] - along[0] * h : p[0];
+    glm::vec2 left = start + normal[0] * h, right = start - normal[0] * h;
+    for (std::size_t i = 1; i + 1 < n; ++i) {
+        const glm::vec2 a = normal[i - 1], b = normal[i], sum = a + b;
+        const float sum_length = glm::length(sum);
+        if (sum_length > 1e-6f) {
+            const glm::vec2 miter = sum / sum_length;
+            const float c = glm::dot(miter, a);  // cosine of half the turn
+            // A mitre, unless the turn is sharp or the inner corner would
+            // reach past a neighbouring segment and fold the strip.
+            const float reach = h * std::sqrt(std::max(0.0f, 1 - c * c)) / c;
+            if (c >= 0.5f && reach <= std::min(length[i - 1], length[i])) {
+                const glm::vec2 l = p[i] + miter * (h / c), r = p[i] - miter * (h / c);
+                quad(left, right, l, r);
+                left = l, right = r;
+                continue;
+            }
+        }
+        // Bevel, and a round fan over the outer corner.
+        quad(left, right, p[i] + a * h, p[i] - a * h);
+        const float side = glm::dot(along[i], a) > 0 ? -1.0f : 1.0f;  // the outer side of the turn
+        const float from = std::atan2(side * a.y, side * a.x);
+        float turn = std::atan2(side * b.y, side * b.x) - from;
+        if (turn > std::numbers::pi_v<float>) turn -= 2 * std::numbers::pi_v<float>;
+        if (turn < -std::numbers::pi_v<float>) turn += 2 * std::numbers::pi_v<float>;
+        const int steps = std::max(1, int(std::ceil(std::abs(turn) / 0.3f)));
+        glm::vec2 previous = p[i] + side * a * h;
+        for (int s = 1; s <= steps; ++s) {
+            const float angle = from + turn * float(s) / float(steps);
+            const glm::vec2 next = p[i] + h * glm::vec2(std::cos(angle), std::sin(angle));
+            triangle(p[i], previous, next, colour);
+            previous = next;
+        }
+        left = p[i] + b * h, right = p[i] - b * h;
+    }
+    const glm::vec2 end = cap == LineCap::square ? p[n - 1] + along[n - 2] * h : p[n - 1];
+    quad(left, right, end + normal[n - 2] * h, end - normal[n - 2] * h);
 }
 
 void Shapes::draw(const Canvas& canvas) const {

@@ -1,7 +1,8 @@
 #pragma once
-// Flat-coloured geometry (rectangles, frames, line segments) collected into
-// one vertex batch and drawn with a single draw call.
+// Flat-coloured geometry (rectangles, frames, line segments, polylines,
+// discs) collected into one vertex batch and drawn with a single draw call.
 
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -9,6 +10,11 @@
 #include "render/canvas.hpp"
 
 namespace render {
+
+enum class LineCap {
+    butt,    // the line stops at its end points
+    square,  // it goes on half its width past them (matplotlib's "projecting", its default for solid lines)
+};
 
 class Shapes {
 public:
@@ -18,12 +24,26 @@ public:
     // A segment `width` pixels wide with square (butt) ends.
     void line(glm::vec2 a, glm::vec2 b, float width, const glm::vec4& colour);
     void triangle(glm::vec2 a, glm::vec2 b, glm::vec2 c, const glm::vec4& colour);
+    // A filled circle, a fan fine enough that its edge looks round.
+    void disc(glm::vec2 centre, float radius, const glm::vec4& colour);
+    // A filled convex polygon, as a fan from its first vertex.
+    void convex_polygon(std::span<const glm::vec2> points, const glm::vec4& colour);
+    // Connected segments `width` pixels wide, mitred at the joints (bevelled
+    // with a round fill past a turn of 120 degrees). Its triangles do not
+    // overlap along smooth curves, so a translucent line keeps one shade.
+    // With a dash pattern (on, off, on, ... lengths in pixels; an odd count
+    // repeats twice) the dashes follow the arc length across the vertices,
+    // starting `dash_offset` pixels into the pattern; each dash gets `cap`.
+    void polyline(std::span<const glm::vec2> points, float width, const glm::vec4& colour,
+                  std::span<const float> dash = {}, float dash_offset = 0, LineCap cap = LineCap::butt);
 
     bool empty() const { return vertices_.empty(); }
     void clear() { vertices_.clear(); }
     void draw(const Canvas& canvas) const;
 
 private:
+    void solid_polyline(std::span<const glm::vec2> points, float width, const glm::vec4& colour, LineCap cap);
+
     struct Vertex {
         glm::vec2 position;
         glm::vec4 colour;

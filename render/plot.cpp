@@ -1,0 +1,468 @@
+#include "render/plot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string_view>
+
+#include "render/gl.hpp"
+#include "render/shapes.hpp"
+#include "render/ticks.hpp"
+
+namespace render {
+namespace {
+
+// matplotlib's text box around a line of DejaVu Sans, in ems: from the top
+// of "l" above the baseline to the bottom of "p" below it.
+constexpr float text_ascent = 0.76f;
+constexpr float text_descent = 0.21f;
+
+Font& font_of_size(float pixels) {  // one atlas per size, kept for the process
+    static std::map<float, std::unique_ptr<Font>> fonts;
+    auto& font = fonts[pixels];
+    if (!font) font = std::make_unique<Font>(pixels);
+    return *font;
+}
+
+// Tick labels with an exponent are set as matplotlib's mathtext sets
+// "10^{-3}": the exponent in ordinary digits at 0.7 of the size, raised
+// 0.375 em, which reads larger and lower than the font's superscript glyphs.
+constexpr float script_scale = 0.7f;
+constexpr float script_rise = 0.375f;
+
+struct TickLabel {
+    std::string base, exponent;  // "10" and "−3" for "10⁻³"
+};
+
+TickLabel split_exponent(const std::string& label) {
+    static const std::pair<std::string_view, const char*> superscripts[] = {
+        {"\u2070", "0"}, {"\u00b9", "1"}, {"\u00b2", "2"}, {"\u00b3", "3"}, {"\u2074", "4"}, {"\u2075", "5"},
+        {"\u2076", "6"}, {"\u2077", "7"}, {"\u2078", "8"}, {"\u2079", "9"}, {"\u207b", "\u2212"}};
+    TickLabel out{label, ""};
+    for (bool found = true; found;) {
+        found = false;
+        for (const auto& [glyph, plain] : superscripts)
+            if (out.base.ends_with(glyph)) {
+                out.base.resize(out.base.size() - glyph.size());
+                out.exponent.insert(0, plain);
+                found = true;
+            }
+    }
+    return out;
+}
+
+struct TickFonts {
+    Font& base;
+    Font& script;
+    float width(const TickLabel& l) const { return base.width(l.base) + script.width(l.exponent); }
+};
+
+// Adds a tick label anchored like Text::add (Baseline::middle: the middle of the base's capitals).
+void add_tick_label(Text& text, const TickFonts& fonts, const TickLabel& label, glm::vec2 at, const glm::vec4& colour,
+                    Align align, Baseline baseline) {
+    const float w = fonts.width(label);
+    const float x = align == Align::left ? at.x : align == Align::centre ? at.x - w / 2 : at.x - w;
+    const float y = baseline == Baseline::middle ? at.y + fonts.base.cap_height() / 2
+                    : baseline == Baseline::top  ? at.y + fonts.base.ascender()
+                    : baseline == Baseline::bottom ? at.y + fonts.base.descender()
+                                                   : at.y;
+    text.add(fonts.base, label.base, {x, y}, colour);
+    if (!label.exponent.empty())
+        text.add(fonts.script, label.exponent, {x + fonts.base.width(label.base), y - script_rise * fonts.base.pixel_size()},
+                 colour);
+}
+
+bool usable(double v, Scale scale) { return std::isfinite(v) && (scale == Scale::linear || v > 0); }
+
+// Data to pixels along one axis.
+struct AxisMap {
+    Scale scale;
+    double lo, hi;      // the view limits, data units
+    double p_lo, p_hi;  // where they land, pixels
+    double t(double v) const { return scale == Scale::log ? std::log10(v) : v; }
+    double operator()(double v) const { return p_lo + (t(v) - t(lo)) / (t(hi) - t(lo)) * (p_hi - p_lo); }
+};
+
+// The view limits of one axis: the caller's, or the data's with margins.
+std::pair<double, double> view_range(const Axes& axes, bool x_axis) {
+    const Scale scale = x_axis ? axes.x_scale : axes.y_scale;
+    const auto& given = x_axis ? axes.x_range : axes.y_range;
+    const char* name = x_axis ? "x" : "y";
+    if (given) {
+        auto [lo, hi] = *given;
+        if (!usable(lo, scale) || !usable(hi, scale))
+            throw std::invalid_argument(std::string("draw_axes: the ") + name + " range must be finite" +
+                                        (scale == Scale::log ? " and positive on a log axis" : ""));
+        if (lo == hi) return scale == Scale::log ? log_auto_range(lo, hi) : linear_auto_range(lo, hi);
+        return {lo, hi};
+    }
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Series& s : axes.series)
+        for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+            if (!usable(s.x[i], axes.x_scale) || !usable(s.y[i], axes.y_scale)) continue;
+            const double v = x_axis ? s.x[i] : s.y[i];
+            lo = std::min(lo, v), hi = std::max(hi, v);
+        }
+    for (const ReferenceLine& r : axes.reference_lines)
+        if ((r.direction == Direction::vertical) == x_axis && usable(r.at, scale))
+            lo = std::min(lo, r.at), hi = std::max(hi, r.at);
+    if (lo > hi) return scale == Scale::log ? std::pair{1.0, 10.0} : std::pair{0.0, 1.0};  // nothing to show
+    return scale == Scale::log ? log_auto_range(lo, hi) : linear_auto_range(lo, hi);
+}
+
+AxisTicks ticks_of(const AxisMap& map, float length, float font_size, bool horizontal) {
+    const int bins = tick_bins(length, font_size, horizontal);
+    return map.scale == Scale::log ? log_ticks(map.lo, map.hi, bins) : linear_ticks(map.lo, map.hi, bins);
+}
+
+// The centre of a line `width` pixels wide nearest to v that keeps its edges
+// on pixel edges, as matplotlib snaps spines and ticks: crisp, not smeared
+// over two half-covered pixels.
+float snap(float v, float width) {
+    const int pixels = std::max(1, int(std::lround(width)));
+    return pixels % 2 == 1 ? std::floor(v) + 0.5f : std::round(v);
+}
+
+// The stretches of a pixel-space path inside `box`, each with the arc length
+// at which it starts, so that a dash pattern runs on across the cuts.
+struct Run {
+    std::vector<glm::vec2> points;
+    float start = 0;
+};
+
+std::vector<Run> clip_path(const std::vector<glm::dvec2>& path, const Rect& box) {
+    std::vector<Run> runs;
+    Run run;
+    auto finish = [&] {
+        if (run.points.size() >= 2) runs.push_back(run);
+        run.points.clear();
+    };
+    double arc = 0;
+    for (std::size_t i = 1; i < path.size(); ++i) {
+        const glm::dvec2 a = path[i - 1], d = path[i] - a;
+        const double length = glm::length(d);
+        // Liang-Barsky: the part t0..t1 of the segment inside the box.
+        double t0 = 0, t1 = 1;
+        const double p[4] = {-d.x, d.x, -d.y, d.y};
+        const double q[4] = {a.x - box.x, box.right() - a.x, a.y - box.y, box.bottom() - a.y};
+        bool inside = true;
+        for (int k = 0; k < 4 && inside; ++k) {
+            if (p[k] == 0) {
+                inside = q[k] >= 0;
+            } else {
+                const double r = q[k] / p[k];
+                if (p[k] < 0) t0 = std::max(t0, r);
+                else t1 = std::min(t1, r);
+                inside = t0 <= t1;
+            }
+        }
+        if (!inside) {
+            finish();
+        } else {
+            if (t0 > 0 || run.points.empty()) {
+                finish();
+                run.start = float(arc + t0 * length);
+                run.points.push_back(glm::vec2(a + t0 * d));
+            }
+            run.points.push_back(glm::vec2(a + t1 * d));
+            if (t1 < 1) finish();
+        }
+        arc += length;
+    }
+    finish();
+    return runs;
+}
+
+std::vector<float> scaled(const std::vector<float>& dash, float scale) {
+    std::vector<float> out;
+    for (float d : dash) out.push_back(d * scale);
+    return out;
+}
+
+// A line through pixel-space points (NaN: a gap), cut to `box`.
+void add_line(Shapes& shapes, const std::vector<glm::dvec2>& points, const Rect& box, const glm::vec4& colour,
+              float width, const std::vector<float>& dash) {
+    const LineCap cap = dash.empty() ? LineCap::square : LineCap::butt;  // matplotlib's solid and dash cap styles
+    std::vector<glm::dvec2> piece;
+    auto flush = [&] {
+        for (const Run& run : clip_path(piece, box)) shapes.polyline(run.points, width, colour, dash, run.start, cap);
+        piece.clear();
+    };
+    for (const glm::dvec2& p : points) {
+        if (std::isnan(p.x)) flush();
+        else piece.push_back(p);
+    }
+    flush();
+}
+
+// A stencil buffer lent to the canvas's multisampled framebuffer while a
+// plot's data is drawn, so that each line touches every sample once: where a
+// translucent line overlaps itself (joints of short segments, crossings) it
+// keeps one shade, as matplotlib fills a whole stroke in one pass. Without
+// one (an incomplete framebuffer) lines are drawn plainly.
+class StencilScope {
+public:
+    explicit StencilScope(const Canvas& canvas) {
+        canvas.bind();
+        GLint fbo = 0;
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+        if (fbo == 0) return;
+        glGenRenderbuffers(1, &buffer_);
+        glBindRenderbuffer(GL_RENDERBUFFER, buffer_);
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, canvas.samples(), GL_STENCIL_INDEX8, canvas.width(),
+                                         canvas.height());
+        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, buffer_);
+        attached_ = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+        glGetError();  // a refused format leaves an error that is not ours to report
+    }
+    ~StencilScope() {
+        glDisable(GL_STENCIL_TEST);
+        if (buffer_ == 0) return;
+        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, 0);
+        glDeleteRenderbuffers(1, &buffer_);
+    }
+    StencilScope(const StencilScope&) = delete;
+    StencilScope& operator=(const StencilScope&) = delete;
+
+    // Draws `shapes` so that overlapping triangles blend only once.
+    void draw_once(const Canvas& canvas, const Shapes& shapes) const {
+        if (shapes.empty()) return;
+        if (attached_) {
+            canvas.bind();
+            glClearStencil(0);
+            glClear(GL_STENCIL_BUFFER_BIT);
+            glEnable(GL_STENCIL_TEST);
+            glStencilFunc(GL_EQUAL, 0, 0xFF);
+            glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+        }
+        shapes.draw(canvas);
+        glDisable(GL_STENCIL_TEST);
+    }
+
+private:
+    GLuint buffer_ = 0;
+    bool attached_ = false;
+};
+
+// Lines and markers of the data and the reference lines. The frame cuts
+// them with a scissor rectangle: that is matplotlib's clip box exactly, pixel
+// for pixel, and it cuts thick lines, dash ends and markers at the spine with
+// no geometry to work out. Segments are also clipped in double precision to
+// a box a little larger than the frame, so that far-off data never reaches
+// the rasteriser as huge coordinates and dashes are only made where seen.
+void draw_data(const Canvas& canvas, const Rect& frame, const Axes& axes, const AxisMap& mx, const AxisMap& my,
+               float scale) {
+    const StencilScope stencil(canvas);
+    const int x0 = int(std::lround(frame.x)), y0 = int(std::lround(frame.y));
+    const int x1 = int(std::lround(frame.right())), y1 = int(std::lround(frame.bottom()));
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(x0, canvas.height() - y1, std::max(0, x1 - x0), std::max(0, y1 - y0));  // GL counts rows from the bottom
+    const float slack = 16 * scale;
+    for (const ReferenceLine& r : axes.reference_lines) {
+        const float width = r.line_width * scale;
+        const Rect box{frame.x - slack - width, frame.y - slack - width, frame.w + 2 * (slack + width),
+                       frame.h + 2 * (slack + width)};
+        const bool horizontal = r.direction == Direction::horizontal;
+        if (!usable(r.at, horizontal ? my.scale : mx.scale) || !(width > 0)) continue;
+        const double v = horizontal ? my(r.at) : mx(r.at);
+        const std::vector<glm::dvec2> ends =
+            horizontal ? std::vector<glm::dvec2>{{frame.x, v}, {frame.right(), v}}
+                       : std::vector<glm::dvec2>{{v, frame.bottom()}, {v, frame.y}};
+        Shapes line;
+        add_line(line, ends, box, r.colour, width, scaled(r.dash, scale));
+        stencil.draw_once(canvas, line);
+    }
+    for (const Series& s : axes.series) {
+        const float width = s.line_width * scale, radius = s.marker_size * scale / 2;
+        const float reach = slack + std::max(width, radius);
+        const Rect box{frame.x - reach, frame.y - reach, frame.w + 2 * reach, frame.h + 2 * reach};
+        std::vector<glm::dvec2> points;
+        for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+            const bool ok = usable(s.x[i], mx.scale) && usable(s.y[i], my.scale);
+            const double nan = std::numeric_limits<double>::quiet_NaN();
+            points.push_back(ok ? glm::dvec2{mx(s.x[i]), my(s.y[i])} : glm::dvec2{nan, nan});
+        }
+        Shapes line, markers;
+        if (width > 0) add_line(line, points, box, s.colour, width, scaled(s.dash, scale));
+        if (radius > 0)  // each marker on its own, as matplotlib draws them: overlapping ones darken
+            for (const glm::dvec2& p : points)
+                if (p.x >= box.x && p.x <= box.right() && p.y >= box.y && p.y <= box.bottom())
+                    markers.disc(glm::vec2(p), radius, s.colour);
+        stencil.draw_once(canvas, line);
+        markers.draw(canvas);
+    }
+    glDisable(GL_SCISSOR_TEST);
+}
+
+// Spines, ticks, tick labels, axis labels, title and notes.
+void draw_decorations(const Canvas& canvas, const Rect& frame, const Axes& axes, const AxisMap& mx,
+                      const AxisMap& my, const PlotStyle& st) {
+    const float s = st.scale;
+    Font& tick_font = font_of_size(st.font_size * s);
+    Font& label_font = font_of_size(st.label_size * s);
+    Shapes shapes;
+    Text text;
+    const float sw = st.spine_width * s;
+    const float left = snap(frame.x, sw), right = snap(frame.right(), sw);
+    const float top = snap(frame.y, sw), bottom = snap(frame.bottom(), sw);
+    shapes.rect({left - sw / 2, top - sw / 2, sw, bottom - top + sw}, st.ink);
+    shapes.rect({right - sw / 2, top - sw / 2, sw, bottom - top + sw}, st.ink);
+    shapes.rect({left - sw / 2, top - sw / 2, right - left + sw, sw}, st.ink);
+    shapes.rect({left - sw / 2, bottom - sw / 2, right - left + sw, sw}, st.ink);
+
+    const float major = st.major_tick * s, pad = st.tick_pad * s;
+    const AxisTicks xt = ticks_of(mx, frame.w, tick_font.pixel_size(), true);
+    const AxisTicks yt = ticks_of(my, frame.h, tick_font.pixel_size(), false);
+    auto x_ticks = [&](const std::vector<Tick>& ticks, float length, float width) {
+        for (const Tick& t : ticks) {
+            const float x = snap(float(mx(t.value)), width);
+            shapes.rect({x - width / 2, bottom, width, length}, st.ink);
+        }
+    };
+    auto y_ticks = [&](const std::vector<Tick>& ticks, float length, float width) {
+        for (const Tick& t : ticks) {
+            const float y = snap(float(my(t.value)), width);
+            shapes.rect({left - length, y - width / 2, length, width}, st.ink);
+        }
+    };
+    x_ticks(xt.major, major, st.major_tick_width * s);
+    x_ticks(xt.minor, st.minor_tick * s, st.minor_tick_width * s);
+    y_ticks(yt.major, major, st.major_tick_width * s);
+    y_ticks(yt.minor, st.minor_tick * s, st.minor_tick_width * s);
+
+    // Tick labels: below the x ticks, the tops of their digits `pad` under
+    // the ticks' ends; left of the y ticks, centred on them.
+    const TickFonts fonts{tick_font, font_of_size(script_scale * tick_font.pixel_size())};
+    const float x_baseline = bottom + major + pad + tick_font.cap_height();
+    float labels_left = left - major - pad;
+    for (const auto* list : {&xt.major, &xt.minor})
+        for (const Tick& t : *list)
+            if (!t.label.empty())
+                add_tick_label(text, fonts, split_exponent(t.label), {float(mx(t.value)), x_baseline}, st.ink,
+                               Align::centre, Baseline::baseline);
+    for (const auto* list : {&yt.major, &yt.minor})
+        for (const Tick& t : *list)
+            if (!t.label.empty()) {
+                const TickLabel label = split_exponent(t.label);
+                add_tick_label(text, fonts, label, {left - major - pad, float(my(t.value))}, st.ink, Align::right,
+                               Baseline::middle);
+                labels_left = std::min(labels_left, left - major - pad - fonts.width(label));
+            }
+
+    const float lf = label_font.pixel_size();
+    if (!axes.x_label.empty()) {
+        const float y = x_baseline + text_descent * tick_font.pixel_size() + st.label_pad * s + text_ascent * lf;
+        text.add(label_font, axes.x_label, {frame.x + frame.w / 2, y}, st.ink, Align::centre);
+    }
+    if (!axes.y_label.empty()) {  // turned to read upwards, its text box's bottom label_pad left of the labels
+        const float x = labels_left - st.label_pad * s - text_descent * lf;
+        text.add(label_font, axes.y_label, {x, frame.y + frame.h / 2}, st.ink, Align::centre, Baseline::baseline, 90);
+    }
+    if (!axes.title.empty())
+        text.add(font_of_size(st.title_size * s), axes.title, {frame.x + frame.w / 2, frame.y - st.title_pad * s},
+                 st.ink, Align::centre);
+    for (const Note& n : axes.notes)
+        text.add(tick_font, n.text, {frame.x + n.at.x * frame.w, frame.bottom() - n.at.y * frame.h}, n.colour, n.align);
+    shapes.draw(canvas);
+    text.draw(canvas);
+}
+
+// The outline of a rectangle with rounded corners, clockwise from the middle of its top edge.
+std::vector<glm::vec2> rounded_rect(const Rect& r, float radius) {
+    std::vector<glm::vec2> out{{r.x + r.w / 2, r.y}};
+    const glm::vec2 centres[4] = {{r.right() - radius, r.y + radius},
+                                  {r.right() - radius, r.bottom() - radius},
+                                  {r.x + radius, r.bottom() - radius},
+                                  {r.x + radius, r.y + radius}};
+    constexpr int steps = 6;
+    for (int c = 0; c < 4; ++c)
+        for (int i = 0; i <= steps; ++i) {
+            const float a = (float(c) - 1 + float(i) / steps) * 1.5707964f;  // -90 degrees: up, y down
+            out.push_back(centres[c] + radius * glm::vec2(std::cos(a), std::sin(a)));
+        }
+    out.push_back(out.front());
+    return out;
+}
+
+// matplotlib's legend: white at 0.8 alpha in a 0.8 grey rounded frame, half
+// an em from the axes' corner; rows of a 2 em line sample and the label.
+void draw_legend(const Canvas& canvas, const Rect& frame, const Axes& axes, const PlotStyle& st) {
+    std::vector<const Series*> entries;
+    for (const Series& s : axes.series)
+        if (!s.label.empty()) entries.push_back(&s);
+    if (axes.legend == Legend::none || entries.empty()) return;
+    Font& font = font_of_size(st.label_size * st.scale);
+    const float row = (text_ascent + text_descent) * font.pixel_size();
+    const float f = st.legend_em > 0 ? st.legend_em * st.scale : font.pixel_size();  // matplotlib: the legend's font size
+    float text_width = 0;
+    for (const Series* s : entries) text_width = std::max(text_width, font.width(s->label));
+    Rect box{0, 0, 0.4f * f + 2.0f * f + 0.8f * f + text_width + 0.4f * f,
+             0.8f * f + float(entries.size()) * row + float(entries.size() - 1) * 0.5f * f};
+    const bool left = axes.legend == Legend::upper_left || axes.legend == Legend::lower_left;
+    const bool upper = axes.legend == Legend::upper_left || axes.legend == Legend::upper_right;
+    box.x = left ? frame.x + 0.5f * f : frame.right() - 0.5f * f - box.w;
+    box.y = upper ? frame.y + 0.5f * f : frame.bottom() - 0.5f * f - box.h;
+
+    Shapes shapes;
+    const std::vector<glm::vec2> outline = rounded_rect(box, 0.2f * f);
+    shapes.convex_polygon(outline, {1, 1, 1, 0.8f});
+    shapes.polyline(outline, 1.4f * st.scale, {0.8f, 0.8f, 0.8f, 1});
+    Text text;
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        const Series& s = *entries[i];
+        const float baseline = box.y + 0.4f * f + float(i) * (row + 0.5f * f) + text_ascent * font.pixel_size();
+        const float y = baseline - 0.35f * f, x0 = box.x + 0.4f * f, x1 = x0 + 2.0f * f;
+        const std::vector<glm::vec2> sample{{x0, y}, {x1, y}};
+        if (s.line_width > 0)
+            shapes.polyline(sample, s.line_width * st.scale, s.colour, scaled(s.dash, st.scale), 0,
+                            s.dash.empty() ? LineCap::square : LineCap::butt);
+        if (s.marker_size > 0) shapes.disc({(x0 + x1) / 2, y}, s.marker_size * st.scale / 2, s.colour);
+        text.add(font, s.label, {x1 + 0.8f * f, baseline}, st.ink);
+    }
+    shapes.draw(canvas);
+    text.draw(canvas);
+}
+
+}  // namespace
+
+void draw_axes(const Canvas& canvas, const Rect& frame, const Axes& axes, const PlotStyle& style) {
+    if (!(frame.w > 0 && frame.h > 0)) return;
+    const auto [x_lo, x_hi] = view_range(axes, true);
+    const auto [y_lo, y_hi] = view_range(axes, false);
+    const AxisMap mx{axes.x_scale, x_lo, x_hi, frame.x, frame.right()};
+    const AxisMap my{axes.y_scale, y_lo, y_hi, frame.bottom(), frame.y};  // y up on the page
+    draw_data(canvas, frame, axes, mx, my, style.scale);
+    draw_decorations(canvas, frame, axes, mx, my, style);
+    draw_legend(canvas, frame, axes, style);
+}
+
+std::vector<Rect> plot_row(int width, int height, int count, const PlotStyle& style) {
+    if (count < 1) return {};
+    const float s = style.scale, f = style.font_size * s, lf = style.label_size * s;
+    const float tick_room = (style.major_tick + style.tick_pad) * s;
+    // Room for the labels ("10⁵" is about 2.3 ems wide) where the page is too small for matplotlib's fractions.
+    const float need_left = tick_room + 2.6f * f + style.label_pad * s + 1.2f * lf;
+    const float need_bottom = tick_room + f + style.label_pad * s + 1.2f * lf;
+    const float need_top = style.title_pad * s + 1.2f * style.title_size * s;
+    const float W = float(width), H = float(height);
+    const float left = std::max(style.left * W, need_left), right = std::max((1 - style.right) * W, 1.2f * f);
+    const float top = std::max((1 - style.top) * H, need_top), bottom = std::max(style.bottom * H, need_bottom);
+    const float n = float(count);
+    // The gaps are wspace panel widths, or enough for the y tick labels.
+    float w = (W - left - right) / (n + style.wspace * (n - 1));
+    float gap = style.wspace * w;
+    if (count > 1 && gap < tick_room + 2.0f * f) {
+        gap = tick_room + 2.0f * f;
+        w = (W - left - right - gap * (n - 1)) / n;
+    }
+    const float panel_w = std::max(1.0f, std::floor(w)), panel_h = std::max(1.0f, std::round(H - top - bottom));
+    std::vector<Rect> frames;
+    for (int i = 0; i < count; ++i)
+        frames.push_back({std::round(left + float(i) * (w + gap)), std::round(top), panel_w, panel_h});
+    return frames;
+}
+
+}  // namespace render
