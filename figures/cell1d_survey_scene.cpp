@@ -38,13 +38,13 @@ void render_cell1d_survey(const Description& d, const OutputOptions& options, Pr
     Settings params("params", d.params,
                     {{"n", "rows per CA for the slope (the book's count_cells n)"},
                      {"fit_from", "first step of the fitted range (the book's Fig 7.7 fits from 1)"},
-                     {"tolerance", "a slope farther than this from every integer counts as non-integer"},
+                     {"tolerance", "a slope between 1 + tolerance and 2 - tolerance counts as non-integer"},
                      {"gallery_steps", "steps drawn for each gallery panel"},
                      {"gallery_columns", "gallery panels per row"}});
     auto keys = field_spec_keys();
     keys.push_back({"zero_colour", "colour of the zero-boundary slopes"});
     keys.push_back({"wrap_colour", "colour of the wrapped slopes"});
-    Settings style("style", d.style, keys);
+    Settings style("style", d.style, with_plot_style_keys(keys));
     int n = 0, fit_from = 1, gallery_steps = 0, columns = 0;
     double tolerance = 0;
     try {
@@ -73,7 +73,10 @@ void render_cell1d_survey(const Description& d, const OutputOptions& options, Pr
     nlohmann::json table = nlohmann::json::array();
     std::vector<int> fractal;
     nlohmann::json fractal_meta = nlohmann::json::array();
-    auto non_integer = [&](double s) { return std::abs(s - std::round(s)) > tolerance; };
+    // A fractal pattern in the plane has 1 < D < 2: a slope at least
+    // `tolerance` from both. (Rules that turn the background on give slopes
+    // just under 1 from their edges; they are not fractal.)
+    auto non_integer = [&](double s) { return s > 1 + tolerance && s < 2 - tolerance; };
     for (int rule = 0; rule < 256; ++rule) {
         const double zero = slope_of(rule, n, sim::Boundary::zero, steps, fit_from);
         progress.advance();
@@ -115,7 +118,7 @@ void render_cell1d_survey(const Description& d, const OutputOptions& options, Pr
         p.boundary = sim::Boundary::wrap;
         sim::Cell1D ca(p);
         for (int s = 0; s < gallery_steps; ++s) ca.step();
-        gallery.push_back({"rule " + std::to_string(p.rule) + ", " + fixed(wrap_slopes[fractal[i]], 2),
+        gallery.push_back({"rule " + std::to_string(p.rule) + ", D = " + fixed(wrap_slopes[fractal[i]], 2),
                            {field_layer(ca.cells(), spec)}});
     }
     progress.advance();
@@ -124,7 +127,7 @@ void render_cell1d_survey(const Description& d, const OutputOptions& options, Pr
     render::Canvas canvas(width, height);
     canvas.clear({1, 1, 1, 1});
     const float plot_height = std::round(height * 0.34f);
-    draw_plot_row(canvas, {0, 0, float(width), plot_height}, {survey}, options.scale);
+    draw_plot_row(canvas, {0, 0, float(width), plot_height}, {survey}, read_plot_style(style, options.scale));
     if (!gallery.empty())
         draw_field_panels(canvas, {0, plot_height, float(width), float(height) - plot_height}, gallery, columns,
                           options.scale);

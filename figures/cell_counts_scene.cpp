@@ -16,10 +16,10 @@ void render_cell_counts(const Description& d, const OutputOptions& options, Prog
                      {"n", "rows of each CA; counts are taken at i = 1 .. n-1 (the book's count_cells)"},
                      {"boundary", "\"zero\" or \"wrap\""}});
     Settings style("style", d.style,
-                   {{"d2_colour", "colour of the y = i^2 line"},
-                    {"series_colour", "colour of the rule's counts"},
-                    {"d1_colour", "colour of the y = i line"},
-                    {"line_width", "line width in pixels at scale 1"}});
+                   with_plot_style_keys({{"d2_colour", "colour of the y = i^2 line"},
+                                         {"series_colour", "colour of the rule's counts"},
+                                         {"d1_colour", "colour of the y = i line"},
+                                         {"line_width", "line width in pixels at scale 1"}}));
     std::vector<int> rules;
     int n = 0;
     sim::Boundary boundary;
@@ -70,7 +70,9 @@ void render_cell_counts(const Description& d, const OutputOptions& options, Prog
                               {"r", fit.r}});
         progress.advance();
     }
-    write_figure(d, options, draw_plot_row(panels, figure_width(d, options), figure_height(d, options), options.scale),
+    write_figure(d, options,
+                 draw_plot_row(panels, figure_width(d, options), figure_height(d, options),
+                               read_plot_style(style, options.scale)),
                  {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}});
     progress.finish();
 }

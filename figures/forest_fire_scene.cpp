@@ -41,7 +41,7 @@ void render_forest_fire(const Description& d, const OutputOptions& options, Prog
     auto style_keys = field_spec_keys();
     style_keys.push_back({"trees_colour", "colour of the tree count"});
     style_keys.push_back({"fires_colour", "colour of the fire count"});
-    Settings style("style", d.style, style_keys);
+    Settings style("style", d.style, with_plot_style_keys(style_keys));
     sim::ForestFireParams p;
     try {
         p.n = params.count("n", p.n);
@@ -132,7 +132,8 @@ void render_forest_fire(const Description& d, const OutputOptions& options, Prog
     canvas.clear({1, 1, 1, 1});
     const float top = std::round(height * 0.52f);
     draw_field_panels(canvas, {0, 0, float(width), top}, panels, static_cast<int>(panels.size()), options.scale);
-    draw_plot_row(canvas, {0, top, float(width), float(height) - top}, {counts, dimension}, options.scale);
+    draw_plot_row(canvas, {0, top, float(width), float(height) - top}, {counts, dimension},
+                  read_plot_style(style, options.scale));
 
     nlohmann::json meta = {
         {"params", params.used()},

@@ -33,11 +33,11 @@ void render_percolation_scaling(const Description& d, const OutputOptions& optio
                     {{"q", "probability that a cell is porous"},
                      {"sizes", "[first, last]: every array size in between is tried once"}});
     Settings style("style", d.style,
-                   {{"d2_colour", "colour of the size^2 line"},
-                    {"dots_colour", "colour of the cluster sizes"},
-                    {"d1_colour", "colour of the size line"},
-                    {"line_width", "reference line width, pixels at scale 1"},
-                    {"marker_size", "dot diameter, pixels at scale 1"}});
+                   with_plot_style_keys({{"d2_colour", "colour of the size^2 line"},
+                                         {"dots_colour", "colour of the cluster sizes"},
+                                         {"d1_colour", "colour of the size line"},
+                                         {"line_width", "reference line width, pixels at scale 1"},
+                                         {"marker_size", "dot diameter, pixels at scale 1"}}));
     double q = 0;
     int first = 0, last = 0;
     try {
@@ -90,7 +90,9 @@ void render_percolation_scaling(const Description& d, const OutputOptions& optio
         {"intercept", fit.intercept},
         {"r", fit.r},
     };
-    write_figure(d, options, draw_plot_row({axes}, figure_width(d, options), figure_height(d, options), options.scale),
+    write_figure(d, options,
+                 draw_plot_row({axes}, figure_width(d, options), figure_height(d, options),
+                               read_plot_style(style, options.scale)),
                  meta);
     progress.finish();
 }
@@ -105,9 +107,9 @@ void render_percolation_phase(const Description& d, const OutputOptions& options
                      {"walk_step", "find_critical's step in q"},
                      {"walk_iterations", "find_critical's runs"},
                      {"p_c", "the known threshold drawn for reference (Newman & Ziff 2000)"}});
-    Settings style(
-        "style", d.style,
-        {{"series_colour", "colour of the measured curves"}, {"reference_colour", "colour of the reference lines"}});
+    Settings style("style", d.style,
+                   with_plot_style_keys({{"series_colour", "colour of the measured curves"},
+                                         {"reference_colour", "colour of the reference lines"}}));
     int n = 0, trials = 0, iterations = 0;
     double walk_start = 0, walk_step = 0, p_c = 0;
     std::vector<double> qs;
@@ -198,7 +200,8 @@ void render_percolation_phase(const Description& d, const OutputOptions& options
         {"walk_mean", mean},       {"p_c", p_c},
     };
     write_figure(d, options,
-                 draw_plot_row({phase, walk_axes}, figure_width(d, options), figure_height(d, options), options.scale),
+                 draw_plot_row({phase, walk_axes}, figure_width(d, options), figure_height(d, options),
+                               read_plot_style(style, options.scale)),
                  meta);
     progress.finish();
 }

@@ -4,10 +4,32 @@
 
 namespace figures {
 
+std::vector<Key> with_plot_style_keys(std::vector<Key> keys) {
+    keys.insert(keys.end(), {{"plot_scale", "dpi of the printed figure / 100: scales fonts, ticks and lines"},
+                             {"font_size", "tick label size in pixels at 100 dpi (matplotlib: 10 pt = 14)"},
+                             {"label_size", "axis label and legend size in pixels at 100 dpi"},
+                             {"bottom", "bottom edge of the plots, as a fraction of the page (matplotlib: 0.11)"}});
+    return keys;
+}
+
+render::PlotStyle read_plot_style(Settings& style, double output_scale) {
+    render::PlotStyle plot;
+    const double plot_scale = style.number("plot_scale", 1.0);
+    if (!(plot_scale >= 0.25 && plot_scale <= 8))
+        throw UsageError("style.plot_scale = " + std::to_string(plot_scale) + " is not allowed: expected 0.25..8");
+    plot.scale = static_cast<float>(plot_scale * output_scale);
+    plot.font_size = static_cast<float>(style.number("font_size", plot.font_size));
+    plot.label_size = static_cast<float>(style.number("label_size", plot.label_size));
+    plot.bottom = static_cast<float>(style.number("bottom", plot.bottom));
+    if (plot.font_size < 4 || plot.font_size > 100 || plot.label_size < 4 || plot.label_size > 100)
+        throw UsageError("style.font_size and style.label_size must be 4..100 pixels");
+    if (!(plot.bottom >= 0 && plot.bottom < plot.top))
+        throw UsageError("style.bottom must be from 0 to the top margin " + std::to_string(plot.top));
+    return plot;
+}
+
 void draw_plot_row(const render::Canvas& canvas, const render::Rect& area, const std::vector<render::Axes>& axes,
-                   double scale) {
-    render::PlotStyle style;
-    style.scale = static_cast<float>(scale);
+                   const render::PlotStyle& style) {
     const auto frames =
         render::plot_row(static_cast<int>(area.w), static_cast<int>(area.h), static_cast<int>(axes.size()), style);
     for (std::size_t i = 0; i < axes.size(); ++i) {
@@ -18,10 +40,11 @@ void draw_plot_row(const render::Canvas& canvas, const render::Rect& area, const
     }
 }
 
-render::Image draw_plot_row(const std::vector<render::Axes>& axes, int width, int height, double scale) {
+render::Image draw_plot_row(const std::vector<render::Axes>& axes, int width, int height,
+                            const render::PlotStyle& style) {
     render::Canvas canvas(width, height);
     canvas.clear({1, 1, 1, 1});
-    draw_plot_row(canvas, {0, 0, float(width), float(height)}, axes, scale);
+    draw_plot_row(canvas, {0, 0, float(width), float(height)}, axes, style);
     return canvas.read();
 }
 

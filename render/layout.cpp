@@ -49,11 +49,17 @@ std::vector<Rect> panel_row(int width, int height, int count, bool titled, const
 
 std::vector<Rect> panel_grid(const Rect& area, int count, int columns, bool titled, const PanelRowStyle& style) {
     const int rows = (count + columns - 1) / columns;
-    const float band = area.h / float(rows);
+    const float s = style.scale;
+    const float title_band = titled ? (style.title_size * 1.25f + style.title_pad) * s : 0.0f;
+    // Bands as tall as a panel of the row's width needs (plus its title and
+    // a gap), not an equal share of the area: wide panels stay close together.
+    const float panel_w = (area.w - 2 * style.margin * s - float(columns - 1) * style.gap * s) / float(columns);
+    const float band = std::min(area.h / float(rows), panel_w / style.aspect + title_band + style.gap * s);
+    const float top = area.y + std::round((area.h - band * float(rows)) / 2);
     std::vector<Rect> panels;
     for (int r = 0; r < rows; ++r) {
         // Every row is laid out for `columns` panels, so a short last row keeps the same panel size.
-        auto row = panel_row(Rect{area.x, area.y + float(r) * band, area.w, band}, columns, titled, style);
+        auto row = panel_row(Rect{area.x, top + float(r) * band, area.w, band}, columns, titled, style);
         const int in_row = std::min(columns, count - r * columns);
         panels.insert(panels.end(), row.begin(), row.begin() + in_row);
     }

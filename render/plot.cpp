@@ -198,6 +198,12 @@ void add_line(Shapes& shapes, const std::vector<glm::dvec2>& points, const Rect&
     flush();
 }
 
+// matplotlib's "o" marker: a disc, and a rim in the same colour centred on its edge.
+void add_marker(Shapes& shapes, glm::vec2 at, float radius, float rim, const glm::vec4& colour) {
+    shapes.disc(at, radius, colour);
+    shapes.ring(at, radius - rim / 2, radius + rim / 2, colour);
+}
+
 // A stencil buffer lent to the canvas's multisampled framebuffer while a
 // plot's data is drawn, so that each line touches every sample once: where a
 // translucent line overlaps itself (joints of short segments, crossings) it
@@ -216,13 +222,11 @@ public:
                                          canvas.height());
         glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, buffer_);
         attached_ = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-        glGetError();  // a refused format leaves an error that is not ours to report
+        if (!attached_) release();  // the canvas must stay drawable
     }
     ~StencilScope() {
         glDisable(GL_STENCIL_TEST);
-        if (buffer_ == 0) return;
-        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, 0);
-        glDeleteRenderbuffers(1, &buffer_);
+        release();
     }
     StencilScope(const StencilScope&) = delete;
     StencilScope& operator=(const StencilScope&) = delete;
@@ -243,6 +247,13 @@ public:
     }
 
 private:
+    void release() {
+        if (buffer_ == 0) return;
+        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, 0);
+        glDeleteRenderbuffers(1, &buffer_);
+        buffer_ = 0;
+    }
+
     GLuint buffer_ = 0;
     bool attached_ = false;
 };
@@ -254,7 +265,8 @@ private:
 // a box a little larger than the frame, so that far-off data never reaches
 // the rasteriser as huge coordinates and dashes are only made where seen.
 void draw_data(const Canvas& canvas, const Rect& frame, const Axes& axes, const AxisMap& mx, const AxisMap& my,
-               float scale) {
+               const PlotStyle& style) {
+    const float scale = style.scale, rim = style.marker_edge * scale;
     const StencilScope stencil(canvas);
     const int x0 = int(std::lround(frame.x)), y0 = int(std::lround(frame.y));
     const int x1 = int(std::lround(frame.right())), y1 = int(std::lround(frame.bottom()));
@@ -277,7 +289,7 @@ void draw_data(const Canvas& canvas, const Rect& frame, const Axes& axes, const 
     }
     for (const Series& s : axes.series) {
         const float width = s.line_width * scale, radius = s.marker_size * scale / 2;
-        const float reach = slack + std::max(width, radius);
+        const float reach = slack + std::max(width, radius + rim);
         const Rect box{frame.x - reach, frame.y - reach, frame.w + 2 * reach, frame.h + 2 * reach};
         std::vector<glm::dvec2> points;
         for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
@@ -290,7 +302,7 @@ void draw_data(const Canvas& canvas, const Rect& frame, const Axes& axes, const 
         if (radius > 0)  // each marker on its own, as matplotlib draws them: overlapping ones darken
             for (const glm::dvec2& p : points)
                 if (p.x >= box.x && p.x <= box.right() && p.y >= box.y && p.y <= box.bottom())
-                    markers.disc(glm::vec2(p), radius, s.colour);
+                    add_marker(markers, glm::vec2(p), radius, rim, s.colour);
         stencil.draw_once(canvas, line);
         markers.draw(canvas);
     }
@@ -419,7 +431,8 @@ void draw_legend(const Canvas& canvas, const Rect& frame, const Axes& axes, cons
         if (s.line_width > 0)
             shapes.polyline(sample, s.line_width * st.scale, s.colour, scaled(s.dash, st.scale), 0,
                             s.dash.empty() ? LineCap::square : LineCap::butt);
-        if (s.marker_size > 0) shapes.disc({(x0 + x1) / 2, y}, s.marker_size * st.scale / 2, s.colour);
+        if (s.marker_size > 0)
+            add_marker(shapes, {(x0 + x1) / 2, y}, s.marker_size * st.scale / 2, st.marker_edge * st.scale, s.colour);
         text.add(font, s.label, {x1 + 0.8f * f, baseline}, st.ink);
     }
     shapes.draw(canvas);
@@ -434,7 +447,7 @@ void draw_axes(const Canvas& canvas, const Rect& frame, const Axes& axes, const 
     const auto [y_lo, y_hi] = view_range(axes, false);
     const AxisMap mx{axes.x_scale, x_lo, x_hi, frame.x, frame.right()};
     const AxisMap my{axes.y_scale, y_lo, y_hi, frame.bottom(), frame.y};  // y up on the page
-    draw_data(canvas, frame, axes, mx, my, style.scale);
+    draw_data(canvas, frame, axes, mx, my, style);
     draw_decorations(canvas, frame, axes, mx, my, style);
     draw_legend(canvas, frame, axes, style);
 }
@@ -443,7 +456,8 @@ std::vector<Rect> plot_row(int width, int height, int count, const PlotStyle& st
     if (count < 1) return {};
     const float s = style.scale, f = style.font_size * s, lf = style.label_size * s;
     const float tick_room = (style.major_tick + style.tick_pad) * s;
-    // Room for the labels ("10⁵" is about 2.3 ems wide) where the page is too small for matplotlib's fractions.
+    // Room for tick labels of up to 2.6 ems ("10⁵" is about 2) and the axis
+    // labels, where the page is too small for matplotlib's fractions.
     const float need_left = tick_room + 2.6f * f + style.label_pad * s + 1.2f * lf;
     const float need_bottom = tick_room + f + style.label_pad * s + 1.2f * lf;
     const float need_top = style.title_pad * s + 1.2f * style.title_size * s;

@@ -22,12 +22,13 @@ enum class Legend { none, upper_left, upper_right, lower_left, lower_right };
 enum class Direction { horizontal, vertical };
 
 struct Series {
-    std::vector<double> x, y;          // data; pairs with a non-finite value, or a non-positive one on a log axis, are skipped
+    std::vector<double> x, y;          // data; a pair with a non-finite value, or a non-positive one on a log axis, is
+                                       // skipped and breaks the line there (matplotlib's masked points)
     std::string label;                 // legend entry; empty: not in the legend
     glm::vec4 colour{0.12f, 0.47f, 0.71f, 1.0f};  // matplotlib's C0; alpha < 1 keeps one shade where the line crosses itself
     float line_width = 1.5f;           // pixels at scale 1; 0: no line
     std::vector<float> dash;           // on/off lengths in pixels at scale 1; empty: solid (see dashed())
-    float marker_size = 0.0f;          // diameter of a dot marker in pixels at scale 1; 0: none
+    float marker_size = 0.0f;          // diameter of a dot marker in pixels at scale 1, without its rim; 0: none
 };
 
 // matplotlib's "--" pattern for a line `line_width` wide: 3.7 on, 1.6 off, in widths.
@@ -74,6 +75,7 @@ struct PlotStyle {
     float tick_pad = 4.9f;          // tick end to its label: 3.5 pt
     float label_pad = 5.6f;         // tick labels to the axis label: 4 pt
     float title_pad = 8.3f;         // frame top to the title's baseline: 6 pt
+    float marker_edge = 1.4f;       // width of a marker's rim, in its colour (1 pt): translucent markers show it darker
     glm::vec4 ink{0, 0, 0, 1};      // spines, ticks and text
     // plot_row's page margins as fractions of the page (matplotlib's figure.subplot.*)
     float left = 0.125f, right = 0.9f, bottom = 0.11f, top = 0.88f;  // frame edges, from the left and from the bottom

@@ -75,6 +75,19 @@ void Shapes::disc(glm::vec2 centre, float radius, const glm::vec4& colour) {
     }
 }
 
+void Shapes::ring(glm::vec2 centre, float inner_radius, float outer_radius, const glm::vec4& colour) {
+    inner_radius = std::max(0.0f, inner_radius);
+    if (!(outer_radius > inner_radius)) return;
+    const int n = std::clamp(int(std::ceil(std::numbers::pi_v<float> * outer_radius)), 12, 96);
+    for (int i = 0; i < n; ++i) {
+        const float a0 = 2 * std::numbers::pi_v<float> * float(i) / float(n);
+        const float a1 = 2 * std::numbers::pi_v<float> * float(i + 1) / float(n);
+        const glm::vec2 u0{std::cos(a0), std::sin(a0)}, u1{std::cos(a1), std::sin(a1)};
+        triangle(centre + inner_radius * u0, centre + outer_radius * u0, centre + outer_radius * u1, colour);
+        triangle(centre + inner_radius * u0, centre + outer_radius * u1, centre + inner_radius * u1, colour);
+    }
+}
+
 void Shapes::convex_polygon(std::span<const glm::vec2> points, const glm::vec4& colour) {
     for (std::size_t i = 2; i < points.size(); ++i) triangle(points[0], points[i - 1], points[i], colour);
 }

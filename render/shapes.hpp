@@ -26,11 +26,15 @@ public:
     void triangle(glm::vec2 a, glm::vec2 b, glm::vec2 c, const glm::vec4& colour);
     // A filled circle, a fan fine enough that its edge looks round.
     void disc(glm::vec2 centre, float radius, const glm::vec4& colour);
+    // The band between two circles about `centre`.
+    void ring(glm::vec2 centre, float inner_radius, float outer_radius, const glm::vec4& colour);
     // A filled convex polygon, as a fan from its first vertex.
     void convex_polygon(std::span<const glm::vec2> points, const glm::vec4& colour);
-    // Connected segments `width` pixels wide, mitred at the joints (bevelled
-    // with a round fill past a turn of 120 degrees). Its triangles do not
-    // overlap along smooth curves, so a translucent line keeps one shade.
+    // Connected segments `width` pixels wide, mitred at the joints; past a
+    // turn of 120 degrees, or where a mitre would reach beyond a short
+    // neighbouring segment, bevelled with a round fill over the outer corner.
+    // Mitred joints do not overlap, so along smooth curves a translucent line
+    // keeps one shade (draw_axes adds a stencil for the other joints).
     // With a dash pattern (on, off, on, ... lengths in pixels; an odd count
     // repeats twice) the dashes follow the arc length across the vertices,
     // starting `dash_offset` pixels into the pattern; each dash gets `cap`.

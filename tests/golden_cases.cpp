@@ -10,6 +10,7 @@
 #include "figures/scene.hpp"
 #include "render/canvas.hpp"
 #include "render/field.hpp"
+#include "render/plot.hpp"
 #include "render/png_io.hpp"
 #include "render/shapes.hpp"
 #include "render/text.hpp"
@@ -38,6 +39,56 @@ render::Image test_pattern() {
     return canvas.read();
 }
 
+namespace {
+
+// Two plots side by side: log-log with dashed and solid translucent lines,
+// dot markers, a legend and a note; linear with its ticks, reference lines
+// and a curve cut at the frame.
+render::Image plot_pattern() {
+    render::Canvas canvas(520, 260);
+    canvas.clear({1, 1, 1, 1});
+    render::PlotStyle style;
+    style.scale = 0.7f;
+    style.wspace = 0.4f;  // room for the second plot's y label
+    const std::vector<render::Rect> frames = render::plot_row(520, 260, 2, style);
+    const glm::vec4 dark{0.03f, 0.19f, 0.42f, 0.7f}, mid{0.13f, 0.44f, 0.71f, 0.7f}, light{0.42f, 0.68f, 0.84f, 0.7f};
+    std::vector<double> n, square, cells, sizes, filled;
+    for (int i = 1; i <= 60; ++i) {
+        n.push_back(i);
+        square.push_back(double(i) * i);
+        cells.push_back(std::pow(i, 1.57) * (1 + 0.15 * ((i * 7) % 5 - 2) / 2.0));
+    }
+    for (int i = 2; i <= 60; i += 5) sizes.push_back(i), filled.push_back(0.6 * std::pow(i, 1.8));
+    render::Axes log_log;
+    log_log.x_scale = log_log.y_scale = render::Scale::log;
+    log_log.x_label = "Time Steps";
+    log_log.y_label = "Number of Cells";
+    log_log.legend = render::Legend::upper_left;
+    log_log.series = {{n, square, "d=2", dark, 3, render::dashed(3), 0},
+                      {n, cells, "rule=20", mid, 3, {}, 0},
+                      {sizes, filled, "filled", mid, 0, {}, 6},
+                      {n, n, "d=1", light, 3, render::dashed(3), 0}};
+    log_log.notes = {{"slope 1.57", {0.55f, 0.08f}}};
+    render::draw_axes(canvas, frames[0], log_log, style);
+
+    render::Axes linear;
+    linear.x_range = std::pair{0.0, 1.0};
+    linear.y_range = std::pair{0.0, 1.0};
+    linear.x_label = "q";
+    linear.y_label = "fraction";
+    linear.title = "linear";
+    linear.legend = render::Legend::lower_right;
+    std::vector<double> q, p;
+    for (int i = -10; i <= 110; ++i) q.push_back(i / 100.0), p.push_back(1 / (1 + std::exp(-(i / 100.0 - 0.59) * 25)) * 1.1);
+    linear.series = {{q, p, "percolates", {0.84f, 0.15f, 0.16f, 1}, 2, {}, 0}};
+    linear.reference_lines = {{render::Direction::horizontal, 0.5, {0.5f, 0.5f, 0.5f, 1}, 1, {4, 2}},
+                              {render::Direction::vertical, 0.59, {0, 0, 0, 1}, 1, {}}};
+    render::draw_axes(canvas, frames[1], linear, style);
+    return canvas.read();
+}
+
+}  // namespace
+
 render::Image render_catalog_figure(const std::string& id, double scale) {
     const figures::Description d = figures::load_description(figures::resolve_figure(id));
     figures::OutputOptions options;
@@ -52,7 +103,7 @@ render::Image render_catalog_figure(const std::string& id, double scale) {
 }
 
 std::vector<GoldenCase> golden_cases() {
-    std::vector<GoldenCase> cases = {{"test-pattern", test_pattern}};
+    std::vector<GoldenCase> cases = {{"test-pattern", test_pattern}, {"plot-pattern", plot_pattern}};
     for (const auto& file : figures::catalog_files()) {
         const std::string id = file.stem().string();
         cases.push_back({id, [id] { return render_catalog_figure(id, golden_scale); }});
