@@ -126,7 +126,7 @@ void render_cell1d_survey(const Description& d, const OutputOptions& options, Pr
     const int width = figure_width(d, options), height = figure_height(d, options);
     render::Canvas canvas(width, height);
     canvas.clear({1, 1, 1, 1});
-    const float plot_height = std::round(height * 0.34f);
+    const float plot_height = std::round(height * 0.45f);
     draw_plot_row(canvas, {0, 0, float(width), plot_height}, {survey}, read_plot_style(style, options.scale));
     if (!gallery.empty())
         draw_field_panels(canvas, {0, plot_height, float(width), float(height) - plot_height}, gallery, columns,

@@ -176,7 +176,7 @@ void render_percolation_phase(const Description& d, const OutputOptions& options
     phase.legend = render::Legend::lower_right;
     phase.series = {
         line_series({p_c, p_c}, {-0.05, 1.05}, "p_c = " + fmt(p_c, 4), reference, 1.5f, true),
-        line_series(qs, probability, "n = " + std::to_string(n) + ", " + std::to_string(trials) + " runs each", colour,
+        line_series(qs, probability, std::to_string(trials) + " runs of n = " + std::to_string(n), colour,
                     2.0f, false),
         dot_series(qs, probability, "", colour, 6.0f)};
     render::Axes walk_axes;
