@@ -26,12 +26,6 @@ double slope_of(int rule, int n, sim::Boundary boundary, const std::vector<doubl
     return sim::fit_log_log(steps, std::vector<double>(counts.begin(), counts.end())).slope;
 }
 
-std::string fixed(double v, int digits) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.*f", digits, v);
-    return text;
-}
-
 }  // namespace
 
 void render_cell1d_survey(const Description& d, const OutputOptions& options, Progress& progress) {
@@ -118,7 +112,7 @@ void render_cell1d_survey(const Description& d, const OutputOptions& options, Pr
         p.boundary = sim::Boundary::wrap;
         sim::Cell1D ca(p);
         for (int s = 0; s < gallery_steps; ++s) ca.step();
-        gallery.push_back({"rule " + std::to_string(p.rule) + ", D = " + fixed(wrap_slopes[fractal[i]], 2),
+        gallery.push_back({"rule " + std::to_string(p.rule) + ", D = " + format_fixed(wrap_slopes[fractal[i]], 2),
                            {field_layer(ca.cells(), spec)}});
     }
     progress.advance();

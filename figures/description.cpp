@@ -1,6 +1,7 @@
 #include "figures/description.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 
@@ -105,6 +106,12 @@ std::string expand(const std::string& pattern, const std::vector<std::pair<std::
         for (auto at = text.find(field); at != std::string::npos; at = text.find(field, at + value.size()))
             text.replace(at, field.size(), value);
     }
+    return text;
+}
+
+std::string format_fixed(double value, int digits) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", digits, value);
     return text;
 }
 

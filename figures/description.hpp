@@ -59,6 +59,8 @@ Description load_description(const std::filesystem::path& file, const std::vecto
 
 // `pattern` with each {name} replaced by its value, e.g. "rule {rule}, step {step}".
 std::string expand(const std::string& pattern, const std::vector<std::pair<std::string, std::string>>& values);
+// `value` with `digits` decimals ("1.57"), for numbers shown on a figure.
+std::string format_fixed(double value, int digits);
 // "step {step}" with {step} replaced.
 std::string format_step(const std::string& pattern, int step);
 

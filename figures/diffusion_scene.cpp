@@ -73,10 +73,8 @@ void render_diffusion(const Description& d, const OutputOptions& options, Progre
             },
     });
     nlohmann::json meta = {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}};
-    if (auto animation = run.finish(); !animation.is_null()) meta["animation"] = animation;
-    write_figure(d, options,
-                 draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale), meta);
-    progress.finish();
+    run.write_figure(draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale),
+                     meta);
 }
 
 }  // namespace figures

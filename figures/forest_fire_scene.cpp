@@ -24,12 +24,6 @@ sim::Grid<std::uint8_t> colour_index(const sim::Grid<std::uint8_t>& cells) {
     return index;
 }
 
-std::string fixed(double v, int digits) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.*f", digits, v);
-    return text;
-}
-
 }  // namespace
 
 void render_forest_fire(const Description& d, const OutputOptions& options, Progress& progress) {
@@ -121,9 +115,10 @@ void render_forest_fire(const Description& d, const OutputOptions& options, Prog
     std::vector<double> mass_sizes(mass.sizes.begin(), mass.sizes.end());
     std::vector<double> mass_counts(mass.mass.begin(), mass.mass.end());
     dimension.series = {
-        line_series(sizes, occupied, "boxes with a tree, D = " + fixed(boxes.dimension, 2), trees_colour, 2.0f, false),
+        line_series(sizes, occupied, "boxes with a tree, D = " + format_fixed(boxes.dimension, 2), trees_colour, 2.0f,
+                    false),
         dot_series(sizes, occupied, "", trees_colour, 6.0f),
-        line_series(mass_sizes, mass_counts, "trees in centred box, slope " + fixed(mass.fit.slope, 2),
+        line_series(mass_sizes, mass_counts, "trees in centred box, slope " + format_fixed(mass.fit.slope, 2),
                     glm::vec4(0.32f, 0.43f, 0.59f, 1.0f), 2.0f, true),
     };
 
@@ -149,9 +144,7 @@ void render_forest_fire(const Description& d, const OutputOptions& options, Prog
           {"r", boxes.fit.r}}},
         {"central_box_mass", {{"sizes", mass.sizes}, {"mass", mass.mass}, {"slope", mass.fit.slope}}},
     };
-    if (auto animation = run.finish(); !animation.is_null()) meta["animation"] = animation;
-    write_figure(d, options, canvas.read(), meta);
-    progress.finish();
+    run.write_figure(canvas.read(), meta);
 }
 
 }  // namespace figures

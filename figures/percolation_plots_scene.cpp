@@ -164,20 +164,14 @@ void render_percolation_phase(const Description& d, const OutputOptions& options
 
     const glm::vec4 colour = style_colour(style, "series_colour", "#619aca");
     const glm::vec4 reference = style_colour(style, "reference_colour", "#526e97");
-    auto fmt = [](double v, int digits) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%.*f", digits, v);
-        return std::string(text);
-    };
     render::Axes phase;
     phase.x_label = "q";
     phase.y_label = "Fraction percolating";
     phase.y_range = std::pair{-0.05, 1.05};
     phase.legend = render::Legend::lower_right;
     phase.series = {
-        line_series({p_c, p_c}, {-0.05, 1.05}, "p_c = " + fmt(p_c, 4), reference, 1.5f, true),
-        line_series(qs, probability, std::to_string(trials) + " runs of n = " + std::to_string(n), colour,
-                    2.0f, false),
+        line_series({p_c, p_c}, {-0.05, 1.05}, "p_c = " + format_fixed(p_c, 4), reference, 1.5f, true),
+        line_series(qs, probability, std::to_string(trials) + " runs of n = " + std::to_string(n), colour, 2.0f, false),
         dot_series(qs, probability, "", colour, 6.0f)};
     render::Axes walk_axes;
     walk_axes.x_label = "Iteration";
@@ -185,12 +179,12 @@ void render_percolation_phase(const Description& d, const OutputOptions& options
     walk_axes.legend = render::Legend::upper_right;
     walk_axes.series = {
         line_series(index, walk, "find_critical walk", colour, 1.5f, false),
-        line_series({0, double(iterations)}, {mean, mean}, "mean " + fmt(mean, 4), reference, 1.5f, true)};
+        line_series({0, double(iterations)}, {mean, mean}, "mean " + format_fixed(mean, 4), reference, 1.5f, true)};
     // The book's three quoted numbers, when those q values were tried.
     for (double quoted : {0.55, 0.60, 0.65})
         for (std::size_t i = 0; i < qs.size(); ++i)
             if (std::abs(qs[i] - quoted) < 1e-9)
-                phase.notes.push_back({"P(" + fmt(quoted, 2) + ") = " + fmt(probability[i], 2),
+                phase.notes.push_back({"P(" + format_fixed(quoted, 2) + ") = " + format_fixed(probability[i], 2),
                                        {0.04f, 0.86f - 0.08f * float(phase.notes.size())},
                                        render::Align::left});
 

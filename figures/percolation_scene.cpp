@@ -103,10 +103,8 @@ void render_percolation(const Description& d, const OutputOptions& options, Prog
             panel_meta.push_back(panel_metadata(model, stop, stopped));
         }
     nlohmann::json meta = {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}};
-    if (auto animation = run.finish(); !animation.is_null()) meta["animation"] = animation;
-    write_figure(d, options,
-                 draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale), meta);
-    progress.finish();
+    run.write_figure(draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale),
+                     meta);
 }
 
 // tc7-8: one run per size, each to its stop; the animation follows the last

@@ -5,7 +5,7 @@
 namespace figures {
 
 StepRunner::StepRunner(const Description& d, const OutputOptions& options, Progress& progress)
-    : description_(d), progress_(progress) {
+    : description_(d), options_(options), progress_(progress) {
     const bool animate = d.animation && options.animates();
     last_ = d.last_step(animate);
     if (animate) {
@@ -53,8 +53,10 @@ void StepRunner::stepped() {
     progress_.advance();
 }
 
-nlohmann::json StepRunner::finish() {
-    return sink_ ? sink_->finish() : nlohmann::json();
+void StepRunner::write_figure(const render::Image& figure, nlohmann::json meta) {
+    if (sink_) meta["animation"] = sink_->finish();
+    figures::write_figure(description_, options_, figure, std::move(meta));
+    progress_.finish();
 }
 
 }  // namespace figures

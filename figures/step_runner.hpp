@@ -42,10 +42,13 @@ public:
 
     void frame(const render::Image& image, int step);  // hands a drawn frame to the sinks
     void stepped();                                    // counts one model step for the progress bar
-    nlohmann::json finish();                           // completes the animation; its metadata, or null
+    // Completes the animation, adds its metadata to `meta`, writes the
+    // figure's PNG and JSON and completes the progress bar.
+    void write_figure(const render::Image& figure, nlohmann::json meta);
 
 private:
     const Description& description_;
+    const OutputOptions& options_;
     Progress& progress_;
     int last_ = 0;
     int frame_width_ = 0, frame_height_ = 0;
