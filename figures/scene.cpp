@@ -16,6 +16,9 @@ const std::vector<SceneInfo>& scenes() {
         {"percolation_phase", render_percolation_phase},
         {"forest_fire", render_forest_fire},
         {"cell1d_survey", render_cell1d_survey},
+        {"snowflake", render_snowflake},
+        {"snowflake_dimension", render_snowflake_dimension},
+        {"hex_lattice", render_hex_lattice},
     };
     return all;
 }

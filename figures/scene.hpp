@@ -37,5 +37,8 @@ void render_percolation_scaling(const Description& d, const OutputOptions& optio
 void render_percolation_phase(const Description& d, const OutputOptions& options, Progress& progress);
 void render_forest_fire(const Description& d, const OutputOptions& options, Progress& progress);
 void render_cell1d_survey(const Description& d, const OutputOptions& options, Progress& progress);
+void render_snowflake(const Description& d, const OutputOptions& options, Progress& progress);
+void render_snowflake_dimension(const Description& d, const OutputOptions& options, Progress& progress);
+void render_hex_lattice(const Description& d, const OutputOptions& options, Progress& progress);
 
 }  // namespace figures

@@ -74,8 +74,11 @@ double Settings::number(const std::string& key, double fallback) {
 std::string Settings::text(const std::string& key, const std::string& fallback) {
     std::string value = fallback;
     if (const toml::node* node = find(key)) {
-        if (!node->is_string()) wrong_type(key, "a string");
-        value = node->as_string()->get();
+        // A digit string given on the command line (--set rule=1100000) reads
+        // as a TOML integer; its digits are the text meant.
+        if (node->is_integer()) value = std::to_string(node->as_integer()->get());
+        else if (!node->is_string()) wrong_type(key, "a string");
+        else value = node->as_string()->get();
     }
     used_[key] = value;
     return value;
@@ -138,6 +141,19 @@ std::vector<std::string> Settings::texts(const std::string& key, const std::vect
     }
     used_[key] = values;
     return values;
+}
+
+std::vector<toml::table> Settings::tables(const std::string& key) {
+    std::vector<toml::table> values;
+    if (const toml::node* node = find(key)) {
+        const toml::array* array = node->as_array();
+        if (!array) wrong_type(key, "a list of tables, e.g. [{rule = \"0101010\"}]");
+        for (const toml::node& item : *array) {
+            if (!item.is_table()) wrong_type(key, "a list of tables, e.g. [{rule = \"0101010\"}]");
+            values.push_back(*item.as_table());
+        }
+    }
+    return values;  // each table's values are recorded by the Settings that reads it
 }
 
 }  // namespace figures

@@ -37,6 +37,9 @@ public:
     std::vector<long long> integers(const std::string& key, const std::vector<long long>& fallback);
     std::vector<double> numbers(const std::string& key, const std::vector<double>& fallback);
     std::vector<std::string> texts(const std::string& key, const std::vector<std::string>& fallback);
+    // A list of inline tables ({rule = "0101010", restrict = [1, 16]}, ...),
+    // each to be read through a Settings of its own.
+    std::vector<toml::table> tables(const std::string& key);
     bool has(const std::string& key) const { return find(key) != nullptr; }
 
     const std::string& section() const { return section_; }
