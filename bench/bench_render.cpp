@@ -1,10 +1,12 @@
 // Rendering and encoding throughput: what a figure's frames cost.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 #include "figures/field_panels.hpp"
+#include "render/hex_cells.hpp"
 #include "render/png_io.hpp"
 #include "render/video.hpp"
 #include "sim/diffusion.hpp"
@@ -73,3 +75,21 @@ static void empty_canvas(benchmark::State& state) {
     }
 }
 BENCHMARK(empty_canvas)->Unit(benchmark::kMillisecond);
+
+// A crystal of about 100,000 cells (hex radius 182) drawn as hexagons: one instanced call.
+static void draw_hex_crystal(benchmark::State& state) {
+    std::vector<glm::ivec2> cells;
+    const int radius = 182;
+    for (int q = -radius; q <= radius; ++q)
+        for (int r = -radius; r <= radius; ++r)
+            if (std::max({std::abs(q), std::abs(r), std::abs(q + r)}) <= radius) cells.push_back({q, r});
+    render::Canvas canvas(900, 900);
+    const auto view = render::fit_hex_view({0, 0, 900, 900}, radius);
+    for (auto _ : state) {
+        canvas.clear({1, 1, 1, 1});
+        render::draw_hex_cells(canvas, view, cells, {0.1f, 0.3f, 0.55f, 1});
+        benchmark::DoNotOptimize(canvas.read());
+    }
+    state.SetItemsProcessed(state.iterations() * static_cast<long>(cells.size()));
+}
+BENCHMARK(draw_hex_crystal)->Unit(benchmark::kMillisecond);

@@ -80,8 +80,8 @@ void render_snowflake(const Description& d, const OutputOptions& options, Progre
     } catch (const std::invalid_argument& e) {
         throw UsageError(d.id + ": " + e.what());
     }
-    const SnowflakeColours colours{style_colour(style, "ice_colour", "#1d4e89"),
-                                   style_colour(style, "tint_colour", "#dde8f3"), {0, 0, 0, 1}};
+    const SnowflakeColours colours{
+        style_colour(style, "ice_colour", "#1d4e89"), style_colour(style, "tint_colour", "#dde8f3"), {0, 0, 0, 1}};
     const std::string caption = style.text("caption", "{label} {rule}");
 
     // Panels: every run at `steps`, or every run at each of figure.panels.
@@ -92,7 +92,8 @@ void render_snowflake(const Description& d, const OutputOptions& options, Progre
     std::vector<SnowflakePanel> panels;
     nlohmann::json panel_meta = nlohmann::json::array();
     auto caption_of = [&](std::size_t i, int step) {
-        return expand(caption, {{"label", runs[i].label}, {"rule", runs[i].params.rule.code()}, {"step", std::to_string(step)}});
+        return expand(caption,
+                      {{"label", runs[i].label}, {"rule", runs[i].params.rule.code()}, {"step", std::to_string(step)}});
     };
     StepRunner run(plan, options, progress);
     run.run({
@@ -103,11 +104,12 @@ void render_snowflake(const Description& d, const OutputOptions& options, Progre
                     const auto& c = crystals[i];
                     panels.push_back(panel_of(c, runs[i].params, c.radius() + 1, caption_of(i, step)));
                     nlohmann::json meta = snowflake_settings(runs[i].params);
-                    meta.update({{"label", runs[i].label},
-                                 {"step", step},
-                                 {"statistics", {{"ice", c.ice_count()}, {"radius", c.radius()},
-                                                 {"euclidean_radius", c.euclidean_radius()}}},
-                                 {"state_sha256", snowflake_hash(c)}});
+                    meta.update(
+                        {{"label", runs[i].label},
+                         {"step", step},
+                         {"statistics",
+                          {{"ice", c.ice_count()}, {"radius", c.radius()}, {"euclidean_radius", c.euclidean_radius()}}},
+                         {"state_sha256", snowflake_hash(c)}});
                     panel_meta.push_back(meta);
                 }
             },
@@ -117,8 +119,7 @@ void render_snowflake(const Description& d, const OutputOptions& options, Progre
                 // so the last step bounds the radius.
                 std::vector<SnowflakePanel> frame;
                 for (std::size_t i = 0; i < crystals.size(); ++i)
-                    frame.push_back(panel_of(crystals[i], runs[i].params, run.last_step() + 1,
-                                             caption_of(i, step) + ", step " + std::to_string(step)));
+                    frame.push_back(panel_of(crystals[i], runs[i].params, run.last_step() + 1, caption_of(i, step)));
                 auto& canvas = run.frame_canvas();
                 canvas.clear({1, 1, 1, 1});
                 draw_snowflakes(canvas, {0, 0, float(canvas.width()), float(canvas.height())}, frame, colours,
@@ -138,8 +139,8 @@ void render_snowflake(const Description& d, const OutputOptions& options, Progre
     draw_snowflakes(canvas, {0, 0, float(width), float(height)}, panels, colours, options.scale);
     nlohmann::json runs_meta = nlohmann::json::array();
     for (const auto& r : runs) runs_meta.push_back(r.used);
-    run.write_figure(canvas.read(), {{"params", params.used()}, {"runs", runs_meta}, {"style", style.used()},
-                                     {"panels", panel_meta}});
+    run.write_figure(canvas.read(),
+                     {{"params", params.used()}, {"runs", runs_meta}, {"style", style.used()}, {"panels", panel_meta}});
 }
 
 }  // namespace figures
