@@ -19,6 +19,7 @@ const std::vector<SceneInfo>& scenes() {
         {"snowflake", render_snowflake},
         {"snowflake_dimension", render_snowflake_dimension},
         {"hex_lattice", render_hex_lattice},
+        {"phyllotaxis", render_phyllotaxis},
     };
     return all;
 }

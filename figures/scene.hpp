@@ -40,5 +40,6 @@ void render_cell1d_survey(const Description& d, const OutputOptions& options, Pr
 void render_snowflake(const Description& d, const OutputOptions& options, Progress& progress);
 void render_snowflake_dimension(const Description& d, const OutputOptions& options, Progress& progress);
 void render_hex_lattice(const Description& d, const OutputOptions& options, Progress& progress);
+void render_phyllotaxis(const Description& d, const OutputOptions& options, Progress& progress);
 
 }  // namespace figures
