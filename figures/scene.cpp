@@ -20,6 +20,7 @@ const std::vector<SceneInfo>& scenes() {
         {"snowflake_dimension", render_snowflake_dimension},
         {"hex_lattice", render_hex_lattice},
         {"phyllotaxis", render_phyllotaxis},
+        {"ifs", render_ifs},
     };
     return all;
 }

@@ -41,5 +41,6 @@ void render_snowflake(const Description& d, const OutputOptions& options, Progre
 void render_snowflake_dimension(const Description& d, const OutputOptions& options, Progress& progress);
 void render_hex_lattice(const Description& d, const OutputOptions& options, Progress& progress);
 void render_phyllotaxis(const Description& d, const OutputOptions& options, Progress& progress);
+void render_ifs(const Description& d, const OutputOptions& options, Progress& progress);
 
 }  // namespace figures
