@@ -21,6 +21,8 @@ const std::vector<SceneInfo>& scenes() {
         {"hex_lattice", render_hex_lattice},
         {"phyllotaxis", render_phyllotaxis},
         {"ifs", render_ifs},
+        {"deposition", render_deposition},
+        {"roughness", render_roughness},
     };
     return all;
 }

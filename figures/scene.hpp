@@ -42,5 +42,7 @@ void render_snowflake_dimension(const Description& d, const OutputOptions& optio
 void render_hex_lattice(const Description& d, const OutputOptions& options, Progress& progress);
 void render_phyllotaxis(const Description& d, const OutputOptions& options, Progress& progress);
 void render_ifs(const Description& d, const OutputOptions& options, Progress& progress);
+void render_deposition(const Description& d, const OutputOptions& options, Progress& progress);
+void render_roughness(const Description& d, const OutputOptions& options, Progress& progress);
 
 }  // namespace figures

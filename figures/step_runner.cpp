@@ -24,7 +24,7 @@ int StepRunner::run(const StepHooks& hooks) {
     for (int step = 0;; ++step) {
         const bool is_panel = this->is_panel(step), is_frame = wants_frame(step);
         if ((is_panel || is_frame) && hooks.check) hooks.check(step);
-        if (is_panel) hooks.panel(step);
+        if (is_panel && hooks.panel) hooks.panel(step);
         if (is_frame) frame(hooks.frame(step), step);
         if (step == last_) return step;
         const bool going = hooks.advance();

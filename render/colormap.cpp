@@ -8,8 +8,8 @@ namespace render {
 namespace {
 
 Colormap from_table(std::string name, const float (*table)[3]) {
-    Colormap map{std::move(name), {}};
-    for (int i = 0; i < Colormap::size; ++i) map.colours[i] = {table[i][0], table[i][1], table[i][2]};
+    Colormap map{std::move(name), std::vector<glm::vec3>(256)};
+    for (int i = 0; i < 256; ++i) map.colours[i] = {table[i][0], table[i][1], table[i][2]};
     return map;
 }
 
@@ -42,8 +42,9 @@ constexpr NamedColour named_colours[] = {
 
 glm::vec3 Colormap::at(double t) const {
     // matplotlib: xa = int(t * N), then t == 1 lands on N - 1, and out of range clips.
-    const double scaled = std::floor(t * size);
-    const int i = scaled < 0 ? 0 : scaled >= size ? size - 1 : static_cast<int>(scaled);
+    const int n = size();
+    const double scaled = std::floor(t * n);
+    const int i = scaled < 0 ? 0 : scaled >= n ? n - 1 : static_cast<int>(scaled);
     return colours[i];
 }
 
@@ -62,12 +63,9 @@ std::vector<std::string> colormap_names() {
 }
 
 Colormap listed_colormap(std::string name, const std::vector<glm::vec3>& colours) {
-    if (colours.empty() || colours.size() > Colormap::size)
-        throw std::invalid_argument("a listed colormap needs 1 to 256 colours");
-    Colormap map{std::move(name), {}};
-    // Entry i of the 256 stands for t in [i/256, (i+1)/256): colour floor(t * N).
-    for (int i = 0; i < Colormap::size; ++i) map.colours[i] = colours[i * colours.size() / Colormap::size];
-    return map;
+    if (colours.empty() || colours.size() > 4096)
+        throw std::invalid_argument("a listed colormap needs 1 to 4096 colours");
+    return {std::move(name), colours};
 }
 
 glm::vec3 parse_colour(std::string_view text) {

@@ -1,7 +1,8 @@
 #pragma once
-// Colormaps as matplotlib defines them: a 256-entry lookup table, and a value
-// v in [vmin, vmax] picks entry floor((v - vmin) / (vmax - vmin) * 256),
-// clipped to 0..255, as matplotlib's Colormap.__call__ does.
+// Colormaps as matplotlib defines them: a lookup table of N entries (256 for
+// the named maps), and a value v in [vmin, vmax] picks entry
+// floor((v - vmin) / (vmax - vmin) * N), clipped to 0..N-1, as matplotlib's
+// Colormap.__call__ does.
 
 #include <array>
 #include <string>
@@ -20,12 +21,13 @@ extern const float viridis[256][3];
 }  // namespace tables
 
 struct Colormap {
-    static constexpr int size = 256;
-    std::string name;                      // matplotlib's name, e.g. "Reds"
-    std::array<glm::vec3, size> colours;   // RGB, 0..1
+    std::string name;                // matplotlib's name, e.g. "Reds"
+    std::vector<glm::vec3> colours;  // N entries, RGB 0..1: 256 for the built-in maps
 
-    // The colour of value v normalised to [0, 1] (t = (v - vmin) / (vmax - vmin)).
+    // The colour of value v normalised to [0, 1] (t = (v - vmin) / (vmax - vmin)):
+    // entry floor(t * N), clipped to 0..N-1, as matplotlib picks it.
     glm::vec3 at(double t) const;
+    int size() const { return static_cast<int>(colours.size()); }
 };
 
 // The built-in colormap called `name`; throws std::invalid_argument listing the names allowed.

@@ -26,7 +26,7 @@ const char* const fragment_shader = R"(#version 330 core
 in vec2 field_position;
 out vec4 out_colour;
 uniform sampler2D field;     // R32F, texel (col, row): (value - vmin) / (vmax - vmin)
-uniform sampler2D colormap;  // 256 x 1 RGBA32F
+uniform sampler2D colormap;  // N x 1 RGBA32F
 uniform float alpha;
 uniform int smooth_sampling;
 
@@ -62,8 +62,9 @@ float sample_field() {
 
 void main() {
     float t = sample_field();
-    // matplotlib's lookup: index floor(t * 256) clipped to 0..255.
-    int index = clamp(int(floor(t * 256.0)), 0, 255);
+    // matplotlib's lookup: index floor(t * N) clipped to 0..N-1.
+    int n = textureSize(colormap, 0).x;
+    int index = clamp(int(floor(t * float(n))), 0, n - 1);
     out_colour = vec4(texelFetch(colormap, ivec2(index, 0), 0).rgb, alpha);
 })";
 
@@ -106,17 +107,18 @@ void draw_field(const Canvas& canvas, const Rect& where, int rows, int cols, std
 
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, p.colormap_texture);
-    {  // 256 texels: cheaper to send each time than to track which map is loaded
-        std::vector<float> rgba(Colormap::size * 4);
-        for (int i = 0; i < Colormap::size; ++i) {
+    {  // N texels: cheaper to send each time than to track which map is loaded
+        const int n = style.colormap->size();
+        std::vector<float> rgba(static_cast<std::size_t>(n) * 4);
+        for (int i = 0; i < n; ++i) {
             for (int c = 0; c < 3; ++c) rgba[i * 4 + c] = style.colormap->colours[i][c];
             rgba[i * 4 + 3] = 1.0f;
         }
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, Colormap::size, 1, 0, GL_RGBA, GL_FLOAT, rgba.data());
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, 1, 0, GL_RGBA, GL_FLOAT, rgba.data());
     }
 
     // Normalise on the CPU in double precision and upload as floats relative
-    // to the colour range: float32 then loses nothing a 256-entry table can show.
+    // to the colour range: float32 then loses nothing a lookup table can show.
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, p.field_texture);
     std::vector<float> texels(values.size());

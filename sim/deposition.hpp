@@ -1,0 +1,91 @@
+#pragma once
+// Ballistic deposition (Vold 1959; Family & Vicsek 1985): particles fall
+// straight down into random columns of a periodic strip and stick at the
+// first cell that touches the deposit, below or to either side. The surface
+// roughens as in the KPZ class: W ~ t^beta early (beta = 1/3), saturating at
+// W ~ L^alpha (alpha = 1/2) after a time ~ L^(3/2).
+//
+// A particle dropped into column i sticks at
+//     h[i] = max(h[i-1], h[i] + 1, h[i+1])        (neighbours wrap)
+// which is exactly where the fall would stop: on top of its own column, or
+// level with a taller neighbour's top particle that it touches on the way
+// down. So drop() is O(1) from the heights; no cell is ever scanned.
+//
+// Randomness: one rng.below(width) per particle, nothing else.
+
+#include <cstdint>
+#include <vector>
+
+#include "sim/random.hpp"
+
+namespace sim {
+
+struct DepositionParams {
+    int width = 500;                    // columns L, periodic, 3..10,000,000
+    std::uint64_t particles = 250000;   // particles the deposit makes room for up front (drop() may go past), 0..4,294,967,295
+    bool record = true;                 // keep every particle's cell; off when only the heights matter (roughness runs)
+
+    void validate() const;  // throws std::invalid_argument naming the bad parameter
+};
+
+class Deposition {
+public:
+    // A particle as particles() lists it.
+    struct Particle {
+        std::int32_t column;    // 0..width-1
+        std::int64_t height;    // 1 = resting on the floor
+        std::uint64_t arrival;  // 0 for the first particle dropped, then 1, 2, ...
+    };
+
+    // Owns its generator, seeded with `seed`; starts with an empty floor.
+    Deposition(const DepositionParams& params, std::uint64_t seed);
+
+    void drop();                 // one particle; std::length_error past 4,294,967,295 recorded particles
+    void drop(std::uint64_t n);  // n particles
+
+    std::uint64_t dropped() const { return dropped_; }
+    // Per column, the height of its top particle (0 = bare floor).
+    const std::vector<std::int64_t>& heights() const { return heights_; }
+    double mean_height() const;
+    double roughness() const;  // W: standard deviation of the heights, population (divides by L)
+
+    // Every particle, in arrival order (so the first k are the deposit after
+    // k drops, as an animation wants). Throws std::logic_error when record is off.
+    std::vector<Particle> particles() const;
+    // Occupied cells in the deposit store: dropped() when recording, else 0.
+    std::uint64_t cells() const;
+    // Bytes held by the heights and the deposit store (capacity, not size).
+    std::size_t memory_bytes() const;
+    const DepositionParams& params() const { return params_; }
+
+private:
+    // One particle's cell: its column is the store it sits in. 32 bits each
+    // keep the deposit at 8 bytes a particle; record caps the count to fit.
+    struct Cell {
+        std::uint32_t height;
+        std::uint32_t arrival;
+    };
+
+    DepositionParams params_;
+    Random rng_;
+    std::vector<std::int64_t> heights_;
+    std::vector<std::vector<Cell>> columns_;  // per column, its particles bottom to top (heights rise, with holes)
+    std::uint64_t dropped_ = 0;
+};
+
+// W(L, t) at logarithmically spaced times, averaged over independent runs.
+struct RoughnessCurve {
+    int width;                  // L
+    std::vector<double> times;  // t in monolayers (L particles), 10^(k / points_per_decade) rounded to whole particles
+    std::vector<double> mean_w; // W at each time, mean over the runs
+    std::vector<double> sem_w;  // standard error of that mean (sample deviation / sqrt(runs)); 0 for one run
+};
+
+// Runs `seeds` depositions of width L (3..10,000,000) from t = 1 up to
+// max_time monolayers (1..1e9), recording only the heights, and samples W at
+// times 10^(k / points_per_decade) (1..1000 a decade), k = 0, 1, ...; each
+// time is rounded to a whole number of particles, repeats dropped. Run r is
+// seeded with the r-th output of SplitMix64(seed). seeds: 1..1,000,000.
+RoughnessCurve roughness_curve(int width, double max_time, int points_per_decade, int seeds, std::uint64_t seed);
+
+}  // namespace sim
