@@ -23,6 +23,7 @@ const std::vector<SceneInfo>& scenes() {
         {"ifs", render_ifs},
         {"deposition", render_deposition},
         {"roughness", render_roughness},
+        {"lsystem", render_lsystem},
     };
     return all;
 }

@@ -44,5 +44,6 @@ void render_phyllotaxis(const Description& d, const OutputOptions& options, Prog
 void render_ifs(const Description& d, const OutputOptions& options, Progress& progress);
 void render_deposition(const Description& d, const OutputOptions& options, Progress& progress);
 void render_roughness(const Description& d, const OutputOptions& options, Progress& progress);
+void render_lsystem(const Description& d, const OutputOptions& options, Progress& progress);
 
 }  // namespace figures

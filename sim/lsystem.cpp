@@ -1,0 +1,211 @@
+#include "sim/lsystem.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+#include "sim/check.hpp"
+
+namespace sim {
+
+namespace {
+
+constexpr const char* allowed_symbols = "allowed: letters A-Z a-z and + - & ^ \\ / | [ ] !";
+constexpr std::uint64_t saturated = std::numeric_limits<std::uint64_t>::max();
+
+std::uint64_t add(std::uint64_t a, std::uint64_t b) {
+    return a > saturated - b ? saturated : a + b;
+}
+
+std::string strip_spaces(std::string_view text) {
+    std::string out;
+    for (char c : text)
+        if (c != ' ' && c != '\t') out += c;
+    return out;
+}
+
+// `where` names the text in the message: `the axiom "F]"` or `rule "F -> F["`.
+void check_text(std::string_view text, const std::string& where) {
+    int open = 0;
+    for (char c : text) {
+        if (!lsystem_symbol(c))
+            throw std::invalid_argument(where + ": unknown symbol '" + std::string(1, c) + "'; " + allowed_symbols);
+        open += c == '[' ? 1 : c == ']' ? -1 : 0;
+        if (open < 0) break;  // a ']' before its '[' pops an empty stack
+    }
+    if (open != 0)
+        throw std::invalid_argument(where +
+                                    ": unbalanced brackets; every '[' needs a later ']' and every ']' an earlier '['");
+}
+
+void check_predecessor(char c, const std::string& where) {
+    if (!lsystem_symbol(c) || c == '[' || c == ']')
+        throw std::invalid_argument(where + ": the predecessor '" + std::string(1, c) +
+                                    "' cannot be rewritten; allowed: letters and + - & ^ \\ / | !");
+}
+
+// Symbols that occur anywhere in the system, in a fixed order, and each one's index.
+struct Alphabet {
+    std::vector<char> symbols;
+    std::array<int, 256> index;
+};
+
+Alphabet alphabet_of(const LSystem& system) {
+    std::array<bool, 256> seen{};
+    auto note = [&](std::string_view text) {
+        for (char c : text) seen[static_cast<unsigned char>(c)] = true;
+    };
+    note(system.axiom);
+    for (const auto& [predecessor, successor] : system.rules) {
+        note(std::string_view(&predecessor, 1));
+        note(successor);
+    }
+    Alphabet a;
+    a.index.fill(-1);
+    for (int c = 0; c < 256; ++c)
+        if (seen[static_cast<std::size_t>(c)]) {
+            a.index[static_cast<std::size_t>(c)] = static_cast<int>(a.symbols.size());
+            a.symbols.push_back(static_cast<char>(c));
+        }
+    return a;
+}
+
+using Counts = std::vector<std::uint64_t>;  // by alphabet index
+
+void add_into(Counts& sum, const Counts& more) {
+    for (std::size_t i = 0; i < sum.size(); ++i) sum[i] = add(sum[i], more[i]);
+}
+
+std::map<char, std::uint64_t> as_map(const Alphabet& a, const Counts& counts) {
+    std::map<char, std::uint64_t> out;
+    for (std::size_t i = 0; i < counts.size(); ++i)
+        if (counts[i] > 0) out[a.symbols[i]] = counts[i];
+    return out;
+}
+
+std::uint64_t total(const std::map<char, std::uint64_t>& counts) {
+    std::uint64_t sum = 0;
+    for (const auto& [symbol, count] : counts) sum = add(sum, count);
+    return sum;
+}
+
+// The counts of a text, given each symbol's counts in `each` (by alphabet index).
+Counts counts_of(std::string_view text, const Alphabet& a, const std::vector<Counts>& each) {
+    Counts sum(a.symbols.size(), 0);
+    for (char c : text) add_into(sum, each[static_cast<std::size_t>(a.index[static_cast<unsigned char>(c)])]);
+    return sum;
+}
+
+}  // namespace
+
+bool lsystem_symbol(char c) {
+    if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z')) return true;
+    return std::string_view("+-&^\\/|[]!").find(c) != std::string_view::npos;
+}
+
+LSystem LSystem::parse(std::string_view axiom, const std::vector<std::string>& rules) {
+    LSystem system;
+    system.axiom = strip_spaces(axiom);
+    if (system.axiom.empty()) throw std::invalid_argument("the axiom is empty; allowed: one or more symbols");
+    check_text(system.axiom, "the axiom \"" + system.axiom + "\"");
+    for (const std::string& text : rules) {
+        const std::string where = "rule \"" + text + "\"";
+        const std::string rule = strip_spaces(text);
+        std::size_t arrow = rule.find("->"), skip = 2;
+        if (arrow == std::string::npos) arrow = rule.find('='), skip = 1;
+        if (arrow == std::string::npos)
+            throw std::invalid_argument(where + " has no arrow; allowed: \"F -> successor\" or \"F = successor\"");
+        const std::string predecessor = rule.substr(0, arrow), successor = rule.substr(arrow + skip);
+        if (predecessor.size() != 1)
+            throw std::invalid_argument(where + ": the predecessor \"" + predecessor +
+                                        "\" is not one symbol; allowed: exactly one symbol before the arrow");
+        const char c = predecessor[0];
+        check_predecessor(c, where);
+        if (system.rules.count(c))
+            throw std::invalid_argument(where + ": a second rule for '" + predecessor +
+                                        "'; allowed: one rule per symbol (the system is deterministic)");
+        check_text(successor, where);
+        system.rules[c] = successor;
+    }
+    return system;
+}
+
+void LSystem::validate() const {
+    if (axiom.empty()) throw std::invalid_argument("the axiom is empty; allowed: one or more symbols");
+    check_text(axiom, "the axiom \"" + axiom + "\"");
+    for (const auto& [predecessor, successor] : rules) {
+        const std::string where = "rule \"" + std::string(1, predecessor) + " -> " + successor + "\"";
+        check_predecessor(predecessor, where);
+        check_text(successor, where);
+    }
+}
+
+void LSystem::check_depth(int depth) const {
+    require_integer("depth", depth, 0, max_depth);
+}
+
+LSystem::Successors LSystem::successor_table() const {
+    Successors table{};
+    for (const auto& [predecessor, successor] : rules) table[static_cast<unsigned char>(predecessor)] = &successor;
+    return table;
+}
+
+// each[c] holds the counts of c's expansion at level k; level k + 1 sums its
+// rule's symbols at level k. A fixed point (identity rules, saturation) ends
+// the loop early, so max_depth costs no more than the first repeat.
+std::map<char, std::uint64_t> LSystem::counts(int depth) const {
+    check_depth(depth);
+    const Alphabet a = alphabet_of(*this);
+    const std::size_t n = a.symbols.size();
+    std::vector<Counts> each(n, Counts(n, 0));
+    for (std::size_t i = 0; i < n; ++i) each[i][i] = 1;
+    for (int k = 1; k <= depth; ++k) {
+        std::vector<Counts> next = each;
+        for (const auto& [predecessor, successor] : rules)
+            next[static_cast<std::size_t>(a.index[static_cast<unsigned char>(predecessor)])] =
+                counts_of(successor, a, each);
+        if (next == each) break;
+        each = std::move(next);
+    }
+    return as_map(a, counts_of(axiom, a, each));
+}
+
+std::uint64_t LSystem::length(int depth) const {
+    return total(counts(depth));
+}
+
+// Article reading: inner[c] holds the counts of R(rule_c, k), the string
+// L(rule_c, k) walks; a symbol d of the rule contributes R(rule_d, k - 1)
+// (when k - 1 > 0) and then d itself.
+std::map<char, std::uint64_t> LSystem::counts_recursive(int depth) const {
+    check_depth(depth);
+    const Alphabet a = alphabet_of(*this);
+    const std::size_t n = a.symbols.size();
+    std::vector<Counts> unit(n, Counts(n, 0)), inner(n, Counts(n, 0));  // inner at level 0: nothing
+    for (std::size_t i = 0; i < n; ++i) unit[i][i] = 1;
+    for (int k = 1; k <= depth; ++k) {
+        std::vector<Counts> with_self = unit;  // R(rule_d, k - 1) then d
+        for (const auto& [predecessor, successor] : rules) {
+            const auto i = static_cast<std::size_t>(a.index[static_cast<unsigned char>(predecessor)]);
+            add_into(with_self[i], inner[i]);
+        }
+        std::vector<Counts> next = inner;
+        for (const auto& [predecessor, successor] : rules)
+            next[static_cast<std::size_t>(a.index[static_cast<unsigned char>(predecessor)])] =
+                counts_of(successor, a, with_self);
+        if (next == inner) break;
+        inner = std::move(next);
+    }
+    std::vector<Counts> top = unit;  // the axiom: a symbol with a rule becomes R(rule, depth)
+    for (const auto& [predecessor, successor] : rules) {
+        const auto i = static_cast<std::size_t>(a.index[static_cast<unsigned char>(predecessor)]);
+        top[i] = inner[i];
+    }
+    return as_map(a, counts_of(axiom, a, top));
+}
+
+std::uint64_t LSystem::length_recursive(int depth) const {
+    return total(counts_recursive(depth));
+}
+
+}  // namespace sim

@@ -1,0 +1,248 @@
+#include "sim/turtle.hpp"
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "sim/check.hpp"
+
+namespace sim {
+
+namespace {
+
+constexpr double huge = 1e300;  // "any finite number" for require_number
+constexpr double degrees = std::numbers::pi / 180.0;
+
+// 10077696 -> "10,077,696": budgets are read by people.
+std::string with_commas(std::uint64_t n) {
+    std::string digits = std::to_string(n), out;
+    for (std::size_t i = 0; i < digits.size(); ++i) {
+        if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+        out += digits[i];
+    }
+    return out;
+}
+
+void require_budget(int depth, std::uint64_t segments, std::uint64_t budget) {
+    if (segments <= budget) return;
+    throw std::invalid_argument("depth " + std::to_string(depth) + " would draw " + with_commas(segments) +
+                                " segments, more than the budget of " + with_commas(budget));
+}
+
+void require_positive(const char* name, double value) {
+    if (std::isfinite(value) && value > 0) return;
+    std::ostringstream message;
+    message << name << " = " << value << " is not allowed: " << name << " must be a finite number above 0";
+    throw std::invalid_argument(message.str());
+}
+
+// The step of a segment at each level 0..depth: length * length_scale^level.
+std::vector<double> steps_by_level(const Turtle2Params& p, int depth) {
+    std::vector<double> steps(static_cast<std::size_t>(depth) + 1);
+    for (int k = 0; k <= depth; ++k) steps[static_cast<std::size_t>(k)] = p.length * std::pow(p.length_scale, k);
+    return steps;
+}
+
+}  // namespace
+
+void Turtle2Params::validate() const {
+    require_number("angle_degrees", angle_degrees, -huge, huge);
+    require_positive("length", length);
+    require_positive("length_scale", length_scale);
+    require_number("width", width, 0, huge);
+    require_number("width_per_level", width_per_level, 0, huge);
+    require_positive("width_decay", width_decay);
+    require_number("start.x", start.x, -huge, huge);
+    require_number("start.y", start.y, -huge, huge);
+    require_number("heading_degrees", heading_degrees, -huge, huge);
+}
+
+void Turtle3Params::validate() const {
+    require_number("angle_degrees", angle_degrees, -huge, huge);
+    require_positive("length", length);
+    require_number("width", width, 0, huge);
+    require_positive("width_decay", width_decay);
+}
+
+std::vector<Segment2> interpret_2d(const LSystem& system, int depth, const Turtle2Params& params,
+                                   bool recursive_like_article) {
+    params.validate();
+    system.validate();
+    const auto counts = recursive_like_article ? system.counts_recursive(depth) : system.counts(depth);
+    const auto draws = counts.find('F');
+    const std::uint64_t segments = draws == counts.end() ? 0 : draws->second;
+    require_budget(depth, segments, params.segment_budget);
+
+    struct Pose {
+        glm::dvec2 at;
+        double heading;  // degrees; sums of the angle stay exact for 22 or 22.5
+        double width;
+    };
+    const std::vector<double> steps = steps_by_level(params, depth);
+    std::vector<Segment2> out;
+    out.reserve(static_cast<std::size_t>(segments));
+    std::vector<Pose> stack;
+    Pose pose{params.start, params.heading_degrees, params.width};
+    double direction_of = std::numeric_limits<double>::quiet_NaN();  // heading `direction` was made for
+    glm::dvec2 direction{0, 0};
+    auto visit = [&](char c, int level) {
+        switch (c) {
+            case 'F':
+            case 'f': {
+                if (!(pose.heading == direction_of)) {  // cos and sin only when the heading changed
+                    direction = {std::cos(pose.heading * degrees), std::sin(pose.heading * degrees)};
+                    direction_of = pose.heading;
+                }
+                const glm::dvec2 to = pose.at + steps[static_cast<std::size_t>(level)] * direction;
+                if (c == 'F') {
+                    const double w = recursive_like_article ? params.width_per_level * level : pose.width;
+                    out.push_back({pose.at, to, w, level});
+                }
+                pose.at = to;
+                break;
+            }
+            case '+':
+                pose.heading -= params.angle_degrees;
+                break;  // rt(t)
+            case '-':
+                pose.heading += params.angle_degrees;
+                break;  // lt(t)
+            case '|':
+                pose.heading += 180;
+                break;
+            case '!':
+                pose.width *= params.width_decay;
+                break;
+            case '[':
+                stack.push_back(pose);
+                break;
+            case ']':  // balanced by validate(), so never empty
+                pose = stack.back();
+                stack.pop_back();
+                break;
+            default:
+                break;
+        }
+    };
+    if (recursive_like_article)
+        system.expand_recursive(depth, visit);
+    else
+        system.expand(depth, visit);
+    return out;
+}
+
+Bounds2 bounds(const std::vector<Segment2>& segments) {
+    const double inf = std::numeric_limits<double>::infinity();
+    Bounds2 box{{inf, inf}, {-inf, -inf}};
+    for (const Segment2& s : segments) {
+        box.lo = glm::min(box.lo, glm::min(s.a, s.b));
+        box.hi = glm::max(box.hi, glm::max(s.a, s.b));
+    }
+    return box;
+}
+
+Bounds3 bounds(const std::vector<Segment3>& segments) {
+    const double inf = std::numeric_limits<double>::infinity();
+    Bounds3 box{{inf, inf, inf}, {-inf, -inf, -inf}};
+    for (const Segment3& s : segments) {
+        box.lo = glm::min(box.lo, glm::min(s.a, s.b));
+        box.hi = glm::max(box.hi, glm::max(s.a, s.b));
+    }
+    return box;
+}
+
+void TurtleFrame::turn(char symbol, double angle_degrees) {
+    turn(symbol, std::cos(angle_degrees * degrees), std::sin(angle_degrees * degrees));
+}
+
+// Each turn rotates two of the three axes in their plane about the third:
+// x' = x cos + y sin, y' = y cos - x sin turns x towards y.
+void TurtleFrame::turn(char symbol, double c, double s) {
+    auto rotate = [](glm::dvec3& x, glm::dvec3& y, double cos_a, double sin_a) {
+        const glm::dvec3 x0 = x;
+        x = x0 * cos_a + y * sin_a;
+        y = y * cos_a - x0 * sin_a;
+    };
+    switch (symbol) {
+        case '+':
+            rotate(heading, left, c, s);
+            break;  // turn left: H towards L
+        case '-':
+            rotate(heading, left, c, -s);
+            break;  // turn right
+        case '&':
+            rotate(heading, up, c, -s);
+            break;  // pitch down: H towards -U
+        case '^':
+            rotate(heading, up, c, s);
+            break;  // pitch up
+        case '\\':
+            rotate(up, left, c, s);
+            break;  // roll left: U towards L
+        case '/':
+            rotate(up, left, c, -s);
+            break;  // roll right
+        case '|':   // exactly: -H, -L, U
+            heading = -heading;
+            left = -left;
+            return;
+        default:
+            return;
+    }
+    // Gram-Schmidt: each turn is then orthonormal to rounding, never worse.
+    heading = glm::normalize(heading);
+    left = glm::normalize(left - glm::dot(left, heading) * heading);
+    up = glm::cross(heading, left);
+}
+
+std::vector<Segment3> interpret_3d(const LSystem& system, int depth, const Turtle3Params& params) {
+    params.validate();
+    system.validate();
+    const auto counts = system.counts(depth);
+    const auto draws = counts.find('F');
+    const std::uint64_t segments = draws == counts.end() ? 0 : draws->second;
+    require_budget(depth, segments, params.segment_budget);
+
+    struct Pose {
+        glm::dvec3 at{0, 0, 0};
+        TurtleFrame frame;
+        double width;
+    };
+    const double c = std::cos(params.angle_degrees * degrees), s = std::sin(params.angle_degrees * degrees);
+    std::vector<Segment3> out;
+    out.reserve(static_cast<std::size_t>(segments));
+    std::vector<Pose> stack;
+    Pose pose{};
+    pose.width = params.width;
+    system.expand(depth, [&](char symbol, int level) {
+        switch (symbol) {
+            case 'F':
+            case 'f': {
+                const glm::dvec3 to = pose.at + params.length * pose.frame.heading;
+                if (symbol == 'F') out.push_back({pose.at, to, pose.width, level});
+                pose.at = to;
+                break;
+            }
+            case '!':
+                pose.width *= params.width_decay;
+                break;
+            case '[':
+                stack.push_back(pose);
+                break;
+            case ']':
+                pose = stack.back();
+                stack.pop_back();
+                break;
+            default:
+                pose.frame.turn(symbol, c, s);
+                break;  // letters fall through as no-ops
+        }
+    });
+    return out;
+}
+
+}  // namespace sim

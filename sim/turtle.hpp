@@ -1,0 +1,101 @@
+#pragma once
+// Turtles that read an L-system's string into line segments.
+//
+// 2-D, the article's Python turtle (seeds/001): '+' turns right by the angle
+// (its rt(t)), '-' left (lt(t)), '|' turns around, 'F' draws forward, 'f'
+// moves without drawing, '[' pushes position, heading and width, ']' pops
+// them, '!' multiplies the width by width_decay; other symbols do nothing.
+// Headings are degrees anticlockwise from +x, so 90 is up, as turtle's seth.
+//
+// 3-D, The Algorithmic Beauty of Plants (ABOP) section 1.5: the frame is
+// heading H, left L and up U with H x L = U; it starts with H = +y (up),
+// L = -x, U = +z (towards a viewer looking down -z). '+' / '-' turn left /
+// right about U, '&' / '^' pitch down / up about L, '\' / '/' roll left /
+// right about H, '|' turns around about U; the signs follow ABOP's words
+// (left, down), taken as rotations of the frame in its own plane.
+//
+// Both turtles count the segments with counts() before streaming the string
+// and refuse when there are more than segment_budget: a figure never waits
+// an hour or runs out of memory by mistake.
+
+#include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "sim/lsystem.hpp"
+
+namespace sim {
+
+struct Segment2 {
+    glm::dvec2 a, b;  // from, to
+    double width;     // pen width, the figure's units
+    int level;        // the level of the symbol that drew it (see lsystem.hpp)
+};
+
+struct Turtle2Params {
+    double angle_degrees = 22;                 // turn of '+' and '-'; finite
+    double length = 12;                        // step of 'F' and 'f' at level 0; > 0
+    double length_scale = 1;                   // a step at level k is length * length_scale^k; > 0
+    double width = 2;                          // starting pen width, rewrite reading; >= 0
+    double width_per_level = 2;                // article: width_per_level * level, pensize(n*2); >= 0
+    double width_decay = 0.7;                  // '!' multiplies the width by this; > 0
+    glm::dvec2 start{0, 0};                    // where the turtle starts; finite
+    double heading_degrees = 90;               // starting heading, anticlockwise from +x: 90 is up; finite
+    std::uint64_t segment_budget = 5'000'000;  // most segments a call may make
+
+    void validate() const;  // throws std::invalid_argument naming the bad parameter
+};
+
+// recursive_like_article: read the string of expand_recursive() (the
+// article's f(n)/L(s, n) recursion, width from the level) instead of the
+// rewritten string of expand() (width from `width` and '!'). Throws
+// std::invalid_argument before any work when the segments would exceed the
+// budget, or on a bad depth or parameter.
+std::vector<Segment2> interpret_2d(const LSystem& system, int depth, const Turtle2Params& params,
+                                   bool recursive_like_article);
+
+struct Bounds2 {
+    glm::dvec2 lo, hi;  // lower-left and upper-right corners; lo > hi (an empty box) for no segments
+};
+Bounds2 bounds(const std::vector<Segment2>& segments);  // of the end points; widths not included
+
+struct Segment3 {
+    glm::dvec3 a, b;  // from, to
+    double width;     // at the time it was drawn, after any '!'
+    int level;        // the level of the symbol that drew it (see lsystem.hpp)
+};
+
+struct Turtle3Params {
+    double angle_degrees = 22.5;               // every turn, pitch and roll; finite
+    double length = 1;                         // step of 'F' and 'f'; > 0
+    double width = 0.1;                        // starting width; >= 0
+    double width_decay = 0.7;                  // '!' multiplies the width by this; > 0
+    std::uint64_t segment_budget = 5'000'000;  // most segments a call may make
+
+    void validate() const;  // throws std::invalid_argument naming the bad parameter
+};
+
+// The rewrite reading only. Throws like interpret_2d.
+std::vector<Segment3> interpret_3d(const LSystem& system, int depth, const Turtle3Params& params);
+
+struct Bounds3 {
+    glm::dvec3 lo, hi;  // the box's corners; lo > hi for no segments
+};
+Bounds3 bounds(const std::vector<Segment3>& segments);
+
+// The 3-D turtle's frame, exposed so that its orthonormality can be tested.
+struct TurtleFrame {
+    glm::dvec3 heading{0, 1, 0};  // H
+    glm::dvec3 left{-1, 0, 0};    // L
+    glm::dvec3 up{0, 0, 1};       // U = H x L
+
+    // Applies one of + - & ^ \ / | by angle_degrees; any other symbol is
+    // ignored. Re-orthonormalises afterwards (H normalised, L made
+    // perpendicular to it and normalised, U = H x L), so rounding cannot
+    // pile up over millions of turns.
+    void turn(char symbol, double angle_degrees);
+    void turn(char symbol, double cos_angle, double sin_angle);  // the same with the angle's cosine and sine
+};
+
+}  // namespace sim

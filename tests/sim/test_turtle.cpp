@@ -1,0 +1,180 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+#include <glm/geometric.hpp>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sim/lsystem.hpp"
+#include "sim/random.hpp"
+#include "sim/turtle.hpp"
+
+using sim::LSystem;
+using sim::Segment2;
+using sim::Segment3;
+using sim::Turtle2Params;
+using sim::Turtle3Params;
+
+namespace {
+
+// The string itself as the depth-0 axiom: the turtle reads exactly it.
+std::vector<Segment2> draw(const std::string& text, Turtle2Params p = {}) {
+    return sim::interpret_2d(LSystem::parse(text, {}), 0, p, false);
+}
+std::vector<Segment3> draw3(const std::string& text, Turtle3Params p = {}) {
+    return sim::interpret_3d(LSystem::parse(text, {}), 0, p);
+}
+
+bool near(glm::dvec2 a, glm::dvec2 b) {
+    return glm::length(a - b) < 1e-12;
+}
+bool near(glm::dvec3 a, glm::dvec3 b) {
+    return glm::length(a - b) < 1e-12;
+}
+
+const LSystem club_moss = LSystem::parse("F", {"F -> FF+[+F-F]-[-F+F]"});
+
+}  // namespace
+
+TEST_CASE("A bracketed branch returns the 2-D turtle to its pose", "[turtle]") {
+    const auto plain = draw("FF");
+    const auto branched = draw("F[+F-F]F");
+    REQUIRE(branched.size() == 4);
+    CHECK(branched.back().a == plain.back().a);  // exactly: the pop restores, nothing is recomputed
+    CHECK(branched.back().b == plain.back().b);
+    const auto nested = draw("F[+F[-F]F]f[-F]F");
+    CHECK(near(nested.back().b, {0, 36}));
+}
+
+TEST_CASE("Plus turns right like the article's rt", "[turtle]") {
+    Turtle2Params p;
+    p.angle_degrees = 90;
+    p.length = 1;
+    const auto right = draw("+F", p), left = draw("-F", p), back = draw("|F", p);
+    CHECK(near(right[0].b, {1, 0}));  // heading up, rt(90) faces +x
+    CHECK(near(left[0].b, {-1, 0}));
+    CHECK(near(back[0].b, {0, -1}));
+    const auto straight = draw("F", Turtle2Params{});
+    CHECK(near(straight[0].b, {0, 12}));  // starts at the origin heading up with d = 12
+    const auto moved = draw("fF", p);
+    REQUIRE(moved.size() == 1);
+    CHECK(near(moved[0].a, {0, 1}));
+}
+
+TEST_CASE("Article mode draws level k segments at width 2k and fixed length", "[turtle]") {
+    const auto segments = sim::interpret_2d(club_moss, 3, Turtle2Params{}, true);
+    REQUIRE(segments.size() == 258);
+    for (const Segment2& s : segments) {
+        CHECK(s.width == 2.0 * s.level);
+        CHECK(std::abs(glm::length(s.b - s.a) - 12) < 1e-9);
+    }
+    CHECK(segments.front().a == glm::dvec2(0, 0));
+    CHECK(segments.front().level == 1);  // the first thing drawn is a tip: f(n - 1) comes before fd(d)
+}
+
+TEST_CASE("Rewrite mode widths follow the bang and brackets", "[turtle]") {
+    Turtle2Params p;
+    p.width = 1;
+    p.width_decay = 0.5;
+    const auto segments = draw("F[!F[!F]F]F", p);
+    REQUIRE(segments.size() == 5);
+    CHECK(segments[0].width == 1);
+    CHECK(segments[1].width == 0.5);
+    CHECK(segments[2].width == 0.25);
+    CHECK(segments[3].width == 0.5);
+    CHECK(segments[4].width == 1);
+}
+
+TEST_CASE("The turtle refuses more segments than the budget before expanding", "[turtle]") {
+    CHECK_THROWS_WITH(sim::interpret_2d(club_moss, 9, Turtle2Params{}, false),
+                      "depth 9 would draw 10,077,696 segments, more than the budget of 5,000,000");
+    Turtle2Params small;
+    small.segment_budget = 257;
+    CHECK_THROWS_WITH(sim::interpret_2d(club_moss, 3, small, true),
+                      "depth 3 would draw 258 segments, more than the budget of 257");
+    small.segment_budget = 258;
+    CHECK(sim::interpret_2d(club_moss, 3, small, true).size() == 258);
+    Turtle3Params p3;
+    p3.segment_budget = 1000;
+    CHECK_THROWS_WITH(sim::interpret_3d(club_moss, 4, p3),
+                      "depth 4 would draw 1,296 segments, more than the budget of 1,000");
+    // so large it saturates: still refused at once
+    CHECK_THROWS_AS(sim::interpret_2d(club_moss, 1000, Turtle2Params{}, false), std::invalid_argument);
+}
+
+TEST_CASE("Turtle parameters are checked", "[turtle]") {
+    Turtle2Params p;
+    p.length = 0;
+    CHECK_THROWS_WITH(draw("F", p), Catch::Contains("length = 0 is not allowed"));
+    Turtle3Params q;
+    q.width_decay = -1;
+    CHECK_THROWS_WITH(draw3("F", q), Catch::Contains("width_decay = -1 is not allowed"));
+}
+
+TEST_CASE("Bounds cover every end point", "[turtle]") {
+    Turtle2Params p;
+    p.angle_degrees = 90;
+    p.length = 1;
+    const auto box = sim::bounds(draw("F+F+F[-F]", p));
+    CHECK(near(box.lo, {0, 0}));
+    CHECK(near(box.hi, {2, 1}));
+    const auto empty = sim::bounds(std::vector<Segment2>{});
+    CHECK(empty.lo.x > empty.hi.x);
+}
+
+TEST_CASE("The 3-D turtle leaves the trunk straight after a pitched branch", "[turtle]") {
+    const auto segments = draw3("F[&F]F");
+    REQUIRE(segments.size() == 3);
+    CHECK(near(segments[0].b, {0, 1, 0}));
+    CHECK(near(segments[2].a, {0, 1, 0}));
+    CHECK(near(segments[2].b, {0, 2, 0}));
+    // the branch pitched down: away from the viewer (-U = -z), still going up
+    const glm::dvec3 branch = segments[1].b - segments[1].a;
+    CHECK(std::abs(branch.y - std::cos(22.5 * std::numbers::pi / 180)) < 1e-12);
+    CHECK(std::abs(branch.z + std::sin(22.5 * std::numbers::pi / 180)) < 1e-12);
+    // '+' turns left: towards L = -x
+    const auto left = draw3("+F");
+    CHECK(left[0].b.x < 0);
+    CHECK(left[0].b.z == 0);
+}
+
+TEST_CASE("The 3-D turtle's rotations keep the frame orthonormal", "[turtle]") {
+    sim::TurtleFrame frame;
+    sim::Random rng(7);
+    const std::string turns = "+-&^\\/|";
+    for (int k = 0; k < 10000; ++k) {
+        const char c = turns[static_cast<std::size_t>(rng.below(turns.size()))];
+        frame.turn(c, 22.5 + 10 * rng.uniform());
+    }
+    CHECK(std::abs(glm::length(frame.heading) - 1) < 1e-12);
+    CHECK(std::abs(glm::length(frame.left) - 1) < 1e-12);
+    CHECK(std::abs(glm::length(frame.up) - 1) < 1e-12);
+    CHECK(std::abs(glm::dot(frame.heading, frame.left)) < 1e-12);
+    CHECK(std::abs(glm::dot(frame.heading, frame.up)) < 1e-12);
+    CHECK(std::abs(glm::dot(frame.left, frame.up)) < 1e-12);
+    CHECK(near(glm::cross(frame.heading, frame.left), frame.up));  // right-handed
+}
+
+TEST_CASE("Opposite 3-D turns undo each other", "[turtle]") {
+    for (const char* pair : {"+-", "&^", "\\/", "||"}) {
+        sim::TurtleFrame frame;
+        frame.turn('&', 30.0);  // leave the start so every axis is involved
+        const sim::TurtleFrame before = frame;
+        frame.turn(pair[0], 22.5);
+        frame.turn(pair[1], 22.5);
+        CHECK(near(frame.heading, before.heading));
+        CHECK(near(frame.left, before.left));
+        CHECK(near(frame.up, before.up));
+    }
+}
+
+TEST_CASE("Apple trees draw the expected segment counts", "[turtle]") {
+    const LSystem apple = LSystem::parse("X", {"X -> FF-[[X]+X]+F[+FX]-X", "F -> F"});
+    const LSystem abop = LSystem::parse("X", {"X -> F-[[X]+X]+F[+FX]-X", "F -> FF"});
+    CHECK(sim::interpret_2d(apple, 4, Turtle2Params{}, false).size() == apple.counts(4).at('F'));
+    Turtle2Params p;
+    p.angle_degrees = 22.5;
+    CHECK(sim::interpret_2d(abop, 5, p, false).size() == 3 * (1024 - 32) / 2);
+}
