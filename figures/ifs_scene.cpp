@@ -81,15 +81,18 @@ void render_ifs(const Description& d, const OutputOptions& options, Progress& pr
         }
         std::vector<std::uint64_t> counts;
         clouds.push_back(sim::chaos_game(ifs, game, rng, &counts));
+        glm::dvec2 own_lo{1e300, 1e300}, own_hi{-1e300, -1e300};
         for (const auto& p : clouds.back()) {
-            lo = glm::min(lo, p);
-            hi = glm::max(hi, p);
+            own_lo = glm::min(own_lo, p);
+            own_hi = glm::max(own_hi, p);
         }
+        lo = glm::min(lo, own_lo);
+        hi = glm::max(hi, own_hi);
         titles.push_back(variants[i]["title"].value_or(std::string()));
         nlohmann::json maps = nlohmann::json::array();
         for (const auto& m : ifs.maps) maps.push_back({m.a, m.b, m.c, m.d, m.e, m.f, m.p});
         panel_meta.push_back({{"title", titles.back()}, {"maps", maps}, {"points", clouds.back().size()},
-                              {"map_counts", counts}});
+                              {"map_counts", counts}, {"points_bounds", {own_lo.x, own_hi.x, own_lo.y, own_hi.y}}});
         progress.advance();
     }
     if (!bounds.empty()) {
@@ -117,7 +120,7 @@ void render_ifs(const Description& d, const OutputOptions& options, Progress& pr
             }
         if (mode == "points") specs[i].colormap = render::listed_colormap("points", {{1, 1, 1}, {0.0f, 0.45f, 0.1f}});
         panels.push_back({titles[i], {field_layer(field, specs[i])}});
-        panel_meta[i]["bounds"] = {lo.x, hi.x, lo.y, hi.y};
+        panel_meta[i]["drawn_bounds"] = {lo.x, hi.x, lo.y, hi.y};
     }
     write_figure(d, options, draw_field_panels(panels, width, height, options.scale),
                  {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}});

@@ -1,0 +1,133 @@
+// The pl and bd figures as a user drives them, and the numbers they record.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+    int status = -1;
+    std::string output;
+};
+
+Run figgen(const std::string& args) {
+    Run run;
+    std::FILE* pipe = ::popen((std::string(FIGGEN_EXE) + " " + args + " 2>&1").c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    char buffer[4096];
+    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) run.output.append(buffer, n);
+    const int raw = ::pclose(pipe);
+    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    return run;
+}
+
+fs::path out_dir(const std::string& name) {
+    const fs::path dir = fs::path(FIGGEN_TEST_ARTIFACT_DIR) / "plants" / name;
+    fs::remove_all(dir);
+    return dir;
+}
+
+nlohmann::json render_json(const std::string& id, const std::string& extra) {
+    const fs::path out = out_dir(id);
+    const Run run = figgen("render " + id + " --no-video --scale 0.3 --out " + out.string() + " " + extra);
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    std::ifstream in(out / (id + ".json"));
+    return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+TEST_CASE("the club moss draws the article's 6 (6^n - 1) / 5 segments", "[plants]") {
+    const auto meta = render_json("pl-lsys-lycopodium", "");
+    REQUIRE(meta["panels"].size() == 1);
+    CHECK(meta["panels"][0]["segments"] == 6 * (216 - 1) / 5);  // depth 3: 258
+    CHECK(meta["panels"][0]["reading"] == "article");
+}
+
+TEST_CASE("an L-system rule can be given on the command line", "[plants]") {
+    // F -> FF doubles: 2^n segments in the rewrite reading.
+    const auto meta = render_json("pl-lsys-lycopodium", "--set 'rule=F -> FF' --set reading=rewrite --set depth=5");
+    CHECK(meta["panels"][0]["segments"] == 32);
+    CHECK(meta["panels"][0]["plant"]["rules"] == nlohmann::json::array({"F -> FF"}));
+}
+
+TEST_CASE("malformed L-system rules are refused with one line naming the problem", "[plants]") {
+    for (const char* bad : {"'rule=F -> F[+F'", "'rule=FF -> F'", "'rule=F FF'", "'rule=F -> F#'"}) {
+        INFO(bad);
+        const Run run = figgen(std::string("render pl-lsys-lycopodium --no-video --out ") +
+                               out_dir("bad").string() + " --set " + bad);
+        CHECK(run.status == 2);
+        CHECK_THAT(run.output, Catch::StartsWith("figgen: error: "));
+        CHECK(std::count(run.output.begin(), run.output.end(), '\n') == 1);
+    }
+    const Run deep = figgen("render pl-lsys-lycopodium --no-video --out " + out_dir("deep").string() +
+                            " --set depth=12");
+    CHECK(deep.status == 2);
+    CHECK_THAT(deep.output, Catch::Contains("more than the budget"));
+}
+
+TEST_CASE("the ABOP gallery draws the six plants with their closed-form segment counts", "[plants]") {
+    const auto meta = render_json("pl-lsys-gallery", "");
+    REQUIRE(meta["panels"].size() == 6);
+    CHECK(meta["panels"][0]["segments"] == std::pow(5, 5));  // F -> F[+F]F[-F]F: 5 F per F
+    CHECK(meta["panels"][1]["segments"] == std::pow(5, 5));  // F -> F[+F]F[-F][F]
+    CHECK(meta["panels"][2]["segments"] == std::pow(8, 4));  // F -> FF-[-F+F+F]+[+F-F-F]: 8 F per F
+}
+
+TEST_CASE("the fern's points stay in the fern's known box", "[plants]") {
+    const auto meta = render_json("pl-ifs-fern", "");
+    // The published bounds of Barnsley's fern: -2.1820 < x < 2.6558, 0 <= y < 9.9983.
+    const auto& bounds = meta["panels"][0]["points_bounds"];  // xmin, xmax, ymin, ymax
+    CHECK(meta["panels"][0]["points"] == 200000);
+    CHECK(bounds[0].get<double>() > -2.1821);
+    CHECK(bounds[0].get<double>() < -2.0);
+    CHECK(bounds[1].get<double>() < 2.6559);
+    CHECK(bounds[1].get<double>() > 2.5);
+    CHECK(bounds[2].get<double>() >= 0.0);
+    CHECK(bounds[3].get<double>() < 9.9984);
+    CHECK(bounds[3].get<double>() > 9.9);
+    // The stem map (p = 0.01) is chosen about 1% of the time.
+    const double stem = meta["panels"][0]["map_counts"][0].get<double>() / 200100.0;
+    CHECK(stem == Approx(0.01).margin(0.002));
+}
+
+TEST_CASE("the sunflower places 240 seeds and 40 petals", "[plants]") {
+    const auto meta = render_json("pl-phyllotaxis", "");
+    REQUIRE(meta["panels"].size() == 3);
+    CHECK(meta["panels"][0]["seeds"] == 240);
+    CHECK(meta["panels"][0]["petals"] == 40);
+    CHECK(meta["panels"][0]["outer_radius"].get<double>() == Approx(7 * std::sqrt(239.0)));
+}
+
+TEST_CASE("bd-500 deposits L squared particles in as many cells", "[deposition-figure]") {
+    const auto meta = render_json("bd-500", "");
+    const auto& panel = meta["panels"][0];
+    CHECK(panel["particles"] == 250000);
+    CHECK(panel["cells"] == 250000);
+    // Ballistic deposits are porous: about half the cells below the surface are full.
+    CHECK(panel["packing_fraction"].get<double>() > 0.4);
+    CHECK(panel["packing_fraction"].get<double>() < 0.6);
+}
+
+// KPZ: beta = 1/3, alpha = 1/2. Ballistic deposition's large intrinsic width
+// lowers both at small sizes (published beta ~ 0.30; alpha well under 1/2
+// below L ~ 1000), so the bounds here are wide but exclude 0 and 1.
+TEST_CASE("bd-roughness fits beta and alpha near KPZ on small sizes", "[deposition-figure]") {
+    const auto meta = render_json("bd-roughness", "--set widths=[64,128,256] --set seeds=3 --set beta_range=[2,30]");
+    const double beta = meta["beta"]["value"], alpha = meta["alpha"]["value"];
+    CHECK(beta > 0.2);
+    CHECK(beta < 0.4);
+    CHECK(alpha > 0.15);
+    CHECK(alpha < 0.6);
+    CHECK(meta["curves"].size() == 3);
+}
