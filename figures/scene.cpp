@@ -24,6 +24,7 @@ const std::vector<SceneInfo>& scenes() {
         {"deposition", render_deposition},
         {"roughness", render_roughness},
         {"lsystem", render_lsystem},
+        {"lsystem_3d", render_lsystem_3d},
     };
     return all;
 }

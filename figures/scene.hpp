@@ -45,5 +45,6 @@ void render_ifs(const Description& d, const OutputOptions& options, Progress& pr
 void render_deposition(const Description& d, const OutputOptions& options, Progress& progress);
 void render_roughness(const Description& d, const OutputOptions& options, Progress& progress);
 void render_lsystem(const Description& d, const OutputOptions& options, Progress& progress);
+void render_lsystem_3d(const Description& d, const OutputOptions& options, Progress& progress);
 
 }  // namespace figures

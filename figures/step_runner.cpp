@@ -44,8 +44,8 @@ void StepRunner::frame(const render::Image& image, int step) {
     progress_.advance();
 }
 
-render::Canvas& StepRunner::frame_canvas() {
-    if (!frame_canvas_) frame_canvas_ = std::make_unique<render::Canvas>(frame_width_, frame_height_);
+render::Canvas& StepRunner::frame_canvas(bool depth) {
+    if (!frame_canvas_) frame_canvas_ = std::make_unique<render::Canvas>(frame_width_, frame_height_, 4, depth);
     return *frame_canvas_;
 }
 

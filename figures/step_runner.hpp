@@ -33,8 +33,9 @@ public:
     bool wants_frame(int step) const { return sink_ && description_.animation->shows(step); }
     int frame_width() const { return frame_width_; }  // pixels, scaled, even
     int frame_height() const { return frame_height_; }
-    // A canvas of the frame's size, made once and drawn on for every frame.
-    render::Canvas& frame_canvas();
+    // A canvas of the frame's size, made once and drawn on for every frame
+    // (with a depth buffer when `depth`, for 3-D scenes).
+    render::Canvas& frame_canvas(bool depth = false);
 
     // Runs from step 0 to last_step() or until advance() says the model
     // stopped; returns the last step reached.

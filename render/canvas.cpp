@@ -10,7 +10,7 @@
 
 namespace render {
 
-Canvas::Canvas(int width, int height, int samples)
+Canvas::Canvas(int width, int height, int samples, bool depth)
     : width_(width), height_(height), samples_(std::min(samples, GlContext::get().max_samples())) {
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
@@ -26,6 +26,13 @@ Canvas::Canvas(int width, int height, int samples)
     glGenFramebuffers(1, &msaa_fbo_);
     glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_colour_);
+    if (depth) {
+        // Same sample count as the colour: a multisampled FBO needs its attachments to agree.
+        glGenRenderbuffers(1, &msaa_depth_);
+        glBindRenderbuffer(GL_RENDERBUFFER, msaa_depth_);
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples_, GL_DEPTH_COMPONENT24, width, height);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_);
+    }
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw std::runtime_error("multisampled framebuffer incomplete");
 
@@ -46,6 +53,7 @@ Canvas::~Canvas() {
     glDeleteRenderbuffers(1, &resolve_colour_);
     glDeleteFramebuffers(1, &msaa_fbo_);
     glDeleteRenderbuffers(1, &msaa_colour_);
+    if (msaa_depth_) glDeleteRenderbuffers(1, &msaa_depth_);
 }
 
 void Canvas::bind() const {
@@ -61,7 +69,13 @@ void Canvas::bind() const {
 void Canvas::clear(const glm::vec4& colour) {
     bind();
     glClearColor(colour.r, colour.g, colour.b, colour.a);
-    glClear(GL_COLOR_BUFFER_BIT);
+    if (msaa_depth_) {
+        glDepthMask(GL_TRUE);  // glClear honours the depth write mask
+        glClearDepth(1.0);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    } else {
+        glClear(GL_COLOR_BUFFER_BIT);
+    }
 }
 
 Image Canvas::read() const {

@@ -2,7 +2,9 @@
 // A drawing surface of a given size: a 4x multisampled framebuffer (the most
 // llvmpipe offers) that read() resolves into a single-sample one and reads
 // back. Coordinates everywhere in render/ are pixels, origin at the top left,
-// y down, as in the PNG that comes out.
+// y down, as in the PNG that comes out. A canvas made with `depth` also has a
+// multisampled depth buffer, for 3-D drawings (draw_tubes); 2-D drawing never
+// tests depth.
 
 #include <glm/glm.hpp>
 
@@ -20,7 +22,7 @@ struct Rect {
 
 class Canvas {
 public:
-    Canvas(int width, int height, int samples = 4);
+    Canvas(int width, int height, int samples = 4, bool depth = false);
     ~Canvas();
     Canvas(const Canvas&) = delete;
     Canvas& operator=(const Canvas&) = delete;
@@ -28,17 +30,19 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
     int samples() const { return samples_; }
+    bool has_depth() const { return msaa_depth_ != 0; }
     // Pixel coordinates (top-left origin, y down) to clip space.
     const glm::mat4& projection() const { return projection_; }
 
     void bind() const;                   // makes this canvas the draw target
-    void clear(const glm::vec4& colour);  // also binds
+    void clear(const glm::vec4& colour);  // also binds; resets depth to far when there is a depth buffer
     Image read() const;                  // resolves the samples and reads RGBA
 
 private:
     int width_, height_, samples_;
     glm::mat4 projection_;
     GLuint msaa_fbo_ = 0, msaa_colour_ = 0;
+    GLuint msaa_depth_ = 0;  // 0 when made without depth
     GLuint resolve_fbo_ = 0, resolve_colour_ = 0;
 };
 

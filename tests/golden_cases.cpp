@@ -14,6 +14,7 @@
 #include "render/png_io.hpp"
 #include "render/shapes.hpp"
 #include "render/text.hpp"
+#include "render/tubes.hpp"
 
 namespace testkit {
 
@@ -87,6 +88,31 @@ render::Image plot_pattern() {
     return canvas.read();
 }
 
+// A forked branch in perspective: tapered cones, round joints, depth test,
+// lighting, and a 2-D frame drawn after it.
+render::Image tubes_pattern() {
+    render::Canvas canvas(240, 240, 4, true);
+    canvas.clear({1, 1, 1, 1});
+    const glm::vec4 bark{0.58f, 0.40f, 0.26f, 1}, leaf{0.42f, 0.76f, 0.30f, 1}, bud{0.85f, 0.30f, 0.35f, 1};
+    const std::vector<render::Tube> tubes = {
+        {{0, 0, 0}, {0, 2, 0}, 0.30f, 0.22f, bark},
+        {{0, 2, 0}, {-1.2f, 3.4f, 0.4f}, 0.22f, 0.14f, bark},
+        {{0, 2, 0}, {0.9f, 3.6f, -0.5f}, 0.22f, 0.15f, bark},
+        {{-1.2f, 3.4f, 0.4f}, {-1.6f, 4.3f, 1.0f}, 0.14f, 0.08f, leaf},
+        {{-1.2f, 3.4f, 0.4f}, {-2.1f, 3.7f, 0.0f}, 0.14f, 0.08f, leaf},
+        {{0.9f, 3.6f, -0.5f}, {1.0f, 4.8f, -0.3f}, 0.15f, 0.09f, leaf},
+        {{0.9f, 3.6f, -0.5f}, {1.9f, 4.0f, 0.3f}, 0.15f, 0.09f, leaf},
+        {{1.0f, 4.8f, -0.3f}, {1.0f, 4.8f, -0.3f}, 0.2f, 0.2f, bud},  // zero length: a ball
+    };
+    const auto [lo, hi] = render::tube_bounds(tubes);
+    const render::Rect viewport{8, 8, 224, 224};
+    render::draw_tubes(canvas, viewport, tubes, render::frame_bounds(lo, hi, -25, 20, 1));
+    render::Shapes shapes;
+    shapes.frame(viewport, 1, {0, 0, 0, 1});
+    shapes.draw(canvas);
+    return canvas.read();
+}
+
 }  // namespace
 
 render::Image render_catalog_figure(const std::string& id, double scale) {
@@ -103,7 +129,8 @@ render::Image render_catalog_figure(const std::string& id, double scale) {
 }
 
 std::vector<GoldenCase> golden_cases() {
-    std::vector<GoldenCase> cases = {{"test-pattern", test_pattern}, {"plot-pattern", plot_pattern}};
+    std::vector<GoldenCase> cases = {{"test-pattern", test_pattern}, {"plot-pattern", plot_pattern},
+                                       {"tubes-pattern", tubes_pattern}};
     for (const auto& file : figures::catalog_files()) {
         const std::string id = file.stem().string();
         cases.push_back({id, [id] { return render_catalog_figure(id, golden_scale); }});
