@@ -29,9 +29,9 @@ sim::Grid<double> deposit_field(const sim::Deposition& deposit, int rows, std::u
 void render_deposition(const Description& d, const OutputOptions& options, Progress& progress) {
     Settings params("params", d.params,
                     {{"width", "columns L (periodic)"}, {"particles", "particles dropped; the catalog: L^2"}});
-    Settings style("style", d.style,
-                   {{"bands", "arrival-time bands, coloured in turn"},
-                    {"band_colormap", "colormap the bands run through"}});
+    Settings style(
+        "style", d.style,
+        {{"bands", "arrival-time bands, coloured in turn"}, {"band_colormap", "colormap the bands run through"}});
     sim::DepositionParams p;
     int bands = 0;
     try {
@@ -89,9 +89,9 @@ void render_deposition(const Description& d, const OutputOptions& options, Progr
              .panel = {},
              .frame =
                  [&](int step) {
-                     return draw_field_panels(
-                         run.frame_canvas(), {{format_step(d.animation->title, step), {field_layer(film, spec)}}},
-                         options.scale);
+                     return draw_field_panels(run.frame_canvas(),
+                                              {{format_step(d.animation->title, step), {field_layer(film, spec)}}},
+                                              options.scale);
                  },
              .advance =
                  [&] {
@@ -122,13 +122,14 @@ void render_deposition(const Description& d, const OutputOptions& options, Progr
 }
 
 void render_roughness(const Description& d, const OutputOptions& options, Progress& progress) {
-    Settings params("params", d.params,
-                    {{"widths", "system sizes L"},
-                     {"seeds", "runs averaged per L"},
-                     {"saturation_factor", "runs go to t = factor * L^1.5 monolayers (KPZ: saturation at L^z, z = 3/2)"},
-                     {"points_per_decade", "W samples per decade of t"},
-                     {"beta_range", "[t1, t2]: growth-regime times fitted for beta, monolayers"},
-                     {"saturation_from", "W_sat is the mean of W over t >= this fraction of the last time"}});
+    Settings params(
+        "params", d.params,
+        {{"widths", "system sizes L"},
+         {"seeds", "runs averaged per L"},
+         {"saturation_factor", "runs go to t = factor * L^1.5 monolayers (KPZ: saturation at L^z, z = 3/2)"},
+         {"points_per_decade", "W samples per decade of t"},
+         {"beta_range", "[t1, t2]: growth-regime times fitted for beta, monolayers"},
+         {"saturation_from", "W_sat is the mean of W over t >= this fraction of the last time"}});
     Settings style("style", d.style, with_plot_style_keys({{"colours", "one colour per L"}}));
     std::vector<int> widths;
     int seeds = 0, per_decade = 0;
@@ -154,7 +155,7 @@ void render_roughness(const Description& d, const OutputOptions& options, Progre
         throw UsageError(d.id + ": " + e.what());
     }
     if (widths.size() < 2) throw UsageError(d.id + ": params.widths needs at least two sizes to fit alpha");
-    const auto colour_names = style.texts("colours", {"#c6dbef", "#6baed6", "#2171b5", "#08519c", "#08306b"});
+    const auto colours = style_colours(style, "colours", {"#c6dbef", "#6baed6", "#2171b5", "#08519c", "#08306b"});
     progress.start(d.id, static_cast<long long>(widths.size()));
 
     render::Axes growth;
@@ -169,13 +170,9 @@ void render_roughness(const Description& d, const OutputOptions& options, Progre
         const int L = widths[i];
         const double max_time = factor * std::pow(double(L), 1.5);
         const sim::RoughnessCurve curve = sim::roughness_curve(L, max_time, per_decade, seeds, d.seed + i);
-        glm::vec4 colour{0, 0, 0, 1};
-        try {
-            colour = glm::vec4(render::parse_colour(colour_names[i % colour_names.size()]), 1);
-        } catch (const std::invalid_argument& e) {
-            throw UsageError("style.colours: " + std::string(e.what()));
-        }
-        growth.series.push_back(line_series(curve.times, curve.mean_w, "L = " + std::to_string(L), colour, 1.8f, false));
+        const glm::vec4 colour = colours[i % colours.size()];
+        growth.series.push_back(
+            line_series(curve.times, curve.mean_w, "L = " + std::to_string(L), colour, 1.8f, false));
         double sum = 0;
         int n = 0;
         for (std::size_t k = 0; k < curve.times.size(); ++k)
@@ -192,8 +189,13 @@ void render_roughness(const Description& d, const OutputOptions& options, Progre
                     beta_w.push_back(curve.mean_w[k]);
                 }
         }
-        curves.push_back({{"width", L}, {"seeds", seeds}, {"max_time", max_time}, {"times", curve.times},
-                          {"mean_w", curve.mean_w}, {"sem_w", curve.sem_w}, {"saturated_w", saturated.back()}});
+        curves.push_back({{"width", L},
+                          {"seeds", seeds},
+                          {"max_time", max_time},
+                          {"times", curve.times},
+                          {"mean_w", curve.mean_w},
+                          {"sem_w", curve.sem_w},
+                          {"saturated_w", saturated.back()}});
         progress.advance();
     }
     if (beta_t.size() < 2) throw UsageError(d.id + ": params.beta_range holds fewer than two sampled times");

@@ -10,14 +10,17 @@
 namespace figures {
 
 void render_hex_lattice(const Description& d, const OutputOptions& options, Progress& progress) {
-    Settings params("params", d.params, {{"row_cells", "cells in the 1-D row, odd"}, {"radius", "rings of the hexagonal patch"}});
+    Settings params("params", d.params,
+                    {{"row_cells", "cells in the 1-D row, odd"}, {"radius", "rings of the hexagonal patch"}});
     Settings style("style", d.style,
-                   {{"line_colour", "cell outlines"}, {"fill_colour", "the centre and its neighbours"},
+                   {{"line_colour", "cell outlines"},
+                    {"fill_colour", "the centre and its neighbours"},
                     {"captions", "captions of the two panels"}});
     const int row_cells = params.count("row_cells", 7);
     const int radius = params.count("radius", 2);
     if (row_cells < 3 || row_cells > 41 || row_cells % 2 == 0)
-        throw UsageError(d.id + ": params.row_cells = " + std::to_string(row_cells) + " is not allowed: an odd number 3..41");
+        throw UsageError(d.id + ": params.row_cells = " + std::to_string(row_cells) +
+                         " is not allowed: an odd number 3..41");
     if (radius < 1 || radius > 10)
         throw UsageError(d.id + ": params.radius = " + std::to_string(radius) + " is not allowed: 1..10");
     const glm::vec4 line = style_colour(style, "line_colour", "black");
@@ -47,8 +50,11 @@ void render_hex_lattice(const Description& d, const OutputOptions& options, Prog
         if (std::abs(i - mid) <= 1) fills.rect(r, fill);
         outlines.frame(r, 1.5f * s, line);
         if (std::abs(i - mid) <= 1)
-            text.add(label_font, i == mid ? "i" : i < mid ? "i\u22121" : "i+1", r.centre(), black,
-                     render::Align::centre, render::Baseline::middle);
+            text.add(label_font,
+                     i == mid  ? "i"
+                     : i < mid ? "i\u22121"
+                               : "i+1",
+                     r.centre(), black, render::Align::centre, render::Baseline::middle);
     }
     text.add(caption_font, captions[0], {half / 2, float(height) - caption_band / 2}, black, render::Align::centre,
              render::Baseline::middle);
@@ -74,7 +80,8 @@ void render_hex_lattice(const Description& d, const OutputOptions& options, Prog
     outlines.draw(canvas);
     text.draw(canvas);
     write_figure(d, options, canvas.read(),
-                 {{"params", params.used()}, {"style", style.used()},
+                 {{"params", params.used()},
+                  {"style", style.used()},
                   {"panels", {{{"label", "(a)"}, {"cells", row_cells}}, {{"label", "(b)"}, {"rings", radius}}}}});
     progress.finish();
 }

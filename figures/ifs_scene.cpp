@@ -91,8 +91,11 @@ void render_ifs(const Description& d, const OutputOptions& options, Progress& pr
         titles.push_back(variants[i]["title"].value_or(std::string()));
         nlohmann::json maps = nlohmann::json::array();
         for (const auto& m : ifs.maps) maps.push_back({m.a, m.b, m.c, m.d, m.e, m.f, m.p});
-        panel_meta.push_back({{"title", titles.back()}, {"maps", maps}, {"points", clouds.back().size()},
-                              {"map_counts", counts}, {"points_bounds", {own_lo.x, own_hi.x, own_lo.y, own_hi.y}}});
+        panel_meta.push_back({{"title", titles.back()},
+                              {"maps", maps},
+                              {"points", clouds.back().size()},
+                              {"map_counts", counts},
+                              {"points_bounds", {own_lo.x, own_hi.x, own_lo.y, own_hi.y}}});
         progress.advance();
     }
     if (!bounds.empty()) {

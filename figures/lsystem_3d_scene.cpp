@@ -114,20 +114,20 @@ void render_lsystem_3d(const Description& d, const OutputOptions& options, Progr
     nlohmann::json panel_meta = nlohmann::json::array();
     for (std::size_t i = 0; i < views.size(); ++i) {
         render::draw_tubes(canvas, rects[i], tubes,
-                           render::frame_bounds(lo, hi, float(views[i]), elevation, rects[i].w / rects[i].h), {}, sides);
+                           render::frame_bounds(lo, hi, float(views[i]), elevation, rects[i].w / rects[i].h), {},
+                           sides);
         const std::string title = "azimuth " + format_fixed(views[i], 0) + "\u00b0";
         text.add(*font, title, {rects[i].centre().x, rects[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
                  render::Align::centre, render::Baseline::baseline);
         panel_meta.push_back({{"azimuth_degrees", views[i]}, {"elevation_degrees", elevation}});
     }
     text.draw(canvas);
-    run.write_figure(canvas.read(),
-                     {{"params", params.used()},
-                      {"style", style.used()},
-                      {"panels", panel_meta},
-                      {"segments", segments.size()},
-                      {"symbols", system.length(depth)},
-                      {"bounds", {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}}});
+    run.write_figure(canvas.read(), {{"params", params.used()},
+                                     {"style", style.used()},
+                                     {"panels", panel_meta},
+                                     {"segments", segments.size()},
+                                     {"symbols", system.length(depth)},
+                                     {"bounds", {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}}});
 }
 
 }  // namespace figures

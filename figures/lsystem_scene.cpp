@@ -52,8 +52,10 @@ Plant read_plant(const toml::table& own, Settings& shared, const std::string& wh
     Plant p;
     p.title = s.text("title", "");
     std::vector<std::string> rules = shared.has("rules") ? shared.texts("rules", {}) : s.texts("rules", {});
-    if (shared.has("rule")) rules = {shared.text("rule", "")};
-    else if (s.has("rule")) rules = {s.text("rule", "")};
+    if (shared.has("rule"))
+        rules = {shared.text("rule", "")};
+    else if (s.has("rule"))
+        rules = {s.text("rule", "")};
     p.system = sim::LSystem::parse(text("axiom", "F"), rules);
     p.depth = static_cast<int>(number("depth", 3));
     sim::require_integer("depth", p.depth, 0, 64);
@@ -102,8 +104,7 @@ void render_lsystem(const Description& d, const OutputOptions& options, Progress
     keys.erase(keys.begin());  // no shared title
     keys.push_back({"plants", "list of plants, one panel each, each a table of the keys above"});
     Settings params("params", d.params, keys);
-    Settings style("style", d.style,
-                   {{"colour", "line colour"}, {"min_width", "thinnest line, pixels at scale 1"}});
+    Settings style("style", d.style, {{"colour", "line colour"}, {"min_width", "thinnest line, pixels at scale 1"}});
     std::vector<Plant> plants;
     try {
         auto tables = params.tables("plants");
@@ -136,8 +137,8 @@ void render_lsystem(const Description& d, const OutputOptions& options, Progress
     }
     row.aspect = float(std::clamp(aspect, 0.2, 3.0));
     const int columns = std::min<int>(int(plants.size()), params.has("plants") ? 3 : 1);
-    const auto rects = render::panel_grid({0, 0, float(width), float(height)}, int(plants.size()), std::max(1, columns),
-                                          true, row);
+    const auto rects =
+        render::panel_grid({0, 0, float(width), float(height)}, int(plants.size()), std::max(1, columns), true, row);
     render::Shapes shapes;
     nlohmann::json panel_meta = nlohmann::json::array();
     for (std::size_t i = 0; i < plants.size(); ++i) {
@@ -159,7 +160,8 @@ void render_lsystem(const Description& d, const OutputOptions& options, Progress
         text.add(font, plants[i].title, {rects[i].centre().x, rects[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
                  render::Align::centre, render::Baseline::baseline);
     text.draw(canvas);
-    write_figure(d, options, canvas.read(), {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}});
+    write_figure(d, options, canvas.read(),
+                 {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}});
     progress.finish();
 }
 

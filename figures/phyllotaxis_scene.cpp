@@ -17,10 +17,10 @@ namespace figures {
 namespace {
 
 struct FlowerStyle {
-    int petal_start = 200;      // seeds from this one on are drawn as petals
-    double seed_radius = 10;    // the turtle's circle stamp: 20 units across
-    double petal_size = 60;     // side of a petal rhombus
-    double window = 500;        // the article's 500 x 500 turtle window, mapped onto a panel
+    int petal_start = 200;    // seeds from this one on are drawn as petals
+    double seed_radius = 10;  // the turtle's circle stamp: 20 units across
+    double petal_size = 60;   // side of a petal rhombus
+    double window = 500;      // the article's 500 x 500 turtle window, mapped onto a panel
 };
 
 // The article's seed colour: (255, theta % 255, 4n % 255) in 0..255, theta in radians.
@@ -106,12 +106,12 @@ void render_phyllotaxis(const Description& d, const OutputOptions& options, Prog
                      render::Shapes shapes;
                      draw_flower(shapes, rects[0], spirals[0], step, flowers[0].divergence, look, line_width);
                      shapes.draw(canvas);
-                     const std::string title = format_fixed(flowers[0].divergence, 3) + "\u00b0, " +
-                                               std::to_string(step) + " seeds";
+                     const std::string title =
+                         format_fixed(flowers[0].divergence, 3) + "\u00b0, " + std::to_string(step) + " seeds";
                      render::Text text;
                      static render::Font font(std::round(row.title_size * row.scale));
-                     text.add(font, title, {rects[0].centre().x, rects[0].y - row.title_pad * row.scale},
-                              {0, 0, 0, 1}, render::Align::centre, render::Baseline::baseline);
+                     text.add(font, title, {rects[0].centre().x, rects[0].y - row.title_pad * row.scale}, {0, 0, 0, 1},
+                              render::Align::centre, render::Baseline::baseline);
                      text.draw(canvas);
                      return canvas.read();
                  },

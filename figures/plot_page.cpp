@@ -56,6 +56,20 @@ glm::vec4 style_colour(Settings& style, const std::string& key, const std::strin
     }
 }
 
+std::vector<glm::vec4> style_colours(Settings& style, const std::string& key,
+                                     const std::vector<std::string>& fallback) {
+    std::vector<glm::vec4> colours;
+    for (const std::string& name : style.texts(key, fallback)) {
+        try {
+            colours.push_back(glm::vec4(render::parse_colour(name), 1.0f));
+        } catch (const std::invalid_argument& e) {
+            throw UsageError("style." + key + ": " + e.what());
+        }
+    }
+    if (colours.empty()) throw UsageError("style." + key + " is empty");
+    return colours;
+}
+
 render::Series line_series(std::vector<double> x, std::vector<double> y, std::string label, glm::vec4 colour,
                            float width, bool dashed) {
     render::Series s;

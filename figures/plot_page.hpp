@@ -33,6 +33,9 @@ void draw_plot_row(const render::Canvas& canvas, const render::Rect& area, const
 // A colour from [style] ("#rrggbb" or a name), opaque.
 glm::vec4 style_colour(Settings& style, const std::string& key, const std::string& fallback);
 
+// A list of colours from [style], one per series, used in turn.
+std::vector<glm::vec4> style_colours(Settings& style, const std::string& key, const std::vector<std::string>& fallback);
+
 // Series shorthands in the book's terms.
 render::Series line_series(std::vector<double> x, std::vector<double> y, std::string label, glm::vec4 colour,
                            float width, bool dashed);

@@ -76,9 +76,12 @@ std::string Settings::text(const std::string& key, const std::string& fallback) 
     if (const toml::node* node = find(key)) {
         // A digit string given on the command line (--set rule=1100000) reads
         // as a TOML integer; its digits are the text meant.
-        if (node->is_integer()) value = std::to_string(node->as_integer()->get());
-        else if (!node->is_string()) wrong_type(key, "a string");
-        else value = node->as_string()->get();
+        if (node->is_integer())
+            value = std::to_string(node->as_integer()->get());
+        else if (!node->is_string())
+            wrong_type(key, "a string");
+        else
+            value = node->as_string()->get();
     }
     used_[key] = value;
     return value;

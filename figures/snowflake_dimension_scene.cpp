@@ -7,9 +7,9 @@
 #include <cmath>
 
 #include "figures/plot_page.hpp"
-#include "render/colormap.hpp"
 #include "figures/scene.hpp"
 #include "figures/snowflake_setup.hpp"
+#include "render/colormap.hpp"
 #include "sim/check.hpp"
 #include "sim/fractal.hpp"
 
@@ -33,8 +33,8 @@ void render_snowflake_dimension(const Description& d, const OutputOptions& optio
     } catch (const std::invalid_argument& e) {
         throw UsageError(d.id + ": " + e.what());
     }
-    const auto colour_names =
-        style.texts("colours", {"#08306b", "#2171b5", "#6baed6", "#e6550d", "#31a354", "#756bb1", "#636363"});
+    const auto colours =
+        style_colours(style, "colours", {"#08306b", "#2171b5", "#6baed6", "#e6550d", "#31a354", "#756bb1", "#636363"});
     progress.start(d.id, static_cast<long long>(runs.size()));
 
     render::Axes axes;
@@ -63,12 +63,7 @@ void render_snowflake_dimension(const Description& d, const OutputOptions& optio
             throw UsageError(d.id + ": the fit range " + std::to_string(fit_from) + ".." + std::to_string(fit_last) +
                              " holds fewer than two distances; raise steps or fit_to");
         const sim::LineFit fit = sim::fit_log_log(fit_l, fit_m);
-        glm::vec4 colour{0, 0, 0, 1};
-        try {
-            colour = glm::vec4(render::parse_colour(colour_names[i % colour_names.size()]), 1);
-        } catch (const std::invalid_argument& e) {
-            throw UsageError("style.colours: " + std::string(e.what()));
-        }
+        const glm::vec4 colour = colours[i % colours.size()];
         std::string rule = runs[i].params.rule.code();
         const auto& restriction = runs[i].params.restriction;
         if (restriction.last >= restriction.first)
@@ -92,8 +87,8 @@ void render_snowflake_dimension(const Description& d, const OutputOptions& optio
     // A filled plane: 2 / sqrt(3) cells per unit area, so M(l) = (2 pi / sqrt 3) l^2.
     const double filled = 2 * M_PI / std::sqrt(3.0);
     const std::vector<double> ref_l = {1.0, double(steps)};
-    axes.series.push_back(line_series(ref_l, {filled, filled * steps * steps}, "filled plane, D = 2",
-                                      {0.6f, 0.6f, 0.6f, 1}, 1.0f, true));
+    axes.series.push_back(
+        line_series(ref_l, {filled, filled * steps * steps}, "filled plane, D = 2", {0.6f, 0.6f, 0.6f, 1}, 1.0f, true));
     write_figure(d, options,
                  draw_plot_row({axes}, figure_width(d, options), figure_height(d, options),
                                read_plot_style(style, options.scale)),

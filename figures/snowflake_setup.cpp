@@ -25,7 +25,8 @@ std::vector<Key> snowflake_keys(std::vector<Key> extra) {
         {"restrict_radius", "restriction applies from this hex distance out, >= 1"},
         {"restrict_half_angle", "half-width in degrees of each forbidden wedge, (0, 30]"},
         {"priority_width", "cells beside each tip forced too, >= 0"},
-        {"priority_exclusive", "true: during a priority step only the tips grow (the rule rests); false: they grow as well"},
+        {"priority_exclusive",
+         "true: during a priority step only the tips grow (the rule rests); false: they grow as well"},
     };
     keys.insert(keys.end(), extra.begin(), extra.end());
     return keys;
@@ -86,7 +87,8 @@ nlohmann::json snowflake_settings(const sim::SnowflakeParams& p) {
                                {"min_radius", p.restriction.min_radius},
                                {"half_angle_degrees", p.restriction.half_angle}};
     if (!p.priority.steps.empty())
-        meta["priority"] = {{"steps", p.priority.steps}, {"width", p.priority.width}, {"exclusive", p.priority.exclusive}};
+        meta["priority"] = {
+            {"steps", p.priority.steps}, {"width", p.priority.width}, {"exclusive", p.priority.exclusive}};
     return meta;
 }
 

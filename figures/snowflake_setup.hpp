@@ -11,10 +11,9 @@
 // the gaps between the arms during those steps), priority = [steps...]
 // (growth forced at the six tips during those steps).
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "figures/settings.hpp"
 #include "sim/snowflake.hpp"
@@ -22,9 +21,9 @@
 namespace figures {
 
 struct SnowflakeRun {
-    std::string label;          // "(a)", "(b)", ...
+    std::string label;  // "(a)", "(b)", ...
     sim::SnowflakeParams params;
-    nlohmann::json used;        // the run's settings as read, for the metadata
+    nlohmann::json used;  // the run's settings as read, for the metadata
 };
 
 // The [params] keys of a snowflake scene; `extra` adds the scene's own.

@@ -3,51 +3,21 @@
 // by a failed run.
 #include <catch2/catch.hpp>
 
-#include <sys/wait.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
+#include "figgen_run.hpp"
 #include "render/png_io.hpp"
 #include "render/video.hpp"
 
 namespace fs = std::filesystem;
 
-namespace {
-
-struct Run {
-    int status = -1;
-    std::string output;  // stdout and stderr together
-    int lines() const {
-        int n = 0;
-        for (char c : output) n += c == '\n';
-        return n;
-    }
-};
-
-Run figgen(const std::string& args) {
-    Run run;
-    const std::string command = std::string(FIGGEN_EXE) + " " + args + " 2>&1";
-    std::FILE* pipe = ::popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    char buffer[4096];
-    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) run.output.append(buffer, n);
-    const int raw = ::pclose(pipe);
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return run;
-}
-
-fs::path fresh_dir(const std::string& name) {
-    const fs::path dir = fs::path(FIGGEN_TEST_ARTIFACT_DIR) / "cli" / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
-}  // namespace
+using testkit::figgen;
+using testkit::fresh_dir;
+using testkit::Run;
 
 TEST_CASE("figgen list names tc7-1 with its title", "[cli]") {
     const Run run = figgen("list");

@@ -1,8 +1,6 @@
 // The pl and bd figures as a user drives them, and the numbers they record.
 #include <catch2/catch.hpp>
 
-#include <sys/wait.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,42 +8,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "figgen_run.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
-
-struct Run {
-    int status = -1;
-    std::string output;
-};
-
-Run figgen(const std::string& args) {
-    Run run;
-    std::FILE* pipe = ::popen((std::string(FIGGEN_EXE) + " " + args + " 2>&1").c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    char buffer[4096];
-    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) run.output.append(buffer, n);
-    const int raw = ::pclose(pipe);
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return run;
-}
-
-fs::path out_dir(const std::string& name) {
-    const fs::path dir = fs::path(FIGGEN_TEST_ARTIFACT_DIR) / "plants" / name;
-    fs::remove_all(dir);
-    return dir;
-}
-
-nlohmann::json render_json(const std::string& id, const std::string& extra) {
-    const fs::path out = out_dir(id);
-    const Run run = figgen("render " + id + " --no-video --scale 0.3 --out " + out.string() + " " + extra);
-    INFO(run.output);
-    REQUIRE(run.status == 0);
-    std::ifstream in(out / (id + ".json"));
-    return nlohmann::json::parse(in);
-}
-
+std::filesystem::path out_dir(const std::string& name) { return testkit::fresh_dir("plants-" + name); }
 }  // namespace
+
+using testkit::figgen;
+using testkit::render_json;
+using testkit::Run;
 
 TEST_CASE("the club moss draws the article's 6 (6^n - 1) / 5 segments", "[plants]") {
     const auto meta = render_json("pl-lsys-lycopodium", "");

@@ -2,45 +2,19 @@
 // refused codes, and the metadata each panel records.
 #include <catch2/catch.hpp>
 
-#include <sys/wait.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
+#include "figgen_run.hpp"
+
 namespace fs = std::filesystem;
 
-namespace {
-
-struct Run {
-    int status = -1;
-    std::string output;
-};
-
-Run figgen(const std::string& args) {
-    Run run;
-    std::FILE* pipe = ::popen((std::string(FIGGEN_EXE) + " " + args + " 2>&1").c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    char buffer[4096];
-    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) run.output.append(buffer, n);
-    const int raw = ::pclose(pipe);
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return run;
-}
-
-nlohmann::json render_json(const std::string& id, const std::string& extra) {
-    const fs::path out = fs::path(FIGGEN_TEST_ARTIFACT_DIR) / "sf87" / id;
-    fs::remove_all(out);
-    const Run run = figgen("render " + id + " --no-video --scale 0.3 --out " + out.string() + " " + extra);
-    INFO(run.output);
-    REQUIRE(run.status == 0);
-    std::ifstream in(out / (id + ".json"));
-    return nlohmann::json::parse(in);
-}
-
-}  // namespace
+using testkit::figgen;
+using testkit::render_json;
+using testkit::Run;
 
 TEST_CASE("any valid rule code can be set from the command line", "[sf87]") {
     // 0110000 freezes on one or two neighbours: the full hexagon, 3t(t+1)+1 cells after t steps.

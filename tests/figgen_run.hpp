@@ -1,0 +1,55 @@
+#pragma once
+// Running the figgen command from a test, as a user would: its exit status
+// and everything it printed. Only for the test binary (FIGGEN_EXE).
+
+#include <sys/wait.h>
+
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace testkit {
+
+struct Run {
+    int status = -1;     // exit status, -1 if it did not exit normally
+    std::string output;  // stdout and stderr together
+    int lines() const {
+        int n = 0;
+        for (char c : output) n += c == '\n';
+        return n;
+    }
+};
+
+inline Run figgen(const std::string& args) {
+    Run run;
+    std::FILE* pipe = ::popen((std::string(FIGGEN_EXE) + " " + args + " 2>&1").c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    char buffer[4096];
+    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) run.output.append(buffer, n);
+    const int raw = ::pclose(pipe);
+    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    return run;
+}
+
+// A fresh folder under the test artifacts.
+inline std::filesystem::path fresh_dir(const std::string& name) {
+    const std::filesystem::path dir = std::filesystem::path(FIGGEN_TEST_ARTIFACT_DIR) / "cli" / name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+// Renders figure `id` small and without video through the command; returns its metadata.
+inline nlohmann::json render_json(const std::string& id, const std::string& extra = "") {
+    const std::filesystem::path out = fresh_dir("json-" + id);
+    const Run run = figgen("render " + id + " --no-video --scale 0.3 --out " + out.string() + " " + extra);
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    std::ifstream in(out / (id + ".json"));
+    return nlohmann::json::parse(in);
+}
+
+}  // namespace testkit
