@@ -50,11 +50,13 @@ render::Canvas& StepRunner::frame_canvas(bool depth) {
 }
 
 void StepRunner::stepped() {
+    ++model_steps_;
     progress_.advance();
 }
 
 void StepRunner::write_figure(const render::Image& figure, nlohmann::json meta) {
     if (sink_) meta["animation"] = sink_->finish();
+    meta["model_steps"] = model_steps_;
     figures::write_figure(description_, options_, figure, std::move(meta));
     progress_.finish();
 }

@@ -42,7 +42,8 @@ public:
     int run(const StepHooks& hooks);
 
     void frame(const render::Image& image, int step);  // hands a drawn frame to the sinks
-    void stepped();                                    // counts one model step for the progress bar
+    void stepped();                                    // counts one model step (progress bar and metadata)
+    long long model_steps() const { return model_steps_; }
     // Completes the animation, adds its metadata to `meta`, writes the
     // figure's PNG and JSON and completes the progress bar.
     void write_figure(const render::Image& figure, nlohmann::json meta);
@@ -52,6 +53,7 @@ private:
     const OutputOptions& options_;
     Progress& progress_;
     int last_ = 0;
+    long long model_steps_ = 0;  // steps the model actually took: the metadata's proof that nothing ran past last_
     int frame_width_ = 0, frame_height_ = 0;
     std::unique_ptr<FrameSink> sink_;
     std::unique_ptr<render::Canvas> frame_canvas_;

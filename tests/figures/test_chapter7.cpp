@@ -12,6 +12,7 @@
 
 #include "figures/catalog.hpp"
 #include "figures/description.hpp"
+#include "figgen_run.hpp"
 #include "figures/scene.hpp"
 
 namespace {
@@ -140,4 +141,22 @@ TEST_CASE("tc7-2 to tc7-4 keep both chemicals within 0 and 1", "[chapter7]") {
                 CHECK(s["mean"].get<double>() <= s["max"].get<double>());
             }
     }
+}
+
+TEST_CASE("a figure runs its model once and only to the last step an output needs", "[chapter7]") {
+    // tc7-2's panels are at 1000, 3000 and 7000 and its film ends at 7000:
+    // one run of 7000 steps serves both, not a run per panel (11,000) or more.
+    const auto with_film = testkit::render_json("tc7-2", "--set animation.steps=[0,7000] --set animation.stride=1000");
+    CHECK(with_film["model_steps"] == 7000);
+    // tc7-1 without its film stops at its last panel, step 15, not at the film's 60.
+    const auto no_film = testkit::render_json("tc7-1");
+    CHECK(no_film["model_steps"] == 15);
+    // With its film it runs on to the film's last step, 60, once.
+    const auto out = testkit::fresh_dir("steps-film");
+    const auto run = testkit::figgen("render tc7-1 --scale 0.25 --out " + out.string());
+    REQUIRE(run.status == 0);
+    std::ifstream in(out / "tc7-1.json");
+    const auto film = nlohmann::json::parse(in);
+    CHECK(film["model_steps"] == 60);
+    CHECK(film["animation"]["frames"] == 61);
 }
