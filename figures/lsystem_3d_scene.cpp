@@ -88,9 +88,7 @@ void render_lsystem_3d(const Description& d, const OutputOptions& options, Progr
     StepRunner run(plan, options, progress);
     render::PanelRowStyle row;
     row.scale = float(options.scale);
-    static std::unique_ptr<render::Font> font;
-    const float title_px = std::round(row.title_size * row.scale);
-    if (!font || font->pixel_size() != title_px) font = std::make_unique<render::Font>(title_px);
+    render::Font& font = render::font_of_size(std::round(row.title_size * row.scale));
     run.run({.check = {},
              .panel = {},
              .frame =
@@ -117,7 +115,7 @@ void render_lsystem_3d(const Description& d, const OutputOptions& options, Progr
                            render::frame_bounds(lo, hi, float(views[i]), elevation, rects[i].w / rects[i].h), {},
                            sides);
         const std::string title = "azimuth " + format_fixed(views[i], 0) + "\u00b0";
-        text.add(*font, title, {rects[i].centre().x, rects[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
+        text.add(font, title, {rects[i].centre().x, rects[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
                  render::Align::centre, render::Baseline::baseline);
         panel_meta.push_back({{"azimuth_degrees", views[i]}, {"elevation_degrees", elevation}});
     }

@@ -155,7 +155,7 @@ void render_lsystem(const Description& d, const OutputOptions& options, Progress
     }
     shapes.draw(canvas);
     render::Text text;
-    render::Font font(std::round(row.title_size * row.scale));
+    render::Font& font = render::font_of_size(std::round(row.title_size * row.scale));
     for (std::size_t i = 0; i < plants.size(); ++i)
         text.add(font, plants[i].title, {rects[i].centre().x, rects[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
                  render::Align::centre, render::Baseline::baseline);

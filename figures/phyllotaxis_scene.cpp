@@ -109,7 +109,7 @@ void render_phyllotaxis(const Description& d, const OutputOptions& options, Prog
                      const std::string title =
                          format_fixed(flowers[0].divergence, 3) + "\u00b0, " + std::to_string(step) + " seeds";
                      render::Text text;
-                     static render::Font font(std::round(row.title_size * row.scale));
+                     render::Font& font = render::font_of_size(std::round(row.title_size * row.scale));
                      text.add(font, title, {rects[0].centre().x, rects[0].y - row.title_pad * row.scale}, {0, 0, 0, 1},
                               render::Align::centre, render::Baseline::baseline);
                      text.draw(canvas);
@@ -135,7 +135,7 @@ void render_phyllotaxis(const Description& d, const OutputOptions& options, Prog
     shapes.draw(canvas);
     // Titles only: the flowers have no frames.
     render::Text text;
-    render::Font font(std::round(row.title_size * row.scale));
+    render::Font& font = render::font_of_size(std::round(row.title_size * row.scale));
     for (std::size_t i = 0; i < rects.size(); ++i)
         text.add(font, titles[i], {rects[i].centre().x, rects[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
                  render::Align::centre, render::Baseline::baseline);

@@ -50,15 +50,13 @@ void draw_snowflakes(const render::Canvas& canvas, const render::Rect& area, con
     const float caption_band = 1.8f * style.title_size * style.scale;
     const render::Rect above{area.x, area.y, area.w, area.h - caption_band};
     const auto rects = render::panel_row(above, static_cast<int>(panels.size()), false, style);
-    static std::map<float, std::unique_ptr<render::Font>> fonts;
-    auto& font = fonts[std::round(style.title_size * style.scale)];
-    if (!font) font = std::make_unique<render::Font>(std::round(style.title_size * style.scale));
+    render::Font& font = render::font_of_size(std::round(style.title_size * style.scale));
     render::Text captions;
     for (std::size_t i = 0; i < panels.size(); ++i) {
         const auto view = render::fit_hex_view(rects[i], panels[i].view_radius);
         render::draw_hex_cells(canvas, view, panels[i].forbidden, colours.tint);
         render::draw_hex_cells(canvas, view, panels[i].ice, colours.ice);
-        captions.add(*font, panels[i].caption, {rects[i].centre().x, rects[i].bottom() + 1.3f * font->pixel_size()},
+        captions.add(font, panels[i].caption, {rects[i].centre().x, rects[i].bottom() + 1.3f * font.pixel_size()},
                      colours.text, render::Align::centre, render::Baseline::baseline);
     }
     captions.draw(canvas);

@@ -1,24 +1,11 @@
 #include "render/layout.hpp"
 
 #include <algorithm>
-#include <map>
-#include <memory>
 
 #include "render/shapes.hpp"
 #include "render/text.hpp"
 
 namespace render {
-namespace {
-
-// Fonts are costly to set up (a glyph atlas each); keep one per size.
-Font& font_of_size(float pixels) {
-    static std::map<float, std::unique_ptr<Font>> fonts;
-    auto& font = fonts[pixels];
-    if (!font) font = std::make_unique<Font>(pixels);
-    return *font;
-}
-
-}  // namespace
 
 std::vector<Rect> panel_row(const Rect& area, int count, bool titled, const PanelRowStyle& style) {
     const float s = style.scale;

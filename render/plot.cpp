@@ -20,13 +20,6 @@ namespace {
 constexpr float text_ascent = 0.76f;
 constexpr float text_descent = 0.21f;
 
-Font& font_of_size(float pixels) {  // one atlas per size, kept for the process
-    static std::map<float, std::unique_ptr<Font>> fonts;
-    auto& font = fonts[pixels];
-    if (!font) font = std::make_unique<Font>(pixels);
-    return *font;
-}
-
 // Tick labels with an exponent are set as matplotlib's mathtext sets
 // "10^{-3}": the exponent in ordinary digits at 0.7 of the size, raised
 // 0.375 em, which reads larger and lower than the font's superscript glyphs.

@@ -1,5 +1,8 @@
 #include "render/text.hpp"
 
+#include <map>
+#include <memory>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -309,6 +312,13 @@ void Text::draw(const Canvas& canvas) const {
     }
     glBindVertexArray(0);
     check_gl("Text::draw");
+}
+
+Font& font_of_size(float pixels) {
+    static std::map<float, std::unique_ptr<Font>> fonts;
+    auto& font = fonts[pixels];
+    if (!font) font = std::make_unique<Font>(pixels);
+    return *font;
 }
 
 }  // namespace render

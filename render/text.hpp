@@ -109,4 +109,8 @@ private:
     std::vector<Batch> batches_;
 };
 
+// DejaVu Sans at `pixels`, made once per size and kept for the process: a
+// font's glyph atlas is costly to fill, and every figure draws titles.
+Font& font_of_size(float pixels);
+
 }  // namespace render

@@ -1,0 +1,83 @@
+#pragma once
+// The site-percolation threshold of the square lattice by the Newman-Ziff
+// algorithm (Newman & Ziff, PRL 85, 4104 (2000); PRE 64, 016706 (2001)).
+//
+// Each sample fills the L x L torus one site at a time in a random order and
+// keeps the clusters in a union-find that also stores, for every site, its
+// displacement to its parent. A new bond that joins a cluster to itself closes
+// a loop; if the displacements around that loop do not add up to zero, the
+// loop goes round the torus and the cluster wraps (horizontally when the x
+// part is nonzero, vertically when the y part is). One sample thus gives the
+// occupation numbers n_h and n_v at which the torus first wraps each way, at
+// a cost of about one find per bond.
+//
+// Those numbers give R_L(n), the probability of wrapping with exactly n sites
+// occupied (the canonical ensemble); the binomial convolution
+// R_L(p) = sum_n C(N,n) p^n (1-p)^(N-n) R_L(n) gives it for every p at once,
+// and p_c is where R_L(p) crosses its known value at p_c for L = infinity
+// (Pinson 1994): there the error falls as L^(-11/4) instead of the L^(-3/4)
+// of the mean wrapping point n_c / N.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sim/random.hpp"
+
+namespace sim {
+
+// Which wrapping event R_L(p) counts. The values are R_infinity(p_c) for the
+// square lattice (Newman & Ziff 2001, table I, from Pinson's exact results).
+enum class WrapCriterion {
+    // A cluster wraps in one given direction, horizontal or vertical: the mean
+    // of both, so every sample counts twice (R^(h) = 0.521058290). Default:
+    // it has the smallest statistical error of the three (see the bench).
+    one_direction,
+    either_direction,  // a cluster wraps horizontally or vertically (R^(e) = 0.690473725)
+    both_directions,   // a cluster wraps horizontally and vertically (R^(b) = 0.351642855)
+};
+double wrapping_probability_at_threshold(WrapCriterion criterion);
+
+// Occupation numbers (1 = the first site) at which a cluster first wraps
+// horizontally and vertically; 0 if it never does.
+struct WrappingPoints {
+    std::uint32_t horizontal = 0;
+    std::uint32_t vertical = 0;
+};
+
+// Occupies the sites of the size x size torus (site = row * size + col) in
+// the given order, which need not name them all, and says when it first
+// wrapped each way (for hand-made lattices in tests). Throws
+// std::invalid_argument for a bad size, a site out of range or a repeated site.
+WrappingPoints wrapping_points_for_order(int size, std::span<const std::uint32_t> order);
+
+// `samples` independent samples, each occupying sites in a uniform random
+// order (Fisher-Yates with rng.below, drawn one site at a time and stopped
+// once the torus wraps both ways) until it wraps both ways.
+std::vector<WrappingPoints> wrapping_points(int size, int samples, Random& rng);
+
+struct ThresholdEstimate {
+    double p_c;             // where R_L(p) = R_infinity(p_c)
+    double standard_error;  // one standard deviation of p_c from the sample spread
+    int samples;
+    int size;
+    double seconds_hint = 0;  // wall time spent, to plan longer runs (not reproducible)
+};
+
+// p_c from samples already drawn (size is the L they were drawn at).
+ThresholdEstimate threshold_from_wrapping(const std::vector<WrappingPoints>& points, int size,
+                                          WrapCriterion criterion = WrapCriterion::one_direction);
+
+// `samples` independent samples at lattice size L, drawing from rng.
+ThresholdEstimate newman_ziff_threshold(int size, int samples, Random& rng,
+                                        WrapCriterion criterion = WrapCriterion::one_direction);
+
+// The occupation numbers at which the first wrapping cluster (either
+// direction) appears, one per sample (for tests); draws as wrapping_points.
+std::vector<std::uint32_t> wrapping_occupation(int size, int samples, Random& rng);
+
+// R_L(p) for the given criterion by the binomial convolution (for tests and plots).
+double wrapping_probability(const std::vector<WrappingPoints>& points, int size, WrapCriterion criterion,
+                            double p);
+
+}  // namespace sim

@@ -1,0 +1,137 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <numeric>
+
+#include "sim/gray_scott.hpp"
+#include "sim/gray_scott_kernels.hpp"
+#include "sim/random.hpp"
+
+using sim::GrayScott;
+using sim::GrayScottKernel;
+using sim::GrayScottParams;
+using sim::Grid;
+
+namespace {
+
+// tc7-2's start: n 100, the book's rates, seed 17 (figures/tc7-2.toml).
+GrayScott tc7_2_start() {
+    GrayScottParams p;
+    sim::Random rng(17);
+    return GrayScott(p, rng);
+}
+
+// A start on any n: the model's own noise and island.
+GrayScott start(GrayScottParams p, std::uint64_t seed) {
+    sim::Random rng(seed);
+    return GrayScott(p, rng);
+}
+
+double max_abs_diff(const Grid<double>& x, const Grid<double>& y) {
+    double m = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) m = std::max(m, std::abs(x.cells()[i] - y.cells()[i]));
+    return m;
+}
+
+double total(const Grid<double>& g) {
+    return std::accumulate(g.cells().begin(), g.cells().end(), 0.0);
+}
+
+}  // namespace
+
+TEST_CASE("gray-scott double kernel equals sim GrayScott bit for bit", "[gs_kernel]") {
+    // Same operations in the same order (opposite neighbours paired, the book's
+    // order of the update), no FMA: the double kernel gives the same bits.
+    GrayScott model = tc7_2_start();
+    GrayScottKernel<double> kernel(model.params(), model.a(), model.b());
+    for (int s = 0; s < 1000; ++s) model.step();
+    kernel.step(1000, 2);
+    CHECK(kernel.steps() == 1000);
+    CHECK(kernel.a() == model.a());
+    CHECK(kernel.b() == model.b());
+}
+
+TEST_CASE("gray-scott double kernel equals the model on odd and tiny sizes", "[gs_kernel]") {
+    // n 3 (the smallest torus: every cell neighbours every other), odd sizes
+    // that leave a scalar tail after the vector body, and a multiple of 8.
+    for (int n : {3, 4, 5, 17, 33, 64}) {
+        GrayScottParams p;
+        p.n = n;
+        GrayScott model = start(p, static_cast<std::uint64_t>(n));
+        GrayScottKernel<double> kernel(p, model.a(), model.b());
+        for (int s = 0; s < 50; ++s) model.step();
+        for (int s = 0; s < 50; ++s) kernel.step(1, 1 + s % 2);  // one step at a time, alternating threads
+        INFO("n = " << n);
+        CHECK(kernel.a() == model.a());
+        CHECK(kernel.b() == model.b());
+    }
+}
+
+TEST_CASE("gray-scott float kernel stays within 1e-4 of the double one after 200 steps", "[gs_kernel]") {
+    // tc7-2's start; fields lie in [0, 1]. float rounding (2^-24 relative)
+    // accumulates over 200 steps of a pattern-forming system: measured
+    // differences are around 1e-6, the bound leaves a wide margin.
+    const GrayScott model = tc7_2_start();
+    GrayScottKernel<double> exact(model.params(), model.a(), model.b());
+    GrayScottKernel<float> fast(model.params(), model.a(), model.b());
+    exact.step(200, 2);
+    fast.step(200, 2);
+    const double da = max_abs_diff(fast.a(), exact.a()), db = max_abs_diff(fast.b(), exact.b());
+    INFO("max |A_float - A_double| = " << da << ", max |B_float - B_double| = " << db);
+    CHECK(da < 1e-4);
+    CHECK(db < 1e-4);
+    CHECK(da > 0.0);  // it really runs in float
+}
+
+TEMPLATE_TEST_CASE("gray-scott kernel gives the same bits on 1 and 2 threads", "[gs_kernel]", float, double) {
+    GrayScottParams p;
+    p.n = 131;  // odd: uneven row split between threads, a scalar tail in every row
+    const GrayScott model = start(p, 5);
+    GrayScottKernel<TestType> one(p, model.a(), model.b()), two(p, model.a(), model.b()),
+        chunks(p, model.a(), model.b()), fallback(p, model.a(), model.b());
+    one.step(300, 1);
+    two.step(300, 2);
+    for (int s = 0; s < 300; s += 7) chunks.step(std::min(7, 300 - s), 2);  // odd chunks: buffer parity
+    fallback.step(300);                                                     // OpenMP's default
+    CHECK(one.a() == two.a());
+    CHECK(one.b() == two.b());
+    CHECK(one.a() == chunks.a());
+    CHECK(one.b() == chunks.b());
+    CHECK(one.a() == fallback.a());
+    CHECK(one.b() == fallback.b());
+    CHECK(one.a() != GrayScottKernel<TestType>(p, model.a(), model.b()).a());  // it did move
+}
+
+TEST_CASE("gray-scott double kernel conserves A plus B when f and k are 0", "[gs_kernel]") {
+    // The kernel's weights sum to 0 and the reaction moves A into B, so with
+    // no feed and no removal sum(A + B) stays put, up to rounding.
+    GrayScottParams p;
+    p.n = 64;
+    p.f = 0.0;
+    p.k = 0.0;
+    const GrayScott model = start(p, 11);
+    GrayScottKernel<double> kernel(p, model.a(), model.b());
+    const double before = total(kernel.a()) + total(kernel.b());
+    kernel.step(500, 2);
+    const double after = total(kernel.a()) + total(kernel.b());
+    CHECK(std::abs(after - before) <= 1e-12 * before);
+    CHECK(total(kernel.b()) > total(model.b()));  // the reaction did run
+}
+
+TEST_CASE("gray-scott kernel rejects bad sizes and arguments", "[gs_kernel]") {
+    GrayScottParams p;
+    p.n = 8;
+    const Grid<double> a(8, 8, 1.0), b(8, 8, 0.0), wrong(7, 8, 0.0);
+    CHECK_THROWS_AS(GrayScottKernel<float>(p, a, wrong), std::invalid_argument);
+    Grid<double> nan = b;
+    nan(3, 3) = std::nan("");
+    CHECK_THROWS_AS(GrayScottKernel<double>(p, a, nan), std::invalid_argument);
+    GrayScottKernel<double> kernel(p, a, b);
+    CHECK_THROWS_AS(kernel.step(-1), std::invalid_argument);
+    CHECK_THROWS_AS(kernel.step(1, -2), std::invalid_argument);
+    kernel.step(0);
+    CHECK(kernel.a() == a);
+    CHECK(kernel.steps() == 0);
+}
