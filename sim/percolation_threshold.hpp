@@ -31,7 +31,9 @@ namespace sim {
 enum class WrapCriterion {
     // A cluster wraps in one given direction, horizontal or vertical: the mean
     // of both, so every sample counts twice (R^(h) = 0.521058290). Default:
-    // it has the smallest statistical error of the three (see the bench).
+    // at equal samples its standard error is about 10% below R^(e)'s and 15%
+    // below R^(b)'s; at L >= 32 none shows a bias beyond its 4e-5 error bar
+    // (at L = 16, 10^6 samples, R^(h) is 1.2e-4 high, R^(e) 1.8e-4, R^(b) 0.7e-4).
     one_direction,
     either_direction,  // a cluster wraps horizontally or vertically (R^(e) = 0.690473725)
     both_directions,   // a cluster wraps horizontally and vertically (R^(b) = 0.351642855)
