@@ -19,10 +19,10 @@ void gray_scott_kernel(benchmark::State& state) {
     sim::Random rng(17);
     const sim::GrayScott start(p, rng);
     sim::GrayScottKernel<Real> kernel(p, start.a(), start.b());
-    // About 1 M cell-updates per iteration (at least one step): small grids
+    // About 4 M cell-updates per iteration (at least one step): small grids
     // run several steps in one parallel region, as the figures' long runs do.
     const std::int64_t cells = static_cast<std::int64_t>(p.n) * p.n;
-    const int steps = static_cast<int>(std::max<std::int64_t>(1, (std::int64_t{1} << 20) / cells));
+    const int steps = static_cast<int>(std::max<std::int64_t>(1, (std::int64_t{1} << 22) / cells));
     kernel.step(steps, threads);  // warm the caches and the thread team
     for (auto _ : state) kernel.step(steps, threads);
     state.SetItemsProcessed(state.iterations() * steps * cells);
