@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "render/digest.hpp"
@@ -20,11 +21,18 @@ std::string state_hash(const sim::Grid<double>& field) {
     return render::sha256_hex(field.data(), field.size() * sizeof(double));
 }
 
-void require_finite(const sim::Grid<double>& field, const std::string& model, int step) {
-    for (double v : field.cells())
+void require_finite(const sim::Grid<double>& field, const std::string& model, int step, double bound) {
+    for (double v : field.cells()) {
         if (!std::isfinite(v))
             throw std::runtime_error(model + " went numerically unstable at step " + std::to_string(step) +
                                      " (non-finite values); no image written");
+        if (std::abs(v) > bound) {
+            char detail[96];
+            std::snprintf(detail, sizeof detail, " (a value of %g, beyond %g)", v, bound);
+            throw std::runtime_error(model + " went numerically unstable at step " + std::to_string(step) + detail +
+                                     "; no image written");
+        }
+    }
 }
 
 }  // namespace figures

@@ -3,6 +3,7 @@
 // what guards against writing an image of a model that blew up.
 
 #include <nlohmann/json.hpp>
+#include <limits>
 #include <string>
 
 #include "sim/grid.hpp"
@@ -16,7 +17,9 @@ nlohmann::json field_statistics(const sim::Grid<double>& field);
 std::string state_hash(const sim::Grid<double>& field);
 
 // Throws std::runtime_error naming the model and step if any cell is NaN or
-// infinite: a model that went unstable never reaches an image.
-void require_finite(const sim::Grid<double>& field, const std::string& model, int step);
+// infinite, or farther than `bound` from 0: a model that went unstable never
+// reaches an image.
+void require_finite(const sim::Grid<double>& field, const std::string& model, int step,
+                    double bound = std::numeric_limits<double>::infinity());
 
 }  // namespace figures

@@ -85,8 +85,9 @@ void render_gray_scott(const Description& d, const OutputOptions& options, Progr
     run.run({
         .check =
             [&](int step) {
-                require_finite(model.a(), "gray_scott (A)", step);
-                require_finite(model.b(), "gray_scott (B)", step);
+                // Concentrations live in [0, 1]; beyond 10 the run has blown up.
+                require_finite(model.a(), "gray_scott (A)", step, 10.0);
+                require_finite(model.b(), "gray_scott (B)", step, 10.0);
             },
         .panel =
             [&](int step) {

@@ -23,7 +23,9 @@ bool StepRunner::is_panel(int step) const {
 int StepRunner::run(const StepHooks& hooks) {
     for (int step = 0;; ++step) {
         const bool is_panel = this->is_panel(step), is_frame = wants_frame(step);
-        if ((is_panel || is_frame) && hooks.check) hooks.check(step);
+        // Every step, not only those drawn: a run that goes bad stops at the
+        // step it went bad, before anything is written.
+        if (hooks.check) hooks.check(step);
         if (is_panel && hooks.panel) hooks.panel(step);
         if (is_frame) frame(hooks.frame(step), step);
         if (step == last_) return step;

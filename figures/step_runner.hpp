@@ -18,7 +18,7 @@ namespace figures {
 
 // What a scene does at each step of the run.
 struct StepHooks {
-    std::function<void(int step)> check;           // before any drawing: throws if the model went unstable
+    std::function<void(int step)> check;           // at every step: throws if the model went unstable
     std::function<void(int step)> panel;           // keep what a panel at this step shows
     std::function<render::Image(int step)> frame;  // draw the animation frame of this step
     std::function<bool()> advance;                 // one model step; false when the model has stopped (a fixed point)

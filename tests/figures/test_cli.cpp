@@ -157,3 +157,14 @@ TEST_CASE("render writes an MP4 that decodes to every animation step", "[cli]") 
     CHECK(int(centre[1]) == Approx(51).margin(8));
     CHECK(int(centre[2]) == Approx(61).margin(8));
 }
+
+TEST_CASE("a run that goes unstable stops at the step it went bad and writes nothing", "[cli]") {
+    const fs::path out = fresh_dir("unstable");
+    // Strong feed, fast diffusion of both, a saturated start: A leaves [0, 1] at once.
+    const Run run = figgen("render tc7-2 --out " + out.string() +
+                           " --set n=20 --set ra=1 --set rb=1 --set f=0.2 --set k=0 --set noise=1 --set island=1");
+    CHECK(run.status == 1);
+    CHECK_THAT(run.output, Catch::StartsWith("figgen: error: gray_scott (A) went numerically unstable at step 2") &&
+                               Catch::Contains("no image written"));
+    CHECK(fs::is_empty(out));  // no PNG, no JSON, no MP4, no temporaries
+}
