@@ -27,8 +27,10 @@ test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 bench: build
-	cmake --build $(BUILD) --target figgen_bench -j $(JOBS)
-	$(BUILD)/bench/figgen_bench
+	cmake --build $(BUILD) --target figgen_bench figgen_accuracy -j $(JOBS)
+	mkdir -p bench/results
+	$(BUILD)/bench/figgen_bench --benchmark_out=bench/results/benchmarks.json --benchmark_out_format=json
+	$(BUILD)/bench/figgen_accuracy bench/results out
 
 # Rewrites the image-checksum goldens under tests/golden/ from this machine's
 # renderer. Explicit only: CI never runs it.
