@@ -1,5 +1,7 @@
 #include "figures/scene.hpp"
 
+#include "render/text.hpp"
+
 #include <system_error>
 
 namespace figures {
@@ -8,6 +10,7 @@ const std::vector<SceneInfo>& scenes() {
     static const std::vector<SceneInfo> all = {
         {"diffusion", render_diffusion},
         {"gray_scott", render_gray_scott},
+        {"gray_scott_atlas", render_gray_scott_atlas},
         {"percolation", render_percolation},
         {"percolation_sizes", render_percolation_sizes},
         {"cell1d", render_cell1d},
@@ -37,6 +40,7 @@ void render_figure(const Description& d, const OutputOptions& options, Progress&
         if (ec || !std::filesystem::is_directory(options.dir))
             throw UsageError("--out " + options.dir.string() +
                              ": cannot create the folder: " + (ec ? ec.message() : "not a directory"));
+        render::clear_font_cache();  // same pixels whatever was rendered before in this process
         scene.render(d, options, progress);
         return;
     }

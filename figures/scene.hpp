@@ -29,6 +29,7 @@ void render_figure(const Description& d, const OutputOptions& options, Progress&
 // The scenes, each in its own file.
 void render_diffusion(const Description& d, const OutputOptions& options, Progress& progress);
 void render_gray_scott(const Description& d, const OutputOptions& options, Progress& progress);
+void render_gray_scott_atlas(const Description& d, const OutputOptions& options, Progress& progress);
 void render_percolation(const Description& d, const OutputOptions& options, Progress& progress);
 void render_percolation_sizes(const Description& d, const OutputOptions& options, Progress& progress);
 void render_cell1d(const Description& d, const OutputOptions& options, Progress& progress);

@@ -314,9 +314,17 @@ void Text::draw(const Canvas& canvas) const {
     check_gl("Text::draw");
 }
 
-Font& font_of_size(float pixels) {
+namespace {
+std::map<float, std::unique_ptr<Font>>& font_cache() {
     static std::map<float, std::unique_ptr<Font>> fonts;
-    auto& font = fonts[pixels];
+    return fonts;
+}
+}  // namespace
+
+void clear_font_cache() { font_cache().clear(); }
+
+Font& font_of_size(float pixels) {
+    auto& font = font_cache()[pixels];
     if (!font) font = std::make_unique<Font>(pixels);
     return *font;
 }

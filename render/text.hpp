@@ -112,5 +112,9 @@ private:
 // DejaVu Sans at `pixels`, made once per size and kept for the process: a
 // font's glyph atlas is costly to fill, and every figure draws titles.
 Font& font_of_size(float pixels);
+// Forgets every cached font. Called before each figure, so that a figure's
+// glyph atlases, and with them its exact pixels, never depend on what was
+// drawn before it in the same process.
+void clear_font_cache();
 
 }  // namespace render
