@@ -201,8 +201,7 @@ void render_roughness(const Description& d, const OutputOptions& options, Progre
     if (beta_t.size() < 2) throw UsageError(d.id + ": params.beta_range holds fewer than two sampled times");
     const sim::LineFit beta = sim::fit_log_log(beta_t, beta_w);
     const sim::LineFit alpha = sim::fit_log_log(sizes, saturated);
-    std::vector<double> beta_line;
-    for (double t : beta_t) beta_line.push_back(std::exp(beta.intercept) * std::pow(t, beta.slope));
+    const std::vector<double> beta_line = sim::power_law(beta, beta_t);
     growth.series.push_back(line_series(beta_t, beta_line, "fit, beta = " + format_fixed(beta.slope, 3),
                                         {0.85f, 0.33f, 0.1f, 1}, 2.2f, true));
     growth.notes.push_back({"KPZ: beta = 1/3", {0.62f, 0.10f}, render::Align::left});
@@ -212,8 +211,7 @@ void render_roughness(const Description& d, const OutputOptions& options, Progre
     scaling.x_label = "L";
     scaling.y_label = "saturated W";
     scaling.legend = render::Legend::upper_left;
-    std::vector<double> alpha_line;
-    for (double L : sizes) alpha_line.push_back(std::exp(alpha.intercept) * std::pow(L, alpha.slope));
+    const std::vector<double> alpha_line = sim::power_law(alpha, sizes);
     scaling.series = {dot_series(sizes, saturated, "W_sat, mean over t >= " + format_fixed(from, 2) + " t_max",
                                  {0.03f, 0.19f, 0.42f, 1}, 8.0f),
                       line_series(sizes, alpha_line, "fit, alpha = " + format_fixed(alpha.slope, 3),

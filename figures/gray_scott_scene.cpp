@@ -107,8 +107,7 @@ void render_gray_scott(const Description& d, const OutputOptions& options, Progr
             },
     });
     nlohmann::json meta = {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}};
-    run.write_figure(draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale),
-                     meta);
+    run.write_field_figure(panels, meta);
 }
 
 }  // namespace figures

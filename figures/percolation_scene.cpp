@@ -103,8 +103,7 @@ void render_percolation(const Description& d, const OutputOptions& options, Prog
             panel_meta.push_back(panel_metadata(model, stop, stopped));
         }
     nlohmann::json meta = {{"params", params.used()}, {"style", style.used()}, {"panels", panel_meta}};
-    run.write_figure(draw_field_panels(panels, figure_width(d, options), figure_height(d, options), options.scale),
-                     meta);
+    run.write_field_figure(panels, meta);
 }
 
 // tc7-8: one run per size, each to its stop; the animation follows the last

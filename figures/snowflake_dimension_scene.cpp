@@ -71,8 +71,7 @@ void render_snowflake_dimension(const Description& d, const OutputOptions& optio
         if (!runs[i].params.priority.steps.empty()) rule += " with priority";
         axes.series.push_back(line_series(l, m, rule + ", D = " + format_fixed(fit.slope, 2), colour, 2.0f, false));
         // The fitted line over its range, dashed.
-        std::vector<double> line_m;
-        for (double x : fit_l) line_m.push_back(std::exp(fit.intercept) * std::pow(x, fit.slope));
+        const std::vector<double> line_m = sim::power_law(fit, fit_l);
         axes.series.push_back(line_series(fit_l, line_m, "", colour, 1.2f, true));
         nlohmann::json meta = snowflake_settings(runs[i].params);
         meta.update({{"steps", steps},

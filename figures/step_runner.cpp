@@ -63,4 +63,10 @@ void StepRunner::write_figure(const render::Image& figure, nlohmann::json meta) 
     progress_.finish();
 }
 
+void StepRunner::write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta) {
+    write_figure(draw_field_panels(panels, figure_width(description_, options_), figure_height(description_, options_),
+                                   options_.scale),
+                 std::move(meta));
+}
+
 }  // namespace figures

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "figures/description.hpp"
+#include "figures/field_panels.hpp"
 #include "figures/outputs.hpp"
 #include "figures/progress.hpp"
 #include "render/canvas.hpp"
@@ -47,6 +48,8 @@ public:
     // Completes the animation, adds its metadata to `meta`, writes the
     // figure's PNG and JSON and completes the progress bar.
     void write_figure(const render::Image& figure, nlohmann::json meta);
+    // The same for a figure that is a row of field panels, drawn at the figure's size.
+    void write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta);
 
 private:
     const Description& description_;

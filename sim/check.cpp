@@ -19,9 +19,19 @@ void require_number(const char* name, double value, double low, double high) {
 void require_integer(const char* name, long long value, long long low, long long high) {
     if (value >= low && value <= high) return;
     std::ostringstream message;
-    message << name << " = " << value << " is not allowed: " << name << " must be an integer from " << low
-            << " to " << high;
+    message << name << " = " << value << " is not allowed: " << name << " must be an integer from " << low << " to "
+            << high;
     throw std::invalid_argument(message.str());
+}
+
+void require_square_field(const char* name, const Grid<double>& g, int n) {
+    if (g.rows() != n || g.cols() != n)
+        throw std::invalid_argument(std::string("initial ") + name + " is " + std::to_string(g.rows()) + "x" +
+                                    std::to_string(g.cols()) + ", not n x n = " + std::to_string(n) + "x" +
+                                    std::to_string(n));
+    for (double v : g.cells())
+        if (!std::isfinite(v))
+            throw std::invalid_argument(std::string("initial ") + name + " holds a non-finite value");
 }
 
 Boundary parse_boundary(std::string_view text) {

@@ -27,10 +27,7 @@ Diffusion::Diffusion(const DiffusionParams& params) : params_(params) {
 
 Diffusion::Diffusion(const DiffusionParams& params, Grid<double> initial) : params_(params) {
     params_.validate();
-    if (initial.rows() != params_.n || initial.cols() != params_.n)
-        throw std::invalid_argument("initial field is " + std::to_string(initial.rows()) + "x" +
-                                    std::to_string(initial.cols()) + ", not n x n = " + std::to_string(params_.n) +
-                                    "x" + std::to_string(params_.n));
+    require_square_field("field", initial, params_.n);
     a_ = std::move(initial);
     next_ = a_;
 }

@@ -118,4 +118,11 @@ MassScaling central_box_mass(const Grid<std::uint8_t>& cells, std::uint8_t state
     return result;
 }
 
+std::vector<double> power_law(const LineFit& log_fit, std::span<const double> x) {
+    std::vector<double> y;
+    y.reserve(x.size());
+    for (double v : x) y.push_back(std::exp(log_fit.intercept) * std::pow(v, log_fit.slope));
+    return y;
+}
+
 }  // namespace sim

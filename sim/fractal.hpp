@@ -24,6 +24,8 @@ struct LineFit {
 LineFit fit_line(std::span<const double> x, std::span<const double> y);
 // fit_line on natural logs of x and y; also throws on a value <= 0.
 LineFit fit_log_log(std::span<const double> x, std::span<const double> y);
+// The fitted power law exp(intercept) * x^slope of a fit_log_log result, at each x.
+std::vector<double> power_law(const LineFit& log_fit, std::span<const double> x);
 
 struct BoxCount {
     std::vector<int> box_sizes;  // s = 1, 2, 4, ...

@@ -56,15 +56,6 @@ inline void update(const double* a_up, const double* a_mid, const double* a_down
     update(a_up, a_mid, a_down, b_up, b_mid, b_down, next_a, next_b, n - 2, n - 1, 0, c);
 }
 
-void require_field(const char* name, const Grid<double>& g, int n) {
-    if (g.rows() != n || g.cols() != n)
-        throw std::invalid_argument(std::string("initial ") + name + " is " + std::to_string(g.rows()) + "x" +
-                                    std::to_string(g.cols()) + ", not n x n = " + std::to_string(n) + "x" +
-                                    std::to_string(n));
-    for (double v : g.cells())
-        if (!std::isfinite(v))
-            throw std::invalid_argument(std::string("initial ") + name + " holds a non-finite value");
-}
 
 }  // namespace
 
@@ -95,8 +86,8 @@ GrayScott::GrayScott(const GrayScottParams& params, Random& rng) : params_(param
 
 GrayScott::GrayScott(const GrayScottParams& params, Grid<double> a, Grid<double> b) : params_(params) {
     params_.validate();
-    require_field("A", a, params_.n);
-    require_field("B", b, params_.n);
+    require_square_field("A", a, params_.n);
+    require_square_field("B", b, params_.n);
     a_ = std::move(a);
     b_ = std::move(b);
     next_a_ = a_;

@@ -1,3 +1,4 @@
+#include "sim/check.hpp"
 #include "sim/gray_scott_kernels.hpp"
 
 #include <algorithm>
@@ -105,15 +106,6 @@ inline void wrap_row(Real* row, std::ptrdiff_t n) {
     row[n] = row[0];
 }
 
-void require_field(const char* name, const Grid<double>& g, int n) {
-    if (g.rows() != n || g.cols() != n)
-        throw std::invalid_argument(std::string("initial ") + name + " is " + std::to_string(g.rows()) + "x" +
-                                    std::to_string(g.cols()) + ", not n x n = " + std::to_string(n) + "x" +
-                                    std::to_string(n));
-    for (double v : g.cells())
-        if (!std::isfinite(v))
-            throw std::invalid_argument(std::string("initial ") + name + " holds a non-finite value");
-}
 
 }  // namespace
 
@@ -126,8 +118,8 @@ template <class Real>
 GrayScottKernel<Real>::GrayScottKernel(const GrayScottParams& params, const Grid<double>& a, const Grid<double>& b)
     : params_(params) {
     params_.validate();
-    require_field("A", a, params_.n);
-    require_field("B", b, params_.n);
+    require_square_field("A", a, params_.n);
+    require_square_field("B", b, params_.n);
     const std::ptrdiff_t n = params_.n;
     const std::ptrdiff_t per_line = static_cast<std::ptrdiff_t>(kAlign / sizeof(Real));
     offset_ = per_line;  // column 0 aligned, the left halo just before it
