@@ -3,6 +3,7 @@
 // and everything it printed. Only for the test binary (FIGGEN_EXE).
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cstdio>
@@ -34,9 +35,11 @@ inline Run figgen(const std::string& args) {
     return run;
 }
 
-// A fresh folder under the test artifacts.
+// A fresh folder under the test artifacts, private to this process: ctest
+// runs test cases side by side, and two of them may render the same figure.
 inline std::filesystem::path fresh_dir(const std::string& name) {
-    const std::filesystem::path dir = std::filesystem::path(FIGGEN_TEST_ARTIFACT_DIR) / "cli" / name;
+    const std::filesystem::path dir =
+        std::filesystem::path(FIGGEN_TEST_ARTIFACT_DIR) / "cli" / (name + "-" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
