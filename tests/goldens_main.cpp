@@ -1,15 +1,21 @@
 // `make goldens`: renders every golden case and rewrites tests/golden/.
 // Run by hand after a deliberate change to how things look; CI never runs it.
+// figgen_goldens [DIR [NAME...]]: only the named cases when names are given.
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include "golden_cases.hpp"
 #include "image_check.hpp"
 
 int main(int argc, char** argv) {
     const char* dir = argc > 1 ? argv[1] : FIGGEN_TEST_GOLDEN_DIR;
+    const std::vector<std::string> only(argv + std::min(argc, 2), argv + argc);
     try {
         for (const auto& c : testkit::golden_cases()) {
+            if (!only.empty() && std::find(only.begin(), only.end(), c.name) == only.end()) continue;
             testkit::write_golden(dir, c.name, c.make());
             std::printf("wrote %s/%s.png and .sha256\n", dir, c.name.c_str());
         }
