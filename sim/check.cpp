@@ -8,11 +8,12 @@
 
 namespace sim {
 
-void require_number(const char* name, double value, double low, double high) {
+void require_number(const char* name, double value, double low, double high, const char* why) {
     if (std::isfinite(value) && value >= low && value <= high) return;
     std::ostringstream message;
     message << name << " = " << value << " is not allowed: " << name << " must be a number from " << low << " to "
             << high;
+    if (why) message << " (" << why << ")";
     throw std::invalid_argument(message.str());
 }
 

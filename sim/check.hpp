@@ -8,7 +8,8 @@
 
 namespace sim {
 
-void require_number(const char* name, double value, double low, double high);
+// `why`, when given, follows the range in brackets: where the bound comes from.
+void require_number(const char* name, double value, double low, double high, const char* why = nullptr);
 // An explicit starting field must be n x n and finite; `name` is e.g. "A".
 void require_square_field(const char* name, const Grid<double>& field, int n);
 void require_integer(const char* name, long long value, long long low, long long high);

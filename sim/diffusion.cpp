@@ -10,7 +10,7 @@ namespace sim {
 
 void DiffusionParams::validate() const {
     require_integer("n", n, 1, 8192);
-    require_number("r", r, 0.0, 0.25);
+    require_number("r", r, 0.0, 0.25, "the explicit 5-point update's stability bound; beyond it the checkerboard grows");
     require_integer("block_size", block_size, 0, n);
     require_integer("block_row", block_row, 0, n - block_size);
     require_integer("block_col", block_col, 0, n - block_size);

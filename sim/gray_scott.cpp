@@ -61,8 +61,10 @@ inline void update(const double* a_up, const double* a_mid, const double* a_down
 
 void GrayScottParams::validate() const {
     require_integer("n", n, 3, 4096);  // 3 keeps the 3x3 kernel's nine cells distinct on the torus
-    require_number("ra", ra, 0.0, 1.0);
-    require_number("rb", rb, 0.0, 1.0);
+    // See the stability note in gray_scott.hpp.
+    const char* why = "the 9-point diffusion is monotone up to 1, no new extremes, and blows up beyond 1.25";
+    require_number("ra", ra, 0.0, 1.0, why);
+    require_number("rb", rb, 0.0, 1.0, why);
     require_number("f", f, 0.0, 0.2);
     require_number("k", k, 0.0, 0.2);
     require_number("noise", noise, 0.0, 1.0);

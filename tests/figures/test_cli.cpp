@@ -41,7 +41,7 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
     };
     const Case cases[] = {
         {render + "tc7-99", "unknown figure id 'tc7-99'; known ids: "},
-        {render + "tc7-1 --set r=0.5", "r = 0.5 is not allowed: r must be a number from 0 to 0.25"},
+        {render + "tc7-1 --set r=0.5", "r = 0.5 is not allowed: r must be a number from 0 to 0.25 (the explicit 5-point update's stability bound; beyond it the checkerboard grows)"},
         {render + "tc7-1 --set r=nan", "params.r = nan is not allowed: expected a finite number"},
         {render + "tc7-1 --set n=-3", "n = -3 is not allowed: n must be an integer from 1 to 8192"},
         {render + "tc7-1 --set n=2.5", "params.n = 2.5 is not allowed: expected an integer"},

@@ -96,7 +96,7 @@ TEST_CASE("diffusion parameters are validated with messages naming them", "[diff
     };
     DiffusionParams p = book();
     p.r = 0.3;
-    CHECK(message_of(p) == "r = 0.3 is not allowed: r must be a number from 0 to 0.25");
+    CHECK(message_of(p) == "r = 0.3 is not allowed: r must be a number from 0 to 0.25 (the explicit 5-point update's stability bound; beyond it the checkerboard grows)");
     p.r = std::nan("");
     CHECK(message_of(p).rfind("r = nan is not allowed", 0) == 0);
     p = book();

@@ -195,7 +195,7 @@ TEST_CASE("gray-scott parameters are validated with messages naming them", "[gra
     p.ra = 1.0;  // the edge of monotonicity is allowed
     CHECK(message_of(p) == "accepted");
     p.ra = 1.1;
-    CHECK(message_of(p) == "ra = 1.1 is not allowed: ra must be a number from 0 to 1");
+    CHECK(message_of(p) == "ra = 1.1 is not allowed: ra must be a number from 0 to 1 (the 9-point diffusion is monotone up to 1, no new extremes, and blows up beyond 1.25)");
     p = GrayScottParams{};
     p.k = std::nan("");
     CHECK(message_of(p).rfind("k = nan is not allowed", 0) == 0);
