@@ -1,7 +1,13 @@
-// Diffusion throughput: cell updates per second against grid size.
+// Diffusion throughput: cell updates per second against grid size, for the
+// model (sim/diffusion.hpp) and the fast kernels (sim/diffusion_kernel.hpp).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cstdint>
+
 #include "sim/diffusion.hpp"
+#include "sim/diffusion_kernel.hpp"
+#include "sim/random.hpp"
 
 static void diffusion_step(benchmark::State& state) {
     sim::DiffusionParams p;
@@ -11,3 +17,39 @@ static void diffusion_step(benchmark::State& state) {
     state.SetItemsProcessed(state.iterations() * p.n * p.n);
 }
 BENCHMARK(diffusion_step)->Arg(9)->Arg(100)->Arg(1000);
+
+namespace {
+
+// items_per_second = cells * steps. Args: n, threads.
+template <class Real>
+void diffusion_kernel(benchmark::State& state) {
+    sim::DiffusionParams p;
+    p.n = static_cast<int>(state.range(0));
+    p.boundary = sim::Boundary::wrap;
+    const int threads = static_cast<int>(state.range(1));
+    sim::Random rng(17);
+    sim::Grid<double> start(p.n, p.n);
+    for (int i = 0; i < p.n; ++i)
+        for (int j = 0; j < p.n; ++j) start(i, j) = rng.uniform();
+    sim::DiffusionKernel<Real> kernel(p, start);
+    // About 4 M cell-updates per iteration (at least one step): small grids
+    // run several steps in one parallel region, as long runs do.
+    const std::int64_t cells = static_cast<std::int64_t>(p.n) * p.n;
+    const int steps = static_cast<int>(std::max<std::int64_t>(1, (std::int64_t{1} << 22) / cells));
+    kernel.step(steps, threads);  // warm the caches and the thread team
+    for (auto _ : state) kernel.step(steps, threads);
+    state.SetItemsProcessed(state.iterations() * steps * cells);
+    state.counters["steps_per_iter"] = steps;
+}
+
+void sizes(benchmark::internal::Benchmark* b) {
+    b->ArgNames({"n", "threads"});
+    for (int n : {100, 256, 1024})
+        for (int threads : {1, 2}) b->Args({n, threads});
+    b->UseRealTime();  // the work runs on OpenMP threads: wall time, not the main thread's CPU time
+}
+
+}  // namespace
+
+BENCHMARK_TEMPLATE(diffusion_kernel, float)->Apply(sizes);
+BENCHMARK_TEMPLATE(diffusion_kernel, double)->Apply(sizes);

@@ -3,13 +3,11 @@
 // 9-point kernel with wrap) in float or double, vectorized and threaded with
 // OpenMP, for throughput (the figures keep using sim::GrayScott).
 //
-// Layout: each field lives in a padded buffer of n + 2 rows, each row holding
-// a one-cell halo on both sides of the n cells; rows start on 64-byte
-// boundaries (the first real cell of a row is aligned). The halo holds copies
-// of the wrap edges, so the inner loop over a row is branch-free and
-// contiguous. Two buffers per field (double buffering): a step reads the old
-// pair and writes the new pair, including the new pair's halo, which the
-// thread that wrote a row fills right after it (no extra barrier).
+// Layout: each field lives in a padded buffer (sim/padded_field.hpp: a
+// one-cell halo of wrap copies around 64-byte-aligned rows). Two buffers per
+// field (double buffering): a step reads the old pair and writes the new pair,
+// including the new pair's halo, which the thread that wrote a row fills right
+// after it (no extra barrier).
 //
 // Reproducibility: every cell is computed from the old state only, with the
 // same operations in the same order whatever the thread count, the vector
@@ -18,11 +16,9 @@
 // Results are therefore identical for any number of threads, and the double
 // kernel equals sim::GrayScott bit for bit (same order of additions).
 
-#include <cstddef>
-#include <memory>
-
 #include "sim/gray_scott.hpp"
 #include "sim/grid.hpp"
+#include "sim/padded_field.hpp"
 
 namespace sim {
 
@@ -42,19 +38,8 @@ public:
     const GrayScottParams& params() const { return params_; }
 
 private:
-    struct AlignedFree {
-        void operator()(Real* p) const;
-    };
-    using Buffer = std::unique_ptr<Real[], AlignedFree>;
-
-    Real* row(const Buffer& buf, int i) const;  // i in -1 .. n (halo rows included); points at column 0
-    Grid<double> extract(const Buffer& buf) const;
-    void load(Buffer& buf, const Grid<double>& g);
-
     GrayScottParams params_;
-    std::ptrdiff_t stride_ = 0;  // elements per padded row (multiple of 64 bytes)
-    std::ptrdiff_t offset_ = 0;  // column 0 of a row sits at offset_ (aligned); the halo at offset_ - 1 and offset_ + n
-    Buffer a_[2], b_[2];
+    PaddedField<Real> a_[2], b_[2];
     int current_ = 0;  // which of the pairs holds the state
     int steps_ = 0;
 };
