@@ -26,11 +26,15 @@ figures: build
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
+# Kernel throughput (Google Benchmark), then run time against error, the
+# book's numpy/scipy/matplotlib route side by side and whole-pipeline times
+# (`make figures` from clean among them): bench/results/, out/bench-pareto.png.
 bench: build
+	@scripts/deps.sh bench || echo "figgen: the book's route will be skipped" >&2
 	cmake --build $(BUILD) --target figgen_bench figgen_accuracy -j $(JOBS)
 	mkdir -p bench/results
 	$(BUILD)/bench/figgen_bench --benchmark_out=bench/results/benchmarks.json --benchmark_out_format=json
-	$(BUILD)/bench/figgen_accuracy bench/results out
+	$(BUILD)/bench/figgen_accuracy --results bench/results --figures out
 
 # Rewrites the image-checksum goldens under tests/golden/ from this machine's
 # renderer. Explicit only: CI never runs it.

@@ -3,6 +3,9 @@
 # Installs the missing ones with apt-get (through sudo when not root);
 # when that is impossible, names the first missing package and the command
 # that installs it, and fails.
+#   scripts/deps.sh         what the build, `make figures` and `make test` need
+#   scripts/deps.sh bench   also the book's route that `make bench` times
+#                           (Debian's python3 with numpy, scipy, matplotlib)
 set -eu
 
 packages=(
@@ -14,6 +17,9 @@ packages=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   catch2 libbenchmark-dev
 )
+if [ "${1:-}" = bench ]; then
+  packages+=(python3 python3-numpy python3-scipy python3-matplotlib)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

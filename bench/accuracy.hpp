@@ -1,0 +1,58 @@
+#pragma once
+// What the studies of `make bench` (figgen_accuracy) share: a wall clock, and
+// curves of run time against error for the Pareto figure. Each study returns
+// its rows for bench/results/latest.json and adds its curves.
+
+#include <chrono>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace bench {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+struct Point {
+    double seconds;  // run time of the method at this cost
+    double error;    // its error against the known value, > 0 (log axis)
+};
+
+struct Curve {
+    std::string label;   // legend entry
+    std::string colour;  // "#rrggbb"
+    std::vector<Point> points;
+};
+
+// Which plot of the Pareto figure a curve goes to.
+struct Curves {
+    std::vector<Curve> numerics;    // a model's arithmetic against an exact solution
+    std::vector<Curve> estimators;  // a statistical estimate against a known constant
+};
+
+// Where the pipeline study finds the project.
+struct Paths {
+    std::filesystem::path source;   // the project's root (figures/, bench/, out/)
+    std::filesystem::path build;    // the CMake build folder
+    std::filesystem::path figgen;   // the figgen program
+    std::filesystem::path results;  // bench/results
+};
+
+// sim studies (accuracy_models.cpp): arithmetic and estimators.
+nlohmann::json gray_scott_float_vs_double(Curves& curves);
+nlohmann::json diffusion_vs_exact(Curves& curves);
+nlohmann::json percolation_threshold(Curves& curves);
+nlohmann::json fractal_dimensions(Curves& curves);
+nlohmann::json gray_scott_long_run(long long steps);
+
+// The book's route against ours (runs bench/book_peer.py; {"skipped": why}
+// without Debian's python3, numpy, scipy or matplotlib), and whole-pipeline
+// times, with the book's time for the nine printed figures when `peer` has it
+// (accuracy_pipeline.cpp).
+nlohmann::json peer_comparison(const Paths& paths);
+nlohmann::json pipeline_times(const Paths& paths, const nlohmann::json& peer);
+
+}  // namespace bench
