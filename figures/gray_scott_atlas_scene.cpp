@@ -4,6 +4,7 @@
 // float kernel (sim/gray_scott_kernels): 576 runs of 128^2 cells x 10,000
 // steps in well under a minute on two cores.
 #include <cmath>
+#include <exception>
 
 #include "figures/field_spec.hpp"
 #include "figures/plot_page.hpp"
@@ -62,26 +63,52 @@ void render_gray_scott_atlas(const Description& d, const OutputOptions& options,
     auto centre = [](const std::vector<double>& range, int i, int count) {
         return range[0] + (range[1] - range[0]) * (i + 0.5) / count;
     };
+    // The runs, tile by tile across the threads (each run on one thread: at
+    // 128^2 cells a step is too short to split, the barrier would cost more).
+    // Each tile depends only on its own (f, k), so the order does not matter.
+    const int count = columns * rows;
+    std::vector<sim::GrayScottParams> runs(count, base);
+    for (int t = 0; t < count; ++t) {
+        runs[t].f = centre(f_range, rows - 1 - t / columns, rows);  // f rises upwards: the top row has the largest f
+        runs[t].k = centre(k_range, t % columns, columns);
+    }
+    std::vector<sim::Grid<double>> results(count);
+    std::exception_ptr failure;  // an exception must not leave an OpenMP region: kept, rethrown after
+#pragma omp parallel for schedule(dynamic)
+    for (int t = 0; t < count; ++t) {
+        try {
+            sim::GrayScottKernel<float> kernel(runs[t], start.a(), start.b());
+            kernel.step(steps, 1);
+            results[t] = kernel.b();
+        } catch (...) {
+#pragma omp critical(figgen_atlas_failure)
+            if (!failure) failure = std::current_exception();
+        }
+#pragma omp critical(figgen_progress)
+        progress.advance();
+    }
+    if (failure) std::rethrow_exception(failure);
+
     std::vector<FieldLayer> tiles;
     nlohmann::json tile_meta = nlohmann::json::array();
-    for (int r = 0; r < rows; ++r)
-        for (int c = 0; c < columns; ++c) {
-            sim::GrayScottParams p = base;
-            p.f = centre(f_range, rows - 1 - r, rows);  // f rises upwards: the top row has the largest f
-            p.k = centre(k_range, c, columns);
-            sim::GrayScottKernel<float> kernel(p, start.a(), start.b());
-            kernel.step(steps);
-            const sim::Grid<double> b = kernel.b();
-            for (double v : b.cells())
-                if (!std::isfinite(v))
-                    throw std::runtime_error(d.id + ": the run at f = " + format_fixed(p.f, 4) + ", k = " +
-                                             format_fixed(p.k, 4) + " went numerically unstable; no image written");
-            tiles.push_back(field_layer(b, spec));
-            double mean = 0;
-            for (double v : b.cells()) mean += v;
-            tile_meta.push_back({{"f", p.f}, {"k", p.k}, {"mean_B", mean / double(b.size())}});
-            progress.advance();
-        }
+    for (int t = 0; t < count; ++t) {
+        const sim::Grid<double>& b = results[t];
+        for (double v : b.cells())
+            if (!std::isfinite(v))
+                throw std::runtime_error(d.id + ": the run at f = " + format_fixed(runs[t].f, 4) + ", k = " +
+                                         format_fixed(runs[t].k, 4) + " went numerically unstable; no image written");
+        tiles.push_back(field_layer(b, spec));
+        // Where the spots die B decays towards 0 and, as the float kernel
+        // flushes subnormals, stops near 1e-38 instead: a tile whose B is
+        // below 1e-20 everywhere holds no chemical, and is drawn flat (as
+        // matplotlib draws an empty range), not as an autoscaled picture of
+        // rounding.
+        if (!spec.vmin && !spec.vmax && tiles.back().style.vmax < 1e-20)
+            tiles.back().style.vmax = tiles.back().style.vmin + 1;
+        double mean = 0;
+        for (double v : b.cells()) mean += v;
+        tile_meta.push_back({{"f", runs[t].f}, {"k", runs[t].k}, {"mean_B", mean / double(b.size())}});
+    }
 
     const int width = figure_width(d, options), height = figure_height(d, options);
     const render::PlotStyle plot = read_plot_style(style, options.scale);

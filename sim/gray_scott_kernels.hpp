@@ -14,7 +14,9 @@
 // width (SSE2 or AVX2, picked at load time) or the row's split into vector
 // body and scalar tail; the project builds with -ffp-contract=off, so no FMA.
 // Results are therefore identical for any number of threads, and the double
-// kernel equals sim::GrayScott bit for bit (same order of additions).
+// kernel equals sim::GrayScott bit for bit (same order of additions). The
+// float kernel flushes subnormals to zero (values below 1.2e-38 count as 0;
+// sim/parallel_steps.hpp says why), the double one does not.
 
 #include "sim/gray_scott.hpp"
 #include "sim/grid.hpp"
