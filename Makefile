@@ -33,7 +33,8 @@ bench: build
 	@scripts/deps.sh bench || echo "figgen: the book's route will be skipped" >&2
 	cmake --build $(BUILD) --target figgen_bench figgen_accuracy -j $(JOBS)
 	mkdir -p bench/results
-	$(BUILD)/bench/figgen_bench --benchmark_out=bench/results/benchmarks.json --benchmark_out_format=json
+	$(BUILD)/bench/figgen_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
+	  --benchmark_out=bench/results/benchmarks.json --benchmark_out_format=json
 	$(BUILD)/bench/figgen_accuracy --results bench/results --figures out
 
 # Rewrites the image-checksum goldens under tests/golden/ from this machine's

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "kernel_throughput.hpp"
 #include "sim/diffusion.hpp"
 #include "sim/diffusion_kernel.hpp"
 #include "sim/random.hpp"
@@ -32,14 +33,7 @@ void diffusion_kernel(benchmark::State& state) {
     for (int i = 0; i < p.n; ++i)
         for (int j = 0; j < p.n; ++j) start(i, j) = rng.uniform();
     sim::DiffusionKernel<Real> kernel(p, start);
-    // About 4 M cell-updates per iteration (at least one step): small grids
-    // run several steps in one parallel region, as long runs do.
-    const std::int64_t cells = static_cast<std::int64_t>(p.n) * p.n;
-    const int steps = static_cast<int>(std::max<std::int64_t>(1, (std::int64_t{1} << 22) / cells));
-    kernel.step(steps, threads);  // warm the caches and the thread team
-    for (auto _ : state) kernel.step(steps, threads);
-    state.SetItemsProcessed(state.iterations() * steps * cells);
-    state.counters["steps_per_iter"] = steps;
+    bench::measure_steps(state, kernel, p.n, threads);
 }
 
 void sizes(benchmark::internal::Benchmark* b) {

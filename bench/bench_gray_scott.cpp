@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "kernel_throughput.hpp"
 #include "sim/gray_scott.hpp"
 #include "sim/gray_scott_kernels.hpp"
 #include "sim/random.hpp"
@@ -19,14 +20,7 @@ void gray_scott_kernel(benchmark::State& state) {
     sim::Random rng(17);
     const sim::GrayScott start(p, rng);
     sim::GrayScottKernel<Real> kernel(p, start.a(), start.b());
-    // About 4 M cell-updates per iteration (at least one step): small grids
-    // run several steps in one parallel region, as the figures' long runs do.
-    const std::int64_t cells = static_cast<std::int64_t>(p.n) * p.n;
-    const int steps = static_cast<int>(std::max<std::int64_t>(1, (std::int64_t{1} << 22) / cells));
-    kernel.step(steps, threads);  // warm the caches and the thread team
-    for (auto _ : state) kernel.step(steps, threads);
-    state.SetItemsProcessed(state.iterations() * steps * cells);
-    state.counters["steps_per_iter"] = steps;
+    bench::measure_steps(state, kernel, p.n, threads);
 }
 
 void sizes(benchmark::internal::Benchmark* b) {
