@@ -14,7 +14,12 @@ std::filesystem::path catalog_dir();
 std::vector<std::filesystem::path> catalog_files();
 
 // A description file for `id_or_path`: an existing file as given, else
-// <catalog>/<id>.toml. Throws UsageError listing the known ids.
+// <catalog>/<id>.toml. Throws UsageError naming the closest ids.
 std::filesystem::path resolve_figure(const std::string& id_or_path);
+
+// The `count` catalog ids nearest to `id`: those containing it first, then
+// by edit distance (ties in file-name order): what an unknown id was
+// probably meant to be.
+std::vector<std::string> closest_ids(const std::string& id, std::size_t count);
 
 }  // namespace figures

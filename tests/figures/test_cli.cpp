@@ -40,7 +40,10 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         std::string expected;
     };
     const Case cases[] = {
-        {render + "tc7-99", "unknown figure id 'tc7-99'; known ids: "},
+        {render + "tc7-99", "unknown figure id 'tc7-99'; closest: tc7-9, tc7-1, tc7-2 (`figgen list` shows all"},
+        {render + "gs-atlass", "unknown figure id 'gs-atlass'; closest: gs-atlas, "},
+        {render + "sf87-7", "unknown figure id 'sf87-7'; closest: sf87-2, sf87-3, sf87-4"},
+        {render + "lycopodium", "unknown figure id 'lycopodium'; closest: pl-lsys-lycopodium, "},
         {render + "tc7-1 --set r=0.5", "r = 0.5 is not allowed: r must be a number from 0 to 0.25 (the explicit 5-point update's stability bound; beyond it the checkerboard grows)"},
         {render + "tc7-1 --set r=nan", "params.r = nan is not allowed: expected a finite number"},
         {render + "tc7-1 --set n=-3", "n = -3 is not allowed: n must be an integer from 1 to 8192"},
