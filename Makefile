@@ -5,7 +5,7 @@ JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 MAKEFLAGS  += --no-print-directory
 
-.PHONY: all deps build figures test bench goldens clean
+.PHONY: all deps build figures test test-sanitize bench goldens clean
 
 all: build
 
@@ -26,6 +26,18 @@ figures: build
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
+# The whole suite built with AddressSanitizer and UndefinedBehaviorSanitizer
+# (RelWithDebInfo, into build-sanitize/). Leaks inside Mesa's OSMesa are
+# suppressed (tests/sanitize/lsan.supp says why); nothing else is.
+SANITIZE_BUILD ?= build-sanitize
+test-sanitize: deps
+	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFIGGEN_SANITIZE=ON $(CMAKE_ARGS)
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitize/lsan.supp:print_suppressions=0 \
+	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS)
+
 # Kernel throughput (Google Benchmark), then run time against error, the
 # book's numpy/scipy/matplotlib route side by side and whole-pipeline times
 # (`make figures` from clean among them): bench/results/, out/bench-pareto.png.
@@ -43,4 +55,4 @@ goldens: build
 	$(BUILD)/tests/figgen_goldens tests/golden
 
 clean:
-	rm -rf $(BUILD) out
+	rm -rf $(BUILD) $(SANITIZE_BUILD) out

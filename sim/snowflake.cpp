@@ -249,7 +249,8 @@ std::vector<long> mass_within(const Snowflake& flake, int max_l) {
         long l = static_cast<long>(std::sqrt(static_cast<double>(d2)));
         while (l * l < d2) ++l;  // exact ceil(sqrt(d2)) whatever sqrt rounded to
         while (l > 0 && (l - 1) * (l - 1) >= d2) --l;
-        if (l <= max_l) ++first[static_cast<std::size_t>(std::max(l, 1L))];
+        l = std::max(l, 1L);  // the seed (l = 0) counts from l = 1; with max_l = 0 nothing is counted
+        if (l <= max_l) ++first[static_cast<std::size_t>(l)];
     }
     std::vector<long> mass(static_cast<std::size_t>(max_l));
     long total = 0;
