@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <numeric>
 
 #include "accuracy.hpp"
 #include "sim/cell1d.hpp"
@@ -205,13 +206,8 @@ nlohmann::json percolation_threshold(Curves& curves) {
         const auto t0 = Clock::now();
         for (int seed = 1; seed <= walks; ++seed) {
             sim::Random rng(seed);
-            double q = 0.6, sum = q;
-            for (int i = 0; i < iterations; ++i) {
-                sim::Percolation model({100, q}, rng);
-                q += sim::run_to_bottom_or_fixed_point(model).percolates ? -0.005 : 0.005;
-                sum += q;
-            }
-            const double estimate = sum / (iterations + 1);
+            const auto qs = sim::find_critical(100, 0.6, 0.005, iterations, rng);
+            const double estimate = std::accumulate(qs.begin(), qs.end(), 0.0) / double(qs.size());
             estimates += estimate;
             squares += (estimate - exact_p_c) * (estimate - exact_p_c);
         }

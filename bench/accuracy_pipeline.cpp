@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <numeric>
 #include <stdexcept>
 
 #include "accuracy.hpp"
@@ -93,17 +94,12 @@ nlohmann::json percolation_against(const nlohmann::json& peer) {
     const auto& walk = peer.at("find_critical");
     const int iterations = walk.at("iterations").get<int>();
     t0 = Clock::now();
-    double qw = 0.6, sum = qw;
-    for (int i = 0; i < iterations; ++i) {
-        sim::Percolation model({walk.at("n").get<int>(), qw}, rng);
-        qw += sim::run_to_bottom_or_fixed_point(model).percolates ? -0.005 : 0.005;
-        sum += qw;
-    }
+    const auto qs = sim::find_critical(walk.at("n").get<int>(), 0.6, 0.005, iterations, rng);
     const double walk_seconds = seconds_since(t0), book_walk = walk.at("seconds").get<double>();
     return {{"test_perc", {{"n", n}, {"q", q}, {"runs", count}, {"mean_steps", double(steps) / count},
                            {"seconds_per_run", per_run}, {"book_seconds_per_run", book_per_run},
                            {"speedup_over_book", book_per_run / per_run}}},
-            {"find_critical", {{"n", walk.at("n")}, {"iterations", iterations}, {"estimate", sum / (iterations + 1)},
+            {"find_critical", {{"n", walk.at("n")}, {"iterations", iterations}, {"estimate", std::accumulate(qs.begin(), qs.end(), 0.0) / double(qs.size())},
                                {"seconds", walk_seconds}, {"book_seconds", book_walk},
                                {"speedup_over_book", book_walk / walk_seconds}}}};
 }

@@ -151,15 +151,10 @@ void render_percolation_phase(const Description& d, const OutputOptions& options
         probability.push_back(double(percolating) / trials);
         table.push_back({{"q", q}, {"probability", probability.back()}});
     }
-    std::vector<double> walk{walk_start}, index{0};
-    double q = walk_start;
-    for (int i = 0; i < iterations; ++i) {
-        // A percolating run says q is probably above critical: step down; else up.
-        q += test_perc(n, std::clamp(q, 0.0, 1.0), rng).percolates ? -walk_step : walk_step;
-        walk.push_back(q);
-        index.push_back(i + 1);
-        progress.advance();
-    }
+    const std::vector<double> walk = sim::find_critical(n, walk_start, walk_step, iterations, rng);
+    std::vector<double> index;
+    for (std::size_t i = 0; i < walk.size(); ++i) index.push_back(double(i));
+    progress.advance(iterations);
     const double mean = std::accumulate(walk.begin(), walk.end(), 0.0) / double(walk.size());
 
     const glm::vec4 colour = style_colour(style, "series_colour", "#619aca");

@@ -1,5 +1,7 @@
 #include "sim/percolation.hpp"
 
+#include <algorithm>
+
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -88,6 +90,21 @@ PercolationRun run_to_bottom_or_fixed_point(Percolation& model) {
 PercolationRun run_to_fixed_point(Percolation& model) {
     for (int steps = 1;; ++steps)
         if (model.step() == 0) return {model.bottom_row_wet(), PercolationStop::fixed_point, steps};
+}
+
+std::vector<double> find_critical(int n, double start, double step, int iterations, Random& rng) {
+    std::vector<double> walk{start};
+    double q = start;
+    for (int i = 0; i < iterations; ++i) {
+        PercolationParams p;
+        p.n = n;
+        p.q = std::clamp(q, 0.0, 1.0);
+        Percolation model(p, rng);
+        // A percolating run says q is probably above critical: step down; else up.
+        q += run_to_bottom_or_fixed_point(model).percolates ? -step : step;
+        walk.push_back(q);
+    }
+    return walk;
 }
 
 }  // namespace sim

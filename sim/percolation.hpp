@@ -66,4 +66,11 @@ PercolationRun run_to_bottom_or_fixed_point(Percolation& model);
 // fixed point, with percolates = bottom row wet there.
 PercolationRun run_to_fixed_point(Percolation& model);
 
+// The book's find_critical: from q = start, `iterations` runs of test_perc on
+// fresh n x n models drawn from rng, each stepping q down by `step` when it
+// percolates and up when it does not (q is clamped to [0, 1] for the run).
+// Returns every q visited, start first (iterations + 1 values); their mean
+// estimates the critical q.
+std::vector<double> find_critical(int n, double start, double step, int iterations, Random& rng);
+
 }  // namespace sim
