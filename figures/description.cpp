@@ -46,6 +46,25 @@ toml::node_view<toml::node> parse_value(const std::string& text, toml::table& ho
     return holder["v"];
 }
 
+std::string section_of(const std::string& assignment) {
+    const std::string key = assignment.substr(0, assignment.find('='));
+    return key.find('.') == std::string::npos ? "params." + key : key;
+}
+
+// "section.key" -> "file:line" for every key written in the file.
+void record_origins(const toml::table& root, const std::string& file, std::map<std::string, std::string>& origins) {
+    auto at = [&](const toml::node& node) { return file + ":" + std::to_string(node.source().begin.line); };
+    for (const auto& [key, node] : root) {
+        if (const toml::table* section = node.as_table()) {
+            origins[std::string(key.str())] = at(node);
+            for (const auto& [inner, value] : *section)
+                origins[std::string(key.str()) + "." + std::string(inner.str())] = at(value);
+        } else {
+            origins["description." + std::string(key.str())] = at(node);
+        }
+    }
+}
+
 void apply_override(toml::table& root, const std::string& assignment) {
     const auto eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0)
@@ -93,6 +112,17 @@ const toml::table& section_table(const toml::table& root, const char* name) {
 
 }  // namespace
 
+std::string Description::where(const std::string& key) const {
+    // "params.plants[1].axiom" -> "params.plants[1]" -> "params.plants" -> "params"
+    for (std::string k = key; !k.empty();) {
+        if (const auto found = origins.find(k); found != origins.end()) return found->second;
+        const auto cut = k.find_last_of(".[");
+        if (cut == std::string::npos) break;
+        k.resize(cut);
+    }
+    return file.filename().string();
+}
+
 int Description::last_step(bool with_animation) const {
     int last = panels.empty() ? 0 : panels.back();
     if (with_animation && animation) last = std::max(last, animation->last);
@@ -129,10 +159,13 @@ Description load_description(const std::filesystem::path& file, const std::vecto
         message << file.string() << ":" << e.source().begin.line << ": " << e.description();
         throw UsageError(message.str());
     }
-    for (const std::string& assignment : overrides) apply_override(root, assignment);
-
     Description d;
     d.file = file;
+    record_origins(root, file.filename().string(), d.origins);
+    for (const std::string& assignment : overrides) {
+        apply_override(root, assignment);
+        d.origins[section_of(assignment)] = "--set " + assignment;
+    }
     const std::string where = file.filename().string() + ": ";
     try {
         Settings top("description", root, top_level_keys);
@@ -171,6 +204,8 @@ Description load_description(const std::filesystem::path& file, const std::vecto
             a.title = anim.text("title", a.title);
             d.animation = a;
         }
+    } catch (const KeyError& e) {
+        throw UsageError(d.where(e.key) + ": " + e.what());
     } catch (const UsageError& e) {
         throw UsageError(where + e.what());
     }

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +48,13 @@ struct Description {
     int width = 900, height = 450;  // figure size in pixels at scale 1
     std::string panel_title = "step {step}";
     std::optional<Animation> animation;
+    // Where each key was given: "section.key" (top-level keys under
+    // "description.") -> "tc7-1.toml:7" or "--set r=0.5".
+    std::map<std::string, std::string> origins;
+
+    // Where `key` ("params.n", "params.plants[1].axiom") was given: its file
+    // and line, the --set that gave it, or else just the file.
+    std::string where(const std::string& key) const;
 
     // The last step any output needs: the model never runs past it.
     int last_step(bool with_animation) const;

@@ -5,6 +5,23 @@
 #include <system_error>
 
 namespace figures {
+namespace {
+
+// A model's range check names its parameter first ("tc7-1: r = 0.5 is not
+// allowed: ..."); say where that parameter was given when it was.
+std::string located(const Description& d, const std::string& message) {
+    const std::string prefix = d.id + ": ";
+    if (message.rfind(prefix, 0) != 0) return message;
+    const std::string rest = message.substr(prefix.size());
+    const auto end = rest.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_");
+    if (end == 0 || end == std::string::npos || rest.compare(end, 3, " = ") != 0) return message;
+    for (const char* section : {"params.", "style."})
+        if (const auto found = d.origins.find(section + rest.substr(0, end)); found != d.origins.end())
+            return found->second + ": " + rest;
+    return message;
+}
+
+}  // namespace
 
 const std::vector<SceneInfo>& scenes() {
     static const std::vector<SceneInfo> all = {
@@ -41,7 +58,13 @@ void render_figure(const Description& d, const OutputOptions& options, Progress&
             throw UsageError("--out " + options.dir.string() +
                              ": cannot create the folder: " + (ec ? ec.message() : "not a directory"));
         render::clear_font_cache();  // same pixels whatever was rendered before in this process
-        scene.render(d, options, progress);
+        try {
+            scene.render(d, options, progress);
+        } catch (const KeyError& e) {
+            throw UsageError(d.where(e.key) + ": " + e.what());
+        } catch (const UsageError& e) {
+            throw UsageError(located(d, e.what()));
+        }
         return;
     }
     std::string allowed;

@@ -19,8 +19,8 @@ Settings::Settings(std::string section, const toml::table& table, std::vector<Ke
         const bool known =
             std::any_of(allowed_.begin(), allowed_.end(), [&](const Key& k) { return k.name == key.str(); });
         if (!known)
-            throw UsageError("unknown key " + section_ + "." + std::string(key.str()) +
-                             "; allowed: " + key_list(allowed_));
+            throw KeyError(section_ + "." + std::string(key.str()),
+                           "unknown key " + section_ + "." + std::string(key.str()) + "; allowed: " + key_list(allowed_));
     }
 }
 
@@ -35,7 +35,7 @@ void Settings::wrong_type(const std::string& key, const char* expected) const {
     message << section_ << "." << key << " = ";
     table_.get(key)->visit([&](const auto& node) { message << node; });
     message << " is not allowed: expected " << expected;
-    throw UsageError(message.str());
+    throw KeyError(section_ + "." + key, message.str());
 }
 
 long long Settings::integer(const std::string& key, long long fallback) {

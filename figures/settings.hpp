@@ -19,6 +19,13 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// A UsageError about one key of a description ("params.n"), so the caller
+// that knows where the key was written can say so (file and line, or --set).
+struct KeyError : UsageError {
+    KeyError(std::string full_key, const std::string& message) : UsageError(message), key(std::move(full_key)) {}
+    std::string key;  // section.key, e.g. "params.n" or "params.plants[1].axiom"
+};
+
 struct Key {
     std::string name;  // as written in the description, e.g. "r"
     std::string help;  // one line: meaning and allowed values
