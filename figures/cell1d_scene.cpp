@@ -36,6 +36,13 @@ void render_cell1d(const Description& d, const OutputOptions& options, Progress&
         read_field_spec(style, {render::colormap("Blues"), 0.0, 1.0, 0.7f, render::Sampling::nearest});
     progress.start(d.id, static_cast<long long>(automata.size()));
 
+    // Each CA's rows (bytes) and the panel's field of them (doubles).
+    const double rows = d.panels.front() + 1.0;
+    require_drawable(d, "each automaton", rows, automata.front().width > 0 ? automata.front().width : 2.0 * rows + 1.0);
+    require_memory(d, options,
+                   {grid_need("rows of cells of a byte and a double", rows,
+                              automata.front().width > 0 ? automata.front().width : 2.0 * rows + 1.0, 9,
+                              double(automata.size()))});
     std::vector<FieldPanel> panels;
     nlohmann::json panel_meta = nlohmann::json::array();
     const int steps = d.panels.front();

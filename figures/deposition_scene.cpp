@@ -68,6 +68,9 @@ void render_deposition(const Description& d, const OutputOptions& options, Progr
     const int view_rows = int(2.4 * monolayers) + 16;
     Description plan = d;
     plan.panels = {monolayers};
+    require_drawable(d, "the deposit's view", view_rows, p.width);
+    // The deposit's cells (bytes) and the film's field (doubles) over the view.
+    require_memory(d, options, {grid_need("cells of a byte and a double", view_rows, p.width, 9, 1)});
     sim::Deposition deposit(p, d.seed);
     // The film's field, kept up to date particle by particle: a drop raises
     // exactly one column, so comparing heights finds where it landed.

@@ -47,6 +47,8 @@ void render_diffusion(const Description& d, const OutputOptions& options, Progre
         read_field_spec(style, {render::colormap("Reds"), 0.0, 1.0, 0.7f, render::Sampling::nearest});
     if (d.panels.empty()) throw UsageError(d.id + ": figure.panels is empty");
 
+    // The field and its next step, and one copy per panel.
+    require_memory(d, options, {grid_need("grids of doubles", p.n, p.n, 8, 2.0 + double(d.panels.size()))});
     StepRunner run(d, options, progress);
     sim::Diffusion model(p);
     std::vector<FieldPanel> panels;

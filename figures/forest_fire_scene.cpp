@@ -53,6 +53,8 @@ void render_forest_fire(const Description& d, const OutputOptions& options, Prog
     const glm::vec4 fires_colour = style_colour(style, "fires_colour", "orange");
     if (d.panels.empty()) throw UsageError(d.id + ": figure.panels is empty");
 
+    // The cells, their next step, the colour index and a copy per panel.
+    require_memory(d, options, {grid_need("grids of bytes", p.n, p.n, 1, 3.0 + double(d.panels.size()))});
     StepRunner run(d, options, progress);
     sim::ForestFire model(p, d.seed);
     std::vector<FieldPanel> panels;

@@ -5,6 +5,7 @@
 // steps in about 37 s on two cores.
 #include <cmath>
 #include <exception>
+#include <thread>
 
 #include "figures/field_spec.hpp"
 #include "figures/plot_page.hpp"
@@ -57,6 +58,11 @@ void render_gray_scott_atlas(const Description& d, const OutputOptions& options,
     const FieldSpec spec = read_field_spec(style, {render::colormap("Blues"), {}, {}, 1.0f, render::Sampling::smooth});
     progress.start(d.id, static_cast<long long>(columns) * rows);
 
+    // The starting A and B, each tile's B kept for drawing, and per thread
+    // a float kernel's padded A, B and their next steps.
+    require_memory(d, options,
+                   {grid_need("grids of doubles", base.n, base.n, 8, 2.0 + double(columns) * rows),
+                    grid_need("kernel grids of floats", base.n + 2, base.n + 2, 4, 4.0 * std::max(1u, std::thread::hardware_concurrency()))});
     // Every tile starts from the same noise, so the tiles differ only by (f, k).
     sim::Random rng(d.seed);
     const sim::GrayScott start(base, rng);

@@ -77,6 +77,8 @@ void render_gray_scott(const Description& d, const OutputOptions& options, Progr
         read_field_spec(style, {render::colormap("Blues"), {}, {}, 0.7f, render::Sampling::smooth}, "b_");
     if (d.panels.empty()) throw UsageError(d.id + ": figure.panels is empty");
 
+    // A and B and their next steps, and a copy of both per panel.
+    require_memory(d, options, {grid_need("grids of doubles", p.n, p.n, 8, 4.0 + 2.0 * double(d.panels.size()))});
     StepRunner run(d, options, progress);
     sim::Random rng(d.seed);
     sim::GrayScott model(p, rng);

@@ -51,6 +51,7 @@ void render_ifs(const Description& d, const OutputOptions& options, Progress& pr
         game.points = static_cast<std::uint64_t>(std::max(0LL, params.integer("points", 200000)));
         game.discard = static_cast<std::uint64_t>(std::max(0LL, params.integer("discard", 100)));
         sim::require_integer("points", params.integer("points", 200000), 1, 20'000'000);
+        sim::require_integer("discard", params.integer("discard", 100), 0, 100'000'000);
         game.validate();
         bounds = params.numbers("bounds", {});
         if (!bounds.empty() && (bounds.size() != 4 || !(bounds[1] > bounds[0]) || !(bounds[3] > bounds[2])))
@@ -65,6 +66,10 @@ void render_ifs(const Description& d, const OutputOptions& options, Progress& pr
         read_field_spec(style, {render::colormap("Greens"), 0.0, {}, 1.0f, render::Sampling::nearest});
     progress.start(d.id, static_cast<long long>(variants.size()));
 
+    // Every panel's points, two doubles each, kept until the figure is drawn.
+    require_memory(d, options,
+                   {{std::to_string(variants.size()) + " x " + std::to_string(game.points) + " points",
+                     16.0 * double(game.points) * double(variants.size())}});
     sim::Random rng(d.seed);  // one stream for all panels, in order
     std::vector<sim::Ifs> systems;
     std::vector<std::string> titles;

@@ -72,6 +72,13 @@ void render_lsystem_3d(const Description& d, const OutputOptions& options, Progr
     const int sides = style.count("sides", 12);
     if (views.empty()) throw UsageError(d.id + ": style.views is empty");
 
+    // Each segment: the turtle's, its tube and the tube's mesh (two rings of
+    // `sides` vertices, position and normal as floats, and 6 * sides indices).
+    require_memory(d, options,
+                   {{"plant of depth " + std::to_string(depth),
+                     static_cast<double>(sim::segment_count(system, depth, false)) *
+                         (sizeof(sim::Segment3) + sizeof(render::Tube) + 2.0 * sides * 6 * sizeof(float) +
+                          6.0 * sides * sizeof(std::uint32_t))}});
     std::vector<sim::Segment3> segments;
     try {
         segments = sim::interpret_3d(system, depth, turtle);

@@ -125,6 +125,12 @@ void render_lsystem(const Description& d, const OutputOptions& options, Progress
     row.scale = float(options.scale);
     std::vector<std::vector<sim::Segment2>> drawings;
     double aspect = 0;
+    std::vector<MemoryNeed> needs;
+    for (const auto& p : plants)
+        needs.push_back({"plant of depth " + std::to_string(p.depth),
+                         static_cast<double>(sim::segment_count(p.system, p.depth, p.article)) *
+                             (sizeof(sim::Segment2) + render::Shapes::bytes_per_line)});
+    require_memory(d, options, needs);
     for (const auto& p : plants) {
         try {
             drawings.push_back(sim::interpret_2d(p.system, p.depth, p.turtle, p.article));

@@ -44,6 +44,14 @@ int main(int argc, char** argv) {
                        "Override a value: key=value for [params], or section.key=value (style, figure, animation)");
     render->add_option("--seed", seed, "Seed of the random generator (0..2^63-1)");
     render->add_option("--scale", scale, "Scale every pixel size by X (0.1..8)")->capture_default_str();
+    std::uint64_t max_memory = 4ull << 30, max_disk = 4ull << 30;
+    render->add_option("--max-memory", max_memory,
+                       "Refuse a figure whose estimated memory exceeds SIZE (e.g. 512M, 8G)")
+        ->transform(CLI::AsSizeValue(false))
+        ->default_str("4G");
+    render->add_option("--max-disk", max_disk, "Refuse a figure whose outputs would exceed SIZE (e.g. 100M, 8G)")
+        ->transform(CLI::AsSizeValue(false))
+        ->default_str("4G");
     render->add_flag("--no-video", no_video, "Do not write the MP4 animation");
     render->add_flag("--frames", frames, "Also write the animation as a PNG sequence");
 
@@ -76,6 +84,8 @@ int main(int argc, char** argv) {
         options.scale = scale;
         options.video = !no_video;
         options.frames = frames;
+        options.max_memory = max_memory;
+        options.max_disk = max_disk;
         // Load every description first, so a typo in the last one fails before
         // minutes of rendering the first.
         std::vector<figures::Description> descriptions;

@@ -22,6 +22,86 @@ int figure_height(const Description& d, const OutputOptions& options) {
     return scaled_even(d.height, options.scale);
 }
 
+std::string format_bytes(double bytes) {
+    const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+    int unit = 0;
+    while (bytes >= 1024.0 && unit < 6) {
+        bytes /= 1024.0;
+        ++unit;
+    }
+    char text[48];
+    std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", bytes, units[unit]);
+    return text;
+}
+
+namespace {
+
+constexpr double canvas_bytes_per_pixel = 44.0;
+
+double frame_pixels(const Description& d, const OutputOptions& options) {
+    if (!d.animation) return 0.0;
+    return static_cast<double>(scaled_even(d.animation->width, options.scale)) *
+           scaled_even(d.animation->height, options.scale);
+}
+
+}  // namespace
+
+void require_memory(const Description& d, const OutputOptions& options, const std::vector<MemoryNeed>& needs) {
+    // A canvas: 4x multisampled colour and depth-stencil (32 bytes a pixel),
+    // the resolved colour, the copy read back and the PNG rows (12). A frame
+    // likewise, plus the encoder's YUV frames and look-ahead (~16 of 1.5).
+    std::vector<MemoryNeed> all = needs;
+    all.push_back({"figure " + std::to_string(figure_width(d, options)) + " x " +
+                       std::to_string(figure_height(d, options)) + " RGBA",
+                   canvas_bytes_per_pixel * figure_width(d, options) * figure_height(d, options)});
+    if (d.animation && options.animates())
+        all.push_back({"animation frames " + std::to_string(scaled_even(d.animation->width, options.scale)) +
+                           " x " + std::to_string(scaled_even(d.animation->height, options.scale)),
+                       (canvas_bytes_per_pixel + 16.0 * 1.5) * frame_pixels(d, options)});
+    double total = 0.0;
+    const MemoryNeed* largest = &all.front();
+    for (const MemoryNeed& need : all) {
+        total += need.bytes;
+        if (need.bytes > largest->bytes) largest = &need;
+    }
+    if (total > static_cast<double>(options.max_memory))
+        throw UsageError(d.id + ": needs about " + format_bytes(total) + " of memory (" + largest->what + ": " +
+                         format_bytes(largest->bytes) + "), more than --max-memory " +
+                         format_bytes(static_cast<double>(options.max_memory)) +
+                         "; make it smaller or raise --max-memory");
+}
+
+void require_drawable(const Description& d, const std::string& what, double rows, double cols) {
+    const double most = render::GlContext::get().max_texture_size();
+    if (rows <= most && cols <= most) return;
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "%s: %s would be %.0f x %.0f cells, more than the renderer draws in one field (%.0f a side)",
+                  d.id.c_str(), what.c_str(), rows, cols, most);
+    throw UsageError(text);
+}
+
+MemoryNeed grid_need(const std::string& what, double rows, double cols, double cell_bytes, double copies) {
+    char text[96];
+    std::snprintf(text, sizeof text, " %.0f x %.0f x %.0f", rows, cols, copies);
+    return {what + text, rows * cols * cell_bytes * copies};
+}
+
+void require_disk(const Description& d, const OutputOptions& options) {
+    double bytes = 4.0 * figure_width(d, options) * figure_height(d, options);
+    std::string largest = "the PNG";
+    if (d.animation) {
+        const double frames = d.animation->frame_count() * frame_pixels(d, options);
+        if (options.video) bytes += 0.15 * frames, largest = "the MP4";
+        if (options.frames) bytes += 4.0 * frames, largest = "the PNG sequence";
+    }
+    if (bytes > static_cast<double>(options.max_disk))
+        throw UsageError(d.id + ": its outputs would take up to about " + format_bytes(bytes) + " (mostly " +
+                         largest + "), more than --max-disk " +
+                         format_bytes(static_cast<double>(options.max_disk)) +
+                         "; make it smaller, leave out the video or raise --max-disk");
+}
+
 FrameSink::FrameSink(const Description& d, const OutputOptions& options, int width, int height)
     : description_(d), options_(options), width_(width), height_(height) {
     if (options.video)

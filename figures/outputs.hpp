@@ -23,6 +23,10 @@ struct OutputOptions {
     bool video = true;                  // write <id>.mp4
     bool frames = false;                // write <id>-frames/*.png
     render::VideoOptions video_options;
+    // Limits on what one figure may need (--max-memory, --max-disk); a figure
+    // whose estimate exceeds them is refused before anything is allocated.
+    std::uint64_t max_memory = 4ull << 30;
+    std::uint64_t max_disk = 4ull << 30;
 
     bool animates() const { return video || frames; }
 };
@@ -32,6 +36,30 @@ int scaled_even(int pixels, double scale);
 // The figure's size in pixels at the output scale.
 int figure_width(const Description& d, const OutputOptions& options);
 int figure_height(const Description& d, const OutputOptions& options);
+
+// One big allocation of a model, for the memory estimate: what it is and its bytes.
+struct MemoryNeed {
+    std::string what;  // e.g. "grid 4096 x 4096 of 2 doubles"
+    double bytes;
+};
+
+// Refuses (UsageError) a figure whose estimated memory, the model's `needs`
+// plus the images it draws (figure, frames, encoder), exceeds
+// options.max_memory; the message gives the estimate and its largest part.
+// Scenes call it before allocating the model; render_figure calls it with
+// no needs before the scene starts.
+void require_memory(const Description& d, const OutputOptions& options, const std::vector<MemoryNeed>& needs);
+// Refuses (UsageError) a field of rows x cols cells that the renderer cannot
+// hold as one texture, before the model runs; `what` names it, e.g. "the deposit".
+void require_drawable(const Description& d, const std::string& what, double rows, double cols);
+// A need of `copies` rows x cols grids of `cell_bytes` each: "what 4096 x 4096 x 6".
+MemoryNeed grid_need(const std::string& what, double rows, double cols, double cell_bytes, double copies);
+// Refuses a figure whose outputs would take more than options.max_disk: the
+// PNG (at most 4 bytes a pixel), the PNG sequence likewise, the MP4 at 0.15
+// bytes a pixel and frame (our films measure 0.002..0.057).
+void require_disk(const Description& d, const OutputOptions& options);
+// "1.5 GiB", "12 MiB", "640 KiB", "100 bytes".
+std::string format_bytes(double bytes);
 
 // Receives the animation's frames as the model runs and passes each on at
 // once: nothing is kept in memory but the frame being encoded.

@@ -66,6 +66,8 @@ void render_percolation(const Description& d, const OutputOptions& options, Prog
         throw UsageError(d.id + ": " + e.what());
     }
     const FieldSpec spec = read_field_spec(style, default_spec);
+    // The cells, their next step and a copy per panel.
+    require_memory(d, options, {grid_need("grids of bytes", p.n, p.n, 1, 2.0 + double(d.panels.size()))});
     sim::Random rng(d.seed);
     sim::Percolation model(p, rng);
     bool stopped = false;

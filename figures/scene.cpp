@@ -57,6 +57,8 @@ void render_figure(const Description& d, const OutputOptions& options, Progress&
         if (ec || !std::filesystem::is_directory(options.dir))
             throw UsageError("--out " + options.dir.string() +
                              ": cannot create the folder: " + (ec ? ec.message() : "not a directory"));
+        require_disk(d, options);
+        require_memory(d, options, {});
         render::clear_font_cache();  // same pixels whatever was rendered before in this process
         try {
             scene.render(d, options, progress);

@@ -31,6 +31,7 @@ GlContext::GlContext() : buffer_(4 * 4 * 4) {
     renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     version_ = reinterpret_cast<const char*>(glGetString(GL_VERSION));
     glGetIntegerv(GL_MAX_SAMPLES, &max_samples_);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture_size_);
 }
 
 GlContext::~GlContext() {

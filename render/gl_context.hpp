@@ -20,6 +20,7 @@ public:
     const std::string& renderer() const { return renderer_; }  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
     const std::string& version() const { return version_; }    // GL_VERSION
     int max_samples() const { return max_samples_; }           // GL_MAX_SAMPLES
+    int max_texture_size() const { return max_texture_size_; } // GL_MAX_TEXTURE_SIZE: a field's most cells a side
 
 private:
     GlContext();
@@ -30,6 +31,7 @@ private:
     std::string renderer_;
     std::string version_;
     int max_samples_ = 0;
+    int max_texture_size_ = 0;
 };
 
 // Throws std::runtime_error naming `what` if GL has recorded an error.

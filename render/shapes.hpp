@@ -42,6 +42,8 @@ public:
                   std::span<const float> dash = {}, float dash_offset = 0, LineCap cap = LineCap::butt);
 
     bool empty() const { return vertices_.empty(); }
+    // What line() adds: two triangles of vertices (position and colour), for memory estimates.
+    static constexpr std::size_t bytes_per_line = 6 * (2 + 4) * sizeof(float);
     void clear() { vertices_.clear(); }
     void draw(const Canvas& canvas) const;
 

@@ -29,7 +29,10 @@ std::string with_commas(std::uint64_t n) {
 
 void require_budget(int depth, std::uint64_t segments, std::uint64_t budget) {
     if (segments <= budget) return;
-    throw std::invalid_argument("depth " + std::to_string(depth) + " would draw " + with_commas(segments) +
+    // counts() saturates: the largest count means "at least that many".
+    const bool saturated = segments == std::numeric_limits<std::uint64_t>::max();
+    throw std::invalid_argument("depth " + std::to_string(depth) + " would draw " + (saturated ? "more than " : "") +
+                                with_commas(segments) +
                                 " segments, more than the budget of " + with_commas(budget));
 }
 
@@ -48,6 +51,12 @@ std::vector<double> steps_by_level(const Turtle2Params& p, int depth) {
 }
 
 }  // namespace
+
+std::uint64_t segment_count(const LSystem& system, int depth, bool recursive_like_article) {
+    const auto counts = recursive_like_article ? system.counts_recursive(depth) : system.counts(depth);
+    const auto draws = counts.find('F');
+    return draws == counts.end() ? 0 : draws->second;
+}
 
 void Turtle2Params::validate() const {
     require_number("angle_degrees", angle_degrees, -huge, huge);
@@ -72,9 +81,7 @@ std::vector<Segment2> interpret_2d(const LSystem& system, int depth, const Turtl
                                    bool recursive_like_article) {
     params.validate();
     system.validate();
-    const auto counts = recursive_like_article ? system.counts_recursive(depth) : system.counts(depth);
-    const auto draws = counts.find('F');
-    const std::uint64_t segments = draws == counts.end() ? 0 : draws->second;
+    const std::uint64_t segments = segment_count(system, depth, recursive_like_article);
     require_budget(depth, segments, params.segment_budget);
 
     struct Pose {
@@ -202,9 +209,7 @@ void TurtleFrame::turn(char symbol, double c, double s) {
 std::vector<Segment3> interpret_3d(const LSystem& system, int depth, const Turtle3Params& params) {
     params.validate();
     system.validate();
-    const auto counts = system.counts(depth);
-    const auto draws = counts.find('F');
-    const std::uint64_t segments = draws == counts.end() ? 0 : draws->second;
+    const std::uint64_t segments = segment_count(system, depth, false);
     require_budget(depth, segments, params.segment_budget);
 
     struct Pose {

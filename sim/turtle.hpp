@@ -55,6 +55,10 @@ struct Turtle2Params {
 std::vector<Segment2> interpret_2d(const LSystem& system, int depth, const Turtle2Params& params,
                                    bool recursive_like_article);
 
+// The segments a turtle would draw (its 'F's), counted without expanding;
+// saturates at 2^64 - 1. What the budget and the memory estimates use.
+std::uint64_t segment_count(const LSystem& system, int depth, bool recursive_like_article);
+
 struct Bounds2 {
     glm::dvec2 lo, hi;  // lower-left and upper-right corners; lo > hi (an empty box) for no segments
 };

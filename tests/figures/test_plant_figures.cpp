@@ -46,7 +46,13 @@ TEST_CASE("malformed L-system rules are refused with one line naming the problem
     const Run deep = figgen("render pl-lsys-lycopodium --no-video --out " + out_dir("deep").string() +
                             " --set depth=12");
     CHECK(deep.status == 2);
-    CHECK_THAT(deep.output, Catch::Contains("more than the budget"));
+    CHECK_THAT(deep.output, Catch::Contains("of memory (plant of depth 12: ") &&
+                                Catch::Contains("more than --max-memory 4.0 GiB"));
+    // With memory to spare, the turtle's own budget still refuses it.
+    const Run budget = figgen("render pl-lsys-lycopodium --no-video --out " + out_dir("deep").string() +
+                              " --set depth=12 --max-memory 1000G");
+    CHECK(budget.status == 2);
+    CHECK_THAT(budget.output, Catch::Contains("segments, more than the budget of 5,000,000"));
 }
 
 TEST_CASE("the ABOP gallery draws the six plants with their closed-form segment counts", "[plants]") {
