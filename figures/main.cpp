@@ -8,6 +8,7 @@
 #include "figures/description.hpp"
 #include "figures/scene.hpp"
 #include "figures/version.hpp"
+#include "render/atomic_file.hpp"
 
 namespace {
 
@@ -25,6 +26,9 @@ int list_figures() {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // First, before any thread starts: an interrupted render removes its
+    // unfinished files and exits with 130 (SIGINT) or 143 (SIGTERM).
+    render::remove_temporaries_on_signals();
     CLI::App app{"figgen: publication figures and animations of complex-systems models, headless."};
     app.set_version_flag("--version", figures::version());
     app.require_subcommand(1);

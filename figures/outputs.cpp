@@ -111,10 +111,7 @@ FrameSink::FrameSink(const Description& d, const OutputOptions& options, int wid
             return v;
         }());
     if (options.frames) {
-        frames_dir_ = options.dir / (d.id + "-frames");
-        std::error_code ec;
-        std::filesystem::create_directories(frames_dir_, ec);
-        if (ec) throw std::runtime_error("cannot create " + frames_dir_.string() + ": " + ec.message());
+        frames_ = std::make_unique<render::AtomicDir>(options.dir / (d.id + "-frames"));
     }
 }
 
@@ -122,10 +119,10 @@ FrameSink::~FrameSink() = default;
 
 void FrameSink::add(const render::Image& frame, int step) {
     if (video_) video_->add(frame);
-    if (!frames_dir_.empty()) {
+    if (frames_) {
         char name[32];
         std::snprintf(name, sizeof name, "%05d.png", static_cast<int>(steps_.size()));
-        render::write_png(frames_dir_ / name, frame,
+        render::write_png(frames_->temp_path() / name, frame,
                           {{"Title", description_.id + " " + format_step("step {step}", step)}});
     }
     steps_.push_back(step);
@@ -148,7 +145,10 @@ nlohmann::json FrameSink::finish() {
         meta["pixel_format"] = "yuv420p";
         meta["encoder_threads"] = options_.video_options.threads;
     }
-    if (!frames_dir_.empty()) meta["png_sequence"] = description_.id + "-frames";
+    if (frames_) {
+        frames_->commit();
+        meta["png_sequence"] = description_.id + "-frames";
+    }
     return meta;
 }
 

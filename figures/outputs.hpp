@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "figures/description.hpp"
+#include "render/atomic_file.hpp"
 #include "render/image.hpp"
 #include "render/video.hpp"
 
@@ -74,7 +75,7 @@ private:
     const Description& description_;
     const OutputOptions& options_;
     std::unique_ptr<render::VideoWriter> video_;
-    std::filesystem::path frames_dir_;
+    std::unique_ptr<render::AtomicDir> frames_;  // the PNG sequence, in place at finish()
     nlohmann::json steps_ = nlohmann::json::array();
     int width_, height_;
 };

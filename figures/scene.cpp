@@ -1,7 +1,14 @@
 #include "figures/scene.hpp"
 
+#include "render/atomic_file.hpp"
 #include "render/text.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
 #include <system_error>
 
 namespace figures {
@@ -20,6 +27,37 @@ std::string located(const Description& d, const std::string& message) {
             return found->second + ": " + rest;
     return message;
 }
+
+// Two figgen processes rendering the same figure into the same folder take
+// turns: otherwise one's PNG could end up beside the other's JSON. The lock
+// is a file in the temporary folder named after the output folder's device
+// and inode and the id, so the output folder holds nothing but outputs;
+// flock releases it when the process ends, however it ends.
+class FigureLock {
+public:
+    FigureLock(const std::filesystem::path& dir, const std::string& id) {
+        struct stat folder {};
+        if (::stat(dir.c_str(), &folder) != 0) return;  // render_figure has made it; nothing to share then
+        std::error_code ec;
+        const std::filesystem::path name =
+            std::filesystem::temp_directory_path(ec) / ("figgen-" + std::to_string(folder.st_dev) + "-" +
+                                                         std::to_string(folder.st_ino) + "-" + id + ".lock");
+        if (ec) return;
+        fd_ = ::open(name.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+        if (fd_ < 0) return;  // no temporary folder: no turns, each file is still written whole
+        if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+        std::fprintf(stderr, "figgen: waiting for another figgen writing %s into %s\n", id.c_str(), dir.c_str());
+        ::flock(fd_, LOCK_EX);
+    }
+    ~FigureLock() {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    FigureLock(const FigureLock&) = delete;
+    FigureLock& operator=(const FigureLock&) = delete;
+
+private:
+    int fd_ = -1;
+};
 
 }  // namespace
 
@@ -57,9 +95,12 @@ void render_figure(const Description& d, const OutputOptions& options, Progress&
         if (ec || !std::filesystem::is_directory(options.dir))
             throw UsageError("--out " + options.dir.string() +
                              ": cannot create the folder: " + (ec ? ec.message() : "not a directory"));
+        const FigureLock turn(options.dir, d.id);
         require_disk(d, options);
         require_memory(d, options, {});
         render::clear_font_cache();  // same pixels whatever was rendered before in this process
+        // The figure's files replace the earlier ones together, once all are written.
+        render::CommitGroup outputs;
         try {
             scene.render(d, options, progress);
         } catch (const KeyError& e) {
@@ -67,6 +108,7 @@ void render_figure(const Description& d, const OutputOptions& options, Progress&
         } catch (const UsageError& e) {
             throw UsageError(located(d, e.what()));
         }
+        outputs.commit();
         return;
     }
     std::string allowed;

@@ -120,8 +120,13 @@ void write_png(const std::filesystem::path& path, const Image& image, const Text
         records[i].text = const_cast<char*>(text[i].second.c_str());
     }
     ErrorState state;
-    if (!encode(out.get(), rows.data(), image, records.data(), static_cast<int>(records.size()), state))
-        throw std::runtime_error("cannot write " + path.string() + ": " + state.message);
+    errno = 0;
+    if (!encode(out.get(), rows.data(), image, records.data(), static_cast<int>(records.size()), state)) {
+        // libpng says only "Write Error" when fwrite fails; the system says why.
+        const bool system = std::ferror(out.get()) && errno != 0;
+        throw std::runtime_error("cannot write " + path.string() + ": " +
+                                 (system ? std::string(std::strerror(errno)) : state.message));
+    }
 
     // A full disk often shows only when the buffered bytes are flushed.
     if (std::fflush(out.get()) != 0 || std::ferror(out.get()))

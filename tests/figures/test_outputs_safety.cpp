@@ -1,0 +1,203 @@
+// Nothing half-written: an interrupted render, a full disk and two renders
+// into one folder each leave only whole files, and earlier outputs as they were.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "figgen_run.hpp"
+#include "render/digest.hpp"
+#include "render/png_io.hpp"
+
+namespace fs = std::filesystem;
+using testkit::fresh_dir;
+
+namespace {
+
+// A figgen process started with `args`, its stderr going to `log`. It waits
+// for go() before it runs, so that the test can prepare for its pid.
+class Child {
+public:
+    Child(const std::vector<std::string>& args, const fs::path& log) {
+        int fds[2];
+        REQUIRE(::pipe(fds) == 0);
+        pid_ = ::fork();
+        REQUIRE(pid_ >= 0);
+        if (pid_ == 0) {
+            ::close(fds[1]);
+            char ready;
+            if (::read(fds[0], &ready, 1) != 1) ::_exit(99);
+            const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            ::dup2(err, 2);
+            ::dup2(err, 1);
+            std::vector<char*> argv{const_cast<char*>(FIGGEN_EXE)};
+            for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+            argv.push_back(nullptr);
+            ::execv(FIGGEN_EXE, argv.data());
+            ::_exit(98);
+        }
+        ::close(fds[0]);
+        go_ = fds[1];
+    }
+    ~Child() {
+        if (go_ >= 0) ::close(go_);
+        if (pid_ > 0 && !waited_) {
+            ::kill(pid_, SIGKILL);
+            ::waitpid(pid_, nullptr, 0);
+        }
+    }
+    pid_t pid() const { return pid_; }
+    void go() {
+        REQUIRE(::write(go_, "g", 1) == 1);
+        ::close(go_);
+        go_ = -1;
+    }
+    int wait() {  // raw wait status
+        int status = 0;
+        ::waitpid(pid_, &status, 0);
+        waited_ = true;
+        return status;
+    }
+
+private:
+    pid_t pid_ = -1;
+    int go_ = -1;
+    bool waited_ = false;
+};
+
+std::string slurp(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// Every file under `dir` (recursively) with the SHA-256 of its bytes.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::recursive_directory_iterator(dir))
+        if (entry.is_regular_file()) {
+            const std::string bytes = slurp(entry.path());
+            files[fs::relative(entry.path(), dir).string()] = render::sha256_hex(bytes.data(), bytes.size());
+        }
+    return files;
+}
+
+bool has_temporaries(const fs::path& dir) {
+    for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+        const std::string name = entry.path().filename().string();
+        if (name.find(".tmp-") != std::string::npos || name.find(".old-") != std::string::npos) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("SIGINT or SIGTERM during a render removes its temporaries and keeps earlier outputs", "[cli][safety]") {
+    for (const int signal : {SIGINT, SIGTERM}) {
+        INFO("signal " << signal);
+        const fs::path out = fresh_dir("signal-" + std::to_string(signal));
+        // Earlier outputs, with their PNG sequence.
+        const testkit::Run first = testkit::figgen("render tc7-1 --frames --out " + out.string());
+        REQUIRE(first.status == 0);
+        const auto before = snapshot(out);
+        REQUIRE(before.count("tc7-1.png") == 1);
+        REQUIRE(before.count("tc7-1-frames/00000.png") == 1);
+
+        // tc7-2 at twice the size with its film and frames takes seconds:
+        // the signal comes as soon as its first temporary appears.
+        Child child({"render", "tc7-2", "tc7-1", "--frames", "--seed", "5", "--scale", "2", "--out", out.string()},
+                    out.parent_path() / ("signal-" + std::to_string(signal) + ".log"));
+        child.go();
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+        while (!has_temporaries(out) && std::chrono::steady_clock::now() < deadline)
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        REQUIRE(has_temporaries(out));
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));  // some frames written
+        ::kill(child.pid(), signal);
+        const int status = child.wait();
+        REQUIRE(WIFEXITED(status));
+        CHECK(WEXITSTATUS(status) == 128 + signal);  // 130, 143
+        CHECK_FALSE(has_temporaries(out));
+        CHECK(snapshot(out) == before);  // tc7-2 never finished; tc7-1 as it was
+        CHECK_THAT(slurp(out.parent_path() / ("signal-" + std::to_string(signal) + ".log")),
+                   Catch::Contains("stopped;") && Catch::Contains("unfinished output"));
+    }
+}
+
+TEST_CASE("a full disk gives a clear error and leaves no partial file", "[cli][safety]") {
+    // Every output's temporary (<file>.tmp-<pid>) is made a link to /dev/full
+    // before the process runs: each write fails as on a full disk.
+    for (const std::string file : {"tc7-1.png", "tc7-1.json", "tc7-1.mp4"}) {
+        INFO(file);
+        const fs::path out = fresh_dir("full-disk");
+        REQUIRE(testkit::figgen("render tc7-1 --out " + out.string()).status == 0);
+        const auto before = snapshot(out);
+        const fs::path log = out.parent_path() / "full-disk.log";
+        Child child({"render", "tc7-1", "--seed", "3", "--out", out.string()}, log);
+        fs::create_symlink("/dev/full", out / (file + ".tmp-" + std::to_string(child.pid())));
+        child.go();
+        const int status = child.wait();
+        REQUIRE(WIFEXITED(status));
+        CHECK(WEXITSTATUS(status) == 1);
+        const std::string message = slurp(log);
+        CHECK_THAT(message, Catch::StartsWith("figgen: error: ") && Catch::Contains(file) &&
+                                Catch::Contains("No space left on device"));
+        CHECK(std::count(message.begin(), message.end(), '\n') == 1);
+        CHECK_FALSE(has_temporaries(out));
+        CHECK(snapshot(out) == before);  // the earlier figure untouched, nothing half-new
+    }
+}
+
+TEST_CASE("two figgen processes rendering into one folder leave whole, matching files", "[cli][safety]") {
+    const fs::path out = fresh_dir("together");
+    // What each would write alone.
+    std::map<std::string, std::map<std::string, std::string>> alone;
+    for (const std::string seed : {"1", "2"}) {
+        const fs::path solo = fresh_dir("together-solo-" + seed);
+        REQUIRE(testkit::figgen("render tc7-1 tc7-5 --frames --seed " + seed + " --out " + solo.string()).status == 0);
+        alone[seed] = snapshot(solo);
+    }
+
+    Child a({"render", "tc7-1", "tc7-5", "--frames", "--seed", "1", "--out", out.string()},
+            out.parent_path() / "together-a.log");
+    Child b({"render", "tc7-1", "tc7-5", "--frames", "--seed", "2", "--out", out.string()},
+            out.parent_path() / "together-b.log");
+    a.go();
+    b.go();
+    const int status_a = a.wait(), status_b = b.wait();
+    REQUIRE(WIFEXITED(status_a));
+    REQUIRE(WIFEXITED(status_b));
+    CHECK(WEXITSTATUS(status_a) == 0);
+    CHECK(WEXITSTATUS(status_b) == 0);
+    CHECK_FALSE(has_temporaries(out));
+    const auto together = snapshot(out);
+    CHECK(together.size() == alone["2"].size());
+    for (const std::string id : {"tc7-1", "tc7-5"}) {
+        INFO(id);
+        // Each figure's files all come from one of the two runs, whole: the
+        // PNG's seed says which, and every file equals that run's alone.
+        const auto png = render::read_png(out / (id + ".png"));
+        std::string seed;
+        for (const auto& [key, value] : png.text)
+            if (key == "figgen:seed") seed = value;
+        REQUIRE((seed == "1" || seed == "2"));
+        int files = 0;
+        for (const auto& [name, hash] : together)
+            if (name.rfind(id + ".", 0) == 0 || name.rfind(id + "-frames/", 0) == 0) {
+                INFO(name);
+                CHECK(alone[seed].at(name) == hash);
+                ++files;
+            }
+        CHECK(files > 3);  // PNG, JSON, MP4 and the frames
+    }
+}
