@@ -59,6 +59,14 @@ int main(int argc, char** argv) {
     render->add_flag("--no-video", no_video, "Do not write the MP4 animation");
     render->add_flag("--frames", frames, "Also write the animation as a PNG sequence");
 
+    // CLI11 would only say that a subcommand is required.
+    if (argc > 1 && argv[1][0] != '-' && argv[1] != std::string("list") && argv[1] != std::string("render")) {
+        std::string allowed;
+        for (const CLI::App* command : {list, render}) allowed += (allowed.empty() ? "" : ", ") + command->get_name();
+        std::fprintf(stderr, "figgen: error: unknown command '%s'; allowed: %s; see figgen --help\n", argv[1],
+                     allowed.c_str());
+        return exit_usage_error;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
