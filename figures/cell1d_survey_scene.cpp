@@ -5,8 +5,10 @@
 #include <cmath>
 
 #include "figures/field_spec.hpp"
+#include "figures/field_stats.hpp"
 #include "figures/plot_page.hpp"
 #include "figures/scene.hpp"
+#include "render/digest.hpp"
 #include "sim/cell1d.hpp"
 #include "sim/check.hpp"
 #include "sim/fractal.hpp"
@@ -105,6 +107,7 @@ void render_cell1d_survey(const Description& d, const OutputOptions& options, Pr
     };
 
     std::vector<FieldPanel> gallery;
+    std::vector<std::uint8_t> gallery_cells;  // every gallery CA's cells, one after another
     for (std::size_t i = 0; i < fractal.size(); ++i) {
         sim::Cell1DParams p;
         p.rule = fractal[i];
@@ -112,10 +115,14 @@ void render_cell1d_survey(const Description& d, const OutputOptions& options, Pr
         p.boundary = sim::Boundary::wrap;
         sim::Cell1D ca(p);
         for (int s = 0; s < gallery_steps; ++s) ca.step();
+        gallery_cells.insert(gallery_cells.end(), ca.cells().cells().begin(), ca.cells().cells().end());
         gallery.push_back({"rule " + std::to_string(p.rule) + ", D = " + format_fixed(wrap_slopes[fractal[i]], 2),
                            {field_layer(ca.cells(), spec)}});
     }
     progress.advance();
+    // The survey's plotted slopes: every rule's zero-boundary slope, then its wrapped one.
+    std::vector<double> slopes(zero_slopes);
+    slopes.insert(slopes.end(), wrap_slopes.begin(), wrap_slopes.end());
 
     const int width = figure_width(d, options), height = figure_height(d, options);
     render::Canvas canvas(width, height);
@@ -131,7 +138,12 @@ void render_cell1d_survey(const Description& d, const OutputOptions& options, Pr
                   {"style", style.used()},
                   {"rules", table},
                   {"non_integer", fractal_meta},
-                  {"gallery", {{"steps", gallery_steps}, {"boundary", "wrap"}, {"rules", fractal}}}});
+                  {"state_sha256", state_hash(slopes)},
+                  {"gallery",
+                   {{"steps", gallery_steps},
+                    {"boundary", "wrap"},
+                    {"rules", fractal},
+                    {"state_sha256", render::sha256_hex(gallery_cells.data(), gallery_cells.size())}}}});
     progress.finish();
 }
 

@@ -2,6 +2,7 @@
 // Complexity 2e, Fig 7.7): the box-counting estimate of a 1-D CA's dimension.
 #include <cmath>
 
+#include "figures/field_stats.hpp"
 #include "figures/plot_page.hpp"
 #include "figures/scene.hpp"
 #include "sim/cell1d.hpp"
@@ -67,7 +68,8 @@ void render_cell_counts(const Description& d, const OutputOptions& options, Prog
                               {"statistics", {{"on_cells", counts.back()}}},
                               {"slope", fit.slope},
                               {"intercept", fit.intercept},
-                              {"r", fit.r}});
+                              {"r", fit.r},
+                              {"state_sha256", state_hash(cells)}});
         progress.advance();
     }
     write_figure(d, options,

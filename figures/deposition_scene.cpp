@@ -4,10 +4,12 @@
 #include <cmath>
 
 #include "figures/field_spec.hpp"
+#include "figures/field_stats.hpp"
 #include "figures/plot_page.hpp"
 #include "figures/scene.hpp"
 #include "figures/step_runner.hpp"
 #include "render/colormap.hpp"
+#include "render/digest.hpp"
 #include "sim/check.hpp"
 #include "sim/deposition.hpp"
 #include "sim/fractal.hpp"
@@ -22,6 +24,23 @@ sim::Grid<double> deposit_field(const sim::Deposition& deposit, int rows, std::u
     for (const auto& p : deposit.particles())
         if (p.height <= rows) field(rows - int(p.height), p.column) = double(p.arrival / band_size + 1);
     return field;
+}
+
+// SHA-256 of every particle's column, height and arrival (as 64-bit
+// integers), in arrival order: the deposit the picture is drawn from.
+std::string deposit_hash(const sim::Deposition& deposit) {
+    std::vector<std::int64_t> flat;
+    for (const auto& p : deposit.particles())
+        flat.insert(flat.end(), {std::int64_t(p.column), p.height, std::int64_t(p.arrival)});
+    return render::sha256_hex(flat.data(), flat.size() * sizeof(std::int64_t));
+}
+
+// SHA-256 of a roughness curve's times, mean W and its error, in that order.
+std::string curve_hash(const sim::RoughnessCurve& curve) {
+    std::vector<double> values(curve.times);
+    values.insert(values.end(), curve.mean_w.begin(), curve.mean_w.end());
+    values.insert(values.end(), curve.sem_w.begin(), curve.sem_w.end());
+    return state_hash(values);
 }
 
 }  // namespace
@@ -117,7 +136,8 @@ void render_deposition(const Description& d, const OutputOptions& options, Progr
            {"statistics",
             {{"mean_height", deposit.mean_height()}, {"roughness", deposit.roughness()}, {"max_height", top}}},
            {"packing_fraction", double(deposit.cells()) / (double(p.width) * deposit.mean_height())},
-           {"band_particles", band_size}}}},
+           {"band_particles", band_size},
+           {"state_sha256", deposit_hash(deposit)}}}},
     };
     run.write_figure(draw_field_panels({{d.panel_title, {field_layer(field, spec)}}}, figure_width(d, options),
                                        figure_height(d, options), options.scale),
@@ -198,7 +218,8 @@ void render_roughness(const Description& d, const OutputOptions& options, Progre
                           {"times", curve.times},
                           {"mean_w", curve.mean_w},
                           {"sem_w", curve.sem_w},
-                          {"saturated_w", saturated.back()}});
+                          {"saturated_w", saturated.back()},
+                          {"state_sha256", curve_hash(curve)}});
         progress.advance();
     }
     if (beta_t.size() < 2) throw UsageError(d.id + ": params.beta_range holds fewer than two sampled times");

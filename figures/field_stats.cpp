@@ -21,6 +21,10 @@ std::string state_hash(const sim::Grid<double>& field) {
     return render::sha256_hex(field.data(), field.size() * sizeof(double));
 }
 
+std::string state_hash(const std::vector<double>& values) {
+    return render::sha256_hex(values.data(), values.size() * sizeof(double));
+}
+
 void require_finite(const sim::Grid<double>& field, const std::string& model, int step, double bound) {
     for (double v : field.cells()) {
         if (!std::isfinite(v))

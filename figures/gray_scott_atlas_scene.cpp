@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "figures/field_spec.hpp"
+#include "figures/field_stats.hpp"
 #include "figures/plot_page.hpp"
 #include "figures/scene.hpp"
 #include "sim/check.hpp"
@@ -113,7 +114,10 @@ void render_gray_scott_atlas(const Description& d, const OutputOptions& options,
             tiles.back().style.vmax = tiles.back().style.vmin + 1;
         double mean = 0;
         for (double v : b.cells()) mean += v;
-        tile_meta.push_back({{"f", runs[t].f}, {"k", runs[t].k}, {"mean_B", mean / double(b.size())}});
+        tile_meta.push_back({{"f", runs[t].f},
+                             {"k", runs[t].k},
+                             {"mean_B", mean / double(b.size())},
+                             {"state_sha256", state_hash(b)}});
     }
 
     const int width = figure_width(d, options), height = figure_height(d, options);

@@ -1,6 +1,7 @@
 // Liu & Zhang 1987, Fig 2: the lattices of the paper's automata, a 1-D row
 // of cells and a 2-D hexagonal patch with the centre 0 and its neighbours
 // 1..6 numbered as in the paper's equation (2). A schematic: no model runs.
+#include "figures/field_stats.hpp"
 #include "figures/plot_page.hpp"
 #include "figures/scene.hpp"
 #include "render/hex_cells.hpp"
@@ -45,8 +46,10 @@ void render_hex_lattice(const Description& d, const OutputOptions& options, Prog
     const float row_y = (float(height) - caption_band) / 2 - cell / 2;
     const float row_x = (half - cell * float(row_cells)) / 2;
     const int mid = row_cells / 2;
+    std::vector<double> row_state, patch_state;  // what each panel is drawn from: cell rects, hex cells and centres
     for (int i = 0; i < row_cells; ++i) {
         const render::Rect r{row_x + float(i) * cell, row_y, cell, cell};
+        row_state.insert(row_state.end(), {r.x, r.y, r.w, r.h, double(std::abs(i - mid) <= 1)});
         if (std::abs(i - mid) <= 1) fills.rect(r, fill);
         outlines.frame(r, 1.5f * s, line);
         if (std::abs(i - mid) <= 1)
@@ -68,8 +71,12 @@ void render_hex_lattice(const Description& d, const OutputOptions& options, Prog
     render::draw_hex_cells(canvas, view, filled, fill);
     for (int q = -radius; q <= radius; ++q)
         for (int r = -radius; r <= radius; ++r)
-            if (std::max({std::abs(q), std::abs(r), std::abs(q + r)}) <= radius)
+            if (std::max({std::abs(q), std::abs(r), std::abs(q + r)}) <= radius) {
                 render::hex_outline(outlines, view, {q, r}, 1.5f * s, line);
+                const glm::vec2 centre = render::hex_centre(view, {q, r});
+                patch_state.insert(patch_state.end(), {double(q), double(r), centre.x, centre.y, view.size});
+            }
+    for (const auto& c : filled) patch_state.insert(patch_state.end(), {double(c.x), double(c.y)});
     for (int k = 0; k < 7; ++k)
         text.add(label_font, std::to_string(k), render::hex_centre(view, numbered[k]), black, render::Align::centre,
                  render::Baseline::middle);
@@ -82,7 +89,9 @@ void render_hex_lattice(const Description& d, const OutputOptions& options, Prog
     write_figure(d, options, canvas.read(),
                  {{"params", params.used()},
                   {"style", style.used()},
-                  {"panels", {{{"label", "(a)"}, {"cells", row_cells}}, {{"label", "(b)"}, {"rings", radius}}}}});
+                  {"panels",
+                   {{{"label", "(a)"}, {"cells", row_cells}, {"state_sha256", state_hash(row_state)}},
+                    {{"label", "(b)"}, {"rings", radius}, {"state_sha256", state_hash(patch_state)}}}}});
     progress.finish();
 }
 

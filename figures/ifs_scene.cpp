@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "figures/field_spec.hpp"
+#include "figures/field_stats.hpp"
 #include "figures/scene.hpp"
 #include "sim/check.hpp"
 #include "sim/ifs.hpp"
@@ -30,6 +31,14 @@ sim::Ifs read_maps(const toml::table& variant, const std::string& where) {
         ifs.maps.push_back({v[0], v[1], v[2], v[3], v[4], v[5], v[6]});
     }
     return ifs;
+}
+
+// SHA-256 of the points' x and y, in the order the game made them.
+std::string points_hash(const std::vector<glm::dvec2>& points) {
+    std::vector<double> xy;
+    xy.reserve(2 * points.size());
+    for (const auto& p : points) xy.insert(xy.end(), {p.x, p.y});
+    return state_hash(xy);
 }
 
 }  // namespace
@@ -100,7 +109,8 @@ void render_ifs(const Description& d, const OutputOptions& options, Progress& pr
                               {"maps", maps},
                               {"points", clouds.back().size()},
                               {"map_counts", counts},
-                              {"points_bounds", {own_lo.x, own_hi.x, own_lo.y, own_hi.y}}});
+                              {"points_bounds", {own_lo.x, own_hi.x, own_lo.y, own_hi.y}},
+                              {"state_sha256", points_hash(clouds.back())}});
         progress.advance();
     }
     if (!bounds.empty()) {

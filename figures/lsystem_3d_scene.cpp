@@ -3,6 +3,7 @@
 // as lit, shaded tubes in perspective, and a turntable film.
 #include <cmath>
 
+#include "figures/field_stats.hpp"
 #include "figures/plot_page.hpp"
 #include "figures/scene.hpp"
 #include "figures/step_runner.hpp"
@@ -28,6 +29,15 @@ std::vector<render::Tube> tubes_of(const std::vector<sim::Segment3>& segments, d
         tubes.push_back({glm::vec3(s.a), glm::vec3(s.b), r, r, colour});
     }
     return tubes;
+}
+
+// SHA-256 of the turtle's segments in drawing order: from, to, width, level.
+std::string segments_hash(const std::vector<sim::Segment3>& segments) {
+    std::vector<double> values;
+    values.reserve(8 * segments.size());
+    for (const auto& s : segments)
+        values.insert(values.end(), {s.a.x, s.a.y, s.a.z, s.b.x, s.b.y, s.b.z, s.width, double(s.level)});
+    return state_hash(values);
 }
 
 }  // namespace
@@ -131,6 +141,7 @@ void render_lsystem_3d(const Description& d, const OutputOptions& options, Progr
                                      {"style", style.used()},
                                      {"panels", panel_meta},
                                      {"segments", segments.size()},
+                                     {"state_sha256", segments_hash(segments)},
                                      {"symbols", system.length(depth)},
                                      {"bounds", {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}}});
 }

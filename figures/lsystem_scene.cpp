@@ -4,6 +4,7 @@
 // draw call.
 #include <cmath>
 
+#include "figures/field_stats.hpp"
 #include "figures/plot_page.hpp"
 #include "figures/scene.hpp"
 #include "render/layout.hpp"
@@ -97,6 +98,14 @@ void add_plant(render::Shapes& shapes, const render::Rect& panel, const std::vec
     }
 }
 
+// SHA-256 of the turtle's segments in drawing order: from, to, width, level.
+std::string segments_hash(const std::vector<sim::Segment2>& segments) {
+    std::vector<double> values;
+    values.reserve(6 * segments.size());
+    for (const auto& s : segments) values.insert(values.end(), {s.a.x, s.a.y, s.b.x, s.b.y, s.width, double(s.level)});
+    return state_hash(values);
+}
+
 }  // namespace
 
 void render_lsystem(const Description& d, const OutputOptions& options, Progress& progress) {
@@ -157,7 +166,8 @@ void render_lsystem(const Description& d, const OutputOptions& options, Progress
                               {"symbols", plants[i].article ? plants[i].system.length_recursive(plants[i].depth)
                                                             : plants[i].system.length(plants[i].depth)},
                               {"segments", drawings[i].size()},
-                              {"bounds", {box.lo.x, box.lo.y, box.hi.x, box.hi.y}}});
+                              {"bounds", {box.lo.x, box.lo.y, box.hi.x, box.hi.y}},
+                              {"state_sha256", segments_hash(drawings[i])}});
     }
     shapes.draw(canvas);
     render::Text text;

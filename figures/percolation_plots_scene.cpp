@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "figures/field_stats.hpp"
 #include "figures/plot_page.hpp"
 #include "figures/scene.hpp"
 #include "sim/check.hpp"
@@ -66,6 +67,9 @@ void render_percolation_scaling(const Description& d, const OutputOptions& optio
     }
     if (kept.size() < 2) throw std::runtime_error(d.id + ": fewer than two runs percolated; no slope to fit");
     const sim::LineFit fit = sim::fit_log_log(kept, filled);
+    // The plotted numbers: the sizes that percolated, then their cluster cells.
+    std::vector<double> plotted(kept);
+    plotted.insert(plotted.end(), filled.begin(), filled.end());
 
     const float width = static_cast<float>(style.number("line_width", 3.0));
     render::Axes axes;
@@ -89,6 +93,7 @@ void render_percolation_scaling(const Description& d, const OutputOptions& optio
         {"slope", fit.slope},
         {"intercept", fit.intercept},
         {"r", fit.r},
+        {"state_sha256", state_hash(plotted)},
     };
     write_figure(d, options,
                  draw_plot_row({axes}, figure_width(d, options), figure_height(d, options),
@@ -156,6 +161,10 @@ void render_percolation_phase(const Description& d, const OutputOptions& options
     for (std::size_t i = 0; i < walk.size(); ++i) index.push_back(double(i));
     progress.advance(iterations);
     const double mean = std::accumulate(walk.begin(), walk.end(), 0.0) / double(walk.size());
+    // The plotted numbers: the q values, their fractions percolating, then the walk.
+    std::vector<double> plotted(qs);
+    plotted.insert(plotted.end(), probability.begin(), probability.end());
+    plotted.insert(plotted.end(), walk.begin(), walk.end());
 
     const glm::vec4 colour = style_colour(style, "series_colour", "#619aca");
     const glm::vec4 reference = style_colour(style, "reference_colour", "#526e97");
@@ -187,6 +196,7 @@ void render_percolation_phase(const Description& d, const OutputOptions& options
         {"params", params.used()}, {"style", style.used()},
         {"probability", table},    {"walk", walk},
         {"walk_mean", mean},       {"p_c", p_c},
+        {"state_sha256", state_hash(plotted)},
     };
     write_figure(d, options,
                  draw_plot_row({phase, walk_axes}, figure_width(d, options), figure_height(d, options),

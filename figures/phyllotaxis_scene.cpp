@@ -4,6 +4,7 @@
 // the same spiral at divergences that miss the golden angle.
 #include <cmath>
 
+#include "figures/field_stats.hpp"
 #include "figures/plot_page.hpp"
 #include "figures/scene.hpp"
 #include "figures/step_runner.hpp"
@@ -55,6 +56,14 @@ void draw_flower(render::Shapes& shapes, const render::Rect& panel, const std::v
             shapes.ring(c, r - line_width / 2, r + line_width / 2, black);
         }
     }
+}
+
+// SHA-256 of the seeds in placement order: n, x, y, angle.
+std::string seeds_hash(const std::vector<sim::Seed>& seeds) {
+    std::vector<double> values;
+    values.reserve(4 * seeds.size());
+    for (const auto& s : seeds) values.insert(values.end(), {double(s.n), s.position.x, s.position.y, s.angle});
+    return state_hash(values);
 }
 
 }  // namespace
@@ -130,7 +139,8 @@ void render_phyllotaxis(const Description& d, const OutputOptions& options, Prog
         panel_meta.push_back({{"divergence_degrees", flowers[i].divergence},
                               {"seeds", flowers[i].seeds},
                               {"petals", std::max(0, flowers[i].seeds - look.petal_start)},
-                              {"outer_radius", flowers[i].spacing * std::sqrt(double(flowers[i].seeds - 1))}});
+                              {"outer_radius", flowers[i].spacing * std::sqrt(double(flowers[i].seeds - 1))},
+                              {"state_sha256", seeds_hash(spirals[i])}});
     }
     shapes.draw(canvas);
     // Titles only: the flowers have no frames.

@@ -6,6 +6,7 @@
 // their slopes tend to 2 as crystals grow.
 #include <cmath>
 
+#include "figures/field_stats.hpp"
 #include "figures/plot_page.hpp"
 #include "figures/scene.hpp"
 #include "figures/snowflake_setup.hpp"
@@ -79,7 +80,8 @@ void render_snowflake_dimension(const Description& d, const OutputOptions& optio
                      {"euclidean_radius", crystal.euclidean_radius()},
                      {"fit_range", {fit_from, fit_last}},
                      {"dimension", fit.slope},
-                     {"r", fit.r}});
+                     {"r", fit.r},
+                     {"state_sha256", state_hash(m)}});
         fits.push_back(meta);
         progress.advance();
     }
