@@ -3,6 +3,7 @@
 // drawn through Blues; f rises upwards, k to the right. It shows off the fast
 // float kernel (sim/gray_scott_kernels): 576 runs of 128^2 cells x 10,000
 // steps in about 37 s on two cores.
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <thread>
@@ -85,7 +86,17 @@ void render_gray_scott_atlas(const Description& d, const OutputOptions& options,
     for (int t = 0; t < count; ++t) {
         try {
             sim::GrayScottKernel<float> kernel(runs[t], start.a(), start.b());
-            kernel.step(steps, 1);
+            // The health check every 1000 steps and at the end, as the
+            // stepping scenes do at every step: A and B live in [0, 1].
+            for (int done = 0; done < steps;) {
+                const int chunk = std::min(1000, steps - done);
+                kernel.step(chunk, 1);
+                done += chunk;
+                const std::string run = d.id + " (f = " + format_fixed(runs[t].f, 4) + ", k = " +
+                                        format_fixed(runs[t].k, 4) + ")";
+                require_finite(kernel.a(), run + " A", done, 10.0);
+                require_finite(kernel.b(), run + " B", done, 10.0);
+            }
             results[t] = kernel.b();
         } catch (...) {
 #pragma omp critical(figgen_atlas_failure)

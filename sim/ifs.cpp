@@ -94,6 +94,12 @@ std::vector<glm::dvec2> chaos_game(const Ifs& ifs, const ChaosGameParams& params
         if (map_counts) ++(*map_counts)[m];
         v = ifs.maps[m].apply(v);
         if (s >= params.discard) points.push_back(v);
+        // The health check, every 4096 points and at the end: maps that do
+        // not contract send the points to infinity.
+        if ((s & 4095) == 4095 || s + 1 == steps)
+            if (!(std::abs(v.x) <= 1e100 && std::abs(v.y) <= 1e100))
+                throw std::runtime_error("the chaos game went numerically unstable at point " + std::to_string(s + 1) +
+                                         " (a coordinate beyond 1e100: the maps do not contract); no image written");
     }
     return points;
 }

@@ -36,6 +36,23 @@ void require_budget(int depth, std::uint64_t segments, std::uint64_t budget) {
                                 " segments, more than the budget of " + with_commas(budget));
 }
 
+// The health check: lengths grow by length_scale per level, so a long enough
+// run can overflow. Names the first segment that left the finite numbers.
+template <typename Segment>
+void require_finite_segments(const std::vector<Segment>& segments) {
+    constexpr double most = 1e300;
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+        const Segment& s = segments[i];
+        bool finite = std::isfinite(s.width);
+        for (int k = 0; k < s.a.length(); ++k)
+            finite = finite && std::abs(s.a[k]) <= most && std::abs(s.b[k]) <= most;
+        if (!finite)
+            throw std::runtime_error("the turtle went numerically unstable at segment " + std::to_string(i + 1) +
+                                     " of " + std::to_string(segments.size()) +
+                                     " (a coordinate beyond 1e300); no image written");
+    }
+}
+
 void require_positive(const char* name, double value) {
     if (std::isfinite(value) && value > 0) return;
     std::ostringstream message;
@@ -139,6 +156,7 @@ std::vector<Segment2> interpret_2d(const LSystem& system, int depth, const Turtl
         system.expand_recursive(depth, visit);
     else
         system.expand(depth, visit);
+    require_finite_segments(out);
     return out;
 }
 
@@ -247,6 +265,7 @@ std::vector<Segment3> interpret_3d(const LSystem& system, int depth, const Turtl
                 break;  // letters fall through as no-ops
         }
     });
+    require_finite_segments(out);
     return out;
 }
 

@@ -290,3 +290,28 @@ TEST_CASE("a run that goes unstable stops at the step it went bad and writes not
                                Catch::Contains("no image written"));
     CHECK(fs::is_empty(out));  // no PNG, no JSON, no MP4, no temporaries
 }
+
+TEST_CASE("plants whose numbers overflow stop with an error naming the point or segment and write nothing", "[cli]") {
+    const fs::path out = fresh_dir("unstable-plants");
+    struct Case {
+        std::string args;
+        std::string expected;
+    };
+    const Case cases[] = {
+        // Maps that double and triple: 4096 points reach 2^4096, far beyond 1e100.
+        {"pl-ifs-tree --set variants=[{maps=[[2,0,0,2,0,0,0.5],[3,0,0,3,1,0,0.5]]}]",
+         "the chaos game went numerically unstable at point 4096 (a coordinate beyond 1e100: the maps do not contract)"},
+        // A first step of 1e300 from the origin, a second from there: 2e300.
+        {"pl-lsys-apple --set length=1e300", "the turtle went numerically unstable at segment 2 of 340"},
+        {"pl-lsys-3d --set length=1e300", "the turtle went numerically unstable at segment 2 of 3891"},
+    };
+    for (const Case& c : cases) {
+        INFO(c.args);
+        const Run run = figgen("render --out " + out.string() + " " + c.args);
+        CHECK(run.status == 1);
+        CHECK(run.lines() == 1);
+        CHECK_THAT(run.output, Catch::StartsWith("figgen: error: ") && Catch::Contains(c.expected) &&
+                                   Catch::EndsWith("no image written\n"));
+    }
+    CHECK(fs::is_empty(out));
+}
