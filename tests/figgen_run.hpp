@@ -24,9 +24,14 @@ struct Run {
     }
 };
 
-inline Run figgen(const std::string& args) {
+// Runs `figgen args` with the child's environment changed by `assignments`
+// ("OMP_NUM_THREADS=2", through env(1); empty: unchanged).
+inline Run figgen_env(const std::string& assignments, const std::string& args) {
     Run run;
-    std::FILE* pipe = ::popen((std::string(FIGGEN_EXE) + " " + args + " 2>&1").c_str(), "r");
+    std::string command;
+    if (!assignments.empty()) command.append("env ").append(assignments).append(" ");
+    command.append(FIGGEN_EXE).append(" ").append(args).append(" 2>&1");
+    std::FILE* pipe = ::popen(command.c_str(), "r");
     REQUIRE(pipe != nullptr);
     char buffer[4096];
     while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) run.output.append(buffer, n);
@@ -34,6 +39,9 @@ inline Run figgen(const std::string& args) {
     run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
     return run;
 }
+
+// Runs `figgen args` as a user would: its exit status and everything it printed.
+inline Run figgen(const std::string& args) { return figgen_env("", args); }
 
 // A fresh folder under the test artifacts, private to this process: ctest
 // runs test cases side by side, and two of them may render the same figure.
