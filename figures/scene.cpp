@@ -31,31 +31,50 @@ std::string located(const Description& d, const std::string& message) {
 // Two figgen processes rendering the same figure into the same folder take
 // turns: otherwise one's PNG could end up beside the other's JSON. The lock
 // is a file in the temporary folder named after the output folder's device
-// and inode and the id, so the output folder holds nothing but outputs;
-// flock releases it when the process ends, however it ends.
+// and inode and the id, so the output folder holds nothing but outputs. The
+// holder removes it when done; a waiter that then wins a removed file's lock
+// sees that the name no longer leads to it and tries again. flock releases
+// it when the process ends, however it ends.
 class FigureLock {
 public:
     FigureLock(const std::filesystem::path& dir, const std::string& id) {
         struct stat folder {};
         if (::stat(dir.c_str(), &folder) != 0) return;  // render_figure has made it; nothing to share then
         std::error_code ec;
-        const std::filesystem::path name =
-            std::filesystem::temp_directory_path(ec) / ("figgen-" + std::to_string(folder.st_dev) + "-" +
-                                                         std::to_string(folder.st_ino) + "-" + id + ".lock");
+        name_ = std::filesystem::temp_directory_path(ec) / ("figgen-" + std::to_string(folder.st_dev) + "-" +
+                                                           std::to_string(folder.st_ino) + "-" + id + ".lock");
         if (ec) return;
-        fd_ = ::open(name.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-        if (fd_ < 0) return;  // no temporary folder: no turns, each file is still written whole
-        if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
-        std::fprintf(stderr, "figgen: waiting for another figgen writing %s into %s\n", id.c_str(), dir.c_str());
-        ::flock(fd_, LOCK_EX);
+        for (bool told = false;;) {
+            fd_ = ::open(name_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+            if (fd_ < 0) return;  // no temporary folder: no turns, each file is still written whole
+            if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+                if (!told)
+                    std::fprintf(stderr, "figgen: waiting for another figgen writing %s into %s\n", id.c_str(),
+                                 dir.c_str());
+                told = true;
+                ::flock(fd_, LOCK_EX);
+            }
+            struct stat held {}, named {};
+            if (::fstat(fd_, &held) == 0 && ::stat(name_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+                held.st_dev == named.st_dev)
+            {
+                render::remove_on_signal(name_);
+                return;  // the lock is ours and still the one the name leads to
+            }
+            ::close(fd_);
+        }
     }
     ~FigureLock() {
-        if (fd_ >= 0) ::close(fd_);
+        if (fd_ < 0) return;
+        ::unlink(name_.c_str());  // while still held: see the constructor
+        render::keep_on_signal(name_);
+        ::close(fd_);
     }
     FigureLock(const FigureLock&) = delete;
     FigureLock& operator=(const FigureLock&) = delete;
 
 private:
+    std::filesystem::path name_;
     int fd_ = -1;
 };
 

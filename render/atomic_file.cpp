@@ -201,6 +201,9 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
     file.commit();
 }
 
+void remove_on_signal(const std::filesystem::path& path) { enlist(path); }
+void keep_on_signal(const std::filesystem::path& path) { discharge(path); }
+
 void remove_temporaries_on_signals() {
     sigset_t signals;
     sigemptyset(&signals);

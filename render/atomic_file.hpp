@@ -88,5 +88,8 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
 // the process with 128 + the signal's number (130 for SIGINT, 143 for
 // SIGTERM). Finished outputs and earlier files are never touched.
 void remove_temporaries_on_signals();
+// Puts another file (e.g. a lock) on the list removed at a signal, and takes it off.
+void remove_on_signal(const std::filesystem::path& path);
+void keep_on_signal(const std::filesystem::path& path);
 
 }  // namespace render
