@@ -5,7 +5,7 @@ JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 MAKEFLAGS  += --no-print-directory
 
-.PHONY: all deps build figures test test-sanitize bench goldens clean
+.PHONY: all deps build figures test test-sanitize fuzz bench goldens clean
 
 all: build
 
@@ -38,6 +38,28 @@ test-sanitize: deps
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS)
 
+# libFuzzer over the parsers users type into (descriptions, --set, snowflake
+# rule codes, L-systems; tests/fuzz/), built with clang into build-fuzz/, each
+# target FUZZ_SECONDS (default 600) in turn. The committed seeds are copied
+# into build-fuzz/corpus/ first, so what the fuzzer adds stays there; a crash
+# is written to build-fuzz/crashes/TARGET/ and stops the run.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 600
+FUZZ_TARGETS ?= description set snowflake_rule lsystem
+fuzz:
+	@scripts/deps.sh fuzz
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFIGGEN_FUZZ=ON
+	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+	@for t in $(FUZZ_TARGETS); do \
+	  mkdir -p $(FUZZ_BUILD)/corpus/$$t $(FUZZ_BUILD)/crashes/$$t && \
+	  cp -n tests/fuzz/corpus/$$t/* $(FUZZ_BUILD)/corpus/$$t/ && \
+	  echo "fuzz_$$t: $(FUZZ_SECONDS) s" && \
+	  $(FUZZ_BUILD)/tests/fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+	    -artifact_prefix=$(FUZZ_BUILD)/crashes/$$t/ $(FUZZ_BUILD)/corpus/$$t \
+	    > $(FUZZ_BUILD)/fuzz_$$t.log 2>&1 || { tail -40 $(FUZZ_BUILD)/fuzz_$$t.log; exit 1; }; \
+	  grep -E "^Done|stat::number_of_executed_units|cov:" $(FUZZ_BUILD)/fuzz_$$t.log | tail -3; \
+	done
+
 # Kernel throughput (Google Benchmark), then run time against error, the
 # book's numpy/scipy/matplotlib route side by side and whole-pipeline times
 # (`make figures` from clean among them): bench/results/, out/bench-pareto.png.
@@ -55,4 +77,4 @@ goldens: build
 	$(BUILD)/tests/figgen_goldens tests/golden
 
 clean:
-	rm -rf $(BUILD) $(SANITIZE_BUILD) out
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) out

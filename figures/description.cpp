@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -65,6 +66,8 @@ void record_origins(const toml::table& root, const std::string& file, std::map<s
     }
 }
 
+}  // namespace
+
 void apply_override(toml::table& root, const std::string& assignment) {
     const auto eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0)
@@ -85,6 +88,8 @@ void apply_override(toml::table& root, const std::string& assignment) {
     auto value = parse_value(assignment.substr(eq + 1), holder);
     table->insert_or_assign(key, *value.node());
 }
+
+namespace {
 
 std::pair<int, int> size_pair(Settings& s, const std::string& key, std::pair<int, int> fallback) {
     const auto v = s.integers(key, {fallback.first, fallback.second});
@@ -151,9 +156,18 @@ std::string format_step(const std::string& pattern, int step) {
 
 Description load_description(const std::filesystem::path& file, const std::vector<std::string>& overrides,
                              std::optional<std::uint64_t> seed) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw UsageError("cannot read " + file.string());
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse_description(text.str(), file, overrides, seed);
+}
+
+Description parse_description(std::string_view text, const std::filesystem::path& file,
+                              const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed) {
     toml::table root;
     try {
-        root = toml::parse_file(file.string());
+        root = toml::parse(text, file.string());
     } catch (const toml::parse_error& e) {
         std::ostringstream message;
         message << file.string() << ":" << e.source().begin.line << ": " << e.description();

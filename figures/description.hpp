@@ -17,6 +17,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "figures/settings.hpp"
@@ -64,6 +65,14 @@ struct Description {
 // and `seed` if given. Throws UsageError naming the file, key and what is allowed.
 Description load_description(const std::filesystem::path& file, const std::vector<std::string>& overrides = {},
                              std::optional<std::uint64_t> seed = std::nullopt);
+
+// The same from the description's text; `file` names it in messages.
+Description parse_description(std::string_view text, const std::filesystem::path& file,
+                              const std::vector<std::string>& overrides = {},
+                              std::optional<std::uint64_t> seed = std::nullopt);
+// Writes one --set assignment ("key=value", "section.key=value") into a
+// description's table; throws UsageError for a malformed one.
+void apply_override(toml::table& root, const std::string& assignment);
 
 // `pattern` with each {name} replaced by its value, e.g. "rule {rule}, step {step}".
 std::string expand(const std::string& pattern, const std::vector<std::pair<std::string, std::string>>& values);

@@ -97,7 +97,9 @@ void render_lsystem_3d(const Description& d, const OutputOptions& options, Progr
     }
     if (segments.empty()) throw UsageError(d.id + ": the plant draws no segment at this depth");
     const auto tubes = tubes_of(segments, turtle.width, bark, leaf);
-    const auto [lo, hi] = render::tube_bounds(tubes);
+    // Named copies, not a structured binding: clang 14 (make fuzz) cannot capture those in a lambda.
+    const auto bounds_of_tubes = render::tube_bounds(tubes);
+    const auto lo = bounds_of_tubes.first, hi = bounds_of_tubes.second;
 
     // The turntable: one turn around the vertical axis over the film.
     Description plan = d;

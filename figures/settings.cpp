@@ -15,7 +15,8 @@ std::string key_list(const std::vector<Key>& keys) {
 
 Settings::Settings(std::string section, const toml::table& table, std::vector<Key> allowed)
     : section_(std::move(section)), table_(table), allowed_(std::move(allowed)) {
-    for (const auto& [key, value] : table_) {
+    for (const auto& entry : table_) {
+        const toml::key& key = entry.first;  // not a structured binding: clang 14 cannot capture those
         const bool known =
             std::any_of(allowed_.begin(), allowed_.end(), [&](const Key& k) { return k.name == key.str(); });
         if (!known)

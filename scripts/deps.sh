@@ -6,6 +6,7 @@
 #   scripts/deps.sh         what the build, `make figures` and `make test` need
 #   scripts/deps.sh bench   also the book's route that `make bench` times
 #                           (Debian's python3 with numpy, scipy, matplotlib)
+#   scripts/deps.sh fuzz    also clang with libFuzzer, for `make fuzz`
 set -eu
 
 packages=(
@@ -19,6 +20,9 @@ packages=(
 )
 if [ "${1:-}" = bench ]; then
   packages+=(python3 python3-numpy python3-scipy python3-matplotlib)
+fi
+if [ "${1:-}" = fuzz ]; then
+  packages+=(clang libclang-rt-14-dev libomp-14-dev)  # libFuzzer and clang's OpenMP
 fi
 
 missing=()

@@ -1,0 +1,39 @@
+#pragma once
+// The four parsers that read what users type, as fuzz entries: each takes
+// raw bytes, feeds them to the parser (and a little beyond it, to the first
+// use of what was parsed) and says whether the input was accepted or refused
+// with the parser's own error. Anything else, an exception of another type,
+// a crash or undefined behaviour, is a bug. libFuzzer calls them from
+// tests/fuzz/fuzz_*.cpp; the ordinary suite replays the committed corpus and
+// regressions through them (tests/fuzz/test_fuzz_corpus.cpp).
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fuzz {
+
+enum class Outcome { accepted, refused };
+
+// A figure description in TOML (figures::parse_description).
+Outcome description(const std::uint8_t* data, std::size_t size);
+// --set assignments, one per line, applied to a small diffusion description
+// (figures::apply_override through figures::parse_description), then its
+// [params] read as the diffusion scene reads them.
+Outcome set_assignments(const std::uint8_t* data, std::size_t size);
+// A snowflake rule code (sim::SnowflakeRule::parse); an accepted rule grows a
+// flake for 8 steps.
+Outcome snowflake_rule(const std::uint8_t* data, std::size_t size);
+// An L-system: the first line the axiom, each further line a rule "X -> ...";
+// an accepted system is counted to depth 4, and drawn by both turtles when
+// that is under 20,000 segments.
+Outcome lsystem(const std::uint8_t* data, std::size_t size);
+
+struct Target {
+    const char* name;  // the folder under tests/fuzz/corpus/ and regressions/
+    Outcome (*entry)(const std::uint8_t*, std::size_t);
+};
+const std::vector<Target>& targets();
+
+}  // namespace fuzz
