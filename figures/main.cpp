@@ -2,10 +2,13 @@
 // work is in the figures library.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <algorithm>
+#include <filesystem>
 #include <optional>
 
 #include "figures/catalog.hpp"
 #include "figures/description.hpp"
+#include "figures/gallery.hpp"
 #include "figures/scene.hpp"
 #include "figures/version.hpp"
 #include "render/atomic_file.hpp"
@@ -35,6 +38,10 @@ int main(int argc, char** argv) {
 
     CLI::App* list = app.add_subcommand("list", "List the figure ids and titles of the catalog");
 
+    CLI::App* gallery = app.add_subcommand("gallery", "Write DIR/index.html showing the figures rendered in DIR");
+    std::string gallery_dir = "out";
+    gallery->add_option("--out", gallery_dir, "The folder of rendered figures")->capture_default_str();
+
     CLI::App* render = app.add_subcommand("render", "Render figures by id or description file");
     std::vector<std::string> targets;
     std::string out_dir = "out";
@@ -60,9 +67,11 @@ int main(int argc, char** argv) {
     render->add_flag("--frames", frames, "Also write the animation as a PNG sequence");
 
     // CLI11 would only say that a subcommand is required.
-    if (argc > 1 && argv[1][0] != '-' && argv[1] != std::string("list") && argv[1] != std::string("render")) {
+    const std::vector<CLI::App*> commands = {list, gallery, render};
+    if (argc > 1 && argv[1][0] != '-' &&
+        std::none_of(commands.begin(), commands.end(), [&](const CLI::App* c) { return c->get_name() == argv[1]; })) {
         std::string allowed;
-        for (const CLI::App* command : {list, render}) allowed += (allowed.empty() ? "" : ", ") + command->get_name();
+        for (const CLI::App* command : commands) allowed += (allowed.empty() ? "" : ", ") + command->get_name();
         std::fprintf(stderr, "figgen: error: unknown command '%s'; allowed: %s; see figgen --help\n", argv[1],
                      allowed.c_str());
         return exit_usage_error;
@@ -82,6 +91,16 @@ int main(int argc, char** argv) {
 
     try {
         if (*list) return list_figures();
+        if (*gallery) {
+            if (!std::filesystem::is_directory(gallery_dir)) {
+                std::fprintf(stderr, "figgen: error: --out %s is not a folder of rendered figures\n",
+                             gallery_dir.c_str());
+                return exit_usage_error;
+            }
+            const int shown = figures::write_gallery(gallery_dir);
+            std::printf("%s/index.html: %d figures\n", gallery_dir.c_str(), shown);
+            return 0;
+        }
 
         if (!(scale >= 0.1 && scale <= 8.0)) {  // also false for NaN
             std::fprintf(stderr, "figgen: error: --scale %g is not allowed: use a number from 0.1 to 8\n", scale);

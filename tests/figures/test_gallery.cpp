@@ -1,0 +1,97 @@
+// The gallery page: what `figgen gallery` writes for the figures in a folder.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+
+#include "figgen_run.hpp"
+#include "render/png_io.hpp"
+#include "render/thumbnail.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& file) {
+    std::ifstream in(file);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+int count(const std::string& text, const std::string& part) {
+    int n = 0;
+    for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("thumbnails average the pixels they cover and keep the aspect ratio", "[gallery]") {
+    render::Image image(4, 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 4; ++x) {
+            std::uint8_t* p = image.pixel(x, y);
+            p[0] = x < 2 ? 255 : 0;          // left half white, right half black
+            p[1] = std::uint8_t(x * 60);     // 0, 60, 120, 180: pairs average to 30 and 150
+            p[2] = 100;
+            p[3] = 255;
+        }
+    const render::Image half = render::thumbnail(image, 2, 100);
+    REQUIRE(half.width == 2);
+    REQUIRE(half.height == 1);
+    CHECK(int(half.pixel(0, 0)[0]) == 255);
+    CHECK(int(half.pixel(1, 0)[0]) == 0);
+    CHECK(std::abs(int(half.pixel(0, 0)[1]) - 30) <= 1);
+    CHECK(std::abs(int(half.pixel(1, 0)[1]) - 150) <= 1);
+    CHECK(int(half.pixel(0, 0)[2]) == 100);
+    // Already small enough: unchanged.
+    CHECK(render::thumbnail(image, 10, 10).rgba == image.rgba);
+    CHECK_THROWS_AS(render::thumbnail(image, 0, 10), std::invalid_argument);
+}
+
+TEST_CASE("figgen gallery shows every rendered figure with thumbnail, film, parameters and numbers", "[gallery][cli]") {
+    const fs::path out = testkit::fresh_dir("gallery");
+    REQUIRE(testkit::figgen("render tc7-1 tc7-9 --scale 0.5 --seed 4 --out " + out.string()).status == 0);
+    const testkit::Run run = testkit::figgen("gallery --out " + out.string());
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    CHECK_THAT(run.output, Catch::Contains("index.html: 2 figures"));
+    const std::string page = slurp(out / "index.html");
+
+    CHECK(count(page, "<article ") == 2);
+    CHECK_THAT(page, Catch::Contains("2 figures rendered by figgen") &&
+                         Catch::Contains("26 of the catalog not rendered here"));
+    CHECK_THAT(page, Catch::Contains("<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"));
+    // Nothing from the network: every src and href is a file in the folder.
+    CHECK_FALSE(std::regex_search(page, std::regex("(src|href)=\"[a-z]+:")));
+    CHECK(count(page, "<script") == 0);
+
+    std::ifstream in(out / "tc7-1.json");
+    const auto meta = nlohmann::json::parse(in);
+    // The thumbnail: a real file, its size in the tag, within 480 x 360.
+    const auto thumb = render::read_png(out / "thumbs" / "tc7-1.png").image;
+    CHECK(thumb.width <= 480);
+    CHECK(thumb.height <= 360);
+    CHECK_THAT(page, Catch::Contains("<img src=\"thumbs/tc7-1.png\" width=\"" + std::to_string(thumb.width) +
+                                     "\" height=\"" + std::to_string(thumb.height) + "\""));
+    // The film, with the frame count and size of its metadata; tc7-9 has none.
+    const auto& film = meta["animation"];
+    CHECK_THAT(page, Catch::Contains("<video controls preload=\"metadata\" src=\"tc7-1.mp4\" width=\"" +
+                                     std::to_string(film["size"][0].get<int>()) + "\""));
+    CHECK_THAT(page, Catch::Contains("data-frames=\"" + std::to_string(film["frames"].get<int>()) + "\""));
+    CHECK(count(page, "<video ") == 1);
+    // Source, seed, parameters and the numbers computed.
+    CHECK_THAT(page, Catch::Contains("Think Complexity"));
+    CHECK_THAT(page, Catch::Contains("<tr><th>seed</th><td>4</td></tr>"));
+    CHECK_THAT(page, Catch::Contains("<tr><th>r</th><td>0.1</td></tr>"));
+    CHECK_THAT(page, Catch::Contains("<tr><th>panels.0.statistics.sum</th><td>9</td></tr>"));
+    CHECK_THAT(page, Catch::Contains("<a href=\"tc7-1.png\">full PNG (" +
+                                     std::to_string(meta["image"]["size"][0].get<int>()) + " x "));
+
+    const testkit::Run bad = testkit::figgen("gallery --out " + (out / "nope").string());
+    CHECK(bad.status == 2);
+    CHECK_THAT(bad.output, Catch::Contains("is not a folder of rendered figures"));
+}
