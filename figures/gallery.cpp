@@ -122,7 +122,7 @@ article h2 { font-size: 1.1rem; margin: 0 0 0.2rem; }
 article .id { font-family: "DejaVu Sans Mono", monospace; font-size: 0.85rem; color: var(--muted); }
 article .source { margin: 0.2rem 0 0.6rem; color: var(--muted); font-size: 0.9rem; }
 img, video { display: block; max-width: 100%; height: auto; border: 1px solid var(--line); background: #fff; }
-video { margin-top: 0.6rem; }
+video { margin-top: 0.6rem; max-height: 420px; width: auto; }
 .links { margin: 0.5rem 0; font-size: 0.9rem; }
 .links a { margin-right: 1rem; }
 details { margin-top: 0.4rem; font-size: 0.85rem; }
@@ -195,6 +195,7 @@ int write_gallery(const std::filesystem::path& dir) {
     std::ostringstream page;
     page << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
          << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+         << "<link rel=\"icon\" href=\"data:,\">\n"  // no favicon request
          << "<title>figgen gallery</title>\n<style>" << style_sheet << "</style>\n</head>\n<body>\n"
          << "<header><h1>figgen gallery</h1>\n<p>" << shown << " figure" << (shown == 1 ? "" : "s")
          << " rendered by figgen " << escape(version()) << " from the descriptions in figures/";

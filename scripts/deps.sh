@@ -17,6 +17,7 @@ packages=(
   libfreetype-dev fonts-dejavu-core
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   catch2 libbenchmark-dev
+  chromium chromium-driver python3-selenium  # the gallery's browser test
 )
 if [ "${1:-}" = bench ]; then
   packages+=(python3 python3-numpy python3-scipy python3-matplotlib)
