@@ -6,7 +6,7 @@ namespace figures {
 
 std::vector<Key> field_spec_keys(const std::string& prefix) {
     return {
-        {prefix + "colormap", "Reds, Blues, Greens or viridis"},
+        {prefix + "colormap", "Reds, Blues, Greens, viridis, inferno, magma, plasma or cividis (--cmap)"},
         {prefix + "colours", "a list of colours for the states 0, 1, ... (#rrggbb or names), instead of colormap"},
         {prefix + "vmin", "value of the first colour; absent: the panel's minimum"},
         {prefix + "vmax", "value of the last colour; absent: the panel's maximum"},

@@ -10,6 +10,7 @@
 #include "figures/description.hpp"
 #include "figures/gallery.hpp"
 #include "figures/scene.hpp"
+#include "figures/scene.hpp"
 #include "figures/version.hpp"
 #include "render/atomic_file.hpp"
 
@@ -63,8 +64,19 @@ int main(int argc, char** argv) {
     render->add_option("--max-disk", max_disk, "Refuse a figure whose outputs would exceed SIZE (e.g. 100M, 8G)")
         ->transform(CLI::AsSizeValue(false))
         ->default_str("4G");
-    render->add_flag("--no-video", no_video, "Do not write the MP4 animation");
+    render->add_flag("--no-video", no_video, "Do not write the MP4 animation (as --format png)");
     render->add_flag("--frames", frames, "Also write the animation as a PNG sequence");
+    std::string size, cmap, format;
+    std::optional<int> fps;
+    render->add_option("--size", size, "The figure's size in pixels before --scale, WxH (e.g. 1200x600)");
+    render->add_option("--fps", fps, "Frames per second of the animation (1..120)");
+    render->add_option("--cmap", cmap,
+                       "Colormap of a field figure's fields: viridis, inferno, magma, plasma, cividis, Reds, "
+                       "Blues or Greens");
+    render->add_option("--format", format,
+                       "What to write besides the PNG and its JSON: png (nothing), mp4 (the animation, the "
+                       "default) or frames (the animation as a PNG sequence)")
+        ->check(CLI::IsMember({"png", "mp4", "frames"}));
 
     // CLI11 would only say that a subcommand is required.
     const std::vector<CLI::App*> commands = {list, gallery, render};
@@ -110,6 +122,30 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "figgen: error: --seed is not allowed: use 0..2^63-1\n");
             return exit_usage_error;
         }
+        if (!format.empty() && (no_video || frames)) {
+            std::fprintf(stderr, "figgen: error: --format %s is not allowed with --no-video or --frames: use one\n",
+                         format.c_str());
+            return exit_usage_error;
+        }
+        if (format == "png") no_video = true;
+        if (format == "frames") no_video = true, frames = true;
+        if (!size.empty()) {
+            int w = 0, h = 0;
+            char rest = 0;
+            if (std::sscanf(size.c_str(), "%dx%d%c", &w, &h, &rest) != 2 || w < 2 || h < 2 || w > 16384 ||
+                h > 16384) {
+                std::fprintf(stderr,
+                             "figgen: error: --size %s is not allowed: use WIDTHxHEIGHT, each 2..16384, e.g. "
+                             "1200x600\n",
+                             size.c_str());
+                return exit_usage_error;
+            }
+            overrides.push_back("figure.size=[" + std::to_string(w) + "," + std::to_string(h) + "]");
+        }
+        if (fps && !(*fps >= 1 && *fps <= 120)) {
+            std::fprintf(stderr, "figgen: error: --fps %d is not allowed: use 1..120 frames per second\n", *fps);
+            return exit_usage_error;
+        }
         figures::OutputOptions options;
         options.dir = out_dir;
         options.scale = scale;
@@ -120,8 +156,17 @@ int main(int argc, char** argv) {
         // Load every description first, so a typo in the last one fails before
         // minutes of rendering the first.
         std::vector<figures::Description> descriptions;
-        for (const std::string& target : targets)
-            descriptions.push_back(figures::load_description(figures::resolve_figure(target), overrides, seed));
+        for (const std::string& target : targets) {
+            figures::Description d = figures::load_description(figures::resolve_figure(target), overrides, seed);
+            if (!cmap.empty()) figures::apply_colormap(d, cmap);
+            if (fps && d.animation) d.animation->fps = *fps;
+            descriptions.push_back(std::move(d));
+        }
+        if (fps && std::none_of(descriptions.begin(), descriptions.end(),
+                                [](const figures::Description& d) { return d.animation.has_value(); })) {
+            std::fprintf(stderr, "figgen: error: --fps: none of the figures named has an animation\n");
+            return exit_usage_error;
+        }
         figures::Progress progress = figures::Progress::for_stderr();
         for (const auto& d : descriptions) figures::render_figure(d, options, progress);
         return 0;

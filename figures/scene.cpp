@@ -1,6 +1,7 @@
 #include "figures/scene.hpp"
 
 #include "render/atomic_file.hpp"
+#include "render/colormap.hpp"
 #include "render/text.hpp"
 
 #include <fcntl.h>
@@ -8,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <system_error>
 
@@ -82,28 +84,53 @@ private:
 
 const std::vector<SceneInfo>& scenes() {
     static const std::vector<SceneInfo> all = {
-        {"diffusion", render_diffusion},
-        {"gray_scott", render_gray_scott},
-        {"gray_scott_atlas", render_gray_scott_atlas},
-        {"percolation", render_percolation},
-        {"percolation_sizes", render_percolation_sizes},
-        {"cell1d", render_cell1d},
+        {"diffusion", render_diffusion, {"colormap"}},
+        {"gray_scott", render_gray_scott, {"a_colormap", "b_colormap"}},
+        {"gray_scott_atlas", render_gray_scott_atlas, {"colormap"}},
+        {"percolation", render_percolation, {"colormap"}},
+        {"percolation_sizes", render_percolation_sizes, {"colormap"}},
+        {"cell1d", render_cell1d, {"colormap"}},
         {"cell_counts", render_cell_counts},
         {"percolation_scaling", render_percolation_scaling},
         {"percolation_phase", render_percolation_phase},
-        {"forest_fire", render_forest_fire},
-        {"cell1d_survey", render_cell1d_survey},
+        {"forest_fire", render_forest_fire, {"colormap"}},
+        {"cell1d_survey", render_cell1d_survey, {"colormap"}},
         {"snowflake", render_snowflake},
         {"snowflake_dimension", render_snowflake_dimension},
         {"hex_lattice", render_hex_lattice},
         {"phyllotaxis", render_phyllotaxis},
-        {"ifs", render_ifs},
-        {"deposition", render_deposition},
+        {"ifs", render_ifs, {"colormap"}},
+        {"deposition", render_deposition, {"band_colormap"}},
         {"roughness", render_roughness},
         {"lsystem", render_lsystem},
         {"lsystem_3d", render_lsystem_3d},
     };
     return all;
+}
+
+void apply_colormap(Description& d, const std::string& name) {
+    const auto names = render::colormap_names();
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+        std::string allowed;
+        for (const auto& n : names) allowed += (allowed.empty() ? "" : ", ") + n;
+        throw UsageError("--cmap " + name + " is not allowed: use one of " + allowed);
+    }
+    std::string fields;
+    for (const SceneInfo& scene : scenes())
+        if (!scene.colormap_keys.empty()) fields += std::string(fields.empty() ? "" : ", ") + scene.model;
+    for (const SceneInfo& scene : scenes()) {
+        if (scene.model != d.model) continue;
+        if (scene.colormap_keys.empty()) break;
+        for (const std::string& key : scene.colormap_keys) {
+            d.style.insert_or_assign(key, name);
+            const std::string colours = key.substr(0, key.size() - std::string("colormap").size()) + "colours";
+            d.style.erase(colours);
+            d.origins["style." + key] = "--cmap " + name;
+        }
+        return;
+    }
+    throw UsageError("--cmap: " + d.id + " (model " + d.model + ") draws no field to colour; the field models are " +
+                     fields);
 }
 
 void render_figure(const Description& d, const OutputOptions& options, Progress& progress) {

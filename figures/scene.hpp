@@ -18,7 +18,15 @@ using SceneFunction = void (*)(const Description&, const OutputOptions&, Progres
 struct SceneInfo {
     std::string model;  // the description's `model`
     SceneFunction render;
+    // The [style] keys naming its fields' colormaps: what --cmap sets
+    // (empty: the scene draws no field). A key "X" comes with "X"'s sibling
+    // list of colours, "colours" or "a_colours", which --cmap removes.
+    std::vector<std::string> colormap_keys = {};
 };
+
+// Sets every colormap of a field figure to `name` (--cmap); throws
+// UsageError for an unknown colormap or a figure without a field.
+void apply_colormap(Description& d, const std::string& name);
 
 const std::vector<SceneInfo>& scenes();
 

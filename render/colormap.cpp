@@ -19,6 +19,10 @@ const std::vector<Colormap>& builtins() {
         from_table("Blues", tables::Blues),
         from_table("Greens", tables::Greens),
         from_table("viridis", tables::viridis),
+        from_table("inferno", tables::inferno),
+        from_table("magma", tables::magma),
+        from_table("plasma", tables::plasma),
+        from_table("cividis", tables::cividis),
     };
     return maps;
 }

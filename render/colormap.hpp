@@ -18,6 +18,10 @@ extern const float Reds[256][3];
 extern const float Blues[256][3];
 extern const float Greens[256][3];
 extern const float viridis[256][3];
+extern const float inferno[256][3];
+extern const float magma[256][3];
+extern const float plasma[256][3];
+extern const float cividis[256][3];
 }  // namespace tables
 
 struct Colormap {

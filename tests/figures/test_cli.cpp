@@ -3,6 +3,7 @@
 // by a failed run.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -87,6 +88,14 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "sf87-7", "unknown figure id 'sf87-7'; closest: sf87-2, sf87-3, sf87-4"},
         {render + "lycopodium", "unknown figure id 'lycopodium'; closest: pl-lsys-lycopodium, "},
         {render + "/nonexistent/my.toml", "figure file /nonexistent/my.toml does not exist"},
+        {render + "tc7-1 --size 10by20", "--size 10by20 is not allowed: use WIDTHxHEIGHT, each 2..16384"},
+        {render + "tc7-1 --size 1x5", "--size 1x5 is not allowed"},
+        {render + "tc7-1 --fps 0", "--fps 0 is not allowed: use 1..120 frames per second"},
+        {render + "tc7-9 --fps 5", "--fps: none of the figures named has an animation"},
+        {render + "tc7-1 --cmap jet", "--cmap jet is not allowed: use one of Reds, Blues, Greens, viridis, inferno, magma, plasma, cividis"},
+        {render + "tc7-9 --cmap viridis", "--cmap: tc7-9 (model percolation_scaling) draws no field to colour; the field models are diffusion, "},
+        {render + "tc7-1 --format gif", "--format: gif not in {png,mp4,frames}"},
+        {render + "tc7-1 --format mp4", "--format mp4 is not allowed with --no-video or --frames: use one"},
         // --set itself.
         {render + "tc7-1 --set r", "--set r: expected key=value, e.g. --set r=0.2"},
         {render + "tc7-1 --set =5", "--set =5: expected key=value"},
@@ -314,4 +323,88 @@ TEST_CASE("plants whose numbers overflow stop with an error naming the point or 
                                    Catch::EndsWith("no image written\n"));
     }
     CHECK(fs::is_empty(out));
+}
+
+namespace {
+
+std::vector<std::string> files_in(const fs::path& dir) {
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(dir)) files.push_back(entry.path().filename().string());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+nlohmann::json metadata(const fs::path& file) {
+    std::ifstream in(file);
+    return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+TEST_CASE("render --size sets the figure's pixels before --scale", "[cli][options]") {
+    const fs::path out = fresh_dir("size");
+    REQUIRE(figgen("render tc7-1 --format png --size 300x200 --out " + out.string()).status == 0);
+    const auto png = render::read_png(out / "tc7-1.png").image;
+    CHECK(png.width == 300);
+    CHECK(png.height == 200);
+    REQUIRE(figgen("render tc7-1 --format png --size 300x200 --scale 2 --out " + out.string()).status == 0);
+    CHECK(render::read_png(out / "tc7-1.png").image.width == 600);
+    CHECK(metadata(out / "tc7-1.json")["image"]["size"] == nlohmann::json({600, 400}));
+}
+
+TEST_CASE("render --fps sets the animation's frame rate in the MP4 and its metadata", "[cli][options]") {
+    const fs::path out = fresh_dir("fps");
+    REQUIRE(figgen("render tc7-1 --fps 5 --scale 0.5 --out " + out.string()).status == 0);
+    const auto meta = metadata(out / "tc7-1.json");
+    CHECK(meta["animation"]["fps"] == 5);
+    const render::VideoInfo video = render::probe_video(out / "tc7-1.mp4");
+    CHECK(video.fps == Approx(5.0));
+    CHECK(video.frames == meta["animation"]["frames"].get<int>());
+    CHECK(video.duration_seconds == Approx(video.frames / 5.0).margin(0.21));
+}
+
+TEST_CASE("render --cmap recolours a field figure with matplotlib's colormap", "[cli][options]") {
+    const fs::path out = fresh_dir("cmap");
+    // tc7-1 at step 0 is a block of 1 on 0, drawn with vmin 0, vmax 1 at
+    // alpha 0.8 over white: the background is 0.8 * cmap(0) + 0.2 * white.
+    for (const auto& [name, first] : std::vector<std::pair<std::string, std::array<double, 3>>>{
+             {"inferno", {0.001462, 0.000466, 0.013866}},  // matplotlib's _inferno_data[0]
+             {"cividis", {0.0, 0.135112, 0.304751}},       // _cividis_data[0]
+         }) {
+        INFO(name);
+        REQUIRE(figgen("render tc7-1 --format png --cmap " + name + " --out " + out.string()).status == 0);
+        const auto meta = metadata(out / "tc7-1.json");
+        CHECK(meta["style"]["colormap"] == name);
+        const auto png = render::read_png(out / "tc7-1.png").image;
+        // A background cell of the first panel: its frame starts a little way
+        // in; take a pixel well inside the first panel, away from the block.
+        const auto* p = png.pixel(png.width / 12, png.height / 2);
+        for (int c = 0; c < 3; ++c) CHECK(std::abs(p[c] - 255.0 * (0.8 * first[c] + 0.2)) <= 2.0);
+    }
+    // Gray-Scott's two fields both take it; a list of colours gives way to it.
+    REQUIRE(figgen("render tc7-2 tc7-ex2 --format png --scale 0.3 --cmap magma --out " + out.string()).status == 0);
+    CHECK(metadata(out / "tc7-2.json")["style"]["a_colormap"] == "magma");
+    CHECK(metadata(out / "tc7-2.json")["style"]["b_colormap"] == "magma");
+    CHECK(metadata(out / "tc7-ex2.json")["style"]["colormap"] == "magma");
+    CHECK_FALSE(metadata(out / "tc7-ex2.json")["style"].contains("colours"));
+}
+
+TEST_CASE("render --format png, mp4 or frames chooses what is written besides the PNG", "[cli][options]") {
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+        {"png", {"tc7-1.json", "tc7-1.png"}},
+        {"mp4", {"tc7-1.json", "tc7-1.mp4", "tc7-1.png"}},
+        {"frames", {"tc7-1-frames", "tc7-1.json", "tc7-1.png"}},
+    };
+    for (const auto& [format, expected] : cases) {
+        INFO(format);
+        const fs::path out = fresh_dir("format-" + format);
+        REQUIRE(figgen("render tc7-1 --scale 0.3 --format " + format + " --out " + out.string()).status == 0);
+        CHECK(files_in(out) == expected);
+    }
+}
+
+TEST_CASE("figgen --version prints the version", "[cli][options]") {
+    const Run run = figgen("--version");
+    CHECK(run.status == 0);
+    CHECK_THAT(run.output, Catch::Matches("[0-9]+\\.[0-9]+\\.[0-9]+\\s*"));
 }
