@@ -5,7 +5,7 @@ JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 MAKEFLAGS  += --no-print-directory
 
-.PHONY: all deps build figures test test-sanitize fuzz bench goldens clean
+.PHONY: all deps build figures test test-sanitize fuzz bench goldens install clean
 
 all: build
 
@@ -75,6 +75,11 @@ bench: build
 # renderer. Explicit only: CI never runs it.
 goldens: build
 	$(BUILD)/tests/figgen_goldens tests/golden
+
+# figgen into $(PREFIX)/bin, the descriptions into $(PREFIX)/share/figgen/figures.
+PREFIX ?= /usr/local
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
 	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) out

@@ -7,7 +7,8 @@
 
 namespace figures {
 
-// The folder of descriptions: $FIGGEN_FIGURES_DIR, else the source tree's figures/.
+// The folder of descriptions: $FIGGEN_FIGURES_DIR, else PREFIX/share/figgen/figures
+// beside an installed PREFIX/bin/figgen, else the source tree's figures/.
 std::filesystem::path catalog_dir();
 
 // Every *.toml in the catalog, sorted by file name.

@@ -24,20 +24,24 @@ struct Run {
     }
 };
 
-// Runs `figgen args` with the child's environment changed by `assignments`
-// ("OMP_NUM_THREADS=2", through env(1); empty: unchanged).
-inline Run figgen_env(const std::string& assignments, const std::string& args) {
+// Any shell command, stdout and stderr together.
+inline Run run_command(const std::string& command) {
     Run run;
-    std::string command;
-    if (!assignments.empty()) command.append("env ").append(assignments).append(" ");
-    command.append(FIGGEN_EXE).append(" ").append(args).append(" 2>&1");
-    std::FILE* pipe = ::popen(command.c_str(), "r");
+    std::FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
     REQUIRE(pipe != nullptr);
     char buffer[4096];
     while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) run.output.append(buffer, n);
     const int raw = ::pclose(pipe);
     run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
     return run;
+}
+
+// Runs `figgen args` with the child's environment changed by `assignments`
+// ("OMP_NUM_THREADS=2", through env(1); empty: unchanged).
+inline Run figgen_env(const std::string& assignments, const std::string& args) {
+    std::string command;
+    if (!assignments.empty()) command.append("env ").append(assignments).append(" ");
+    return run_command(command.append(FIGGEN_EXE).append(" ").append(args));
 }
 
 // Runs `figgen args` as a user would: its exit status and everything it printed.

@@ -408,3 +408,27 @@ TEST_CASE("figgen --version prints the version", "[cli][options]") {
     CHECK(run.status == 0);
     CHECK_THAT(run.output, Catch::Matches("[0-9]+\\.[0-9]+\\.[0-9]+\\s*"));
 }
+
+TEST_CASE("cmake --install puts figgen and the descriptions in a prefix, and the installed figgen reads them", "[cli][install]") {
+    const fs::path prefix = fresh_dir("install");
+    const Run install = testkit::run_command(std::string(FIGGEN_CMAKE) + " --install " + FIGGEN_BUILD_DIR +
+                                             " --prefix " + prefix.string());
+    INFO(install.output);
+    REQUIRE(install.status == 0);
+    const fs::path installed = prefix / "bin" / "figgen";
+    REQUIRE(fs::exists(installed));
+    std::size_t descriptions = 0;
+    for (const auto& entry : fs::directory_iterator(prefix / "share" / "figgen" / "figures"))
+        descriptions += entry.path().extension() == ".toml";
+    CHECK(descriptions == 28);
+    // It reads the installed folder, not the source tree: take one away.
+    fs::remove(prefix / "share" / "figgen" / "figures" / "tc7-9.toml");
+    const Run list = testkit::run_command("env -u FIGGEN_FIGURES_DIR " + installed.string() + " list");
+    CHECK(list.status == 0);
+    CHECK(list.lines() == 27);
+    CHECK_THAT(list.output, !Catch::Contains("tc7-9 "));
+    const Run render = testkit::run_command("env -u FIGGEN_FIGURES_DIR " + installed.string() +
+                                            " render tc7-1 --format png --scale 0.3 --out " + (prefix / "out").string());
+    CHECK(render.status == 0);
+    CHECK(fs::exists(prefix / "out" / "tc7-1.png"));
+}
