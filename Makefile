@@ -5,7 +5,7 @@ JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 MAKEFLAGS  += --no-print-directory
 
-.PHONY: all deps build figures test test-sanitize fuzz bench goldens install clean
+.PHONY: all deps build figures readme-thumbnails test test-sanitize fuzz bench goldens install clean
 
 all: build
 
@@ -22,6 +22,10 @@ build: deps $(BUILD)/CMakeCache.txt
 # figures whose description or program changed are rendered again.
 figures: build
 	cmake --build $(BUILD) --target figures -j $(JOBS)
+
+# The README's grid: docs/thumbs/ID.png, 240 x 180 at most, from out/.
+readme-thumbnails: figures
+	$(BUILD)/figgen thumbnails --from out --to docs/thumbs --width 240 --height 180
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)

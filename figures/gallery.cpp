@@ -135,6 +135,23 @@ td { font-family: "DejaVu Sans Mono", monospace; }
 
 }  // namespace
 
+int write_thumbnails(const std::filesystem::path& from, const std::filesystem::path& to, int max_width,
+                     int max_height) {
+    std::filesystem::create_directories(to);
+    int written = 0;
+    for (const auto& file : catalog_files()) {
+        const std::string id = file.stem().string();
+        if (!std::filesystem::exists(from / (id + ".png"))) continue;
+        const render::PngFile png = render::read_png(from / (id + ".png"));
+        std::string title = id;
+        for (const auto& [key, value] : png.text)
+            if (key == "Title") title = value;
+        render::write_png(to / (id + ".png"), render::thumbnail(png.image, max_width, max_height), {{"Title", title}});
+        ++written;
+    }
+    return written;
+}
+
 int write_gallery(const std::filesystem::path& dir) {
     std::ostringstream cards;
     int shown = 0, missing = 0;

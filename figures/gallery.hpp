@@ -15,4 +15,10 @@ namespace figures {
 // thumbnails, each atomically. Returns the number of figures shown.
 int write_gallery(const std::filesystem::path& dir);
 
+// TO/ID.png for every DIR/ID.png of the catalog's ids, scaled to fit
+// max_width x max_height (the README's grid: `make readme-thumbnails`).
+// Returns how many were written.
+int write_thumbnails(const std::filesystem::path& from, const std::filesystem::path& to, int max_width,
+                     int max_height);
+
 }  // namespace figures

@@ -43,6 +43,14 @@ int main(int argc, char** argv) {
     std::string gallery_dir = "out";
     gallery->add_option("--out", gallery_dir, "The folder of rendered figures")->capture_default_str();
 
+    CLI::App* thumbs = app.add_subcommand("thumbnails", "Write small copies of the figures rendered in a folder");
+    std::string thumbs_from = "out", thumbs_to = "docs/thumbs";
+    int thumbs_width = 240, thumbs_height = 180;
+    thumbs->add_option("--from", thumbs_from, "The folder of rendered figures")->capture_default_str();
+    thumbs->add_option("--to", thumbs_to, "Where the thumbnails go")->capture_default_str();
+    thumbs->add_option("--width", thumbs_width, "Largest width in pixels")->capture_default_str()->check(CLI::Range(8, 2048));
+    thumbs->add_option("--height", thumbs_height, "Largest height in pixels")->capture_default_str()->check(CLI::Range(8, 2048));
+
     CLI::App* render = app.add_subcommand("render", "Render figures by id or description file");
     std::vector<std::string> targets;
     std::string out_dir = "out";
@@ -79,7 +87,7 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"png", "mp4", "frames"}));
 
     // CLI11 would only say that a subcommand is required.
-    const std::vector<CLI::App*> commands = {list, gallery, render};
+    const std::vector<CLI::App*> commands = {list, gallery, thumbs, render};
     if (argc > 1 && argv[1][0] != '-' &&
         std::none_of(commands.begin(), commands.end(), [&](const CLI::App* c) { return c->get_name() == argv[1]; })) {
         std::string allowed;
@@ -103,6 +111,16 @@ int main(int argc, char** argv) {
 
     try {
         if (*list) return list_figures();
+        if (*thumbs) {
+            if (!std::filesystem::is_directory(thumbs_from)) {
+                std::fprintf(stderr, "figgen: error: --from %s is not a folder of rendered figures\n",
+                             thumbs_from.c_str());
+                return exit_usage_error;
+            }
+            const int written = figures::write_thumbnails(thumbs_from, thumbs_to, thumbs_width, thumbs_height);
+            std::printf("%s: %d thumbnails\n", thumbs_to.c_str(), written);
+            return 0;
+        }
         if (*gallery) {
             if (!std::filesystem::is_directory(gallery_dir)) {
                 std::fprintf(stderr, "figgen: error: --out %s is not a folder of rendered figures\n",
