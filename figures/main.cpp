@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "figures/catalog.hpp"
+#include "figures/describe.hpp"
 #include "figures/description.hpp"
 #include "figures/gallery.hpp"
 #include "figures/scene.hpp"
@@ -42,6 +43,10 @@ int main(int argc, char** argv) {
     CLI::App* gallery = app.add_subcommand("gallery", "Write DIR/index.html showing the figures rendered in DIR");
     std::string gallery_dir = "out";
     gallery->add_option("--out", gallery_dir, "The folder of rendered figures")->capture_default_str();
+
+    CLI::App* describe = app.add_subcommand("describe", "List a figure's settings: value, default, range, meaning");
+    std::string describe_target;
+    describe->add_option("figure", describe_target, "A figure id or .toml description file")->required();
 
     CLI::App* thumbs = app.add_subcommand("thumbnails", "Write small copies of the figures rendered in a folder");
     std::string thumbs_from = "out", thumbs_to = "docs/thumbs";
@@ -87,7 +92,7 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"png", "mp4", "frames"}));
 
     // CLI11 would only say that a subcommand is required.
-    const std::vector<CLI::App*> commands = {list, gallery, thumbs, render};
+    const std::vector<CLI::App*> commands = {list, describe, gallery, thumbs, render};
     if (argc > 1 && argv[1][0] != '-' &&
         std::none_of(commands.begin(), commands.end(), [&](const CLI::App* c) { return c->get_name() == argv[1]; })) {
         std::string allowed;
@@ -111,6 +116,10 @@ int main(int argc, char** argv) {
 
     try {
         if (*list) return list_figures();
+        if (*describe) {
+            std::fputs(figures::describe(figures::resolve_figure(describe_target)).c_str(), stdout);
+            return 0;
+        }
         if (*thumbs) {
             if (!std::filesystem::is_directory(thumbs_from)) {
                 std::fprintf(stderr, "figgen: error: --from %s is not a folder of rendered figures\n",

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "figures/progress.hpp"
 #include "figures/version.hpp"
 #include "render/atomic_file.hpp"
 #include "render/gl_context.hpp"
@@ -47,6 +48,7 @@ double frame_pixels(const Description& d, const OutputOptions& options) {
 }  // namespace
 
 void require_memory(const Description& d, const OutputOptions& options, const std::vector<MemoryNeed>& needs) {
+    if (options.describe_only && !needs.empty()) throw DescribeStop{};
     // A canvas: 4x multisampled colour and depth-stencil (32 bytes a pixel),
     // the resolved colour, the copy read back and the PNG rows (12). A frame
     // likewise, plus the encoder's YUV frames and look-ahead (~16 of 1.5).

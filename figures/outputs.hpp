@@ -28,6 +28,7 @@ struct OutputOptions {
     // whose estimate exceeds them is refused before anything is allocated.
     std::uint64_t max_memory = 4ull << 30;
     std::uint64_t max_disk = 4ull << 30;
+    bool describe_only = false;  // stop (DescribeStop) at the first require_memory: `figgen describe`
 
     bool animates() const { return video || frames; }
 };

@@ -13,6 +13,7 @@ Progress Progress::for_stderr() {
 }
 
 void Progress::start(const std::string& label, long long total) {
+    if (describe_only) throw DescribeStop{};
     label_ = label;
     total_ = total > 0 ? total : 1;
     done_ = 0;

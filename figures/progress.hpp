@@ -8,12 +8,17 @@
 
 namespace figures {
 
+struct DescribeStop {};  // thrown where a describe-only run has read its settings
+
 class Progress {
 public:
     explicit Progress(bool enabled);
     static Progress for_stderr();  // enabled when stderr is a terminal
 
+    // Throws DescribeStop when describe_only: `figgen describe` runs a scene
+    // only as far as it reads its settings.
     void start(const std::string& label, long long total);
+    bool describe_only = false;
     void advance(long long units = 1);
     void finish();  // completes the bar and ends its line
 

@@ -13,8 +13,30 @@ std::string key_list(const std::vector<Key>& keys) {
     return list.empty() ? "(none)" : list;
 }
 
+namespace {
+thread_local SettingsLog* current_settings_log = nullptr;
+}  // namespace
+
+SettingsLog::SettingsLog() : outer(current_settings_log) { current_settings_log = this; }
+SettingsLog::~SettingsLog() { current_settings_log = outer; }
+
+SettingsLog::Section& SettingsLog::section(const std::string& name, const std::vector<Key>& keys) {
+    for (Section& s : sections)
+        if (s.name == name) return s;
+    sections.push_back({name, keys, nlohmann::json::object()});
+    return sections.back();
+}
+
+Settings::~Settings() {
+    if (!current_settings_log) return;
+    SettingsLog::Section& logged = current_settings_log->section(section_, allowed_);
+    for (const auto& [key, value] : used_.items())
+        if (!logged.used.contains(key)) logged.used[key] = value;
+}
+
 Settings::Settings(std::string section, const toml::table& table, std::vector<Key> allowed)
     : section_(std::move(section)), table_(table), allowed_(std::move(allowed)) {
+    if (current_settings_log) current_settings_log->section(section_, allowed_);
     for (const auto& entry : table_) {
         const toml::key& key = entry.first;  // not a structured binding: clang 14 cannot capture those
         const bool known =

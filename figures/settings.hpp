@@ -31,10 +31,29 @@ struct Key {
     std::string help;  // one line: meaning and allowed values
 };
 
+// While a SettingsLog lives on a thread, every Settings made there leaves
+// its section's allowed keys and the values it read (`figgen describe`).
+struct SettingsLog {
+    SettingsLog();
+    ~SettingsLog();
+    SettingsLog(const SettingsLog&) = delete;
+    SettingsLog& operator=(const SettingsLog&) = delete;
+    struct Section {
+        std::string name;
+        std::vector<Key> keys;
+        nlohmann::json used = nlohmann::json::object();
+    };
+    std::vector<Section> sections;  // in the order the scene made them; one per name
+    Section& section(const std::string& name, const std::vector<Key>& keys);
+    SettingsLog* outer;
+};
+
 class Settings {
 public:
     // Throws UsageError if `table` holds a key not in `allowed`.
     Settings(std::string section, const toml::table& table, std::vector<Key> allowed);
+    ~Settings();  // leaves what it read in this thread's SettingsLog, if any
+    Settings(const Settings&) = default;
 
     long long integer(const std::string& key, long long fallback);
     int count(const std::string& key, int fallback);         // an integer that fits an int

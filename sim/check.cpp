@@ -8,7 +8,18 @@
 
 namespace sim {
 
+namespace {
+thread_local RangeLog* current_log = nullptr;
+}  // namespace
+
+RangeLog::RangeLog() : outer_(current_log) { current_log = this; }
+RangeLog::~RangeLog() { current_log = outer_; }
+void RangeLog::note(CheckedRange range) {
+    if (current_log) current_log->ranges_.push_back(std::move(range));
+}
+
 void require_number(const char* name, double value, double low, double high, const char* why) {
+    RangeLog::note({name, low, high, false, why ? why : ""});
     if (std::isfinite(value) && value >= low && value <= high) return;
     std::ostringstream message;
     message << name << " = " << value << " is not allowed: " << name << " must be a number from " << low << " to "
@@ -18,6 +29,7 @@ void require_number(const char* name, double value, double low, double high, con
 }
 
 void require_integer(const char* name, long long value, long long low, long long high) {
+    RangeLog::note({name, double(low), double(high), true, ""});
     if (value >= low && value <= high) return;
     std::ostringstream message;
     message << name << " = " << value << " is not allowed: " << name << " must be an integer from " << low << " to "

@@ -3,6 +3,7 @@
 // with one line naming the parameter, the bad value and what is allowed.
 
 #include <string>
+#include <vector>
 
 #include "sim/grid.hpp"
 
@@ -13,5 +14,28 @@ void require_number(const char* name, double value, double low, double high, con
 // An explicit starting field must be n x n and finite; `name` is e.g. "A".
 void require_square_field(const char* name, const Grid<double>& field, int n);
 void require_integer(const char* name, long long value, long long low, long long high);
+
+// While a RangeLog lives on a thread, require_number and require_integer
+// note each name with its allowed range there: `figgen describe` lists the
+// ranges the models really check.
+struct CheckedRange {
+    std::string name;
+    double low, high;
+    bool integer;
+    std::string why;
+};
+class RangeLog {
+public:
+    RangeLog();
+    ~RangeLog();
+    RangeLog(const RangeLog&) = delete;
+    RangeLog& operator=(const RangeLog&) = delete;
+    const std::vector<CheckedRange>& ranges() const { return ranges_; }
+    static void note(CheckedRange range);  // no-op without a log
+
+private:
+    std::vector<CheckedRange> ranges_;
+    RangeLog* outer_;
+};
 
 }  // namespace sim

@@ -68,7 +68,7 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
     const Case cases[] = {
         // The command line.
         {"", "A subcommand is required"},
-        {"bogus-command", "unknown command 'bogus-command'; allowed: list, gallery, thumbnails, render"},
+        {"bogus-command", "unknown command 'bogus-command'; allowed: list, describe, gallery, thumbnails, render"},
         {"list extra", "The following argument was not expected: extra"},
         {"render --out " + out.string(), "figures is required"},
         {render + "tc7-1 --frobnicate", "--frobnicate"},
