@@ -52,7 +52,30 @@ TEST_CASE("a listed colormap gives integer states their own colours as matplotli
 }
 
 TEST_CASE("an unknown colormap is an error listing the known ones", "[colormap]") {
-    CHECK_THROWS_WITH(render::colormap("jet"), "colormap \"jet\" is unknown: allowed are Reds, Blues, Greens, viridis");
+    CHECK_THROWS_WITH(render::colormap("jet"), "colormap \"jet\" is unknown: allowed are Reds, Blues, Greens, viridis, "
+                                                "inferno, magma, plasma, cividis");
+}
+
+TEST_CASE("inferno, magma, plasma and cividis end where matplotlib's listed data do", "[colormap]") {
+    // The first and last rows of matplotlib's _cm_listed.py tables.
+    const struct {
+        const char* name;
+        glm::vec3 first, last;
+    } maps[] = {
+        {"inferno", {0.001462f, 0.000466f, 0.013866f}, {0.988362f, 0.998364f, 0.644924f}},
+        {"magma", {0.001462f, 0.000466f, 0.013866f}, {0.987053f, 0.991438f, 0.749504f}},
+        {"plasma", {0.050383f, 0.029803f, 0.527975f}, {0.940015f, 0.975158f, 0.131326f}},
+        {"cividis", {0.0f, 0.135112f, 0.304751f}, {0.995737f, 0.909344f, 0.217772f}},
+    };
+    for (const auto& m : maps) {
+        INFO(m.name);
+        const auto& map = render::colormap(m.name);
+        REQUIRE(map.colours.size() == 256);
+        for (int c = 0; c < 3; ++c) {
+            CHECK(map.at(0.0)[c] == Approx(m.first[c]).margin(1e-6));
+            CHECK(map.at(1.0)[c] == Approx(m.last[c]).margin(1e-6));
+        }
+    }
 }
 
 TEST_CASE("a nearest-sampled field paints each cell its colour, alpha-blended over white", "[colormap][field]") {
