@@ -5,7 +5,7 @@ JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 MAKEFLAGS  += --no-print-directory
 
-.PHONY: all deps build figures readme-thumbnails test test-sanitize fuzz bench goldens install clean
+.PHONY: all deps build figures gallery-check readme-thumbnails test test-sanitize fuzz bench goldens install clean
 
 all: build
 
@@ -22,6 +22,13 @@ build: deps $(BUILD)/CMakeCache.txt
 # figures whose description or program changed are rendered again.
 figures: build
 	cmake --build $(BUILD) --target figures -j $(JOBS)
+
+# The gallery make figures wrote (out/index.html), every figure in it, checked
+# in Debian's headless Chromium as `make test` checks a small one; the
+# screenshot is build/test-artifacts/gallery-full.png.
+gallery-check: figures
+	@mkdir -p $(BUILD)/test-artifacts
+	/usr/bin/python3 tests/browser/gallery_in_browser.py --gallery out --screenshot $(BUILD)/test-artifacts/gallery-full.png
 
 # The README's grid: docs/thumbs/ID.png, 240 x 180 at most, from out/.
 readme-thumbnails: figures

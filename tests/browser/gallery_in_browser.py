@@ -4,9 +4,13 @@ through chromedriver (python3-selenium), over a gallery served on a loopback
 port.
 
     gallery_in_browser.py --figgen build/figgen --out DIR --screenshot FILE.png
+    gallery_in_browser.py --gallery out --screenshot FILE.png
 
-renders a few figures into DIR (one with a film, one without), writes the
-gallery, serves DIR on 127.0.0.1 and checks in the browser that every image
+The first renders a few figures into DIR (some with a film, some without) and
+writes their gallery; the second takes a gallery already written (`make
+figures` writes out/index.html; `make gallery-check` checks it) with every
+figure whose ID.json is in the folder. Either way it serves the folder on
+127.0.0.1 and checks in the browser that every image
 has loaded (natural size > 0, the size in its tag), every video has loaded
 its metadata (duration > 0, the frame count over the fps of its metadata, its
 size), nothing was logged to the console, and a phone-wide window needs no
@@ -16,8 +20,10 @@ holds, 1 with one line per failure otherwise.
 import argparse
 import functools
 import http.server
+import io
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -32,8 +38,52 @@ FIGURES = ["tc7-1", "tc7-9", "sf87-3", "pl-ifs-fern"]
 
 
 class QuietHandler(http.server.SimpleHTTPRequestHandler):
+    """The standard library's file server plus single byte ranges
+    ("Range: bytes=A-B"), which browsers need to seek in a video, as any
+    real web server and file:// give them."""
+
     def log_message(self, *args):
         pass
+
+    def send_head(self):
+        match = re.fullmatch(r"bytes=(\d*)-(\d*)", self.headers.get("Range", ""))
+        path = self.translate_path(self.path)
+        if not match or not os.path.isfile(path) or match.group(1) == match.group(2) == "":
+            return super().send_head()
+        size = os.path.getsize(path)
+        first, last = match.groups()
+        if first == "":  # the last N bytes
+            first, last = max(0, size - int(last)), size - 1
+        else:
+            first, last = int(first), min(int(last), size - 1) if last else size - 1
+        if first >= size or first > last:
+            self.send_response(416)
+            self.send_header("Content-Range", "bytes */%d" % size)
+            self.end_headers()
+            return None
+        with open(path, "rb") as f:
+            f.seek(first)
+            body = f.read(last - first + 1)
+        self.send_response(206)
+        self.send_header("Content-Type", self.guess_type(path))
+        self.send_header("Accept-Ranges", "bytes")
+        self.send_header("Content-Range", "bytes %d-%d/%d" % (first, last, size))
+        self.send_header("Content-Length", str(last - first + 1))
+        self.end_headers()
+        return io.BytesIO(body)
+
+
+class LoopbackServer(http.server.ThreadingHTTPServer):
+    def handle_error(self, request, client_address):
+        # The browser drops a video's connection once it has the part it
+        # wants; that is how media loading works, not a failure.
+        if not isinstance(sys.exc_info()[1], (ConnectionResetError, BrokenPipeError)):
+            super().handle_error(request, client_address)
+
+
+def figures_in(folder):
+    """The figures a gallery shows: those whose metadata (ID.json) is there."""
+    return sorted(f[:-5] for f in os.listdir(folder) if f.endswith(".json"))
 
 
 def render(figgen, out):
@@ -66,13 +116,24 @@ def wait_for(driver, script, seconds=30):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--figgen", required=True)
-    parser.add_argument("--out", required=True)
+    parser.add_argument("--figgen", help="render a few figures with this figgen, then check their gallery")
+    parser.add_argument("--out", help="the folder to render into (with --figgen)")
+    parser.add_argument("--gallery", help="check the gallery already written in this folder")
     parser.add_argument("--screenshot", required=True)
     args = parser.parse_args()
-    render(args.figgen, args.out)
+    if args.gallery:
+        args.out = args.gallery
+        if not os.path.isfile(os.path.join(args.out, "index.html")):
+            print("gallery_in_browser: error: --gallery %s has no index.html: run `make figures` first" % args.out)
+            return 2
+        figures = figures_in(args.out)
+    elif args.figgen and args.out:
+        render(args.figgen, args.out)
+        figures = FIGURES
+    else:
+        parser.error("give --figgen and --out, or --gallery")
 
-    server = http.server.ThreadingHTTPServer(
+    server = LoopbackServer(
         ("127.0.0.1", 0), functools.partial(QuietHandler, directory=args.out))
     threading.Thread(target=server.serve_forever, daemon=True).start()
     url = "http://127.0.0.1:%d/index.html" % server.server_address[1]
@@ -87,8 +148,8 @@ def main():
         images = driver.execute_script(
             "return [...document.images].map(i => [i.getAttribute('src'), i.complete, i.naturalWidth,"
             " i.naturalHeight, +i.getAttribute('width'), +i.getAttribute('height')]);")
-        if len(images) != len(FIGURES):
-            failures.append("%d images on the page, expected %d" % (len(images), len(FIGURES)))
+        if len(images) != len(figures):
+            failures.append("%d images on the page, expected %d" % (len(images), len(figures)))
         for src, complete, width, height, tag_width, tag_height in images:
             if not complete or width <= 0:
                 failures.append("image %s did not load" % src)
@@ -101,7 +162,7 @@ def main():
         videos = driver.execute_script(
             "return [...document.querySelectorAll('video')].map(v => [v.getAttribute('src'), v.duration,"
             " v.videoWidth, v.videoHeight, v.error ? v.error.code : 0]);")
-        filmed = [f for f in FIGURES if "file" in json.load(open(os.path.join(args.out, f + ".json"))).get("animation", {})]
+        filmed = [f for f in figures if "file" in json.load(open(os.path.join(args.out, f + ".json"))).get("animation", {})]
         if len(videos) != len(filmed):
             failures.append("%d videos on the page, expected %d" % (len(videos), len(filmed)))
         for src, duration, width, height, error in videos:
@@ -115,6 +176,26 @@ def main():
                                 % (src, duration, film["frames"], film["fps"], expected))
             if [width, height] != film["size"]:
                 failures.append("video %s is %dx%d, its metadata says %s" % (src, width, height, film["size"]))
+        # The whole page in one picture: a window as tall as the page, every
+        # card's parameters, numbers and notes open, every video showing its
+        # last frame (what the film grows into).
+        driver.execute_script("document.querySelectorAll('details').forEach(d => d.open = true);")
+        driver.set_window_size(1280, 600)
+        height, chrome = driver.execute_script(
+            "return [document.documentElement.scrollHeight, window.outerHeight - window.innerHeight];")
+        driver.set_window_size(1280, min(height + chrome, 16000))
+        # Seeking to the end checks the film is seekable (its index is good).
+        driver.execute_script("document.querySelectorAll('video').forEach(v => {"
+                              " v.preload = 'auto'; v.currentTime = Math.max(0, v.duration - 0.05); });")
+        wait_for(driver, "return [...document.querySelectorAll('video')].every(v => (v.readyState >= 2"
+                 " && !v.seeking) || v.error)", seconds=10)
+        for src, duration, position in driver.execute_script(
+                "return [...document.querySelectorAll('video')].map(v => [v.getAttribute('src'), v.duration,"
+                " v.currentTime]);"):
+            if duration and abs(position - (duration - 0.05)) > 0.1:
+                failures.append("video %s did not seek to its end (%.2f s): it stays at %.2f s"
+                                % (src, duration - 0.05, position))
+        time.sleep(0.5)
         driver.save_screenshot(args.screenshot)
         # A phone: one column, nothing wider than the screen.
         driver.set_window_size(390, 844)
