@@ -10,12 +10,13 @@ The first renders a few figures into DIR (some with a film, some without) and
 writes their gallery; the second takes a gallery already written (`make
 figures` writes out/index.html; `make gallery-check` checks it) with every
 figure whose ID.json is in the folder. Either way it serves the folder on
-127.0.0.1 and checks in the browser that every image
-has loaded (natural size > 0, the size in its tag), every video has loaded
-its metadata (duration > 0, the frame count over the fps of its metadata, its
-size), nothing was logged to the console, and a phone-wide window needs no
-sideways scrolling. Saves a desktop and a phone screenshot. Exits 0 when all
-holds, 1 with one line per failure otherwise.
+127.0.0.1 and checks in the browser that every image has loaded (natural
+size > 0, the size in its tag), every video has loaded its metadata
+(duration > 0, the frame count over the fps of its metadata, its size) and
+seeks to its last frame, nothing was logged to the console, and a phone-wide
+window with every card's details open needs no sideways scrolling. Saves a
+whole-page desktop screenshot and a phone one. Exits 0 when all holds, 1 with
+one line per failure otherwise.
 """
 import argparse
 import functools
