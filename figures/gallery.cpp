@@ -13,6 +13,7 @@
 #include "render/atomic_file.hpp"
 #include "render/png_io.hpp"
 #include "render/thumbnail.hpp"
+#include "render/video.hpp"
 
 namespace figures {
 namespace {
@@ -156,6 +157,7 @@ int write_gallery(const std::filesystem::path& dir) {
     std::ostringstream cards;
     int shown = 0, missing = 0;
     std::filesystem::create_directories(dir / "thumbs");
+    std::filesystem::create_directories(dir / "posters");
     for (const auto& file : catalog_files()) {
         const std::string id = file.stem().string();
         std::ifstream in(dir / (id + ".json"));
@@ -180,8 +182,15 @@ int write_gallery(const std::filesystem::path& dir) {
         const nlohmann::json* film = meta.contains("animation") ? &meta["animation"] : nullptr;
         if (film && film->contains("file") && std::filesystem::exists(dir / (*film)["file"].get<std::string>())) {
             const auto& size = (*film)["size"];
+            // The poster is the film's last frame, decoded from the MP4: what
+            // the film grows into, where the first frame (what a browser
+            // shows by itself) is often nearly empty.
+            const int frames = (*film)["frames"].get<int>();
+            const render::Image poster = render::decode_frame(dir / (*film)["file"].get<std::string>(), frames - 1);
+            render::write_png(dir / "posters" / (id + ".png"), poster,
+                              {{"Title", title + " (last frame of " + (*film)["file"].get<std::string>() + ")"}});
             cards << "<video controls preload=\"metadata\" src=\"" << escape((*film)["file"].get<std::string>())
-                  << "\" width=\"" << size[0].get<int>() << "\" height=\"" << size[1].get<int>()
+                  << "\" poster=\"posters/" << escape(id) << ".png\" width=\"" << size[0].get<int>() << "\" height=\"" << size[1].get<int>()
                   << "\" data-width=\"" << size[0].get<int>() << "\" data-height=\"" << size[1].get<int>()
                   << "\" data-frames=\"" << (*film)["frames"].get<int>() << "\" data-fps=\""
                   << (*film)["fps"].get<int>() << "\"></video>\n";

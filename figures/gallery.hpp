@@ -2,7 +2,8 @@
 // The gallery: out/index.html, one card per rendered figure of the catalog
 // with its thumbnail (out/thumbs/ID.png), title, source, parameters and
 // seed, the numbers its metadata computed, links to the full PNG and the
-// metadata, and the MP4 as a <video> where there is one. Plain HTML and CSS
+// metadata, and the MP4 as a <video> where there is one, its poster the
+// film's last frame (out/posters/ID.png). Plain HTML and CSS
 // in one file, no scripts, nothing fetched from the network; one column on a
 // phone, a grid on a wide screen.
 

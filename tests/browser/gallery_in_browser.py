@@ -12,8 +12,9 @@ figures` writes out/index.html; `make gallery-check` checks it) with every
 figure whose ID.json is in the folder. Either way it serves the folder on
 127.0.0.1 and checks in the browser that every image has loaded (natural
 size > 0, the size in its tag), every video has loaded its metadata
-(duration > 0, the frame count over the fps of its metadata, its size) and
-seeks to its last frame, nothing was logged to the console, and a phone-wide
+(duration > 0, the frame count over the fps of its metadata, its size),
+has its poster (its last frame, at its size) and seeks to its last frame,
+nothing was logged to the console, and a phone-wide
 window with every card's details open needs no sideways scrolling. Saves a
 whole-page desktop screenshot and a phone one. Exits 0 when all holds, 1 with
 one line per failure otherwise.
@@ -177,6 +178,23 @@ def main():
                                 % (src, duration, film["frames"], film["fps"], expected))
             if [width, height] != film["size"]:
                 failures.append("video %s is %dx%d, its metadata says %s" % (src, width, height, film["size"]))
+        # Every video's poster (its last frame) decoded, at the film's size.
+        driver.set_script_timeout(30)
+        posters = driver.execute_async_script(
+            "const done = arguments[arguments.length - 1];"
+            "Promise.all([...document.querySelectorAll('video')].map(v => new Promise(ready => {"
+            " const image = new Image();"
+            " image.onload = () => ready([v.getAttribute('src'), v.getAttribute('poster'), image.naturalWidth,"
+            " image.naturalHeight]);"
+            " image.onerror = () => ready([v.getAttribute('src'), v.getAttribute('poster'), 0, 0]);"
+            " image.src = v.poster; }))).then(done);")
+        for src, poster, width, height in posters:
+            film = json.load(open(os.path.join(args.out, src.replace(".mp4", ".json"))))["animation"]
+            if not poster or width <= 0:
+                failures.append("video %s: its poster %s did not load" % (src, poster))
+            elif [width, height] != film["size"]:
+                failures.append("video %s: its poster %s is %dx%d, the film %s" % (src, poster, width, height,
+                                                                                 film["size"]))
         # The whole page in one picture: a window as tall as the page, every
         # card's parameters, numbers and notes open, every video showing its
         # last frame (what the film grows into).

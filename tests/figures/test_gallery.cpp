@@ -1,5 +1,7 @@
 // The gallery page: what `figgen gallery` writes for the figures in a folder.
 #include <catch2/catch.hpp>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -25,6 +27,14 @@ int count(const std::string& text, const std::string& part) {
     int n = 0;
     for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
     return n;
+}
+
+// Mean absolute difference over the RGB channels of two same-size images.
+double mean_difference(const render::Image& a, const render::Image& b) {
+    double sum = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i)
+        if (i % 4 != 3) sum += std::abs(int(a.rgba[i]) - int(b.rgba[i]));
+    return sum / (a.rgba.size() / 4 * 3);
 }
 
 }  // namespace
@@ -80,10 +90,26 @@ TEST_CASE("figgen gallery shows every rendered figure with thumbnail, film, para
                                      "\" height=\"" + std::to_string(thumb.height) + "\""));
     // The film, with the frame count and size of its metadata; tc7-9 has none.
     const auto& film = meta["animation"];
-    CHECK_THAT(page, Catch::Contains("<video controls preload=\"metadata\" src=\"tc7-1.mp4\" width=\"" +
+    CHECK_THAT(page, Catch::Contains("<video controls preload=\"metadata\" src=\"tc7-1.mp4\" poster=\"posters/tc7-1.png\" width=\"" +
                                      std::to_string(film["size"][0].get<int>()) + "\""));
     CHECK_THAT(page, Catch::Contains("data-frames=\"" + std::to_string(film["frames"].get<int>()) + "\""));
     CHECK(count(page, "<video ") == 1);
+    // Its poster: the film's last frame, as the same render's PNG sequence
+    // has it (within H.264's loss), not its first.
+    const fs::path frames = testkit::fresh_dir("gallery-frames");
+    REQUIRE(testkit::figgen("render tc7-1 --scale 0.5 --seed 4 --format frames --out " + frames.string()).status == 0);
+    const auto poster = render::read_png(out / "posters" / "tc7-1.png").image;
+    const int last = film["frames"].get<int>() - 1;
+    char name[16];
+    std::snprintf(name, sizeof name, "%05d.png", last);
+    const auto last_frame = render::read_png(frames / "tc7-1-frames" / name).image;
+    const auto first_frame = render::read_png(frames / "tc7-1-frames" / "00000.png").image;
+    REQUIRE(poster.width == film["size"][0].get<int>());
+    REQUIRE(poster.height == film["size"][1].get<int>());
+    REQUIRE(last_frame.width == poster.width);
+    REQUIRE(last_frame.height == poster.height);
+    CHECK(mean_difference(poster, last_frame) < 1.5);
+    CHECK(mean_difference(poster, first_frame) > 5 * mean_difference(poster, last_frame));
     // Source, seed, parameters and the numbers computed.
     CHECK_THAT(page, Catch::Contains("Think Complexity"));
     CHECK_THAT(page, Catch::Contains("<tr><th>seed</th><td>4</td></tr>"));
