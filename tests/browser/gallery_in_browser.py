@@ -197,12 +197,14 @@ def main():
                                                                                  film["size"]))
         # The whole page in one picture: a window as tall as the page, every
         # card's parameters, numbers and notes open, every video showing its
-        # last frame (what the film grows into).
+        # poster (the film's last frame) as a visitor first sees it.
         driver.execute_script("document.querySelectorAll('details').forEach(d => d.open = true);")
         driver.set_window_size(1280, 600)
         height, chrome = driver.execute_script(
             "return [document.documentElement.scrollHeight, window.outerHeight - window.innerHeight];")
         driver.set_window_size(1280, min(height + chrome, 16000))
+        time.sleep(0.5)
+        driver.save_screenshot(args.screenshot)
         # Seeking to the end checks the film is seekable (its index is good).
         driver.execute_script("document.querySelectorAll('video').forEach(v => {"
                               " v.preload = 'auto'; v.currentTime = Math.max(0, v.duration - 0.05); });")
@@ -214,8 +216,6 @@ def main():
             if duration and abs(position - (duration - 0.05)) > 0.1:
                 failures.append("video %s did not seek to its end (%.2f s): it stays at %.2f s"
                                 % (src, duration - 0.05, position))
-        time.sleep(0.5)
-        driver.save_screenshot(args.screenshot)
         # A phone: one column, nothing wider than the screen.
         driver.set_window_size(390, 844)
         time.sleep(0.3)
