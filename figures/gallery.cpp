@@ -186,7 +186,7 @@ int write_gallery(const std::filesystem::path& dir) {
             // the film grows into, where the first frame (what a browser
             // shows by itself) is often nearly empty.
             const int frames = (*film)["frames"].get<int>();
-            const render::Image poster = render::decode_frame(dir / (*film)["file"].get<std::string>(), frames - 1);
+            const render::Image poster = render::decode_frame(dir / (*film)["file"].get<std::string>(), frames - 1, 0);
             render::write_png(dir / "posters" / (id + ".png"), poster,
                               {{"Title", title + " (last frame of " + (*film)["file"].get<std::string>() + ")"}});
             cards << "<video controls preload=\"metadata\" src=\"" << escape((*film)["file"].get<std::string>())

@@ -262,7 +262,7 @@ namespace {
 // Yields the decoded frames of a file's best video stream in display order.
 class Decoder {
 public:
-    explicit Decoder(const std::filesystem::path& path) : path_(path) {
+    Decoder(const std::filesystem::path& path, int threads) : path_(path) {
         quiet_ffmpeg();
         const std::string url = file_url(path);
         AVFormatContext* format = nullptr;
@@ -277,7 +277,7 @@ public:
         packet_.reset(av_packet_alloc());
         if (!codec_ || !frame_ || !packet_) check(AVERROR(ENOMEM), "allocating the decoder");
         check(avcodec_parameters_to_context(codec_.get(), stream()->codecpar), "configuring the decoder");
-        codec_->thread_count = 1;  // plenty for tests, and polite under make -j
+        codec_->thread_count = threads;
         check(avcodec_open2(codec_.get(), codec, nullptr), "opening the decoder");
     }
 
@@ -321,7 +321,7 @@ private:
 }  // namespace
 
 VideoInfo probe_video(const std::filesystem::path& path) {
-    Decoder decoder(path);
+    Decoder decoder(path, 1);  // plenty for tests, and polite under make -j
     VideoInfo info;
     while (decoder.next()) ++info.frames;
     const AVStream& s = *decoder.stream();
@@ -336,9 +336,10 @@ VideoInfo probe_video(const std::filesystem::path& path) {
     return info;
 }
 
-Image decode_frame(const std::filesystem::path& path, int index) {
+Image decode_frame(const std::filesystem::path& path, int index, int threads) {
     if (index < 0) throw std::out_of_range("video frame index " + std::to_string(index) + " is negative");
-    Decoder decoder(path);
+    if (threads < 0) throw std::invalid_argument("decoder threads " + std::to_string(threads) + " is negative");
+    Decoder decoder(path, threads);
     const AVFrame* frame = nullptr;
     for (int i = 0; i <= index; ++i) {
         frame = decoder.next();

@@ -61,8 +61,9 @@ struct VideoInfo {
 // the path when it cannot.
 VideoInfo probe_video(const std::filesystem::path& path);
 
-// Decodes frame `index` (0-based, display order) back to RGBA; throws
-// std::out_of_range when the video has fewer frames.
-Image decode_frame(const std::filesystem::path& path, int index);
+// Decodes frame `index` (0-based, display order) back to RGBA on `threads`
+// decoder threads (0: as many as FFmpeg sees cores; the pixels do not depend
+// on it); throws std::out_of_range when the video has fewer frames.
+Image decode_frame(const std::filesystem::path& path, int index, int threads = 1);
 
 }  // namespace render

@@ -115,6 +115,20 @@ TEST_CASE("a decoded frame keeps the pattern's colours and position", "[video]")
     CHECK_THROWS_AS(render::decode_frame(path, kFrames), std::out_of_range);
 }
 
+TEST_CASE("decoding on more threads gives the same pixels", "[video]") {
+    const fs::path path = scratch("bar_threads.mp4");
+    encode_bar(path);
+    const Image one = render::decode_frame(path, kFrames - 1, 1);
+    for (const int threads : {0, 2, 3}) {
+        INFO("threads " << threads);
+        const Image many = render::decode_frame(path, kFrames - 1, threads);
+        CHECK(many.width == one.width);
+        CHECK(many.height == one.height);
+        CHECK(many.rgba == one.rgba);
+    }
+    CHECK_THROWS_WITH(render::decode_frame(path, 0, -1), "decoder threads -1 is negative");
+}
+
 TEST_CASE("the mpeg4 fallback encodes the same frames", "[video]") {
     const fs::path path = scratch("bar_mpeg4.mp4");
     VideoOptions options;
