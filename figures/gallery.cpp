@@ -179,21 +179,22 @@ int write_gallery(const std::filesystem::path& dir) {
               << "<p class=\"source\">" << escape(meta.value("source", "")) << "</p>\n"
               << "<a href=\"" << escape(id) << ".png\"><img src=\"thumbs/" << escape(id) << ".png\" width=\""
               << thumb.width << "\" height=\"" << thumb.height << "\" alt=\"" << escape(title) << "\"></a>\n";
-        const nlohmann::json* film = meta.contains("animation") ? &meta["animation"] : nullptr;
-        if (film && film->contains("file") && std::filesystem::exists(dir / (*film)["file"].get<std::string>())) {
-            const auto& size = (*film)["size"];
+        // The film, where its metadata names one and the file is there.
+        const nlohmann::json film = meta.value("animation", nlohmann::json::object());
+        const std::string movie = film.value("file", "");
+        const bool filmed = !movie.empty() && std::filesystem::exists(dir / movie);
+        if (filmed) {
+            const int width = film["size"][0].get<int>(), height = film["size"][1].get<int>();
+            const int frames = film["frames"].get<int>();
             // The poster is the film's last frame, decoded from the MP4: what
             // the film grows into, where the first frame (what a browser
             // shows by itself) is often nearly empty.
-            const int frames = (*film)["frames"].get<int>();
-            const render::Image poster = render::decode_frame(dir / (*film)["file"].get<std::string>(), frames - 1, 0);
-            render::write_png(dir / "posters" / (id + ".png"), poster,
-                              {{"Title", title + " (last frame of " + (*film)["file"].get<std::string>() + ")"}});
-            cards << "<video controls preload=\"metadata\" src=\"" << escape((*film)["file"].get<std::string>())
-                  << "\" poster=\"posters/" << escape(id) << ".png\" width=\"" << size[0].get<int>() << "\" height=\"" << size[1].get<int>()
-                  << "\" data-width=\"" << size[0].get<int>() << "\" data-height=\"" << size[1].get<int>()
-                  << "\" data-frames=\"" << (*film)["frames"].get<int>() << "\" data-fps=\""
-                  << (*film)["fps"].get<int>() << "\"></video>\n";
+            render::write_png(dir / "posters" / (id + ".png"), render::decode_frame(dir / movie, frames - 1, 0),
+                              {{"Title", title + " (last frame of " + movie + ")"}});
+            cards << "<video controls preload=\"metadata\" src=\"" << escape(movie) << "\" poster=\"posters/"
+                  << escape(id) << ".png\" width=\"" << width << "\" height=\"" << height << "\" data-width=\""
+                  << width << "\" data-height=\"" << height << "\" data-frames=\"" << frames << "\" data-fps=\""
+                  << film["fps"].get<int>() << "\"></video>\n";
         }
         cards << "<div class=\"links\"><a href=\"" << escape(id) << ".png\">full PNG";
         if (meta.contains("image")) {
@@ -201,8 +202,7 @@ int write_gallery(const std::filesystem::path& dir) {
             cards << " (" << size[0].get<int>() << " x " << size[1].get<int>() << ")";
         }
         cards << "</a><a href=\"" << escape(id) << ".json\">metadata</a>";
-        if (film && film->contains("file"))
-            cards << "<a href=\"" << escape((*film)["file"].get<std::string>()) << "\">MP4</a>";
+        if (filmed) cards << "<a href=\"" << escape(movie) << "\">MP4</a>";
         cards << "</div>\n"
               << "<details><summary>parameters, seed " << meta.value("seed", 0ull) << "</summary><table>"
               << "<tr><th>seed</th><td>" << meta.value("seed", 0ull) << "</td></tr>" << parameter_list(meta)

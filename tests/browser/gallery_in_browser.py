@@ -135,6 +135,14 @@ def main():
     else:
         parser.error("give --figgen and --out, or --gallery")
 
+    # The films the metadata promises, by file name: {file: animation}.
+    films = {}
+    for figure in figures:
+        with open(os.path.join(args.out, figure + ".json")) as f:
+            film = json.load(f).get("animation", {})
+        if "file" in film:
+            films[film["file"]] = film
+
     server = LoopbackServer(
         ("127.0.0.1", 0), functools.partial(QuietHandler, directory=args.out))
     threading.Thread(target=server.serve_forever, daemon=True).start()
@@ -164,11 +172,13 @@ def main():
         videos = driver.execute_script(
             "return [...document.querySelectorAll('video')].map(v => [v.getAttribute('src'), v.duration,"
             " v.videoWidth, v.videoHeight, v.error ? v.error.code : 0]);")
-        filmed = [f for f in figures if "file" in json.load(open(os.path.join(args.out, f + ".json"))).get("animation", {})]
-        if len(videos) != len(filmed):
-            failures.append("%d videos on the page, expected %d" % (len(videos), len(filmed)))
+        if len(videos) != len(films):
+            failures.append("%d videos on the page, expected %d" % (len(videos), len(films)))
         for src, duration, width, height, error in videos:
-            film = json.load(open(os.path.join(args.out, src.replace(".mp4", ".json"))))["animation"]
+            film = films.get(src)
+            if film is None:
+                failures.append("video %s is not the film of any figure's metadata" % src)
+                continue
             if error:
                 failures.append("video %s: media error %d" % (src, error))
                 continue
@@ -189,7 +199,7 @@ def main():
             " image.onerror = () => ready([v.getAttribute('src'), v.getAttribute('poster'), 0, 0]);"
             " image.src = v.poster; }))).then(done);")
         for src, poster, width, height in posters:
-            film = json.load(open(os.path.join(args.out, src.replace(".mp4", ".json"))))["animation"]
+            film = films.get(src, {"size": None})
             if not poster or width <= 0:
                 failures.append("video %s: its poster %s did not load" % (src, poster))
             elif [width, height] != film["size"]:
