@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "accuracy.hpp"
-#include "figures/plot_page.hpp"
+#include "scenes/plot_page.hpp"
 #include "render/atomic_file.hpp"
 #include "render/colormap.hpp"
 #include "render/png_io.hpp"
@@ -19,7 +19,7 @@ render::Series series_of(const bench::Curve& curve) {
         x.push_back(p.seconds);
         y.push_back(p.error);
     }
-    auto s = figures::line_series(x, y, curve.label, glm::vec4(render::parse_colour(curve.colour), 1), 1.8f, false);
+    auto s = scenes::line_series(x, y, curve.label, glm::vec4(render::parse_colour(curve.colour), 1), 1.8f, false);
     s.marker_size = 7;
     return s;
 }
@@ -40,7 +40,7 @@ render::Axes pareto_axes(const std::vector<bench::Curve>& curves, const std::str
 void write_pareto(const std::filesystem::path& file, const bench::Curves& curves) {
     render::PlotStyle style;
     style.wspace = 0.3f;
-    const auto image = figures::draw_plot_row({pareto_axes(curves.numerics, "Arithmetic against exact solutions",
+    const auto image = scenes::draw_plot_row({pareto_axes(curves.numerics, "Arithmetic against exact solutions",
                                                            {1e-17, 1.0}, render::Legend::upper_left),
                                                pareto_axes(curves.estimators, "Estimates against known constants",
                                                            {1e-6, 1.0}, render::Legend::lower_left)},

@@ -12,7 +12,7 @@
 #include <stdexcept>
 
 #include "accuracy.hpp"
-#include "figures/field_panels.hpp"
+#include "scenes/field_panels.hpp"
 #include "render/video.hpp"
 #include "sim/gray_scott.hpp"
 #include "sim/gray_scott_kernels.hpp"
@@ -112,18 +112,18 @@ nlohmann::json frames_in_process() {
     const sim::GrayScott start(p, rng);
     sim::GrayScottKernel<double> model(p, start.a(), start.b());
     model.step(2000, 0);
-    figures::FieldPanel panel{"step 2000", {}};
+    scenes::FieldPanel panel{"step 2000", {}};
     panel.layers.push_back({p.n, p.n, model.a().cells(), {&render::colormap("Reds"), 0, 1, 0.7f, render::Sampling::smooth}});
     panel.layers.push_back({p.n, p.n, model.b().cells(), {&render::colormap("Blues"), 0, 0.5, 0.7f, render::Sampling::smooth}});
     const int frames = 120, width = 1280, height = 720;
     auto t0 = Clock::now();
-    for (int i = 0; i < frames; ++i) figures::draw_field_panels({panel}, width, height, 1.0);
+    for (int i = 0; i < frames; ++i) scenes::draw_field_panels({panel}, width, height, 1.0);
     const double draw = seconds_since(t0);
     const auto dir = scratch_dir("frames");
     t0 = Clock::now();
     {
         render::VideoWriter video(dir / "frames.mp4", width, height);
-        for (int i = 0; i < frames; ++i) video.add(figures::draw_field_panels({panel}, width, height, 1.0));
+        for (int i = 0; i < frames; ++i) video.add(scenes::draw_field_panels({panel}, width, height, 1.0));
         video.finish();
     }
     const double both = seconds_since(t0);

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "figures/field_panels.hpp"
+#include "scenes/field_panels.hpp"
 #include "render/hex_cells.hpp"
 #include "render/png_io.hpp"
 #include "render/video.hpp"
@@ -13,7 +13,7 @@
 
 namespace {
 
-figures::FieldPanel diffusion_panel(int n) {
+scenes::FieldPanel diffusion_panel(int n) {
     sim::DiffusionParams p;
     p.n = n;
     p.block_row = p.block_col = n / 3;
@@ -28,13 +28,13 @@ figures::FieldPanel diffusion_panel(int n) {
 // One 900x450 three-panel figure: canvas, fields, frames, titles, read-back.
 static void draw_three_panels(benchmark::State& state) {
     const auto panel = diffusion_panel(static_cast<int>(state.range(0)));
-    for (auto _ : state) benchmark::DoNotOptimize(figures::draw_field_panels({panel, panel, panel}, 900, 450, 1.0));
+    for (auto _ : state) benchmark::DoNotOptimize(scenes::draw_field_panels({panel, panel, panel}, 900, 450, 1.0));
 }
 BENCHMARK(draw_three_panels)->Arg(9)->Arg(300)->Unit(benchmark::kMillisecond);
 
 // Encoding a 480x520 frame with libx264 (2 pinned threads).
 static void encode_frame(benchmark::State& state) {
-    const auto frame = figures::draw_field_panels({diffusion_panel(9)}, 480, 520, 1.0);
+    const auto frame = scenes::draw_field_panels({diffusion_panel(9)}, 480, 520, 1.0);
     const auto path = std::filesystem::temp_directory_path() / "figgen-bench.mp4";
     {
         render::VideoWriter video(path, frame.width, frame.height);
@@ -48,7 +48,7 @@ BENCHMARK(encode_frame)->Unit(benchmark::kMillisecond);
 
 // Writing the 900x450 figure PNG.
 static void write_figure_png(benchmark::State& state) {
-    const auto image = figures::draw_field_panels({diffusion_panel(9)}, 900, 450, 1.0);
+    const auto image = scenes::draw_field_panels({diffusion_panel(9)}, 900, 450, 1.0);
     const auto path = std::filesystem::temp_directory_path() / "figgen-bench.png";
     for (auto _ : state) render::write_png(path, image);
     std::filesystem::remove(path);
@@ -59,10 +59,10 @@ BENCHMARK(write_figure_png)->Unit(benchmark::kMillisecond);
 static void draw_smooth_frame(benchmark::State& state) {
     std::vector<double> values(100 * 100);
     for (std::size_t i = 0; i < values.size(); ++i) values[i] = 0.5 + 0.5 * std::sin(0.37 * double(i));
-    figures::FieldPanel panel{"step 1000", {}};
+    scenes::FieldPanel panel{"step 1000", {}};
     for (const char* map : {"Reds", "Blues"})
         panel.layers.push_back({100, 100, values, {&render::colormap(map), 0, 1, 0.7f, render::Sampling::smooth}});
-    for (auto _ : state) benchmark::DoNotOptimize(figures::draw_field_panels({panel}, 480, 520, 1.0));
+    for (auto _ : state) benchmark::DoNotOptimize(scenes::draw_field_panels({panel}, 480, 520, 1.0));
 }
 BENCHMARK(draw_smooth_frame)->Unit(benchmark::kMillisecond);
 

@@ -52,9 +52,14 @@ glm::vec3 Colormap::at(double t) const {
     return colours[i];
 }
 
-const Colormap& colormap(std::string_view name) {
+const Colormap* find_colormap(std::string_view name) {
     for (const Colormap& map : builtins())
-        if (map.name == name) return map;
+        if (map.name == name) return &map;
+    return nullptr;
+}
+
+const Colormap& colormap(std::string_view name) {
+    if (const Colormap* map = find_colormap(name)) return *map;
     std::string allowed;
     for (const Colormap& map : builtins()) allowed += (allowed.empty() ? "" : ", ") + map.name;
     throw std::invalid_argument("colormap \"" + std::string(name) + "\" is unknown: allowed are " + allowed);
@@ -73,6 +78,17 @@ Colormap listed_colormap(std::string name, const std::vector<glm::vec3>& colours
 }
 
 glm::vec3 parse_colour(std::string_view text) {
+    if (const auto colour = find_colour(text)) return *colour;
+    throw std::invalid_argument("colour \"" + std::string(text) + "\" is not allowed: use " + colours_allowed());
+}
+
+std::string colours_allowed() {
+    std::string names;
+    for (const NamedColour& c : named_colours) names += std::string(names.empty() ? "" : ", ") + c.name;
+    return "#rrggbb or one of " + names;
+}
+
+std::optional<glm::vec3> find_colour(std::string_view text) {
     auto hex = [](char c) -> int {
         if (c >= '0' && c <= '9') return c - '0';
         if (c >= 'a' && c <= 'f') return c - 'a' + 10;
@@ -87,9 +103,7 @@ glm::vec3 parse_colour(std::string_view text) {
     }
     for (const NamedColour& c : named_colours)
         if (text == c.name) return c.rgb;
-    std::string names;
-    for (const NamedColour& c : named_colours) names += std::string(names.empty() ? "" : ", ") + c.name;
-    throw std::invalid_argument("colour \"" + std::string(text) + "\" is not allowed: use #rrggbb or one of " + names);
+    return std::nullopt;
 }
 
 }  // namespace render

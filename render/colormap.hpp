@@ -5,6 +5,7 @@
 // Colormap.__call__ does.
 
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -36,6 +37,8 @@ struct Colormap {
 
 // The built-in colormap called `name`; throws std::invalid_argument listing the names allowed.
 const Colormap& colormap(std::string_view name);
+// The same, or null for an unknown name.
+const Colormap* find_colormap(std::string_view name);
 std::vector<std::string> colormap_names();
 
 // matplotlib's ListedColormap: N colours, t picks colour floor(t * N) (clipped).
@@ -45,5 +48,9 @@ Colormap listed_colormap(std::string name, const std::vector<glm::vec3>& colours
 // "#rrggbb" or a few of matplotlib's named colours (white, black, green,
 // orange, ...); throws std::invalid_argument naming what is allowed.
 glm::vec3 parse_colour(std::string_view text);
+// The same, or nothing for a text that names no colour.
+std::optional<glm::vec3> find_colour(std::string_view text);
+// What parse_colour accepts, for messages: "#rrggbb or one of white, black, ...".
+std::string colours_allowed();
 
 }  // namespace render

@@ -93,14 +93,6 @@ int decimals_for(const std::vector<double>& values) {
     return sigfigs + 1;
 }
 
-std::string format_fixed(double v, int decimals) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%.*f", decimals, v);
-    std::string s = text;
-    if (s[0] != '-') return s;
-    if (s.find_first_not_of("-0.") == std::string::npos) return s.substr(1);  // "-0.0" is zero
-    return minus_sign + s.substr(1);
-}
 
 std::string superscript(int n) {
     static const char* const digits[] = {"\u2070", "\u00b9", "\u00b2", "\u00b3", "\u2074",
@@ -116,6 +108,15 @@ std::string coefficient_label(int coefficient, int exponent) {
 }
 
 }  // namespace
+
+std::string format_fixed(double v, int decimals) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", decimals, v);
+    std::string s = text;
+    if (s[0] != '-') return s;
+    if (s.find_first_not_of("-0.") == std::string::npos) return s.substr(1);  // "-0.0" is zero
+    return minus_sign + s.substr(1);
+}
 
 int tick_bins(float length, float font_size, bool horizontal) {
     if (!(font_size > 0)) return 9;

@@ -48,4 +48,8 @@ std::string power_of_ten_label(int exponent);
 std::pair<double, double> linear_auto_range(double lo, double hi);
 std::pair<double, double> log_auto_range(double lo, double hi);
 
+// `v` with `decimals` decimals as a figure shows it: "1.57", "\u22121.5" (a
+// true minus sign), "0.0" for a negative zero.
+std::string format_fixed(double v, int decimals);
+
 }  // namespace render

@@ -18,23 +18,31 @@ void RangeLog::note(CheckedRange range) {
     if (current_log) current_log->ranges_.push_back(std::move(range));
 }
 
+ParameterError::ParameterError(std::string name_, std::string value_, std::string allowed_)
+    : std::invalid_argument(name_ + " = " + value_ + " is not allowed: " + allowed_),
+      name(std::move(name_)),
+      value(std::move(value_)),
+      allowed(std::move(allowed_)) {}
+
+std::string shown(double value) {
+    std::ostringstream text;
+    text << value;  // the stream's default: %g with 6 digits
+    return text.str();
+}
+
 void require_number(const char* name, double value, double low, double high, const char* why) {
     RangeLog::note({name, low, high, false, why ? why : ""});
     if (std::isfinite(value) && value >= low && value <= high) return;
-    std::ostringstream message;
-    message << name << " = " << value << " is not allowed: " << name << " must be a number from " << low << " to "
-            << high;
-    if (why) message << " (" << why << ")";
-    throw std::invalid_argument(message.str());
+    std::string allowed = "a number from " + shown(low) + " to " + shown(high);
+    if (why) allowed += std::string(" (") + why + ")";
+    throw ParameterError(name, shown(value), allowed);
 }
 
 void require_integer(const char* name, long long value, long long low, long long high) {
     RangeLog::note({name, double(low), double(high), true, ""});
     if (value >= low && value <= high) return;
-    std::ostringstream message;
-    message << name << " = " << value << " is not allowed: " << name << " must be an integer from " << low << " to "
-            << high;
-    throw std::invalid_argument(message.str());
+    throw ParameterError(name, std::to_string(value),
+                         "an integer from " + std::to_string(low) + " to " + std::to_string(high));
 }
 
 void require_square_field(const char* name, const Grid<double>& g, int n) {
@@ -50,7 +58,7 @@ void require_square_field(const char* name, const Grid<double>& g, int n) {
 Boundary parse_boundary(std::string_view text) {
     if (text == "zero") return Boundary::zero;
     if (text == "wrap") return Boundary::wrap;
-    throw std::invalid_argument("boundary = \"" + std::string(text) + "\" is not allowed: use \"zero\" or \"wrap\"");
+    throw ParameterError("boundary", "\"" + std::string(text) + "\"", "\"zero\" or \"wrap\"");
 }
 
 }  // namespace sim

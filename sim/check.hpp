@@ -1,13 +1,25 @@
 #pragma once
-// Parameter checks shared by the models. Each throws std::invalid_argument
-// with one line naming the parameter, the bad value and what is allowed.
+// Parameter checks shared by the models. Each throws ParameterError naming
+// the parameter, the bad value and what is allowed.
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "sim/grid.hpp"
 
 namespace sim {
+
+// A parameter a model refuses. what(): "name = value is not allowed: allowed".
+struct ParameterError : std::invalid_argument {
+    ParameterError(std::string name, std::string value, std::string allowed);
+    std::string name;     // the model's name for it, e.g. "angle_degrees"
+    std::string value;    // as shown in the message, short ("1e+308")
+    std::string allowed;  // e.g. "a number from 0 to 0.25"
+};
+
+// A number as messages show it: at most 6 significant digits ("1e+308", "0.25").
+std::string shown(double value);
 
 // `why`, when given, follows the range in brackets: where the bound comes from.
 void require_number(const char* name, double value, double low, double high, const char* why = nullptr);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 #include "sim/check.hpp"
@@ -17,12 +16,9 @@ constexpr std::uint64_t most_recorded = std::numeric_limits<std::uint32_t>::max(
 
 void DepositionParams::validate() const {
     require_integer("width", width, 3, 10000000);  // 3 keeps a column's two neighbours distinct
-    if (particles > most_recorded) {
-        std::ostringstream message;
-        message << "particles = " << particles << " is not allowed: particles must be an integer from 0 to "
-                << most_recorded;
-        throw std::invalid_argument(message.str());
-    }
+    if (particles > most_recorded)
+        throw ParameterError("particles", std::to_string(particles),
+                             "an integer from 0 to " + std::to_string(most_recorded));
 }
 
 Deposition::Deposition(const DepositionParams& params, std::uint64_t seed) : params_(params), rng_(seed) {
@@ -95,14 +91,9 @@ std::size_t Deposition::memory_bytes() const {
     return bytes;
 }
 
-RoughnessCurve roughness_curve(int width, double max_time, int points_per_decade, int seeds, std::uint64_t seed) {
-    require_integer("width", width, 3, 10000000);
-    require_number("max_time", max_time, 1.0, 1e9);
-    require_integer("points_per_decade", points_per_decade, 1, 1000);
-    require_integer("seeds", seeds, 1, 1000000);
-
-    // Sample counts in particles: 10^(k/ppd) monolayers, rounded; the slack
-    // keeps max_time itself when it is a power of ten that pow rounds up.
+std::vector<std::uint64_t> roughness_sample_counts(int width, double max_time, int points_per_decade) {
+    // 10^(k/ppd) monolayers, rounded; the slack keeps max_time itself when it
+    // is a power of ten that pow rounds up.
     std::vector<std::uint64_t> counts;
     for (int k = 0;; ++k) {
         const double t = std::pow(10.0, static_cast<double>(k) / points_per_decade);
@@ -110,7 +101,16 @@ RoughnessCurve roughness_curve(int width, double max_time, int points_per_decade
         const auto n = static_cast<std::uint64_t>(std::llround(t * width));
         if (counts.empty() || n > counts.back()) counts.push_back(n);
     }
+    return counts;
+}
 
+RoughnessCurve roughness_curve(int width, double max_time, int points_per_decade, int seeds, std::uint64_t seed) {
+    require_integer("width", width, 3, 10000000);
+    require_number("max_time", max_time, 1.0, 1e9);
+    require_integer("points_per_decade", points_per_decade, 1, 1000);
+    require_integer("seeds", seeds, 1, 1000000);
+
+    const std::vector<std::uint64_t> counts = roughness_sample_counts(width, max_time, points_per_decade);
     RoughnessCurve curve{width, {}, std::vector<double>(counts.size(), 0.0), std::vector<double>(counts.size(), 0.0)};
     for (std::uint64_t n : counts) curve.times.push_back(static_cast<double>(n) / width);
 

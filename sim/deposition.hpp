@@ -87,5 +87,7 @@ struct RoughnessCurve {
 // time is rounded to a whole number of particles, repeats dropped. Run r is
 // seeded with the r-th output of SplitMix64(seed). seeds: 1..1,000,000.
 RoughnessCurve roughness_curve(int width, double max_time, int points_per_decade, int seeds, std::uint64_t seed);
+// The times roughness_curve samples, in particles (times t are counts / L).
+std::vector<std::uint64_t> roughness_sample_counts(int width, double max_time, int points_per_decade);
 
 }  // namespace sim

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -13,18 +14,13 @@ namespace {
 
 void require_finite(std::size_t map, const char* coefficient, double value) {
     if (std::isfinite(value)) return;
-    std::ostringstream message;
-    message << "maps[" << map << "]." << coefficient << " = " << value
-            << " is not allowed: map coefficients must be finite numbers";
-    throw std::invalid_argument(message.str());
+    throw ParameterError("maps[" + std::to_string(map) + "]." + coefficient, shown(value), "a finite number");
 }
 
 // require_integer for counts held in 64 unsigned bits, which a long long may not show.
 void require_count(const char* name, std::uint64_t value, std::uint64_t high) {
     if (value <= high) return;
-    std::ostringstream message;
-    message << name << " = " << value << " is not allowed: " << name << " must be an integer from 0 to " << high;
-    throw std::invalid_argument(message.str());
+    throw ParameterError(name, std::to_string(value), "an integer from 0 to " + std::to_string(high));
 }
 
 }  // namespace
@@ -45,9 +41,11 @@ void Ifs::validate() const {
         total += map.p;
     }
     if (std::abs(total - 1.0) > 1e-9) {
-        std::ostringstream message;
-        message << "map probabilities sum to " << total << ", not 1";
-        throw std::invalid_argument(message.str());
+        // Twelve digits: a sum off by 1e-8 must not show as "1".
+        std::ostringstream sum;
+        sum << std::setprecision(12) << total;
+        throw ParameterError("maps", "probabilities summing to " + sum.str(),
+                             "probabilities p summing to 1 (within 1e-9)");
     }
 }
 

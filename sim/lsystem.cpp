@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <limits>
-#include <stdexcept>
+#include <string>
 
 #include "sim/check.hpp"
 
@@ -10,7 +10,7 @@ namespace sim {
 
 namespace {
 
-constexpr const char* allowed_symbols = "allowed: letters A-Z a-z and + - & ^ \\ / | [ ] !";
+constexpr const char* allowed_symbols = "letters A-Z a-z and + - & ^ \\ / | [ ] !";
 constexpr std::uint64_t saturated = std::numeric_limits<std::uint64_t>::max();
 
 std::uint64_t add(std::uint64_t a, std::uint64_t b) {
@@ -24,24 +24,34 @@ std::string strip_spaces(std::string_view text) {
     return out;
 }
 
-// `where` names the text in the message: `the axiom "F]"` or `rule "F -> F["`.
-void check_text(std::string_view text, const std::string& where) {
+// A rule or axiom as the message shows it: the text as written, quoted.
+std::string quoted(std::string_view text) {
+    std::string out = "\"";  // appended, not "\"" + text: GCC 12 warns of a false overlap there
+    out.append(text);
+    out += '"';
+    return out;
+}
+
+// `name` and `value` name the text in the message: axiom "F]" or rules[1] "F -> F[".
+void check_text(std::string_view text, const std::string& name, const std::string& value) {
     int open = 0;
     for (char c : text) {
         if (!lsystem_symbol(c))
-            throw std::invalid_argument(where + ": unknown symbol '" + std::string(1, c) + "'; " + allowed_symbols);
+            throw ParameterError(name, value, std::string(allowed_symbols) + " (unknown symbol '" + c + "')");
         open += c == '[' ? 1 : c == ']' ? -1 : 0;
         if (open < 0) break;  // a ']' before its '[' pops an empty stack
     }
     if (open != 0)
-        throw std::invalid_argument(where +
-                                    ": unbalanced brackets; every '[' needs a later ']' and every ']' an earlier '['");
+        throw ParameterError(name, value,
+                             "balanced brackets, every '[' with a later ']' and every ']' with an earlier '[' "
+                             "(unbalanced brackets)");
 }
 
-void check_predecessor(char c, const std::string& where) {
+void check_predecessor(char c, const std::string& name, const std::string& value) {
     if (!lsystem_symbol(c) || c == '[' || c == ']')
-        throw std::invalid_argument(where + ": the predecessor '" + std::string(1, c) +
-                                    "' cannot be rewritten; allowed: letters and + - & ^ \\ / | !");
+        throw ParameterError(name, value,
+                             "a predecessor that is a letter or one of + - & ^ \\ / | ! (the predecessor '" +
+                                 std::string(1, c) + "' cannot be rewritten)");
 }
 
 // Symbols that occur anywhere in the system, in a fixed order, and each one's index.
@@ -103,40 +113,44 @@ bool lsystem_symbol(char c) {
     return std::string_view("+-&^\\/|[]!").find(c) != std::string_view::npos;
 }
 
+// Each error names the text by its parameter: "axiom", or "rules[i]" for the i-th rule as given.
 LSystem LSystem::parse(std::string_view axiom, const std::vector<std::string>& rules) {
     LSystem system;
     system.axiom = strip_spaces(axiom);
-    if (system.axiom.empty()) throw std::invalid_argument("the axiom is empty; allowed: one or more symbols");
-    check_text(system.axiom, "the axiom \"" + system.axiom + "\"");
-    for (const std::string& text : rules) {
-        const std::string where = "rule \"" + text + "\"";
+    if (system.axiom.empty()) throw ParameterError("axiom", quoted(axiom), "one or more symbols");
+    check_text(system.axiom, "axiom", quoted(axiom));
+    for (std::size_t i = 0; i < rules.size(); ++i) {
+        const std::string& text = rules[i];
+        const std::string name = "rules[" + std::to_string(i) + "]", value = quoted(text);
         const std::string rule = strip_spaces(text);
         std::size_t arrow = rule.find("->"), skip = 2;
         if (arrow == std::string::npos) arrow = rule.find('='), skip = 1;
         if (arrow == std::string::npos)
-            throw std::invalid_argument(where + " has no arrow; allowed: \"F -> successor\" or \"F = successor\"");
+            throw ParameterError(name, value, "\"F -> successor\" or \"F = successor\" (the rule has no arrow)");
         const std::string predecessor = rule.substr(0, arrow), successor = rule.substr(arrow + skip);
         if (predecessor.size() != 1)
-            throw std::invalid_argument(where + ": the predecessor \"" + predecessor +
-                                        "\" is not one symbol; allowed: exactly one symbol before the arrow");
+            throw ParameterError(name, value,
+                                 "exactly one symbol before the arrow (the predecessor \"" + predecessor +
+                                     "\" is not one symbol)");
         const char c = predecessor[0];
-        check_predecessor(c, where);
+        check_predecessor(c, name, value);
         if (system.rules.count(c))
-            throw std::invalid_argument(where + ": a second rule for '" + predecessor +
-                                        "'; allowed: one rule per symbol (the system is deterministic)");
-        check_text(successor, where);
+            throw ParameterError(name, value,
+                                 "one rule per symbol, the system is deterministic (a second rule for '" +
+                                     predecessor + "')");
+        check_text(successor, name, value);
         system.rules[c] = successor;
     }
     return system;
 }
 
 void LSystem::validate() const {
-    if (axiom.empty()) throw std::invalid_argument("the axiom is empty; allowed: one or more symbols");
-    check_text(axiom, "the axiom \"" + axiom + "\"");
+    if (axiom.empty()) throw ParameterError("axiom", quoted(axiom), "one or more symbols");
+    check_text(axiom, "axiom", quoted(axiom));
     for (const auto& [predecessor, successor] : rules) {
-        const std::string where = "rule \"" + std::string(1, predecessor) + " -> " + successor + "\"";
-        check_predecessor(predecessor, where);
-        check_text(successor, where);
+        const std::string value = quoted(std::string(1, predecessor) + " -> " + successor);
+        check_predecessor(predecessor, "rules", value);
+        check_text(successor, "rules", value);
     }
 }
 

@@ -1,7 +1,6 @@
 #include "sim/percolation_threshold.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -324,10 +323,7 @@ ThresholdEstimate threshold_from_wrapping(const std::vector<WrappingPoints>& poi
 
 ThresholdEstimate newman_ziff_threshold(int size, int samples, Random& rng, WrapCriterion criterion) {
     validate(size, samples);
-    const auto start = std::chrono::steady_clock::now();
-    ThresholdEstimate estimate = threshold_from_wrapping(wrapping_points(size, samples, rng), size, criterion);
-    estimate.seconds_hint = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return estimate;
+    return threshold_from_wrapping(wrapping_points(size, samples, rng), size, criterion);
 }
 
 }  // namespace sim

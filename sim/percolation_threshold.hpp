@@ -63,7 +63,6 @@ struct ThresholdEstimate {
     double standard_error;  // one standard deviation of p_c from the sample spread
     int samples;
     int size;
-    double seconds_hint = 0;  // wall time spent, to plan longer runs (not reproducible)
 };
 
 // p_c from samples already drawn (size is the L they were drawn at).

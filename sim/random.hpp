@@ -35,7 +35,6 @@ public:
     // Uniform integer in [0, n), n > 0, unbiased: draws with a value in the
     // incomplete last block of 2^64 mod n are rejected and redrawn.
     std::uint64_t below(std::uint64_t n);
-    bool bernoulli(double p) { return uniform() < p; }  // true with probability p
 
 private:
     Random() = default;

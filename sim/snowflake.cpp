@@ -5,8 +5,6 @@
 #include <cstdlib>
 #include <numeric>
 #include <numbers>
-#include <sstream>
-#include <stdexcept>
 
 #include "sim/check.hpp"
 
@@ -22,6 +20,15 @@ constexpr int margin = 2;      // a step reaches the new ice's neighbours: hex d
 
 HexCell operator+(HexCell a, HexCell b) { return {a.q + b.q, a.r + b.r}; }
 HexCell operator*(int m, HexCell u) { return {m * u.q, m * u.r}; }
+
+// A rule code as messages show it: "\"0101010\"".
+std::string quoted(std::string_view code) {
+    std::string text = "\"";  // appended, not operator+: GCC 12 warns falsely (-Wrestrict) on "\"" + string
+    text.append(code).push_back('"');
+    return text;
+}
+
+const char* const fills_the_plane = "d0 = 1 freezes vapour with no ice neighbour, filling the plane";
 
 }  // namespace
 
@@ -47,15 +54,10 @@ HexCell mirror(HexCell c) { return {c.r, c.q}; }
 
 SnowflakeRule SnowflakeRule::parse(std::string_view code) {
     const bool binary = code.size() == 7 && code.find_first_not_of("01") == std::string_view::npos;
-    if (!binary)
-        throw std::invalid_argument("rule = \"" + std::string(code) +
-                                    "\" is not allowed: a rule code is 7 binary digits d0..d6");
+    if (!binary) throw ParameterError("rule", quoted(code), "a rule code is 7 binary digits d0..d6");
     SnowflakeRule rule;
     for (int s = 0; s < 7; ++s) rule.freeze[s] = code[s] == '1';
-    if (rule.freeze[0])
-        throw std::invalid_argument(
-            "rule = \"" + std::string(code) +
-            "\" is not allowed: d0 = 1 freezes vapour with no ice neighbour, filling the plane");
+    if (rule.freeze[0]) throw ParameterError("rule", quoted(code), fills_the_plane);
     return rule;
 }
 
@@ -82,20 +84,15 @@ bool Restriction::in_region(HexCell c) const {
 bool Priority::active(int step) const { return std::find(steps.begin(), steps.end(), step) != steps.end(); }
 
 void SnowflakeParams::validate() const {
-    if (rule.freeze[0])
-        throw std::invalid_argument(
-            "rule = \"" + rule.code() +
-            "\" is not allowed: d0 = 1 freezes vapour with no ice neighbour, filling the plane");
+    if (rule.freeze[0]) throw ParameterError("rule", quoted(rule.code()), fills_the_plane);
     require_integer("restriction.first", restriction.first, 1, 1000000000);
     require_integer("restriction.last", restriction.last, 0, 1000000000);
     require_integer("restriction.min_radius", restriction.min_radius, 1, 1000000000);
     const double h = restriction.half_angle;
-    if (!(std::isfinite(h) && h > 0.0 && h <= 30.0)) {  // 0 would be an empty wedge; past 30 wedges overlap the arms
-        std::ostringstream message;
-        message << "restriction.half_angle = " << h
-                << " is not allowed: restriction.half_angle must be a number above 0 and at most 30";
-        throw std::invalid_argument(message.str());
-    }
+    if (!(std::isfinite(h) && h > 0.0 && h <= 30.0))
+        throw ParameterError("restriction.half_angle", shown(h),
+                             "a number of degrees above 0 (an empty wedge) and at most 30 (past it the wedges "
+                             "overlap the arms)");
     for (int s : priority.steps) require_integer("priority.steps", s, 1, 1000000000);
     require_integer("priority.width", priority.width, 0, 1000000);
 }

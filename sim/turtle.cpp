@@ -4,7 +4,6 @@
 #include <glm/geometric.hpp>
 #include <limits>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -27,14 +26,6 @@ std::string with_commas(std::uint64_t n) {
     return out;
 }
 
-void require_budget(int depth, std::uint64_t segments, std::uint64_t budget) {
-    if (segments <= budget) return;
-    // counts() saturates: the largest count means "at least that many".
-    const bool saturated = segments == std::numeric_limits<std::uint64_t>::max();
-    throw std::invalid_argument("depth " + std::to_string(depth) + " would draw " + (saturated ? "more than " : "") +
-                                with_commas(segments) +
-                                " segments, more than the budget of " + with_commas(budget));
-}
 
 // The health check: lengths grow by length_scale per level, so a long enough
 // run can overflow. Names the first segment that left the finite numbers.
@@ -55,9 +46,7 @@ void require_finite_segments(const std::vector<Segment>& segments) {
 
 void require_positive(const char* name, double value) {
     if (std::isfinite(value) && value > 0) return;
-    std::ostringstream message;
-    message << name << " = " << value << " is not allowed: " << name << " must be a finite number above 0";
-    throw std::invalid_argument(message.str());
+    throw ParameterError(name, shown(value), "a finite number above 0");
 }
 
 // The step of a segment at each level 0..depth: length * length_scale^level.
@@ -68,6 +57,16 @@ std::vector<double> steps_by_level(const Turtle2Params& p, int depth) {
 }
 
 }  // namespace
+
+void require_segment_budget(int depth, std::uint64_t segments, std::uint64_t budget) {
+    if (segments <= budget) return;
+    // counts() saturates: the largest count means "at least that many".
+    const bool saturated = segments == std::numeric_limits<std::uint64_t>::max();
+    throw ParameterError("depth", std::to_string(depth),
+                         std::string("a depth within the turtle's budget (it would draw ") +
+                             (saturated ? "more than " : "") + with_commas(segments) +
+                             " segments, more than the budget of " + with_commas(budget) + ")");
+}
 
 std::uint64_t segment_count(const LSystem& system, int depth, bool recursive_like_article) {
     const auto counts = recursive_like_article ? system.counts_recursive(depth) : system.counts(depth);
@@ -99,7 +98,7 @@ std::vector<Segment2> interpret_2d(const LSystem& system, int depth, const Turtl
     params.validate();
     system.validate();
     const std::uint64_t segments = segment_count(system, depth, recursive_like_article);
-    require_budget(depth, segments, params.segment_budget);
+    require_segment_budget(depth, segments, params.segment_budget);
 
     struct Pose {
         glm::dvec2 at;
@@ -228,7 +227,7 @@ std::vector<Segment3> interpret_3d(const LSystem& system, int depth, const Turtl
     params.validate();
     system.validate();
     const std::uint64_t segments = segment_count(system, depth, false);
-    require_budget(depth, segments, params.segment_budget);
+    require_segment_budget(depth, segments, params.segment_budget);
 
     struct Pose {
         glm::dvec3 at{0, 0, 0};

@@ -59,6 +59,10 @@ std::vector<Segment2> interpret_2d(const LSystem& system, int depth, const Turtl
 // saturates at 2^64 - 1. What the budget and the memory estimates use.
 std::uint64_t segment_count(const LSystem& system, int depth, bool recursive_like_article);
 
+// Throws ParameterError naming `depth` when `segments` (segment_count's)
+// exceed `budget`: what the interpreters check before they start.
+void require_segment_budget(int depth, std::uint64_t segments, std::uint64_t budget);
+
 struct Bounds2 {
     glm::dvec2 lo, hi;  // lower-left and upper-right corners; lo > hi (an empty box) for no segments
 };

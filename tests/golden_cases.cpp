@@ -5,9 +5,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "figures/catalog.hpp"
-#include "figures/description.hpp"
-#include "figures/scene.hpp"
+#include "description/catalog.hpp"
+#include "description/description.hpp"
+#include "app/render_figure.hpp"
 #include "render/canvas.hpp"
 #include "render/field.hpp"
 #include "render/plot.hpp"
@@ -116,13 +116,13 @@ render::Image tubes_pattern() {
 }  // namespace
 
 render::Image render_catalog_figure(const std::string& id, double scale, const std::vector<std::string>& overrides) {
-    const figures::Description d = figures::load_description(figures::resolve_figure(id), overrides);
-    figures::OutputOptions options;
+    const description::Description d = description::load_description(description::resolve_figure(id), overrides);
+    app::OutputOptions options;
     options.dir = std::filesystem::temp_directory_path() / ("figgen-golden-" + std::to_string(::getpid()));
     options.scale = scale;
     options.video = false;
-    figures::Progress quiet(false);
-    figures::render_figure(d, options, quiet);
+    scenes::Progress quiet;  // shows nothing
+    app::render_figure(d, options, quiet);
     render::Image image = render::read_png(options.dir / (d.id + ".png")).image;
     std::filesystem::remove_all(options.dir);
     return image;
@@ -141,7 +141,7 @@ std::vector<std::string> golden_overrides(const std::string& id) {
 std::vector<GoldenCase> golden_cases() {
     std::vector<GoldenCase> cases = {{"test-pattern", test_pattern}, {"plot-pattern", plot_pattern},
                                        {"tubes-pattern", tubes_pattern}};
-    for (const auto& file : figures::catalog_files()) {
+    for (const auto& file : description::catalog_files()) {
         const std::string id = file.stem().string();
         cases.push_back({id, [id] { return render_catalog_figure(id, golden_scale, golden_overrides(id)); }});
     }

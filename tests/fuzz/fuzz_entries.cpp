@@ -3,7 +3,8 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "figures/description.hpp"
+#include "description/description.hpp"
+#include "scenes/scene.hpp"
 #include "sim/lsystem.hpp"
 #include "sim/snowflake.hpp"
 #include "sim/turtle.hpp"
@@ -30,10 +31,12 @@ std::vector<std::string> lines_of(std::string_view text) {
 
 Outcome description(const std::uint8_t* data, std::size_t size) {
     try {
-        const figures::Description d = figures::parse_description(text_of(data, size), "fuzz.toml");
+        const description::Description d = description::parse_description(text_of(data, size), "fuzz.toml");
         (void)d.last_step(true);
+        // The scene's phase 1: every setting read and checked, nothing run.
+        description::at_source(d, [&] { return scenes::read_scene(d, scenes::SceneOptions{0.3, false}); });
         return Outcome::accepted;
-    } catch (const figures::UsageError&) {
+    } catch (const description::UsageError&) {
         return Outcome::refused;
     }
 }
@@ -42,8 +45,8 @@ Outcome set_assignments(const std::uint8_t* data, std::size_t size) {
     static const std::string base =
         "id = \"fuzz\"\nmodel = \"diffusion\"\n[params]\nn = 9\nr = 0.1\n[figure]\npanels = [0, 5]\n";
     try {
-        const figures::Description d = figures::parse_description(base, "fuzz.toml", lines_of(text_of(data, size)));
-        figures::Settings params("params", d.params,
+        const description::Description d = description::parse_description(base, "fuzz.toml", lines_of(text_of(data, size)));
+        description::Settings params("params", d.params,
                                  {{"n", ""}, {"r", ""}, {"boundary", ""}, {"block_row", ""}, {"block_col", ""},
                                   {"block_size", ""}, {"block_value", ""}});
         (void)params.count("n", 9);
@@ -54,7 +57,7 @@ Outcome set_assignments(const std::uint8_t* data, std::size_t size) {
         (void)params.texts("block_col", {});
         (void)params.flag("block_size", false);
         return Outcome::accepted;
-    } catch (const figures::UsageError&) {
+    } catch (const description::UsageError&) {
         return Outcome::refused;
     }
 }

@@ -16,10 +16,11 @@ namespace fuzz {
 
 enum class Outcome { accepted, refused };
 
-// A figure description in TOML (figures::parse_description).
+// A figure description in TOML (description::parse_description), then its
+// scene's phase 1 (scenes::read_scene): every setting read and checked.
 Outcome description(const std::uint8_t* data, std::size_t size);
 // --set assignments, one per line, applied to a small diffusion description
-// (figures::apply_override through figures::parse_description), then its
+// (description::apply_override through description::parse_description), then its
 // [params] read as the diffusion scene reads them.
 Outcome set_assignments(const std::uint8_t* data, std::size_t size);
 // A snowflake rule code (sim::SnowflakeRule::parse); an accepted rule grows a

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <set>
 
-#include "figures/catalog.hpp"
+#include "description/catalog.hpp"
 #include "golden_cases.hpp"
 #include "image_check.hpp"
 
@@ -32,7 +32,7 @@ TEST_CASE("the golden cases are the three patterns and every catalog figure", "[
     // tests/CMakeLists.txt lists the same names from figures/*.toml; a case
     // missing from that list would never be checked.
     std::set<std::string> expected = {"test-pattern", "plot-pattern", "tubes-pattern"};
-    for (const auto& file : figures::catalog_files()) expected.insert(file.stem().string());
+    for (const auto& file : description::catalog_files()) expected.insert(file.stem().string());
     std::set<std::string> names;
     for (const auto& c : testkit::golden_cases()) names.insert(c.name);
     CHECK(names == expected);

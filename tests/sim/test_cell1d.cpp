@@ -181,11 +181,11 @@ TEST_CASE("cell1d parameters are validated with messages naming them", "[cell1d]
         return std::string("accepted");
     };
     CHECK(message_of(Cell1DParams{256, 32, 0, sim::Boundary::zero}) ==
-          "rule = 256 is not allowed: rule must be an integer from 0 to 255");
+          "rule = 256 is not allowed: an integer from 0 to 255");
     CHECK(message_of(Cell1DParams{18, 0, 0, sim::Boundary::zero}) ==
-          "rows = 0 is not allowed: rows must be an integer from 1 to 100000");
+          "rows = 0 is not allowed: an integer from 1 to 100000");
     CHECK(message_of(Cell1DParams{18, 32, -1, sim::Boundary::zero}) ==
-          "width = -1 is not allowed: width must be an integer from 1 to 200001");
+          "width = -1 is not allowed: an integer from 1 to 200001");
     CHECK(message_of(Cell1DParams{}) == "accepted");
     CHECK_THROWS_AS(Cell1D(Cell1DParams{-1, 32, 0, sim::Boundary::zero}), std::invalid_argument);
 }

@@ -193,14 +193,14 @@ TEST_CASE("deposition rejects bad parameters with messages naming them", "[depos
     };
     CHECK(message_of(DepositionParams{}) == "accepted");
     CHECK(message_of(DepositionParams{2, 100, true}) ==
-          "width = 2 is not allowed: width must be an integer from 3 to 10000000");
+          "width = 2 is not allowed: an integer from 3 to 10000000");
     CHECK(message_of(DepositionParams{500, 5000000000ULL, true}) ==
-          "particles = 5000000000 is not allowed: particles must be an integer from 0 to 4294967295");
+          "particles = 5000000000 is not allowed: an integer from 0 to 4294967295");
     CHECK_THROWS_AS(Deposition(DepositionParams{0, 0, true}, 1), std::invalid_argument);
     CHECK_THROWS_WITH(sim::roughness_curve(100, 0.5, 10, 1, 1),
-                      "max_time = 0.5 is not allowed: max_time must be a number from 1 to 1e+09");
+                      "max_time = 0.5 is not allowed: a number from 1 to 1e+09");
     CHECK_THROWS_WITH(sim::roughness_curve(100, 10, 10, 0, 1),
-                      "seeds = 0 is not allowed: seeds must be an integer from 1 to 1000000");
+                      "seeds = 0 is not allowed: an integer from 1 to 1000000");
     CHECK_THROWS_WITH(sim::roughness_curve(100, 10, 0, 1, 1),
-                      "points_per_decade = 0 is not allowed: points_per_decade must be an integer from 1 to 1000");
+                      "points_per_decade = 0 is not allowed: an integer from 1 to 1000");
 }

@@ -195,19 +195,19 @@ TEST_CASE("gray-scott parameters are validated with messages naming them", "[gra
     p.ra = 1.0;  // the edge of monotonicity is allowed
     CHECK(message_of(p) == "accepted");
     p.ra = 1.1;
-    CHECK(message_of(p) == "ra = 1.1 is not allowed: ra must be a number from 0 to 1 (the 9-point diffusion is monotone up to 1, no new extremes, and blows up beyond 1.25)");
+    CHECK(message_of(p) == "ra = 1.1 is not allowed: a number from 0 to 1 (the 9-point diffusion is monotone up to 1, no new extremes, and blows up beyond 1.25)");
     p = GrayScottParams{};
     p.k = std::nan("");
     CHECK(message_of(p).rfind("k = nan is not allowed", 0) == 0);
     p = GrayScottParams{};
     p.n = 2;
-    CHECK(message_of(p) == "n = 2 is not allowed: n must be an integer from 3 to 4096");
+    CHECK(message_of(p) == "n = 2 is not allowed: an integer from 3 to 4096");
     p = GrayScottParams{};
     p.f = 0.3;
-    CHECK(message_of(p) == "f = 0.3 is not allowed: f must be a number from 0 to 0.2");
+    CHECK(message_of(p) == "f = 0.3 is not allowed: a number from 0 to 0.2");
     p = GrayScottParams{};
     p.noise = -0.1;
-    CHECK(message_of(p) == "noise = -0.1 is not allowed: noise must be a number from 0 to 1");
+    CHECK(message_of(p) == "noise = -0.1 is not allowed: a number from 0 to 1");
     CHECK_THROWS_AS(GrayScott(GrayScottParams{}, Grid<double>(4, 4), Grid<double>(4, 4)), std::invalid_argument);
     Grid<double> bad(3, 3, 1.0);
     bad(1, 1) = INFINITY;

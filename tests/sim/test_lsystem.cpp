@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "sim/check.hpp"
 #include "sim/lsystem.hpp"
 
 using sim::LSystem;
@@ -216,21 +217,24 @@ TEST_CASE("Parse accepts arrows and equals signs and ignores spaces", "[lsystem]
 TEST_CASE("Parse errors name the problem and what is allowed", "[lsystem]") {
     using Catch::Contains;
     CHECK_THROWS_AS(LSystem::parse("F", {"F -> F["}), std::invalid_argument);
+    CHECK_THROWS_AS(LSystem::parse("F", {"F -> F["}), sim::ParameterError);
     CHECK_THROWS_WITH(LSystem::parse("F", {"F -> F["}),
-                      Contains("rule \"F -> F[\"") && Contains("unbalanced brackets"));
+                      Contains("rules[0] = \"F -> F[\" is not allowed: balanced brackets") &&
+                          Contains("unbalanced brackets"));
     CHECK_THROWS_WITH(LSystem::parse("F", {"F -> F]["}), Contains("unbalanced brackets"));
-    CHECK_THROWS_WITH(LSystem::parse("F]", {}), Contains("the axiom \"F]\"") && Contains("unbalanced brackets"));
-    CHECK_THROWS_WITH(LSystem::parse("F", {"F FF"}), Contains("rule \"F FF\" has no arrow"));
+    CHECK_THROWS_WITH(LSystem::parse("F]", {}),
+                      Contains("axiom = \"F]\" is not allowed") && Contains("unbalanced brackets"));
+    CHECK_THROWS_WITH(LSystem::parse("F", {"F FF"}), Contains("rules[0] = \"F FF\"") && Contains("has no arrow"));
     CHECK_THROWS_WITH(LSystem::parse("F", {"FF -> F"}),
                       Contains("predecessor \"FF\" is not one symbol") && Contains("exactly one symbol"));
     CHECK_THROWS_WITH(LSystem::parse("F", {" -> F"}), Contains("predecessor \"\" is not one symbol"));
     CHECK_THROWS_WITH(LSystem::parse("F", {"F -> FF", "F = F"}),
-                      Contains("rule \"F = F\"") && Contains("a second rule for 'F'"));
+                      Contains("rules[1] = \"F = F\"") && Contains("a second rule for 'F'"));
     CHECK_THROWS_WITH(LSystem::parse("F", {"F -> F#F"}),
-                      Contains("unknown symbol '#'") && Contains("allowed: letters A-Z a-z"));
-    CHECK_THROWS_WITH(LSystem::parse("F#", {}), Contains("the axiom") && Contains("unknown symbol '#'"));
+                      Contains("unknown symbol '#'") && Contains("is not allowed: letters A-Z a-z"));
+    CHECK_THROWS_WITH(LSystem::parse("F#", {}), Contains("axiom = \"F#\"") && Contains("unknown symbol '#'"));
     CHECK_THROWS_WITH(LSystem::parse("F", {"[ -> F"}), Contains("the predecessor '[' cannot be rewritten"));
-    CHECK_THROWS_WITH(LSystem::parse("", {}), Contains("the axiom is empty"));
+    CHECK_THROWS_WITH(LSystem::parse("", {}), "axiom = \"\" is not allowed: one or more symbols");
     // one line each
     try {
         LSystem::parse("F", {"F -> F["});

@@ -214,8 +214,8 @@ TEST_CASE("percolation rejects bad parameters and cells with messages naming the
         return std::string("accepted");
     };
     CHECK(message_of(PercolationParams{}) == "accepted");
-    CHECK(message_of(PercolationParams{0, 0.5}) == "n = 0 is not allowed: n must be an integer from 1 to 8192");
-    CHECK(message_of(PercolationParams{10, 1.5}) == "q = 1.5 is not allowed: q must be a number from 0 to 1");
+    CHECK(message_of(PercolationParams{0, 0.5}) == "n = 0 is not allowed: an integer from 1 to 8192");
+    CHECK(message_of(PercolationParams{10, 1.5}) == "q = 1.5 is not allowed: a number from 0 to 1");
     Grid<std::uint8_t> bad(3, 3, porous);
     bad(1, 1) = 2;
     CHECK_THROWS_AS(Percolation(bad), std::invalid_argument);

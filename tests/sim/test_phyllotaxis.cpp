@@ -44,6 +44,6 @@ TEST_CASE("the golden angle keeps neighbours apart better than a rational-near a
 }
 
 TEST_CASE("phyllotaxis parameters are validated", "[phyllotaxis]") {
-    CHECK_THROWS_WITH(sim::vogel_spiral({0, 137.5, 7}), "seeds = 0 is not allowed: seeds must be an integer from 1 to 100000");
+    CHECK_THROWS_WITH(sim::vogel_spiral({0, 137.5, 7}), "seeds = 0 is not allowed: an integer from 1 to 100000");
     CHECK_THROWS_WITH(sim::vogel_spiral({10, std::nan(""), 7}), Catch::StartsWith("divergence = nan is not allowed"));
 }

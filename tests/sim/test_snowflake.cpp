@@ -479,25 +479,27 @@ TEST_CASE("snowflake parameters are validated with messages naming them", "[snow
     p = SnowflakeParams{};
     p.restriction.first = 0;
     CHECK(message_of(p) ==
-          "restriction.first = 0 is not allowed: restriction.first must be an integer from 1 to 1000000000");
+          "restriction.first = 0 is not allowed: an integer from 1 to 1000000000");
     p = SnowflakeParams{};
     p.restriction.min_radius = 0;
     CHECK(message_of(p) ==
-          "restriction.min_radius = 0 is not allowed: restriction.min_radius must be an integer from 1 to 1000000000");
+          "restriction.min_radius = 0 is not allowed: an integer from 1 to 1000000000");
     p = SnowflakeParams{};
     p.restriction.half_angle = 0.0;
     CHECK(message_of(p) ==
-          "restriction.half_angle = 0 is not allowed: restriction.half_angle must be a number above 0 and at most 30");
+          "restriction.half_angle = 0 is not allowed: a number of degrees above 0 (an empty wedge) and at most 30 "
+          "(past it the wedges overlap the arms)");
     p.restriction.half_angle = 31.0;
     CHECK(message_of(p) ==
-          "restriction.half_angle = 31 is not allowed: restriction.half_angle must be a number above 0 and at most 30");
+          "restriction.half_angle = 31 is not allowed: a number of degrees above 0 (an empty wedge) and at most 30 "
+          "(past it the wedges overlap the arms)");
     p.restriction.half_angle = 30.0;
     CHECK(message_of(p) == "accepted");
     p.priority.steps = {3, 0};
-    CHECK(message_of(p) == "priority.steps = 0 is not allowed: priority.steps must be an integer from 1 to 1000000000");
+    CHECK(message_of(p) == "priority.steps = 0 is not allowed: an integer from 1 to 1000000000");
     p.priority.steps = {3};
     p.priority.width = -1;
-    CHECK(message_of(p) == "priority.width = -1 is not allowed: priority.width must be an integer from 0 to 1000000");
+    CHECK(message_of(p) == "priority.width = -1 is not allowed: an integer from 0 to 1000000");
     p.priority.width = 0;
     p.restriction.first = 5;
     p.restriction.last = 4;  // an empty window is allowed

@@ -29,9 +29,9 @@ TEST_CASE("a sweep of the rate finds the theoretical stability bounds within 0.0
 TEST_CASE("rates beyond the bounds are refused before a model runs", "[stability]") {
     sim::DiffusionParams d;
     d.r = 0.2501;
-    CHECK_THROWS_WITH(d.validate(), "r = 0.2501 is not allowed: r must be a number from 0 to 0.25 (the explicit 5-point update's stability bound; beyond it the checkerboard grows)");
+    CHECK_THROWS_WITH(d.validate(), "r = 0.2501 is not allowed: a number from 0 to 0.25 (the explicit 5-point update's stability bound; beyond it the checkerboard grows)");
     // Gray-Scott allows up to 1, the monotone bound (no new extremes), inside the L2 bound 1.25.
     sim::GrayScottParams g;
     g.ra = 1.3;
-    CHECK_THROWS_WITH(g.validate(), "ra = 1.3 is not allowed: ra must be a number from 0 to 1 (the 9-point diffusion is monotone up to 1, no new extremes, and blows up beyond 1.25)");
+    CHECK_THROWS_WITH(g.validate(), "ra = 1.3 is not allowed: a number from 0 to 1 (the 9-point diffusion is monotone up to 1, no new extremes, and blows up beyond 1.25)");
 }

@@ -89,17 +89,20 @@ TEST_CASE("Rewrite mode widths follow the bang and brackets", "[turtle]") {
 
 TEST_CASE("The turtle refuses more segments than the budget before expanding", "[turtle]") {
     CHECK_THROWS_WITH(sim::interpret_2d(club_moss, 9, Turtle2Params{}, false),
-                      "depth 9 would draw 10,077,696 segments, more than the budget of 5,000,000");
+                      "depth = 9 is not allowed: a depth within the turtle's budget "
+                      "(it would draw 10,077,696 segments, more than the budget of 5,000,000)");
     Turtle2Params small;
     small.segment_budget = 257;
     CHECK_THROWS_WITH(sim::interpret_2d(club_moss, 3, small, true),
-                      "depth 3 would draw 258 segments, more than the budget of 257");
+                      "depth = 3 is not allowed: a depth within the turtle's budget "
+                      "(it would draw 258 segments, more than the budget of 257)");
     small.segment_budget = 258;
     CHECK(sim::interpret_2d(club_moss, 3, small, true).size() == 258);
     Turtle3Params p3;
     p3.segment_budget = 1000;
     CHECK_THROWS_WITH(sim::interpret_3d(club_moss, 4, p3),
-                      "depth 4 would draw 1,296 segments, more than the budget of 1,000");
+                      "depth = 4 is not allowed: a depth within the turtle's budget "
+                      "(it would draw 1,296 segments, more than the budget of 1,000)");
     // so large it saturates: still refused at once
     CHECK_THROWS_AS(sim::interpret_2d(club_moss, 1000, Turtle2Params{}, false), std::invalid_argument);
 }

@@ -1,0 +1,159 @@
+#include "app/commands.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "app/describe.hpp"
+#include "app/gallery.hpp"
+#include "app/outputs.hpp"
+#include "app/progress.hpp"
+#include "app/render_figure.hpp"
+#include "description/catalog.hpp"
+#include "description/description.hpp"
+
+namespace app {
+
+ListCommand::ListCommand(CLI::App& parent) {
+    app = parent.add_subcommand("list", "List the figure ids and titles of the catalog");
+}
+
+int ListCommand::run() {
+    for (const auto& file : description::catalog_files()) {
+        const Description d = description::load_description(file);
+        std::printf("%-20s %s\n", d.id.c_str(), d.title.c_str());
+    }
+    return 0;
+}
+
+DescribeCommand::DescribeCommand(CLI::App& parent) {
+    app = parent.add_subcommand("describe", "List a figure's settings: value, default, range, meaning");
+    app->add_option("figure", target, "A figure id or .toml description file")->required();
+}
+
+int DescribeCommand::run() {
+    std::fputs(describe(description::resolve_figure(target)).c_str(), stdout);
+    return 0;
+}
+
+GalleryCommand::GalleryCommand(CLI::App& parent) {
+    app = parent.add_subcommand("gallery", "Write DIR/index.html showing the figures rendered in DIR");
+    app->add_option("--out", dir, "The folder of rendered figures")->capture_default_str();
+}
+
+int GalleryCommand::run() {
+    if (!std::filesystem::is_directory(dir))
+        throw UsageError("--out " + dir + " is not a folder of rendered figures");
+    const int shown = write_gallery(dir);
+    std::printf("%s/index.html: %d figures\n", dir.c_str(), shown);
+    return 0;
+}
+
+ThumbnailsCommand::ThumbnailsCommand(CLI::App& parent) {
+    app = parent.add_subcommand("thumbnails", "Write small copies of the figures rendered in a folder");
+    app->add_option("--from", from, "The folder of rendered figures")->capture_default_str();
+    app->add_option("--to", to, "Where the thumbnails go")->capture_default_str();
+    app->add_option("--width", width, "Largest width in pixels")->capture_default_str()->check(CLI::Range(8, 2048));
+    app->add_option("--height", height, "Largest height in pixels")->capture_default_str()->check(CLI::Range(8, 2048));
+}
+
+int ThumbnailsCommand::run() {
+    if (!std::filesystem::is_directory(from))
+        throw UsageError("--from " + from + " is not a folder of rendered figures");
+    const int written = write_thumbnails(from, to, width, height);
+    std::printf("%s: %d thumbnails\n", to.c_str(), written);
+    return 0;
+}
+
+RenderCommand::RenderCommand(CLI::App& parent) {
+    app = parent.add_subcommand("render", "Render figures by id or description file");
+    app->add_option("figures", targets, "Figure ids (see `figgen list`) or .toml description files")->required();
+    app->add_option("--out", out_dir, "Output folder, created if missing")->capture_default_str();
+    app->add_option("--set", overrides,
+                    "Override a value: key=value for [params], or section.key=value (style, figure, animation)");
+    app->add_option("--seed", seed, "Seed of the random generator (0..2^63-1)");
+    app->add_option("--scale", scale, "Scale every pixel size by X (0.1..8)")->capture_default_str();
+    app->add_option("--max-memory", max_memory, "Refuse a figure whose estimated memory exceeds SIZE (e.g. 512M, 8G)")
+        ->transform(CLI::AsSizeValue(false))
+        ->default_str("4G");
+    app->add_option("--max-disk", max_disk, "Refuse a figure whose outputs would exceed SIZE (e.g. 100M, 8G)")
+        ->transform(CLI::AsSizeValue(false))
+        ->default_str("4G");
+    app->add_flag("--no-video", no_video, "Do not write the MP4 animation (as --format png)");
+    app->add_flag("--frames", frames, "Also write the animation as a PNG sequence");
+    app->add_option("--size", size, "The figure's size in pixels before --scale, WxH (e.g. 1200x600)");
+    app->add_option("--fps", fps, "Frames per second of the animation (1..120)");
+    app->add_option("--cmap", cmap,
+                    "Colormap of a field figure's fields: viridis, inferno, magma, plasma, cividis, Reds, Blues or "
+                    "Greens");
+    app->add_option("--format", format,
+                    "What to write besides the PNG and its JSON: png (nothing), mp4 (the animation, the default) or "
+                    "frames (the animation as a PNG sequence)")
+        ->check(CLI::IsMember({"png", "mp4", "frames"}));
+}
+
+namespace {
+
+// The options of `figgen render` as output options; UsageError for a value out of range.
+OutputOptions output_options(const RenderCommand& c) {
+    if (!(c.scale >= 0.1 && c.scale <= 8.0))  // also false for NaN
+        throw UsageError("--scale " + description::shown(c.scale) + " is not allowed: use a number from 0.1 to 8");
+    if (c.seed && *c.seed > static_cast<std::uint64_t>(INT64_MAX))
+        throw UsageError("--seed is not allowed: use 0..2^63-1");  // the value as parsed can differ from the one typed
+    if (!c.format.empty() && (c.no_video || c.frames))
+        throw UsageError("--format " + c.format + " is not allowed with --no-video or --frames: use one");
+    if (c.fps && !(*c.fps >= 1 && *c.fps <= 120))
+        throw UsageError("--fps " + std::to_string(*c.fps) + " is not allowed: use 1..120 frames per second");
+    OutputOptions options;
+    options.dir = c.out_dir;
+    options.scale = c.scale;
+    options.video = !c.no_video && c.format != "png" && c.format != "frames";
+    options.frames = c.frames || c.format == "frames";
+    options.max_memory = c.max_memory;
+    options.max_disk = c.max_disk;
+    return options;
+}
+
+// The --set assignments, with --size as one more.
+std::vector<std::string> overrides_of(const RenderCommand& c) {
+    std::vector<std::string> overrides = c.overrides;
+    if (c.size.empty()) return overrides;
+    int w = 0, h = 0;
+    char rest = 0;
+    if (std::sscanf(c.size.c_str(), "%dx%d%c", &w, &h, &rest) != 2 || w < 2 || h < 2 || w > 16384 || h > 16384)
+        throw UsageError("--size " + c.size + " is not allowed: use WIDTHxHEIGHT, each 2..16384, e.g. 1200x600");
+    overrides.push_back("figure.size=[" + std::to_string(w) + "," + std::to_string(h) + "]");
+    return overrides;
+}
+
+struct CheckedFigure {
+    std::unique_ptr<Description> description;  // the scene refers to it: kept in place
+    std::unique_ptr<scenes::Scene> scene;
+};
+
+}  // namespace
+
+int RenderCommand::run() {
+    const OutputOptions options = output_options(*this);
+    const std::vector<std::string> assignments = overrides_of(*this);
+    // Every figure's phase 1 first, so a mistake in the last one is reported
+    // before minutes of rendering the first.
+    std::vector<CheckedFigure> figures;
+    for (const std::string& target : targets) {
+        auto d = std::make_unique<Description>(
+            description::load_description(description::resolve_figure(target), assignments, seed));
+        if (!cmap.empty()) scenes::apply_colormap(*d, cmap);
+        if (fps && d->animation) d->animation->fps = *fps;
+        auto scene = check_figure(*d, options);
+        figures.push_back({std::move(d), std::move(scene)});
+    }
+    if (fps && std::none_of(figures.begin(), figures.end(),
+                            [](const CheckedFigure& f) { return f.description->animation.has_value(); }))
+        throw UsageError("--fps: none of the figures named has an animation");
+    ProgressBar progress = ProgressBar::for_stderr();
+    for (const CheckedFigure& f : figures) render_figure(*f.description, *f.scene, options, progress);
+    return 0;
+}
+
+}  // namespace app

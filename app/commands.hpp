@@ -1,0 +1,61 @@
+#pragma once
+// figgen's subcommands: each adds its options to the command line and runs
+// from what was parsed. main() only parses and dispatches.
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace app {
+
+constexpr int exit_runtime_error = 1;  // a failure while running or writing
+constexpr int exit_usage_error = 2;    // the command, a description or a value is wrong
+
+// A subcommand: registered on the command line, run when given.
+class Command {
+public:
+    virtual ~Command() = default;
+    CLI::App* app = nullptr;  // its subcommand, set by add()
+    // Runs it; throws UsageError for bad input. Returns the exit status.
+    virtual int run() = 0;
+};
+
+struct ListCommand : Command {
+    explicit ListCommand(CLI::App& parent);
+    int run() override;
+};
+
+struct DescribeCommand : Command {
+    explicit DescribeCommand(CLI::App& parent);
+    int run() override;
+    std::string target;
+};
+
+struct GalleryCommand : Command {
+    explicit GalleryCommand(CLI::App& parent);
+    int run() override;
+    std::string dir = "out";
+};
+
+struct ThumbnailsCommand : Command {
+    explicit ThumbnailsCommand(CLI::App& parent);
+    int run() override;
+    std::string from = "out", to = "docs/thumbs";
+    int width = 240, height = 180;
+};
+
+struct RenderCommand : Command {
+    explicit RenderCommand(CLI::App& parent);
+    int run() override;
+    std::vector<std::string> targets, overrides;
+    std::string out_dir = "out", size, cmap, format;
+    std::optional<std::uint64_t> seed;
+    std::optional<int> fps;
+    double scale = 1.0;
+    bool no_video = false, frames = false;
+    std::uint64_t max_memory = 4ull << 30, max_disk = 4ull << 30;
+};
+
+}  // namespace app

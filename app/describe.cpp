@@ -1,0 +1,109 @@
+#include "app/describe.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "description/description.hpp"
+#include "scenes/scene.hpp"
+#include "sim/check.hpp"
+
+namespace app {
+using description::Description;
+using description::Key;
+using description::SettingsLog;
+namespace {
+
+struct Reading {
+    std::vector<SettingsLog::Section> sections;
+    std::vector<sim::CheckedRange> ranges;
+};
+
+// The scene's phase 1 for `d`: every setting it reads and every range its
+// model checks. Nothing runs. An empty [params] can leave a scene without a
+// setting it needs (a list of plants, say): it stops there, and what it read
+// until then is listed.
+Reading read_settings(const Description& d) {
+    Reading reading;
+    SettingsLog log;
+    sim::RangeLog ranges;
+    try {
+        scenes::read_scene(d, scenes::SceneOptions{1.0, false});
+    } catch (const description::UsageError&) {  // a SettingError, or a scene that cannot go on without a setting
+    }
+    reading.sections = log.sections;
+    reading.ranges = ranges.ranges();
+    return reading;
+}
+
+std::string shown(const nlohmann::json& value) {
+    if (value.is_null()) return "-";
+    if (value.is_number_float()) {
+        char number[32];
+        std::snprintf(number, sizeof number, "%.6g", value.get<double>());
+        return number;
+    }
+    std::string text = value.is_string() ? "\"" + value.get<std::string>() + "\"" : value.dump();
+    if (text.size() > 28) text = text.substr(0, 25) + "...";
+    return text;
+}
+
+std::string range_of(const std::string& key, const std::vector<sim::CheckedRange>& ranges) {
+    for (const auto& r : ranges) {
+        if (r.name != key) continue;
+        char text[96];
+        std::snprintf(text, sizeof text, r.integer ? "an integer from %.0f to %.0f" : "from %g to %g", r.low, r.high);
+        return text;
+    }
+    return "";
+}
+
+const SettingsLog::Section* find(const std::vector<SettingsLog::Section>& sections, const std::string& name) {
+    for (const auto& s : sections)
+        if (s.name == name) return &s;
+    return nullptr;
+}
+
+}  // namespace
+
+std::string describe(const std::filesystem::path& file) {
+    SettingsLog top;  // the description's own sections, read by load_description
+    const Description d = description::load_description(file);
+    const Reading own = read_settings(d);
+    Description bare = d;
+    bare.params = toml::table{};
+    bare.style = toml::table{};
+    const Reading defaults = read_settings(bare);
+
+    std::ostringstream out;
+    out << d.id << ": " << d.title << "\n"
+        << "  source: " << d.source << "\n"
+        << "  scene: " << d.scene << ", seed " << d.seed << ", described in " << file.string() << "\n";
+    char line[512];
+    auto section = [&](const SettingsLog::Section& s, const SettingsLog::Section* fallback,
+                       const std::vector<sim::CheckedRange>& ranges) {
+        out << "\n[" << s.name << "]\n";
+        std::snprintf(line, sizeof line, "  %-20s %-28s %-28s %-30s %s\n", "key", "this figure", "default",
+                      "allowed", "meaning");
+        out << line;
+        for (const Key& key : s.keys) {
+            const nlohmann::json value = s.used.contains(key.name) ? s.used[key.name] : nlohmann::json();
+            const nlohmann::json fallback_value =
+                fallback && fallback->used.contains(key.name) ? fallback->used[key.name] : nlohmann::json();
+            std::string allowed = s.allowed.count(key.name) ? s.allowed.at(key.name) : range_of(key.name, ranges);
+            if (allowed.empty()) allowed = "see meaning";
+            std::snprintf(line, sizeof line, "  %-20s %-28s %-28s %-30s %s\n", key.name.c_str(),
+                          shown(value).c_str(), fallback ? shown(fallback_value).c_str() : "-", allowed.c_str(),
+                          key.help.c_str());
+            out << line;
+        }
+    };
+    std::vector<sim::CheckedRange> ranges = own.ranges;
+    ranges.insert(ranges.end(), defaults.ranges.begin(), defaults.ranges.end());
+    for (const auto& s : own.sections) section(s, find(defaults.sections, s.name), ranges);
+    for (const char* name : {"figure", "animation"})
+        if (const auto* s = find(top.sections, name)) section(*s, nullptr, {});
+    out << "\nChange any of them with --set key=value ([params]) or --set section.key=value.\n";
+    return out.str();
+}
+
+}  // namespace app

@@ -1,0 +1,174 @@
+#include "app/outputs.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "app/version.hpp"
+#include "render/atomic_file.hpp"
+#include "render/gl_context.hpp"
+#include "render/png_io.hpp"
+
+namespace app {
+
+using scenes::scaled_even;
+
+int figure_width(const Description& d, const OutputOptions& options) {
+    return scaled_even(d.width, options.scale);
+}
+int figure_height(const Description& d, const OutputOptions& options) {
+    return scaled_even(d.height, options.scale);
+}
+
+std::string format_bytes(double bytes) {
+    const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+    int unit = 0;
+    while (bytes >= 1024.0 && unit < 6) {
+        bytes /= 1024.0;
+        ++unit;
+    }
+    char text[48];
+    std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", bytes, units[unit]);
+    return text;
+}
+
+namespace {
+
+constexpr double canvas_bytes_per_pixel = 44.0;
+
+double frame_pixels(const Description& d, const OutputOptions& options) {
+    if (!d.animation) return 0.0;
+    return static_cast<double>(scaled_even(d.animation->width, options.scale)) *
+           scaled_even(d.animation->height, options.scale);
+}
+
+}  // namespace
+
+void require_memory(const Description& d, const OutputOptions& options, const std::vector<scenes::MemoryNeed>& needs) {
+    using scenes::MemoryNeed;
+    // A canvas: 4x multisampled colour and depth-stencil (32 bytes a pixel),
+    // the resolved colour, the copy read back and the PNG rows (12). A frame
+    // likewise, plus the encoder's YUV frames and look-ahead (~16 of 1.5).
+    std::vector<MemoryNeed> all = needs;
+    all.push_back({"figure " + std::to_string(figure_width(d, options)) + " x " +
+                       std::to_string(figure_height(d, options)) + " RGBA",
+                   canvas_bytes_per_pixel * figure_width(d, options) * figure_height(d, options)});
+    if (d.animation && options.animates())
+        all.push_back({"animation frames " + std::to_string(scaled_even(d.animation->width, options.scale)) +
+                           " x " + std::to_string(scaled_even(d.animation->height, options.scale)),
+                       (canvas_bytes_per_pixel + 16.0 * 1.5) * frame_pixels(d, options)});
+    double total = 0.0;
+    const MemoryNeed* largest = &all.front();
+    for (const MemoryNeed& need : all) {
+        total += need.bytes;
+        if (need.bytes > largest->bytes) largest = &need;
+    }
+    if (total > static_cast<double>(options.max_memory))
+        throw UsageError(d.id + ": needs about " + format_bytes(total) + " of memory (" + largest->what + ": " +
+                         format_bytes(largest->bytes) + "), more than --max-memory " +
+                         format_bytes(static_cast<double>(options.max_memory)) +
+                         "; make it smaller or raise --max-memory");
+}
+
+void require_disk(const Description& d, const OutputOptions& options) {
+    double bytes = 4.0 * figure_width(d, options) * figure_height(d, options);
+    std::string largest = "the PNG";
+    if (d.animation) {
+        const double frames = d.animation->frame_count() * frame_pixels(d, options);
+        if (options.video) bytes += 0.15 * frames, largest = "the MP4";
+        if (options.frames) bytes += 4.0 * frames, largest = "the PNG sequence";
+    }
+    if (bytes > static_cast<double>(options.max_disk))
+        throw UsageError(d.id + ": its outputs would take up to about " + format_bytes(bytes) + " (mostly " +
+                         largest + "), more than --max-disk " +
+                         format_bytes(static_cast<double>(options.max_disk)) +
+                         "; make it smaller, leave out the video or raise --max-disk");
+}
+
+FrameSink::FrameSink(const Description& d, const OutputOptions& options, int width, int height)
+    : description_(d), options_(options), width_(width), height_(height) {
+    if (options.video)
+        video_ = std::make_unique<render::VideoWriter>(options.dir / (d.id + ".mp4"), width, height, [&] {
+            render::VideoOptions v = options.video_options;
+            v.fps = d.animation->fps;
+            return v;
+        }());
+    if (options.frames) {
+        frames_ = std::make_unique<render::AtomicDir>(options.dir / (d.id + "-frames"));
+    }
+}
+
+FrameSink::~FrameSink() = default;
+
+void FrameSink::add(const render::Image& frame, int step) {
+    if (video_) video_->add(frame);
+    if (frames_) {
+        char name[32];
+        std::snprintf(name, sizeof name, "%05d.png", static_cast<int>(steps_.size()));
+        render::write_png(frames_->temp_path() / name, frame,
+                          {{"Title", description_.id + " " + description::format_step("step {step}", step)}});
+    }
+    steps_.push_back(step);
+}
+
+nlohmann::json FrameSink::finish() {
+    nlohmann::json meta = {
+        {"frames", steps_.size()},
+        {"first", description_.animation->first},
+        {"last", description_.animation->last},
+        {"stride", description_.animation->stride},
+        {"steps", steps_},
+        {"fps", description_.animation->fps},
+        {"size", {width_, height_}},
+    };
+    if (video_) {
+        video_->finish();
+        meta["file"] = description_.id + ".mp4";
+        meta["codec"] = video_->codec_name();
+        meta["pixel_format"] = "yuv420p";
+        meta["encoder_threads"] = options_.video_options.threads;
+    }
+    if (frames_) {
+        frames_->commit();
+        meta["png_sequence"] = description_.id + "-frames";
+    }
+    return meta;
+}
+
+std::unique_ptr<scenes::Film> FigureFiles::film(int width, int height) {
+    if (!description_.animation || !options_.animates()) return nullptr;
+    return std::make_unique<FrameSink>(description_, options_, width, height);
+}
+
+void FigureFiles::figure(const render::Image& image, nlohmann::json metadata) {
+    write_figure(description_, options_, image, std::move(metadata));
+}
+
+void write_figure(const Description& d, const OutputOptions& options, const render::Image& image,
+                  nlohmann::json metadata) {
+    const auto& gl = render::GlContext::get();
+    nlohmann::json meta = {
+        {"id", d.id},
+        {"title", d.title},
+        {"source", d.source},
+        {"scene", d.scene},
+        {"caption", d.caption},
+        {"seed", d.seed},
+        {"description", d.file.filename().string()},
+        {"figgen_version", app::version()},
+        {"renderer", {{"gl_renderer", gl.renderer()}, {"gl_version", gl.version()}}},
+        {"scale", options.scale},
+    };
+    meta.update(metadata);
+    meta["image"] = {{"file", d.id + ".png"}, {"size", {image.width, image.height}}};
+
+    render::write_png(options.dir / (d.id + ".png"), image,
+                      {{"Title", d.title},
+                       {"Source", d.source},
+                       {"Software", std::string("figgen ") + app::version()},
+                       {"figgen:id", d.id},
+                       {"figgen:seed", std::to_string(d.seed)},
+                       {"figgen:params", meta.value("params", nlohmann::json::object()).dump()}});
+    render::write_file_atomically(options.dir / (d.id + ".json"), meta.dump(2) + "\n");
+}
+
+}  // namespace app

@@ -1,0 +1,96 @@
+#pragma once
+// What a figure writes into the output folder, all through temporary names:
+//   <id>.png            the panels, with id, seed and parameters in tEXt chunks
+//   <id>.mp4            the animation, streamed frame by frame
+//   <id>-frames/NNNNN.png  the same frames as a PNG sequence (--frames)
+//   <id>.json           metadata of all of them: parameters, seed, per-panel
+//                       step, statistics and state hash, frame list
+
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "description/description.hpp"
+#include "render/atomic_file.hpp"
+#include "render/image.hpp"
+#include "render/video.hpp"
+#include "scenes/output.hpp"
+#include "scenes/scene.hpp"
+
+namespace app {
+
+using description::Description;
+using description::UsageError;
+
+struct OutputOptions {
+    std::filesystem::path dir = "out";  // created if missing
+    double scale = 1.0;                 // multiplies every size in pixels
+    bool video = true;                  // write <id>.mp4
+    bool frames = false;                // write <id>-frames/*.png
+    render::VideoOptions video_options;
+    // Limits on what one figure may need (--max-memory, --max-disk); a figure
+    // whose estimate exceeds them is refused before anything is allocated.
+    std::uint64_t max_memory = 4ull << 30;
+    std::uint64_t max_disk = 4ull << 30;
+
+    bool animates() const { return video || frames; }
+    scenes::SceneOptions scene_options() const { return {scale, animates()}; }
+};
+
+// The figure's size in pixels at the output scale.
+int figure_width(const Description& d, const OutputOptions& options);
+int figure_height(const Description& d, const OutputOptions& options);
+
+// Refuses (UsageError) a figure whose estimated memory, the model's `needs`
+// (the scene's phase-1 estimate) plus the images it draws (figure, frames,
+// encoder), exceeds options.max_memory; the message gives the estimate and
+// its largest part.
+void require_memory(const Description& d, const OutputOptions& options, const std::vector<scenes::MemoryNeed>& needs);
+// Refuses a figure whose outputs would take more than options.max_disk: the
+// PNG (at most 4 bytes a pixel), the PNG sequence likewise, the MP4 at 0.15
+// bytes a pixel and frame (our films measure 0.002..0.057).
+void require_disk(const Description& d, const OutputOptions& options);
+// "1.5 GiB", "12 MiB", "640 KiB", "100 bytes".
+std::string format_bytes(double bytes);
+
+// Receives the animation's frames as the model runs and passes each on at
+// once: nothing is kept in memory but the frame being encoded.
+class FrameSink : public scenes::Film {
+public:
+    FrameSink(const Description& d, const OutputOptions& options, int width, int height);
+    ~FrameSink() override;
+    void add(const render::Image& frame, int step) override;
+    nlohmann::json finish() override;  // completes the MP4; returns the animation's metadata
+
+private:
+    const Description& description_;
+    const OutputOptions& options_;
+    std::unique_ptr<render::VideoWriter> video_;
+    std::unique_ptr<render::AtomicDir> frames_;  // the PNG sequence, in place at finish()
+    nlohmann::json steps_ = nlohmann::json::array();
+    int width_, height_;
+};
+
+// A figure's files in the output folder: what a scene writes through.
+class FigureFiles : public scenes::Output {
+public:
+    FigureFiles(const Description& d, const OutputOptions& options, scenes::Progress& progress)
+        : description_(d), options_(options), progress_(progress) {}
+    std::unique_ptr<scenes::Film> film(int width, int height) override;
+    void figure(const render::Image& image, nlohmann::json metadata) override;
+    scenes::Progress& progress() override { return progress_; }
+
+private:
+    const Description& description_;
+    const OutputOptions& options_;
+    scenes::Progress& progress_;
+};
+
+// Writes <id>.png and <id>.json. `metadata` holds what the scene knows
+// (params, panels with statistics and hashes, animation); the common fields
+// (id, title, source, seed, version, renderer) are added here.
+void write_figure(const Description& d, const OutputOptions& options, const render::Image& image,
+                  nlohmann::json metadata);
+
+}  // namespace app

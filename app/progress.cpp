@@ -1,0 +1,50 @@
+#include "app/progress.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace app {
+
+ProgressBar::ProgressBar(bool enabled) : enabled_(enabled) {}
+
+ProgressBar ProgressBar::for_stderr() {
+    return ProgressBar(::isatty(STDERR_FILENO) == 1);
+}
+
+void ProgressBar::start(const std::string& label, long long total) {
+    label_ = label;
+    total_ = total > 0 ? total : 1;
+    done_ = 0;
+    started_ = last_draw_ = std::chrono::steady_clock::now();
+    draw(true);
+}
+
+void ProgressBar::advance(long long units) {
+    done_ += units;
+    draw(false);
+}
+
+void ProgressBar::finish() {
+    if (!enabled_) return;
+    done_ = total_;
+    draw(true);
+    std::fputc('\n', stderr);
+}
+
+void ProgressBar::draw(bool force) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    // Ten redraws a second are enough for the eye and cost nothing.
+    if (!force && now - last_draw_ < std::chrono::milliseconds(100)) return;
+    last_draw_ = now;
+    constexpr int width = 30;
+    const double fraction = done_ >= total_ ? 1.0 : double(done_) / double(total_);
+    const int filled = static_cast<int>(fraction * width);
+    const double seconds = std::chrono::duration<double>(now - started_).count();
+    std::fprintf(stderr, "\r%-12s [%.*s%*s] %3d%% %6.1fs", label_.c_str(), filled, "##############################",
+                 width - filled, "", static_cast<int>(fraction * 100), seconds);
+    std::fflush(stderr);
+}
+
+}  // namespace app

@@ -1,0 +1,31 @@
+#pragma once
+// A progress bar on stderr for long renders, counting units of work
+// (simulation steps, frames drawn and encoded). Silent when stderr is not a
+// terminal, so logs and CI output stay clean.
+
+#include <chrono>
+#include <string>
+
+#include "scenes/output.hpp"
+
+namespace app {
+
+class ProgressBar : public scenes::Progress {
+public:
+    explicit ProgressBar(bool enabled);
+    static ProgressBar for_stderr();  // enabled when stderr is a terminal
+
+    void start(const std::string& label, long long total) override;
+    void advance(long long units = 1) override;
+    void finish() override;  // completes the bar and ends its line
+
+private:
+    void draw(bool force);
+
+    bool enabled_;
+    std::string label_;
+    long long total_ = 0, done_ = 0;
+    std::chrono::steady_clock::time_point started_, last_draw_;
+};
+
+}  // namespace app

@@ -1,0 +1,223 @@
+#include "description/description.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace description {
+namespace {
+
+const std::vector<Key> top_level_keys = {
+    {"id", "the figure's id, also the output file name"},
+    {"title", "one line for `figgen list`"},
+    {"source", "the printed figure reproduced"},
+    {"scene", "the scene that draws it"},
+    {"model", "old name of scene"},
+    {"seed", "seed of the random generator, 0..2^63-1"},
+    {"caption", "decisions and notes"},
+    {"params", "[params] section"},
+    {"style", "[style] section"},
+    {"figure", "[figure] section"},
+    {"animation", "[animation] section"},
+};
+
+const std::vector<Key> figure_keys = {
+    {"panels", "steps shown in the panels, ascending"},
+    {"size", "[width, height] in pixels"},
+    {"panel_title", "title above each panel; {step} is the step shown"},
+};
+
+const std::vector<Key> animation_keys = {
+    {"steps", "[first, last] steps of the animation"},
+    {"stride", "steps between frames, >= 1"},
+    {"fps", "frames per second, 1..120"},
+    {"size", "[width, height] in pixels"},
+    {"title", "title above each frame; {step} is the step shown"},
+};
+
+// A command-line value as TOML would read it ("0.2" a float, "[1,2]" a list,
+// "true" a boolean), or as a plain string when it is not TOML ("wrap").
+toml::node_view<toml::node> parse_value(const std::string& text, toml::table& holder) {
+    try {
+        holder = toml::parse("v = " + text);
+    } catch (const toml::parse_error&) {
+        holder = toml::table{{"v", text}};
+    }
+    return holder["v"];
+}
+
+std::string section_of(const std::string& assignment) {
+    const std::string key = assignment.substr(0, assignment.find('='));
+    return key.find('.') == std::string::npos ? "params." + key : key;
+}
+
+// "section.key" -> "file:line" for every key written in the file.
+void record_origins(const toml::table& root, const std::string& file, std::map<std::string, std::string>& origins) {
+    auto at = [&](const toml::node& node) { return file + ":" + std::to_string(node.source().begin.line); };
+    for (const auto& [key, node] : root) {
+        if (const toml::table* section = node.as_table()) {
+            origins[std::string(key.str())] = at(node);
+            for (const auto& [inner, value] : *section)
+                origins[std::string(key.str()) + "." + std::string(inner.str())] = at(value);
+        } else {
+            origins["description." + std::string(key.str())] = at(node);
+        }
+    }
+}
+
+}  // namespace
+
+void apply_override(toml::table& root, const std::string& assignment) {
+    const auto eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw UsageError("--set " + assignment + ": expected key=value, e.g. --set r=0.2 or --set figure.panels=[0,5]");
+    std::string key = assignment.substr(0, eq);
+    std::string section = "params";
+    if (const auto dot = key.find('.'); dot != std::string::npos) {
+        section = key.substr(0, dot);
+        key = key.substr(dot + 1);
+    }
+    if (section != "params" && section != "style" && section != "figure" && section != "animation")
+        throw UsageError("--set " + assignment + ": unknown section '" + section +
+                         "'; allowed: params, style, figure, animation");
+    if (!root.contains(section)) root.insert(section, toml::table{});
+    toml::table* table = root[section].as_table();
+    if (!table) throw UsageError("--set " + assignment + ": '" + section + "' is not a section");
+    toml::table holder;
+    auto value = parse_value(assignment.substr(eq + 1), holder);
+    table->insert_or_assign(key, *value.node());
+}
+
+namespace {
+
+std::pair<int, int> size_pair(Settings& s, const std::string& key, std::pair<int, int> fallback) {
+    const auto v = s.integers(key, {fallback.first, fallback.second});
+    if (v.size() != 2 || v[0] < 2 || v[1] < 2 || v[0] > 16384 || v[1] > 16384)
+        s.refuse(key, "[width, height], each 2..16384");
+    return {static_cast<int>(v[0]), static_cast<int>(v[1])};
+}
+
+const toml::table& section_table(const toml::table& root, const char* name) {
+    static const toml::table empty;
+    const toml::node* node = root.get(name);
+    if (!node) return empty;
+    if (!node->is_table())
+        throw SettingError(std::string(name), "a value", std::string("a [") + name + "] section");
+    return *node->as_table();
+}
+
+void read_top_level(Description& d, const toml::table& root, std::optional<std::uint64_t> seed) {
+    Settings top("description", root, top_level_keys);
+    d.id = top.text("id", d.file.stem().string());
+    d.title = top.text("title", d.id);
+    d.source = top.text("source", "");
+    d.scene = top.text("scene", top.text("model", ""));
+    d.caption = top.text("caption", "");
+    const long long seed_value = top.integer("seed", 0);
+    if (seed_value < 0) top.refuse("seed", "an integer from 0 to 2^63-1");
+    d.seed = seed ? *seed : static_cast<std::uint64_t>(seed_value);
+    if (d.scene.empty()) top.refuse("scene", "", "a scene name, e.g. scene = \"gray_scott\"");
+    // Given by its old name: a mistake in it is reported at that line.
+    if (!top.has("scene") && top.has("model")) d.origins["description.scene"] = d.origins["description.model"];
+    d.params = section_table(root, "params");
+    d.style = section_table(root, "style");
+}
+
+void read_figure(Description& d, const toml::table& root) {
+    Settings figure("figure", section_table(root, "figure"), figure_keys);
+    for (long long step : figure.integers("panels", {})) {
+        if (step < 0 || step > 100'000'000) figure.refuse("panels", "steps from 0 to 100000000, ascending");
+        d.panels.push_back(static_cast<int>(step));
+    }
+    if (!std::is_sorted(d.panels.begin(), d.panels.end()))
+        figure.refuse("panels", "steps from 0 to 100000000, ascending");
+    std::tie(d.width, d.height) = size_pair(figure, "size", {d.width, d.height});
+    d.panel_title = figure.text("panel_title", d.panel_title);
+}
+
+void read_animation(Description& d, const toml::table& root) {
+    if (!root.contains("animation")) return;
+    Settings anim("animation", section_table(root, "animation"), animation_keys);
+    Animation a;
+    const auto steps = anim.integers("steps", {0, 0});
+    if (steps.size() != 2 || steps[0] < 0 || steps[1] < steps[0] || steps[1] > 100'000'000)
+        anim.refuse("steps", "[first, last] with 0 <= first <= last <= 100000000");
+    a.first = static_cast<int>(steps[0]);
+    a.last = static_cast<int>(steps[1]);
+    a.stride = anim.count_in("stride", a.stride, 1, 100'000'000);
+    a.fps = anim.count_in("fps", a.fps, 1, 120);
+    std::tie(a.width, a.height) = size_pair(anim, "size", {a.width, a.height});
+    a.title = anim.text("title", a.title);
+    d.animation = a;
+}
+
+}  // namespace
+
+std::string Description::where(const std::string& key) const {
+    // "params.plants[1].axiom" -> "params.plants[1]" -> "params.plants" -> "params"
+    for (std::string k = key; !k.empty();) {
+        if (const auto found = origins.find(k); found != origins.end()) return found->second;
+        const auto cut = k.find_last_of(".[");
+        if (cut == std::string::npos) break;
+        k.resize(cut);
+    }
+    return file.filename().string();
+}
+
+int Description::last_step(bool with_animation) const {
+    int last = panels.empty() ? 0 : panels.back();
+    if (with_animation && animation) last = std::max(last, animation->last);
+    return last;
+}
+
+std::string expand(const std::string& pattern, const std::vector<std::pair<std::string, std::string>>& values) {
+    std::string text = pattern;
+    for (const auto& [name, value] : values) {
+        const std::string field = "{" + name + "}";
+        for (auto at = text.find(field); at != std::string::npos; at = text.find(field, at + value.size()))
+            text.replace(at, field.size(), value);
+    }
+    return text;
+}
+
+std::string format_step(const std::string& pattern, int step) {
+    return expand(pattern, {{"step", std::to_string(step)}});
+}
+
+Description load_description(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                             std::optional<std::uint64_t> seed) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw UsageError("cannot read " + file.string());
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse_description(text.str(), file, overrides, seed);
+}
+
+Description parse_description(std::string_view text, const std::filesystem::path& file,
+                              const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed) {
+    toml::table root;
+    try {
+        root = toml::parse(text, file.string());
+    } catch (const toml::parse_error& e) {
+        std::ostringstream message;
+        message << file.string() << ":" << e.source().begin.line << ": " << e.description();
+        throw UsageError(message.str());
+    }
+    Description d;
+    d.file = file;
+    record_origins(root, file.filename().string(), d.origins);
+    for (const std::string& assignment : overrides) {
+        apply_override(root, assignment);
+        d.origins[section_of(assignment)] = "--set " + assignment;
+    }
+    at_source(d, [&] {
+        read_top_level(d, root, seed);
+        read_figure(d, root);
+        read_animation(d, root);
+    });
+    return d;
+}
+
+}  // namespace description

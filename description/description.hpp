@@ -1,0 +1,95 @@
+#pragma once
+// A figure description: one TOML file under figures/ saying what to draw.
+//
+//   id, title, source, scene, seed, caption      top-level keys
+//                                                (`model` is read as an old name of `scene`)
+//   [params]     the model's parameters (checked by its scene)
+//   [style]      drawing options (checked by its scene)
+//   [figure]     panels = [steps...], size = [w, h], panel_title = "step {step}"
+//   [animation]  steps = [first, last], stride, fps, size = [w, h], title
+//
+// Values given on the command line (--set key=value, --seed) are written
+// into the table before it is read, so they pass the same checks.
+
+#include <toml++/toml.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "description/settings.hpp"
+
+namespace description {
+
+struct Animation {
+    int first = 0;                      // first step shown
+    int last = 0;                       // last step shown
+    int stride = 1;                     // steps between frames
+    int fps = 30;                       // frames per second
+    int width = 640, height = 640;      // pixels at scale 1
+    std::string title = "step {step}";  // drawn above the frame; {step} is the true step
+    int frame_count() const { return (last - first) / stride + 1; }
+    bool shows(int step) const { return step >= first && step <= last && (step - first) % stride == 0; }
+};
+
+struct Description {
+    std::filesystem::path file;     // where it was read from
+    std::string id;                 // e.g. "tc7-1": the output files' names
+    std::string title;              // one line, for `figgen list`
+    std::string source;             // the printed figure it reproduces
+    std::string scene;              // which scene draws it, e.g. "gray_scott", "roughness"
+    std::string caption;            // decisions and notes, copied into the metadata
+    std::uint64_t seed = 0;         // for the project's generator
+    toml::table params;             // [params], read by the scene through Settings
+    toml::table style;              // [style], likewise
+    std::vector<int> panels;        // steps of the figure's panels, ascending
+    int width = 900, height = 450;  // figure size in pixels at scale 1
+    std::string panel_title = "step {step}";
+    std::optional<Animation> animation;
+    // Where each key was given: "section.key" (top-level keys under
+    // "description.") -> "tc7-1.toml:7" or "--set r=0.5".
+    std::map<std::string, std::string> origins;
+
+    // Where `key` ("params.n", "params.plants[1].axiom") was given: its file
+    // and line, the --set that gave it, or else just the file.
+    std::string where(const std::string& key) const;
+
+    // The last step any output needs: the model never runs past it.
+    int last_step(bool with_animation) const;
+};
+
+// The one place a SettingError meets the description it came from: runs
+// `read` and turns a SettingError into a UsageError that begins with where
+// its key was given (d.where). Every reader of descriptions goes through it.
+template <class Read>
+auto at_source(const Description& d, Read&& read) -> decltype(read()) {
+    try {
+        return read();
+    } catch (const SettingError& e) {
+        throw UsageError(d.where(e.key()) + ": " + e.what());
+    }
+}
+
+// Reads `file`, applies `overrides` ("key=value"; a bare key means params.key)
+// and `seed` if given. Throws UsageError naming the file, key and what is allowed.
+Description load_description(const std::filesystem::path& file, const std::vector<std::string>& overrides = {},
+                             std::optional<std::uint64_t> seed = std::nullopt);
+
+// The same from the description's text; `file` names it in messages.
+Description parse_description(std::string_view text, const std::filesystem::path& file,
+                              const std::vector<std::string>& overrides = {},
+                              std::optional<std::uint64_t> seed = std::nullopt);
+// Writes one --set assignment ("key=value", "section.key=value") into a
+// description's table; throws UsageError for a malformed one.
+void apply_override(toml::table& root, const std::string& assignment);
+
+// `pattern` with each {name} replaced by its value, e.g. "rule {rule}, step {step}".
+std::string expand(const std::string& pattern, const std::vector<std::pair<std::string, std::string>>& values);
+// "step {step}" with {step} replaced.
+std::string format_step(const std::string& pattern, int step);
+
+}  // namespace description

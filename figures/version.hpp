@@ -1,4 +1,0 @@
-#pragma once
-namespace figures {
-const char* version();  // figgen's version, written into every output's metadata
-}

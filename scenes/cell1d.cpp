@@ -1,0 +1,130 @@
+// Elementary cellular automata side by side (Think Complexity 2e, Fig 7.6):
+// rows are time, top to bottom, one panel per rule, drawn in Blues.
+#include "scenes/field_spec.hpp"
+#include "scenes/model_check.hpp"
+#include "scenes/scene.hpp"
+#include "render/digest.hpp"
+#include "render/gl_context.hpp"
+#include "sim/cell1d.hpp"
+#include "sim/check.hpp"
+
+namespace scenes {
+namespace {
+
+const std::vector<Key> param_keys = {
+    {"rules", "Wolfram rule numbers, one panel each, 0..255"},
+    {"width", "cells per row; 0: 2 * steps + 1, the book's default"},
+    {"boundary", "\"zero\" (the book's Cell1D) or \"wrap\" (its Wrap1D)"},
+};
+
+// "[31]": figure.panels as written.
+std::string steps_text(const std::vector<int>& steps) {
+    std::string text = "[";
+    for (std::size_t i = 0; i < steps.size(); ++i) text += (i ? ", " : "") + std::to_string(steps[i]);
+    return text + "]";
+}
+
+// The one panel step is the last row shown: the automata's rows are that step + 1 (the model keeps 1..100000).
+int last_row(const Description& d) {
+    if (d.panels.size() != 1 || d.panels.front() > 99999)
+        throw SettingError("figure.panels", steps_text(d.panels),
+                           "one step from 0 to 99999, the last row shown (e.g. [31] for 32 rows)");
+    return d.panels.front();
+}
+
+// One automaton per rule, each of `rows` rows.
+std::vector<sim::Cell1DParams> read_automata(Settings& s, int rows) {
+    const std::string boundary_text = s.text("boundary", "zero");
+    sim::Boundary boundary = sim::Boundary::zero;
+    check_model(s, [&] { boundary = sim::parse_boundary(boundary_text); });
+    const int width = s.count("width", 0);
+    std::vector<sim::Cell1DParams> automata;
+    for (long long rule : s.integers("rules", {20, 50, 18})) {
+        // Checked before it becomes the model's int, which a huge number would wrap into range.
+        check_model(s, [&] { sim::require_integer("rules", rule, 0, 255); });
+        sim::Cell1DParams p;
+        p.rule = static_cast<int>(rule);
+        p.rows = rows;
+        p.width = width;
+        p.boundary = boundary;
+        check_model(s, [&] { p.validate(); }, {{"rule", "rules"}});
+        automata.push_back(p);
+    }
+    if (automata.empty()) s.refuse("rules", "one rule at least");
+    return automata;
+}
+
+// Each automaton is drawn as one field of rows x columns cells: the renderer
+// holds it as one texture. Too many rows is the panel step's fault, too many
+// columns the width's (absent: 2 * rows + 1).
+void require_automata_drawable(const Settings& params, const Description& d, double rows, double cols) {
+    const int most = render::GlContext::get().max_texture_size();
+    if (rows > most)
+        throw SettingError("figure.panels", steps_text(d.panels),
+                           "a step below " + std::to_string(most) + ": each automaton at most " +
+                               std::to_string(most) + " rows (the renderer draws one field that large)");
+    require_drawable(params, "width", "each automaton", rows, cols);
+}
+
+class Cell1DScene : public Scene {
+public:
+    Cell1DScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, param_keys),
+          style_("style", d.style, field_spec_keys()),
+          steps_(last_row(d)),
+          automata_(read_automata(params_, steps_ + 1)),
+          spec_(read_field_spec(style_, {render::colormap("Blues"), 0.0, 1.0, 0.7f, render::Sampling::nearest})) {
+        require_automata_drawable(params_, d, rows(), columns());
+    }
+
+    // Each CA's rows (bytes) and the panel's field of them (doubles).
+    std::vector<MemoryNeed> memory() const override {
+        return {grid_need("rows of cells of a byte and a double", rows(), columns(), 9, double(automata_.size()))};
+    }
+
+    void render(Output& out) const override {
+        Progress& progress = out.progress();
+        progress.start(d_.id, static_cast<long long>(automata_.size()));
+        std::vector<FieldPanel> panels;
+        nlohmann::json panel_meta = nlohmann::json::array();
+        for (const auto& p : automata_) {
+            sim::Cell1D ca(p);
+            for (int i = 0; i < steps_; ++i) ca.step();
+            const auto& cells = ca.cells();
+            panels.push_back(
+                {expand(d_.panel_title, {{"rule", std::to_string(p.rule)}, {"step", std::to_string(steps_)}}),
+                 {field_layer(cells, spec_)}});
+            panel_meta.push_back({{"rule", p.rule},
+                                  {"step", steps_},
+                                  {"size", {cells.rows(), cells.cols()}},
+                                  {"statistics", {{"on_cells", ca.on_cells()}}},
+                                  {"state_sha256", render::sha256_hex(cells.data(), cells.size())}});
+            progress.advance();
+        }
+        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        out.figure(draw_field_panels(panels, width, height, options_.scale),
+                   {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
+        progress.finish();
+    }
+
+private:
+    double rows() const { return steps_ + 1.0; }
+    double columns() const { return automata_.front().width > 0 ? automata_.front().width : 2.0 * rows() + 1.0; }
+
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const int steps_;  // the panel step: every automaton runs that many steps
+    const std::vector<sim::Cell1DParams> automata_;
+    const FieldSpec spec_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_cell1d(const Description& d, const SceneOptions& options) {
+    return std::make_unique<Cell1DScene>(d, options);
+}
+
+}  // namespace scenes

@@ -1,0 +1,207 @@
+// Think Complexity 2e, exercise 7.1: which elementary CAs are fractal? The
+// cell-count slope (the box-counting dimension of section 7.5) of all 256
+// rules, without and with wrapping, and a gallery of those whose slope is
+// not an integer.
+#include <algorithm>
+#include <cmath>
+
+#include "scenes/field_spec.hpp"
+#include "scenes/field_stats.hpp"
+#include "scenes/plot_page.hpp"
+#include "scenes/scene.hpp"
+#include "render/digest.hpp"
+#include "sim/cell1d.hpp"
+#include "sim/fractal.hpp"
+
+namespace scenes {
+namespace {
+
+const std::vector<Key> param_keys = {
+    {"n", "rows per CA for the slope (the book's count_cells n)"},
+    {"fit_from", "first step of the fitted range (the book's Fig 7.7 fits from 1)"},
+    {"tolerance", "a slope between 1 + tolerance and 2 - tolerance counts as non-integer"},
+    {"gallery_steps", "steps drawn for each gallery panel"},
+    {"gallery_columns", "gallery panels per row"},
+};
+
+std::vector<Key> style_keys() {
+    auto keys = field_spec_keys();
+    keys.push_back({"zero_colour", "colour of the zero-boundary slopes"});
+    keys.push_back({"wrap_colour", "colour of the wrapped slopes"});
+    return with_plot_style_keys(keys);
+}
+
+// The slope over i >= fit_from: the first rows are a transient that tilts a
+// fit over all of them (a rule filling whole rows has counts 1, 1002, 2003,
+// ..., a line of slope 1 whose first point alone pulls the fit to 1.1).
+double slope_of(int rule, int n, sim::Boundary boundary, const std::vector<double>& steps, int fit_from) {
+    std::vector<long> counts = sim::count_cells(rule, n, boundary);
+    counts.erase(counts.begin(), counts.begin() + (fit_from - 1));
+    // A rule that dies leaves zero counts, which have no logarithm: its
+    // pattern is a point, dimension 0.
+    if (std::any_of(counts.begin(), counts.end(), [](long c) { return c <= 0; })) return 0.0;
+    return sim::fit_log_log(steps, std::vector<double>(counts.begin(), counts.end())).slope;
+}
+
+// Every rule's slopes, and which of them are non-integer.
+struct Survey {
+    std::vector<double> rules, zero_slopes, wrap_slopes;
+    nlohmann::json table = nlohmann::json::array();
+    std::vector<int> fractal;  // the gallery's rules
+    nlohmann::json fractal_meta = nlohmann::json::array();
+};
+
+// The gallery: each non-integer rule's wrapped automaton, and all their cells one after another.
+struct Gallery {
+    std::vector<FieldPanel> panels;
+    std::vector<std::uint8_t> cells;
+};
+
+// Both slopes of every rule against the rule number, with log2 3 (Sierpinski's triangle) for reference.
+render::Axes survey_plot(const Survey& survey, glm::vec4 zero_colour, glm::vec4 wrap_colour) {
+    render::Axes plot;
+    plot.x_label = "Rule";
+    plot.y_label = "Slope of log cells vs log steps";
+    plot.x_range = std::pair{-4.0, 259.0};
+    plot.legend = render::Legend::upper_right;
+    plot.series = {
+        line_series({-4, 259}, {std::log2(3.0), std::log2(3.0)}, "log2 3 = 1.585", glm::vec4(0.6f, 0.6f, 0.6f, 1), 1.0f,
+                    true),
+        dot_series(survey.rules, survey.zero_slopes, "zero boundary", zero_colour, 5.0f),
+        dot_series(survey.rules, survey.wrap_slopes, "wrapped", wrap_colour, 3.0f),
+    };
+    return plot;
+}
+
+class Cell1DSurveyScene : public Scene {
+public:
+    Cell1DSurveyScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, param_keys),
+          style_("style", d.style, style_keys()),
+          n_(params_.count_in("n", 500, 3, 100000)),
+          fit_from_(params_.count_in("fit_from", 10, 1, n_ - 2)),
+          tolerance_(params_.number_in("tolerance", 0.1, 0.0, 0.5)),
+          gallery_steps_(params_.count_in("gallery_steps", 63, 1, 10000)),
+          columns_(params_.count_in("gallery_columns", 8, 1, 64)),
+          spec_(read_field_spec(style_, {render::colormap("Blues"), 0.0, 1.0, 0.7f, render::Sampling::nearest})),
+          zero_colour_(style_colour(style_, "zero_colour", "#526e97")),
+          wrap_colour_(style_colour(style_, "wrap_colour", "orange")),
+          plot_(read_plot_style(style_, options.scale)) {
+        // A gallery automaton: gallery_steps + 1 rows of the default width, 2 * rows + 1.
+        const double rows = gallery_steps_ + 1.0;
+        require_drawable(params_, "gallery_steps", "each gallery panel", rows, 2.0 * rows + 1.0);
+    }
+
+    // count_cells' automaton: n rows of 2n + 1 cells, one rule at a time.
+    std::vector<MemoryNeed> memory() const override {
+        return {grid_need("rows of cells of a byte", n_, 2.0 * n_ + 1.0, 1, 1)};
+    }
+
+    void render(Output& out) const override {
+        Progress& progress = out.progress();
+        progress.start(d_.id, 256 * 2 + 1);
+        const Survey survey = survey_rules(progress);
+        const render::Axes plot = survey_plot(survey, zero_colour_, wrap_colour_);
+        const Gallery gallery = gallery_of(survey);
+        progress.advance();
+        // The survey's plotted slopes: every rule's zero-boundary slope, then its wrapped one.
+        std::vector<double> slopes(survey.zero_slopes);
+        slopes.insert(slopes.end(), survey.wrap_slopes.begin(), survey.wrap_slopes.end());
+        out.figure(draw_figure(plot, gallery),
+                   {{"params", params_.used()},
+                    {"style", style_.used()},
+                    {"rules", survey.table},
+                    {"non_integer", survey.fractal_meta},
+                    {"state_sha256", state_hash(slopes)},
+                    {"gallery",
+                     {{"steps", gallery_steps_},
+                      {"boundary", "wrap"},
+                      {"rules", survey.fractal},
+                      {"state_sha256", render::sha256_hex(gallery.cells.data(), gallery.cells.size())}}}});
+        progress.finish();
+    }
+
+private:
+    // Both slopes of all 256 rules; one unit of progress per slope.
+    Survey survey_rules(Progress& progress) const {
+        std::vector<double> steps;
+        for (int i = fit_from_; i < n_; ++i) steps.push_back(i);
+        Survey survey;
+        // A fractal pattern in the plane has 1 < D < 2: a slope at least
+        // `tolerance` from both. (Rules that turn the background on give slopes
+        // just under 1 from their edges; they are not fractal.)
+        auto non_integer = [&](double s) { return s > 1 + tolerance_ && s < 2 - tolerance_; };
+        for (int rule = 0; rule < 256; ++rule) {
+            const double zero = slope_of(rule, n_, sim::Boundary::zero, steps, fit_from_);
+            progress.advance();
+            const double wrap = slope_of(rule, n_, sim::Boundary::wrap, steps, fit_from_);
+            progress.advance();
+            survey.rules.push_back(rule);
+            survey.zero_slopes.push_back(zero);
+            survey.wrap_slopes.push_back(wrap);
+            const bool fractal_zero = non_integer(zero), fractal_wrap = non_integer(wrap);
+            survey.table.push_back({{"rule", rule},
+                                    {"slope_zero", zero},
+                                    {"slope_wrap", wrap},
+                                    {"non_integer_zero", fractal_zero},
+                                    {"non_integer_wrap", fractal_wrap}});
+            // The gallery shows rules that are non-integer with either boundary.
+            if (fractal_zero || fractal_wrap) {
+                survey.fractal.push_back(rule);
+                survey.fractal_meta.push_back({{"rule", rule}, {"slope_zero", zero}, {"slope_wrap", wrap}});
+            }
+        }
+        return survey;
+    }
+
+    // Each non-integer rule run wrapped for gallery_steps, titled with its wrapped slope.
+    Gallery gallery_of(const Survey& survey) const {
+        Gallery gallery;
+        for (std::size_t i = 0; i < survey.fractal.size(); ++i) {
+            sim::Cell1DParams p;
+            p.rule = survey.fractal[i];
+            p.rows = gallery_steps_ + 1;
+            p.boundary = sim::Boundary::wrap;
+            sim::Cell1D ca(p);
+            for (int s = 0; s < gallery_steps_; ++s) ca.step();
+            gallery.cells.insert(gallery.cells.end(), ca.cells().cells().begin(), ca.cells().cells().end());
+            gallery.panels.push_back(
+                {"rule " + std::to_string(p.rule) + ", D = " + format_fixed(survey.wrap_slopes[survey.fractal[i]], 2),
+                 {field_layer(ca.cells(), spec_)}});
+        }
+        return gallery;
+    }
+
+    // The survey's plot above, the gallery below.
+    render::Image draw_figure(const render::Axes& plot, const Gallery& gallery) const {
+        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        render::Canvas canvas(width, height);
+        canvas.clear({1, 1, 1, 1});
+        const float plot_height = std::round(height * 0.45f);
+        draw_plot_row(canvas, {0, 0, float(width), plot_height}, {plot}, plot_);
+        if (!gallery.panels.empty())
+            draw_field_panels(canvas, {0, plot_height, float(width), float(height) - plot_height}, gallery.panels,
+                              columns_, options_.scale);
+        return canvas.read();
+    }
+
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const int n_, fit_from_;
+    const double tolerance_;
+    const int gallery_steps_, columns_;
+    const FieldSpec spec_;
+    const glm::vec4 zero_colour_, wrap_colour_;
+    const render::PlotStyle plot_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_cell1d_survey(const Description& d, const SceneOptions& options) {
+    return std::make_unique<Cell1DSurveyScene>(d, options);
+}
+
+}  // namespace scenes

@@ -1,0 +1,190 @@
+// Ballistic deposition ("Ballistic deposition in Python"): the deposit of
+// L^2 particles coloured by arrival time in bands, and its growth as a film.
+#include <algorithm>
+
+#include "scenes/field_spec.hpp"
+#include "scenes/model_check.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/step_runner.hpp"
+#include "render/colormap.hpp"
+#include "render/digest.hpp"
+#include "sim/deposition.hpp"
+
+namespace scenes {
+namespace {
+
+const std::vector<Key> param_keys = {
+    {"width", "columns L (periodic)"},
+    {"particles", "particles dropped; the catalog: L^2"},
+};
+const std::vector<Key> style_keys = {
+    {"bands", "arrival-time bands, coloured in turn"},
+    {"band_colormap", "colormap the bands run through"},
+};
+
+sim::DepositionParams read_params(Settings& s) {
+    sim::DepositionParams p;
+    p.width = s.count("width", 500);
+    p.particles = static_cast<std::uint64_t>(s.count_in("particles", 250000, 1, 50'000'000));
+    check_model(s, [&] { p.validate(); });
+    return p;
+}
+
+// White for empty cells, then the bands alternating light and dark along the ramp.
+FieldSpec band_spec(Settings& style, int bands) {
+    const render::Colormap* ramp = render::find_colormap(style.text("band_colormap", "viridis"));
+    if (!ramp) {
+        std::string allowed;
+        for (const auto& name : render::colormap_names()) allowed += (allowed.empty() ? "" : ", ") + name;
+        style.refuse("band_colormap", "one of " + allowed);
+    }
+    std::vector<glm::vec3> colours = {{1, 1, 1}};
+    for (int b = 0; b < bands; ++b) {
+        const glm::vec3 c = ramp->at((b + 0.5) / bands);
+        colours.push_back(b % 2 ? glm::mix(c, glm::vec3(1), 0.35f) : c);
+    }
+    return {render::listed_colormap("bands", colours), 0.0, double(bands), 1.0f, render::Sampling::nearest};
+}
+
+// The deposit as a field: 0 empty, band + 1 for a particle of that arrival band.
+sim::Grid<double> deposit_field(const sim::Deposition& deposit, int rows, std::uint64_t band_size) {
+    const int width = deposit.params().width;
+    sim::Grid<double> field(rows, width, 0.0);
+    for (const auto& p : deposit.particles())
+        if (p.height <= rows) field(rows - int(p.height), p.column) = double(p.arrival / band_size + 1);
+    return field;
+}
+
+// SHA-256 of every particle's column, height and arrival (as 64-bit
+// integers), in arrival order: the deposit the picture is drawn from.
+std::string deposit_hash(const sim::Deposition& deposit) {
+    std::vector<std::int64_t> flat;
+    for (const auto& p : deposit.particles())
+        flat.insert(flat.end(), {std::int64_t(p.column), p.height, std::int64_t(p.arrival)});
+    return render::sha256_hex(flat.data(), flat.size() * sizeof(std::int64_t));
+}
+
+std::int64_t max_height(const sim::Deposition& deposit) {
+    std::int64_t top = 0;
+    for (auto h : deposit.heights()) top = std::max(top, h);
+    return top;
+}
+
+// The film's field over the view's rows, kept up to date particle by
+// particle: a drop raises exactly one column, so comparing heights finds
+// where it landed.
+class FilmField {
+public:
+    FilmField(const sim::Deposition& deposit, int rows, std::uint64_t band_size)
+        : rows_(rows), band_size_(band_size), field_(rows, deposit.params().width, 0.0), before_(deposit.heights()) {}
+
+    void drop_one(sim::Deposition& deposit) {
+        deposit.drop();
+        const auto& after = deposit.heights();
+        for (int c = 0; c < deposit.params().width; ++c)
+            if (after[c] != before_[c]) {
+                if (after[c] <= rows_)
+                    field_(rows_ - int(after[c]), c) = double((deposit.dropped() - 1) / band_size_ + 1);
+                before_[c] = after[c];
+                break;
+            }
+    }
+    const sim::Grid<double>& field() const { return field_; }
+
+private:
+    int rows_;
+    std::uint64_t band_size_;
+    sim::Grid<double> field_;
+    std::vector<std::int64_t> before_;
+};
+
+class DepositionScene : public Scene {
+public:
+    DepositionScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, param_keys),
+          style_("style", d.style, style_keys),
+          p_(read_params(params_)),
+          bands_(style_.count_in("bands", 20, 1, 255)),
+          spec_(band_spec(style_, bands_)),
+          band_size_((p_.particles + bands_ - 1) / std::uint64_t(bands_)),
+          // Steps of the film are monolayers (L particles); the view is tall
+          // enough for the last one: ballistic deposits fill about half their cells.
+          monolayers_(int((p_.particles + p_.width - 1) / p_.width)),
+          view_rows_(int(2.4 * monolayers_) + 16),
+          plan_(d) {
+        plan_.panels = {monolayers_};
+        // The view is tall when there are many particles a column, wide when there are many columns.
+        require_drawable(params_, view_rows_ >= p_.width ? "particles" : "width", "the deposit's view", view_rows_,
+                         p_.width);
+    }
+
+    // The deposit's cells (bytes) and the film's field (doubles) over the view.
+    std::vector<MemoryNeed> memory() const override {
+        return {grid_need("cells of a byte and a double", view_rows_, p_.width, 9, 1)};
+    }
+
+    void render(Output& out) const override {
+        sim::Deposition deposit(p_, d_.seed);
+        FilmField film(deposit, view_rows_, band_size_);
+        StepRunner run(plan_, options_, out);
+        run.run({.check = {},
+                 .panel = {},
+                 .frame =
+                     [&](int step) {
+                         return draw_field_panels(
+                             run.frame_canvas(),
+                             {{format_step(d_.animation->title, step), {field_layer(film.field(), spec_)}}},
+                             options_.scale);
+                     },
+                 .advance =
+                     [&] {
+                         const std::uint64_t left = p_.particles - deposit.dropped();
+                         for (std::uint64_t k = 0, n = std::min<std::uint64_t>(left, std::uint64_t(p_.width)); k < n;
+                              ++k)
+                             film.drop_one(deposit);
+                         return true;
+                     }});
+        const std::int64_t top = max_height(deposit);
+        const auto field = deposit_field(deposit, int(top) + 2, band_size_);
+        run.write_figure(
+            draw_field_panels({{d_.panel_title, {field_layer(field, spec_)}}}, scaled_even(d_.width, options_.scale),
+                              scaled_even(d_.height, options_.scale), options_.scale),
+            metadata(deposit, top));
+    }
+
+private:
+    nlohmann::json metadata(const sim::Deposition& deposit, std::int64_t top) const {
+        return {
+            {"params", params_.used()},
+            {"style", style_.used()},
+            {"panels",
+             {{{"particles", deposit.dropped()},
+               {"cells", deposit.cells()},
+               {"statistics",
+                {{"mean_height", deposit.mean_height()}, {"roughness", deposit.roughness()}, {"max_height", top}}},
+               {"packing_fraction", double(deposit.cells()) / (double(p_.width) * deposit.mean_height())},
+               {"band_particles", band_size_},
+               {"state_sha256", deposit_hash(deposit)}}}},
+        };
+    }
+
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const sim::DepositionParams p_;
+    const int bands_;
+    const FieldSpec spec_;
+    const std::uint64_t band_size_;
+    const int monolayers_, view_rows_;
+    Description plan_;  // d with one panel at the last monolayer: the run's length
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_deposition(const Description& d, const SceneOptions& options) {
+    return std::make_unique<DepositionScene>(d, options);
+}
+
+}  // namespace scenes

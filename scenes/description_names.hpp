@@ -1,0 +1,16 @@
+#pragma once
+// The description reader's names that the scenes use unqualified.
+#include "description/description.hpp"
+#include "description/settings.hpp"
+
+namespace scenes {
+using description::Animation;
+using description::Description;
+using description::expand;
+using description::format_step;
+using description::Key;
+using description::SettingError;
+using description::Settings;
+using description::SettingsLog;
+using description::UsageError;
+}  // namespace scenes

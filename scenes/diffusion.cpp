@@ -1,0 +1,98 @@
+// Diffusion (Think Complexity 2e, Fig 7.1): one run, panels and frames taken
+// from it as it passes their steps.
+#include "scenes/field_spec.hpp"
+#include "scenes/field_stats.hpp"
+#include "scenes/model_check.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/step_runner.hpp"
+#include "sim/diffusion.hpp"
+
+namespace scenes {
+namespace {
+
+const std::vector<Key> param_keys = {
+    {"n", "grid size in cells, 1..8192"},
+    {"r", "diffusion rate per step, 0..0.25 (the explicit scheme's stability limit)"},
+    {"boundary", "\"zero\" (the book) or \"wrap\""},
+    {"block_row", "row of the initial block's top-left cell"},
+    {"block_col", "column of the initial block's top-left cell"},
+    {"block_size", "side of the initial block, cells"},
+    {"block_value", "value of the initial block's cells"},
+};
+
+sim::DiffusionParams read_params(Settings& s) {
+    sim::DiffusionParams p;
+    p.n = s.count("n", p.n);
+    p.r = s.number("r", p.r);
+    const std::string boundary = s.text("boundary", sim::to_string(p.boundary));
+    check_model(s, [&] { p.boundary = sim::parse_boundary(boundary); });
+    p.block_row = s.count("block_row", p.block_row);
+    p.block_col = s.count("block_col", p.block_col);
+    p.block_size = s.count("block_size", p.block_size);
+    p.block_value = s.number("block_value", p.block_value);
+    check_model(s, [&] { p.validate(); });
+    return p;
+}
+
+class DiffusionScene : public Scene {
+public:
+    DiffusionScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, param_keys),
+          style_("style", d.style, field_spec_keys()),
+          p_(read_params(params_)),
+          spec_(read_field_spec(style_, {render::colormap("Reds"), 0.0, 1.0, 0.7f, render::Sampling::nearest})) {
+        if (d.panels.empty()) throw SettingError("figure.panels", "[]", "one step at least");
+    }
+
+    // The field and its next step, and one copy per panel.
+    std::vector<MemoryNeed> memory() const override {
+        return {grid_need("grids of doubles", p_.n, p_.n, 8, 2.0 + double(d_.panels.size()))};
+    }
+
+    void render(Output& out) const override {
+        StepRunner run(d_, options_, out);
+        sim::Diffusion model(p_);
+        std::vector<FieldPanel> panels;
+        nlohmann::json panel_meta = nlohmann::json::array();
+        auto panel = [&](const std::string& pattern, int step) {
+            return FieldPanel{format_step(pattern, step), {field_layer(model.field(), spec_)}};
+        };
+        run.run({
+            .check = [&](int step) { require_finite(model.field(), "diffusion", step); },
+            .panel =
+                [&](int step) {
+                    panels.push_back(panel(d_.panel_title, step));
+                    panel_meta.push_back({{"step", step},
+                                          {"statistics", field_statistics(model.field())},
+                                          {"state_sha256", state_hash(model.field())}});
+                },
+            .frame =
+                [&](int step) {
+                    return draw_field_panels(run.frame_canvas(), {panel(d_.animation->title, step)}, options_.scale);
+                },
+            .advance =
+                [&] {
+                    model.step();
+                    return true;
+                },
+        });
+        run.write_field_figure(panels, {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
+    }
+
+private:
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const sim::DiffusionParams p_;
+    const FieldSpec spec_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_diffusion(const Description& d, const SceneOptions& options) {
+    return std::make_unique<DiffusionScene>(d, options);
+}
+
+}  // namespace scenes

@@ -1,0 +1,38 @@
+#pragma once
+// Drawing arrays the way the book's imshow calls do: each panel one or more
+// field layers stacked (Gray-Scott draws A and B), framed, titled.
+
+#include <string>
+#include <vector>
+
+#include "scenes/description_names.hpp"
+#include "render/canvas.hpp"
+#include "render/field.hpp"
+#include "render/image.hpp"
+#include "render/layout.hpp"
+
+namespace scenes {
+
+struct FieldLayer {
+    int rows = 0, cols = 0;
+    std::vector<double> values;  // rows * cols, row 0 at the top
+    render::FieldStyle style;
+};
+
+struct FieldPanel {
+    std::string title;
+    std::vector<FieldLayer> layers;  // drawn first to last
+};
+
+// A row of panels on a white width x height page (pixels, already scaled).
+render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale);
+
+// The same on an existing canvas of the page's size (reused frame after
+// frame, saving its framebuffers' set-up): clears it, draws, reads it back.
+render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale);
+
+// The same panels in `columns` columns inside `area` of a canvas being drawn.
+void draw_field_panels(const render::Canvas& canvas, const render::Rect& area, const std::vector<FieldPanel>& panels,
+                       int columns, double scale);
+
+}  // namespace scenes

@@ -1,0 +1,72 @@
+#include "scenes/field_spec.hpp"
+
+#include <algorithm>
+
+namespace scenes {
+
+std::vector<Key> field_spec_keys(const std::string& prefix) {
+    return {
+        {prefix + "colormap", "Reds, Blues, Greens, viridis, inferno, magma, plasma or cividis (--cmap)"},
+        {prefix + "colours", "a list of colours for the states 0, 1, ... (#rrggbb or names), instead of colormap"},
+        {prefix + "vmin", "value of the first colour; absent: the panel's minimum"},
+        {prefix + "vmax", "value of the last colour; absent: the panel's maximum"},
+        {prefix + "alpha", "opacity over what lies below, 0..1"},
+        {prefix + "sampling", "\"nearest\" or \"smooth\""},
+    };
+}
+
+namespace {
+
+render::Colormap read_colormap(Settings& style, const FieldSpec& defaults, const std::string& prefix) {
+    if (style.has(prefix + "colours")) {
+        std::vector<glm::vec3> colours;
+        for (const std::string& c : style.texts(prefix + "colours", {})) {
+            const auto colour = render::find_colour(c);
+            if (!colour) style.refuse(prefix + "colours", "\"" + c + "\"", "colours, each " + render::colours_allowed());
+            colours.push_back(*colour);
+        }
+        if (colours.empty() || colours.size() > 4096) style.refuse(prefix + "colours", "1 to 4096 colours");
+        return render::listed_colormap("listed", colours);
+    }
+    const std::string name = style.text(prefix + "colormap", defaults.colormap.name);
+    if (const render::Colormap* map = render::find_colormap(name)) return *map;
+    if (name == defaults.colormap.name) return defaults.colormap;  // a scene's own listed map
+    std::string allowed;
+    for (const auto& n : render::colormap_names()) allowed += (allowed.empty() ? "" : ", ") + n;
+    style.refuse(prefix + "colormap", "one of " + allowed);
+}
+
+}  // namespace
+
+FieldSpec read_field_spec(Settings& style, const FieldSpec& defaults, const std::string& prefix) {
+    FieldSpec spec = defaults;
+    spec.colormap = read_colormap(style, defaults, prefix);
+    if (style.has(prefix + "vmin")) spec.vmin = style.number(prefix + "vmin", 0);
+    if (style.has(prefix + "vmax")) spec.vmax = style.number(prefix + "vmax", 1);
+    if (spec.vmin && spec.vmax && !(*spec.vmax > *spec.vmin))
+        style.refuse(prefix + "vmax", "a number greater than " + prefix + "vmin = " + description::shown(*spec.vmin));
+    spec.alpha = static_cast<float>(style.number_in(prefix + "alpha", defaults.alpha, 0.0, 1.0));
+    const std::string sampling =
+        style.text(prefix + "sampling", defaults.sampling == render::Sampling::smooth ? "smooth" : "nearest");
+    if (sampling != "nearest" && sampling != "smooth") style.refuse(prefix + "sampling", "\"nearest\" or \"smooth\"");
+    spec.sampling = sampling == "smooth" ? render::Sampling::smooth : render::Sampling::nearest;
+    return spec;
+}
+
+FieldLayer field_layer(const sim::Grid<double>& values, const FieldSpec& spec) {
+    FieldLayer layer{values.rows(), values.cols(), values.cells(), {}};
+    const auto [lo, hi] = std::minmax_element(layer.values.begin(), layer.values.end());
+    double vmin = spec.vmin.value_or(*lo), vmax = spec.vmax.value_or(*hi);
+    // matplotlib maps everything to the first colour when the range is empty.
+    if (!(vmax > vmin)) vmax = vmin + 1;
+    layer.style = {&spec.colormap, vmin, vmax, spec.alpha, spec.sampling};
+    return layer;
+}
+
+FieldLayer field_layer(const sim::Grid<std::uint8_t>& values, const FieldSpec& spec) {
+    sim::Grid<double> as_double(values.rows(), values.cols());
+    std::copy(values.cells().begin(), values.cells().end(), as_double.data());
+    return field_layer(as_double, spec);
+}
+
+}  // namespace scenes

@@ -1,0 +1,35 @@
+#pragma once
+// How a scene draws an array, read from [style] as the book's imshow calls
+// set it: colormap (or a list of colours), vmin and vmax (absent: each
+// panel's own min and max, matplotlib's autoscale), alpha, sampling.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scenes/description_names.hpp"
+#include "scenes/field_panels.hpp"
+#include "description/settings.hpp"
+#include "render/colormap.hpp"
+#include "sim/grid.hpp"
+
+namespace scenes {
+
+struct FieldSpec {
+    render::Colormap colormap;         // a named map, or colours listed in [style]
+    std::optional<double> vmin, vmax;  // absent: autoscale per panel
+    float alpha = 0.7f;                // the book's draw_array default
+    render::Sampling sampling = render::Sampling::nearest;
+};
+
+// The [style] keys a FieldSpec reads, each name prefixed (e.g. "b_" gives b_colormap).
+std::vector<Key> field_spec_keys(const std::string& prefix = "");
+
+// Reads the keys; absent ones keep `defaults`. Throws UsageError for bad values.
+FieldSpec read_field_spec(Settings& style, const FieldSpec& defaults, const std::string& prefix = "");
+
+// One layer of a panel: the values as doubles with the spec's colour range.
+FieldLayer field_layer(const sim::Grid<double>& values, const FieldSpec& spec);
+FieldLayer field_layer(const sim::Grid<std::uint8_t>& values, const FieldSpec& spec);
+
+}  // namespace scenes

@@ -1,0 +1,131 @@
+// Gray-Scott reaction-diffusion (Think Complexity 2e, Figs 7.2-7.4): drawn as
+// the book draws it, A through Reds and B through Blues, each autoscaled to
+// its own range, stacked at alpha 0.7 with bicubic-like smoothing.
+#include "scenes/field_spec.hpp"
+#include "scenes/field_stats.hpp"
+#include "scenes/model_check.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/step_runner.hpp"
+#include "render/digest.hpp"
+#include "sim/gray_scott.hpp"
+#include "sim/random.hpp"
+
+namespace scenes {
+namespace {
+
+const std::vector<Key> param_keys = {
+    {"n", "grid size in cells"},
+    {"ra", "diffusion rate of A"},
+    {"rb", "diffusion rate of B"},
+    {"f", "feed rate"},
+    {"k", "kill rate"},
+    {"noise", "B starts uniform in [0, noise)"},
+    {"island", "added to B on the central square of side 2*(n/20)"},
+};
+
+sim::GrayScottParams read_params(Settings& s) {
+    sim::GrayScottParams p;
+    p.n = s.count("n", p.n);
+    p.ra = s.number("ra", p.ra);
+    p.rb = s.number("rb", p.rb);
+    p.f = s.number("f", p.f);
+    p.k = s.number("k", p.k);
+    p.noise = s.number("noise", p.noise);
+    p.island = s.number("island", p.island);
+    check_model(s, [&] { p.validate(); });
+    return p;
+}
+
+std::vector<Key> style_keys() {
+    auto keys = field_spec_keys("a_");
+    const auto b = field_spec_keys("b_");
+    keys.insert(keys.end(), b.begin(), b.end());
+    return keys;
+}
+
+FieldPanel panel_of(const sim::GrayScott& model, const FieldSpec& a, const FieldSpec& b, std::string title) {
+    return {std::move(title), {field_layer(model.a(), a), field_layer(model.b(), b)}};
+}
+
+nlohmann::json panel_metadata(const sim::GrayScott& model, int step) {
+    auto summary = [](const sim::Grid<double>& g) {
+        auto stats = field_statistics(g);
+        stats.erase("sum");
+        return stats;
+    };
+    // One hash over both fields: A's cells, then B's.
+    std::vector<double> state(model.a().cells());
+    state.insert(state.end(), model.b().cells().begin(), model.b().cells().end());
+    return {{"step", step},
+            {"statistics", {{"A", summary(model.a())}, {"B", summary(model.b())}}},
+            {"state_sha256", render::sha256_hex(state.data(), state.size() * sizeof(double))}};
+}
+
+class GrayScottScene : public Scene {
+public:
+    GrayScottScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, param_keys),
+          style_("style", d.style, style_keys()),
+          p_(read_params(params_)),
+          a_spec_(read_field_spec(style_, {render::colormap("Reds"), {}, {}, 0.7f, render::Sampling::smooth}, "a_")),
+          b_spec_(read_field_spec(style_, {render::colormap("Blues"), {}, {}, 0.7f, render::Sampling::smooth}, "b_")) {
+        if (d.panels.empty()) throw SettingError("figure.panels", "[]", "one step at least");
+        require_drawable(params_, "n", "the field", p_.n, p_.n);
+    }
+
+    // A and B and their next steps, and a copy of both per panel.
+    std::vector<MemoryNeed> memory() const override {
+        return {grid_need("grids of doubles", p_.n, p_.n, 8, 4.0 + 2.0 * double(d_.panels.size()))};
+    }
+
+    void render(Output& out) const override {
+        StepRunner run(d_, options_, out);
+        sim::Random rng(d_.seed);
+        sim::GrayScott model(p_, rng);
+        std::vector<FieldPanel> panels;
+        nlohmann::json panel_meta = nlohmann::json::array();
+        run.run({
+            .check =
+                [&](int step) {
+                    // Concentrations live in [0, 1]; beyond 10 the run has blown up.
+                    require_finite(model.a(), "gray_scott (A)", step, 10.0);
+                    require_finite(model.b(), "gray_scott (B)", step, 10.0);
+                },
+            .panel =
+                [&](int step) {
+                    panels.push_back(panel_of(model, a_spec_, b_spec_, format_step(d_.panel_title, step)));
+                    panel_meta.push_back(panel_metadata(model, step));
+                },
+            .frame =
+                [&](int step) {
+                    return draw_field_panels(
+                        run.frame_canvas(),
+                        {panel_of(model, a_spec_, b_spec_, format_step(d_.animation->title, step))}, options_.scale);
+                },
+            .advance =
+                [&] {
+                    model.step();
+                    return true;
+                },
+        });
+        nlohmann::json meta = {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}};
+        run.write_field_figure(panels, meta);
+    }
+
+private:
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const sim::GrayScottParams p_;
+    const FieldSpec a_spec_, b_spec_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_gray_scott(const Description& d, const SceneOptions& options) {
+    return std::make_unique<GrayScottScene>(d, options);
+}
+
+}  // namespace scenes

@@ -1,0 +1,167 @@
+// Liu & Zhang 1987, Fig 2: the lattices of the paper's automata, a 1-D row
+// of cells and a 2-D hexagonal patch with the centre 0 and its neighbours
+// 1..6 numbered as in the paper's equation (2). A schematic: no model runs.
+#include "scenes/field_stats.hpp"
+#include "scenes/plot_page.hpp"
+#include "scenes/scene.hpp"
+#include "render/hex_cells.hpp"
+#include "render/layout.hpp"
+#include "render/text.hpp"
+
+namespace scenes {
+namespace {
+
+const std::vector<Key> param_keys = {
+    {"row_cells", "cells in the 1-D row, odd, 3..41"},
+    {"radius", "rings of the hexagonal patch"},
+};
+
+const std::vector<Key> style_keys = {
+    {"line_colour", "cell outlines"},
+    {"fill_colour", "the centre and its neighbours"},
+    {"captions", "captions of the two panels"},
+};
+
+// A list of steps as messages show it: "[16, 200]".
+
+int read_row_cells(Settings& params) {
+    const int row_cells = params.count("row_cells", 7);
+    if (row_cells < 3 || row_cells > 41 || row_cells % 2 == 0) params.refuse("row_cells", "an odd number from 3 to 41");
+    return row_cells;
+}
+
+std::vector<std::string> read_captions(Settings& style) {
+    auto captions = style.texts("captions", {"(a) one-dimensional", "(b) two-dimensional (hexagonal)"});
+    if (captions.size() != 2) style.refuse("captions", "two captions, (a)'s and (b)'s");
+    return captions;
+}
+
+// What both panels draw into: shapes and text gathered, drawn at the end.
+struct Drawing {
+    Drawing(const render::Canvas& canvas_, float scale)
+        : canvas(canvas_),
+          s(scale),
+          width(canvas_.width()),
+          height(canvas_.height()),
+          caption_band(40 * s),
+          half(float(width) / 2),
+          label_font(std::round(16 * s)),
+          caption_font(std::round(17 * s)) {}
+
+    const render::Canvas& canvas;
+    const float s;  // the output scale
+    const int width, height;
+    const float caption_band, half;
+    render::Font label_font, caption_font;
+    render::Text text;
+    render::Shapes fills, outlines;
+};
+
+class HexLatticeScene : public Scene {
+public:
+    HexLatticeScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, param_keys),
+          style_("style", d.style, style_keys),
+          row_cells_(read_row_cells(params_)),
+          radius_(params_.count_in("radius", 2, 1, 10)),
+          line_(style_colour(style_, "line_colour", "black")),
+          fill_(style_colour(style_, "fill_colour", "#dde8f3")),
+          captions_(read_captions(style_)) {
+        refuse_steps(d, "a schematic has no steps", true);
+    }
+
+    void render(Output& out) const override {
+        Progress& progress = out.progress();
+        progress.start(d_.id, 1);
+        const float s = static_cast<float>(options_.scale);
+        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        render::Canvas canvas(width, height);
+        canvas.clear({1, 1, 1, 1});
+        Drawing draw(canvas, s);
+        const std::vector<double> row_state = draw_row(draw);
+        const std::vector<double> patch_state = draw_patch(draw);
+        draw.fills.draw(canvas);
+        draw.outlines.draw(canvas);
+        draw.text.draw(canvas);
+        out.figure(canvas.read(),
+                   {{"params", params_.used()},
+                    {"style", style_.used()},
+                    {"panels",
+                     {{{"label", "(a)"}, {"cells", row_cells_}, {"state_sha256", state_hash(row_state)}},
+                      {{"label", "(b)"}, {"rings", radius_}, {"state_sha256", state_hash(patch_state)}}}}});
+        progress.finish();
+    }
+
+private:
+    // (a) a row of square cells; the middle one and its two neighbours named.
+    // Returns what it is drawn from: each cell's rect and whether it is named.
+    std::vector<double> draw_row(Drawing& draw) const {
+        const float s = draw.s, half = draw.half, height = float(draw.height);
+        const glm::vec4 black{0, 0, 0, 1};
+        const float cell = std::min((half - 40 * s) / float(row_cells_), (height - draw.caption_band) / 3);
+        const float row_y = (height - draw.caption_band) / 2 - cell / 2;
+        const float row_x = (half - cell * float(row_cells_)) / 2;
+        const int mid = row_cells_ / 2;
+        std::vector<double> row_state;
+        for (int i = 0; i < row_cells_; ++i) {
+            const render::Rect r{row_x + float(i) * cell, row_y, cell, cell};
+            row_state.insert(row_state.end(), {r.x, r.y, r.w, r.h, double(std::abs(i - mid) <= 1)});
+            if (std::abs(i - mid) <= 1) draw.fills.rect(r, fill_);
+            draw.outlines.frame(r, 1.5f * s, line_);
+            if (std::abs(i - mid) <= 1)
+                draw.text.add(draw.label_font,
+                              i == mid  ? "i"
+                              : i < mid ? "i\u22121"
+                                        : "i+1",
+                              r.centre(), black, render::Align::centre, render::Baseline::middle);
+        }
+        draw.text.add(draw.caption_font, captions_[0], {half / 2, height - draw.caption_band / 2}, black,
+                      render::Align::centre, render::Baseline::middle);
+        return row_state;
+    }
+
+    // (b) a hexagonal patch; the paper's cell 0 and neighbours 1..6. Returns
+    // what it is drawn from: the hex cells and their centres, the filled cells.
+    std::vector<double> draw_patch(Drawing& draw) const {
+        const float s = draw.s, half = draw.half, height = float(draw.height);
+        const glm::vec4 black{0, 0, 0, 1};
+        const render::Rect patch{half + 20 * s, 20 * s, half - 40 * s, height - draw.caption_band - 30 * s};
+        const auto view = render::fit_hex_view(patch, radius_);
+        // Neighbour k at 30 + 60 (k - 1) degrees, counter-clockwise from the right.
+        const glm::ivec2 numbered[7] = {{0, 0}, {1, 0}, {0, 1}, {-1, 1}, {-1, 0}, {0, -1}, {1, -1}};
+        std::vector<glm::ivec2> filled(std::begin(numbered), std::end(numbered));
+        render::draw_hex_cells(draw.canvas, view, filled, fill_);
+        std::vector<double> patch_state;
+        for (int q = -radius_; q <= radius_; ++q)
+            for (int r = -radius_; r <= radius_; ++r)
+                if (std::max({std::abs(q), std::abs(r), std::abs(q + r)}) <= radius_) {
+                    render::hex_outline(draw.outlines, view, {q, r}, 1.5f * s, line_);
+                    const glm::vec2 centre = render::hex_centre(view, {q, r});
+                    patch_state.insert(patch_state.end(), {double(q), double(r), centre.x, centre.y, view.size});
+                }
+        for (const auto& c : filled) patch_state.insert(patch_state.end(), {double(c.x), double(c.y)});
+        for (int k = 0; k < 7; ++k)
+            draw.text.add(draw.label_font, std::to_string(k), render::hex_centre(view, numbered[k]), black,
+                          render::Align::centre, render::Baseline::middle);
+        draw.text.add(draw.caption_font, captions_[1], {half + half / 2, height - draw.caption_band / 2}, black,
+                      render::Align::centre, render::Baseline::middle);
+        return patch_state;
+    }
+
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const int row_cells_, radius_;
+    const glm::vec4 line_, fill_;
+    const std::vector<std::string> captions_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_hex_lattice(const Description& d, const SceneOptions& options) {
+    return std::make_unique<HexLatticeScene>(d, options);
+}
+
+}  // namespace scenes

@@ -1,0 +1,305 @@
+// Bracketed L-systems drawn by a turtle ("Plants hidden in mathematical
+// formulas", part 1, and The Algorithmic Beauty of Plants): one panel per
+// plant, branches as lines of their pen width with round joints, all in one
+// draw call.
+#include <cmath>
+#include <limits>
+
+#include "scenes/field_stats.hpp"
+#include "scenes/model_check.hpp"
+#include "scenes/plot_page.hpp"
+#include "scenes/scene.hpp"
+#include "render/layout.hpp"
+#include "render/shapes.hpp"
+#include "render/text.hpp"
+#include "sim/check.hpp"
+#include "sim/lsystem.hpp"
+#include "sim/turtle.hpp"
+
+namespace scenes {
+namespace {
+
+const std::vector<Key> plant_keys = {
+    {"title", "panel title"},
+    {"axiom", "the depth-0 string"},
+    {"rules", "rewriting rules, e.g. [\"F -> FF+[+F-F]-[-F+F]\"]"},
+    {"rule", "a single rule, replacing rules (--set rule=\"F -> FF\")"},
+    {"depth", "rewriting depth"},
+    {"angle", "turn of + and - in degrees"},
+    {"plus", "\"right\" (the article's turtle: + is rt) or \"left\" (ABOP)"},
+    {"length", "segment length at level 0"},
+    {"length_scale", "segment length factor per level"},
+    {"width", "pen width (rewrite reading)"},
+    {"width_per_level", "pen width per level (the article's pensize(2n))"},
+    {"reading", "\"article\" (its recursive turtle) or \"rewrite\" (rewrite depth times, then draw)"},
+};
+
+// [params]: every plant key but the title, shared by all plants, and the plants.
+std::vector<Key> param_keys() {
+    std::vector<Key> keys = plant_keys;
+    keys.erase(keys.begin());  // no shared title
+    keys.push_back({"plants", "list of plants, one panel each, each a table of the keys above"});
+    return keys;
+}
+
+const std::vector<Key> style_keys = {{"colour", "line colour"}, {"min_width", "thinnest line, pixels at scale 1"}};
+
+constexpr int max_depth = 64;  // far past any budget: the counts are cheap, the drawing is not
+
+struct Plant {
+    std::string title;
+    sim::LSystem system;
+    int depth = 3;
+    sim::Turtle2Params turtle;
+    bool article = false;
+    std::uint64_t segments = 0;  // what the turtle will draw, counted without drawing
+    nlohmann::json used;
+};
+
+// One plant's keys. A key of the figure's [params] applies to every plant and
+// wins over the plant's own table (so --set depth=5 changes them all); else
+// the plant's table; else the default. Mistakes name the key where it was
+// written: "depth" or "plants[2].depth".
+class PlantKeys {
+public:
+    PlantKeys(const toml::table& own, Settings& shared, std::size_t index)
+        : where_("plants[" + std::to_string(index) + "]"), own_("params." + where_, own, plant_keys), shared_(shared) {}
+
+    // The section that gives `key` (not "title", which only a plant has).
+    Settings& from(const std::string& key) { return shared_.has(key) ? shared_ : own_; }
+    Settings& own() { return own_; }
+    std::string text(const std::string& key, const std::string& fallback) { return from(key).text(key, fallback); }
+    double number(const std::string& key, double fallback) { return from(key).number(key, fallback); }
+
+    // The model's check; `names` maps every parameter name it can refuse to
+    // the plant's key ("rules[1]" to "rules[1]" or "rule", "angle_degrees" to "angle").
+    void check(const std::function<void()>& model_check, const KeyNames& names) const {
+        KeyNames written;
+        for (const auto& [model_name, key] : names) written.push_back({model_name, written_key(key)});
+        check_model(shared_, model_check, written);
+    }
+    // `key` as [params] names it, "depth" or "plants[2].depth"; `key` may carry an index ("rules[1]").
+    std::string written_key(const std::string& key) const {
+        return shared_.has(key.substr(0, key.find('['))) ? key : where_ + "." + key;
+    }
+
+private:
+    std::string where_;
+    Settings own_;
+    Settings& shared_;
+};
+
+// The rules, a single "rule" replacing the list; `names` gets the key that gave each, for the parser's messages.
+std::vector<std::string> read_rules(PlantKeys& keys, KeyNames& names) {
+    std::vector<std::string> rules = keys.from("rules").texts("rules", {});
+    const bool single = keys.from("rule").has("rule");
+    if (single) rules = {keys.from("rule").text("rule", "")};
+    for (std::size_t i = 0; i < rules.size(); ++i) {
+        const std::string model_name = "rules[" + std::to_string(i) + "]";
+        names.push_back({model_name, single ? "rule" : model_name});
+    }
+    return rules;
+}
+
+// The turtle's numbers, checked by the turtle with the angle as written: ABOP's '+' (plus = "left") negates it.
+sim::Turtle2Params read_turtle(PlantKeys& keys, bool plus_left) {
+    sim::Turtle2Params turtle;
+    turtle.angle_degrees = keys.number("angle", 22);
+    turtle.length = keys.number("length", 12);
+    turtle.length_scale = keys.number("length_scale", 1);
+    turtle.width = keys.number("width", 2);
+    turtle.width_per_level = keys.number("width_per_level", 2);
+    keys.check([&] { turtle.validate(); }, {{"angle_degrees", "angle"},
+                                            {"length", "length"},
+                                            {"length_scale", "length_scale"},
+                                            {"width", "width"},
+                                            {"width_per_level", "width_per_level"}});
+    turtle.angle_degrees *= plus_left ? -1 : 1;
+    return turtle;
+}
+
+// An integer depth 0..max_depth; the model's range check once the number fits a long long.
+int read_depth(PlantKeys& keys) {
+    const double depth = keys.number("depth", 3);
+    if (depth != std::floor(depth) || !(std::abs(depth) <= 1e9))
+        keys.from("depth").refuse("depth", "an integer from 0 to " + std::to_string(max_depth));
+    keys.check([&] { sim::require_integer("depth", static_cast<long long>(depth), 0, max_depth); },
+               {{"depth", "depth"}});
+    return static_cast<int>(depth);
+}
+
+// One text key of two choices: true for `yes`, false for `no`.
+bool read_choice(PlantKeys& keys, const std::string& key, const std::string& fallback, const std::string& yes,
+                 const std::string& no) {
+    const std::string value = keys.text(key, fallback);
+    if (value != yes && value != no) keys.from(key).refuse(key, "\"" + yes + "\" or \"" + no + "\"");
+    return value == yes;
+}
+
+Plant read_plant(const toml::table& own, Settings& shared, std::size_t index) {
+    PlantKeys keys(own, shared, index);
+    Plant p;
+    p.title = keys.own().text("title", "");
+    KeyNames names;
+    const std::vector<std::string> rules = read_rules(keys, names);
+    const std::string axiom = keys.text("axiom", "F");
+    names.push_back({"axiom", "axiom"});
+    keys.check([&] { p.system = sim::LSystem::parse(axiom, rules); }, names);
+    p.depth = read_depth(keys);
+    p.turtle = read_turtle(keys, read_choice(keys, "plus", "right", "left", "right"));
+    p.article = read_choice(keys, "reading", "rewrite", "article", "rewrite");
+    p.segments = sim::segment_count(p.system, p.depth, p.article);
+    // The turtle's own refusal (sim/turtle.cpp), here in phase 1, naming the key.
+    check_model(keys.from("depth"), [&] { sim::require_segment_budget(p.depth, p.segments, p.turtle.segment_budget); });
+    p.used = keys.own().used();
+    p.used["rules"] = rules;
+    return p;
+}
+
+std::vector<Plant> read_plants(Settings& params) {
+    auto tables = params.tables("plants");
+    if (tables.empty()) tables.push_back(toml::table{});
+    std::vector<Plant> plants;
+    for (std::size_t i = 0; i < tables.size(); ++i) plants.push_back(read_plant(tables[i], params, i));
+    return plants;
+}
+
+// Fits the segments into `panel` (same scale both ways) and adds them, width
+// scaled alike but never under `min_width` pixels, with round joints.
+void add_plant(render::Shapes& shapes, const render::Rect& panel, const std::vector<sim::Segment2>& segments,
+               const glm::vec4& colour, float min_width) {
+    const sim::Bounds2 box = sim::bounds(segments);
+    const glm::dvec2 span = glm::max(box.hi - box.lo, glm::dvec2(1e-9));
+    const double scale = std::min(panel.w / span.x, panel.h / span.y) * 0.96;
+    const glm::dvec2 mid = (box.lo + box.hi) / 2.0;
+    auto at = [&](glm::dvec2 p) {
+        return panel.centre() + glm::vec2(float((p.x - mid.x) * scale), float(-(p.y - mid.y) * scale));
+    };
+    for (const auto& s : segments) {
+        const float w = std::max(min_width, float(s.width * scale));
+        const glm::vec2 a = at(s.a), b = at(s.b);
+        shapes.line(a, b, w, colour);
+        shapes.disc(a, w / 2, colour);
+        shapes.disc(b, w / 2, colour);
+    }
+}
+
+// SHA-256 of the turtle's segments in drawing order: from, to, width, level.
+std::string segments_hash(const std::vector<sim::Segment2>& segments) {
+    std::vector<double> values;
+    values.reserve(6 * segments.size());
+    for (const auto& s : segments) values.insert(values.end(), {s.a.x, s.a.y, s.b.x, s.b.y, s.width, double(s.level)});
+    return state_hash(values);
+}
+
+using Drawings = std::vector<std::vector<sim::Segment2>>;
+
+// The panels' shape: the widest plant's width over height, within 0.2..3.
+float panel_aspect(const Drawings& drawings) {
+    double aspect = 0;
+    for (const auto& drawing : drawings) {
+        const auto box = sim::bounds(drawing);
+        aspect = std::max(aspect, (box.hi.x - box.lo.x) / std::max(1e-9, box.hi.y - box.lo.y));
+    }
+    return float(std::clamp(aspect, 0.2, 3.0));
+}
+
+class LSystemScene : public Scene {
+public:
+    LSystemScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, param_keys()),
+          style_("style", d.style, style_keys),
+          plants_(read_plants(params_)),
+          colour_(style_colour(style_, "colour", "green")),
+          min_width_(float(style_.number_in("min_width", 0.6, 0.0, 100.0) * options.scale)),
+          columns_(std::min<int>(int(plants_.size()), params_.has("plants") ? 3 : 1)) {}
+
+    // Each plant's segments, from the turtle and as lines to draw.
+    std::vector<MemoryNeed> memory() const override {
+        std::vector<MemoryNeed> needs;
+        for (const auto& p : plants_)
+            needs.push_back({"plant of depth " + std::to_string(p.depth),
+                             static_cast<double>(p.segments) *
+                                 (sizeof(sim::Segment2) + render::Shapes::bytes_per_line)});
+        return needs;
+    }
+
+    void render(Output& out) const override {
+        Progress& progress = out.progress();
+        progress.start(d_.id, static_cast<long long>(plants_.size()));
+        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        render::Canvas canvas(width, height);
+        canvas.clear({1, 1, 1, 1});
+        render::PanelRowStyle row;
+        row.scale = float(options_.scale);
+        const Drawings drawings = draw_turtles(progress);
+        row.aspect = panel_aspect(drawings);
+        const auto rects = render::panel_grid({0, 0, float(width), float(height)}, int(plants_.size()),
+                                              std::max(1, columns_), true, row);
+        render::Shapes shapes;
+        const nlohmann::json panel_meta = add_plants(shapes, rects, drawings);
+        shapes.draw(canvas);
+        draw_titles(canvas, rects, row);
+        out.figure(canvas.read(), {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
+        progress.finish();
+    }
+
+private:
+    Drawings draw_turtles(Progress& progress) const {
+        Drawings drawings;
+        for (const auto& p : plants_) {
+            drawings.push_back(sim::interpret_2d(p.system, p.depth, p.turtle, p.article));
+            progress.advance();
+        }
+        return drawings;
+    }
+
+    // Adds every plant to `shapes` in its panel; returns the panels' metadata.
+    nlohmann::json add_plants(render::Shapes& shapes, const std::vector<render::Rect>& rects,
+                              const Drawings& drawings) const {
+        nlohmann::json panel_meta = nlohmann::json::array();
+        for (std::size_t i = 0; i < plants_.size(); ++i) {
+            const Plant& p = plants_[i];
+            add_plant(shapes, rects[i], drawings[i], colour_, min_width_);
+            const auto box = sim::bounds(drawings[i]);
+            const std::uint64_t symbols = p.article ? p.system.length_recursive(p.depth) : p.system.length(p.depth);
+            panel_meta.push_back({{"title", p.title},
+                                  {"plant", p.used},
+                                  {"depth", p.depth},
+                                  {"reading", p.article ? "article" : "rewrite"},
+                                  {"symbols", symbols},
+                                  {"segments", drawings[i].size()},
+                                  {"bounds", {box.lo.x, box.lo.y, box.hi.x, box.hi.y}},
+                                  {"state_sha256", segments_hash(drawings[i])}});
+        }
+        return panel_meta;
+    }
+
+    void draw_titles(const render::Canvas& canvas, const std::vector<render::Rect>& rects,
+                     const render::PanelRowStyle& row) const {
+        render::Text text;
+        render::Font& font = render::font_of_size(std::round(row.title_size * row.scale));
+        for (std::size_t i = 0; i < plants_.size(); ++i)
+            text.add(font, plants_[i].title, {rects[i].centre().x, rects[i].y - row.title_pad * row.scale},
+                     {0, 0, 0, 1}, render::Align::centre, render::Baseline::baseline);
+        text.draw(canvas);
+    }
+
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const std::vector<Plant> plants_;
+    const glm::vec4 colour_;
+    const float min_width_;  // pixels, scaled
+    const int columns_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_lsystem(const Description& d, const SceneOptions& options) {
+    return std::make_unique<LSystemScene>(d, options);
+}
+
+}  // namespace scenes

@@ -1,0 +1,22 @@
+#pragma once
+// A model's own check of its parameters (sim's validate(), require_*),
+// seen as a check of the description's settings: a parameter the model
+// refuses becomes the SettingError of the key the user wrote.
+
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scenes/description_names.hpp"
+
+namespace scenes {
+
+// The model's name of a parameter -> the key read from the section, where they differ.
+using KeyNames = std::vector<std::pair<std::string, std::string>>;
+
+// Runs `check`; a sim::ParameterError it throws becomes the SettingError of
+// `section`'s key named in `names` (else the key of the model's own name).
+void check_model(const Settings& section, const std::function<void()>& check, const KeyNames& names = {});
+
+}  // namespace scenes

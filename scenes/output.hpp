@@ -1,0 +1,43 @@
+#pragma once
+// What a scene draws into, as the command (app/) provides it: the figure,
+// its film, the progress of the run. The scene does not know where or how
+// the files are written.
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "render/image.hpp"
+
+namespace scenes {
+
+// Counts units of work (model steps, frames, runs) for a progress display.
+// The default shows nothing.
+class Progress {
+public:
+    virtual ~Progress() = default;
+    virtual void start(const std::string& /*label*/, long long /*total*/) {}
+    virtual void advance(long long /*units*/ = 1) {}
+    virtual void finish() {}
+};
+
+// The animation's frames, passed on as they are drawn.
+class Film {
+public:
+    virtual ~Film() = default;
+    virtual void add(const render::Image& frame, int step) = 0;
+    virtual nlohmann::json finish() = 0;  // completes it; returns the animation's metadata
+};
+
+// Where a scene's outputs go.
+class Output {
+public:
+    virtual ~Output() = default;
+    // The film of width x height frames; null when no animation is written.
+    virtual std::unique_ptr<Film> film(int width, int height) = 0;
+    // The figure and the scene's metadata (params, panels, statistics, hashes).
+    virtual void figure(const render::Image& image, nlohmann::json metadata) = 0;
+    virtual Progress& progress() = 0;
+};
+
+}  // namespace scenes

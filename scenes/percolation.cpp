@@ -1,0 +1,97 @@
+// Percolation as the book's cellular automaton (Think Complexity 2e, Fig 7.5):
+// blocked 0, porous 1, wet 5, drawn in Blues from 0 to 5. tc7-5: one small
+// model, panels after the first steps, the animation to the end.
+#include "scenes/model_check.hpp"
+#include "scenes/percolation_common.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/step_runner.hpp"
+#include "sim/random.hpp"
+
+namespace scenes {
+namespace {
+
+const std::vector<Key> param_keys = {
+    {"n", "grid size"},
+    {"q", "probability that a cell is porous"},
+    stop_key(),
+};
+
+sim::PercolationParams read_params(Settings& s) {
+    sim::PercolationParams p;
+    p.n = s.count("n", p.n);
+    p.q = s.number("q", p.q);
+    check_model(s, [&] { p.validate(); });
+    return p;
+}
+
+class PercolationScene : public Scene {
+public:
+    PercolationScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, param_keys),
+          style_("style", d.style, field_spec_keys()),
+          p_(read_params(params_)),
+          stop_(read_stop(params_)),
+          spec_(read_field_spec(style_, default_percolation_spec())) {
+        if (d.panels.empty()) throw SettingError("figure.panels", "[]", "one step at least");
+    }
+
+    // The cells, their next step and a copy per panel.
+    std::vector<MemoryNeed> memory() const override {
+        return {grid_need("grids of bytes", p_.n, p_.n, 1, 2.0 + double(d_.panels.size()))};
+    }
+
+    void render(Output& out) const override {
+        sim::Random rng(d_.seed);
+        sim::Percolation model(p_, rng);
+        bool stopped = false;
+
+        StepRunner run(d_, options_, out);
+        std::vector<FieldPanel> panels;
+        nlohmann::json panel_meta = nlohmann::json::array();
+        auto title = [&](const std::string& pattern) {
+            return format_step(pattern, model.steps()) + (stopped ? " (stopped)" : "");
+        };
+        auto panel = [&] {
+            panels.push_back({title(d_.panel_title), {field_layer(model.cells(), spec_)}});
+            panel_meta.push_back(panel_metadata(model, stop_, stopped));
+        };
+        const int reached = run.run({
+            .check = {},
+            .panel = [&](int) { panel(); },
+            .frame =
+                [&](int) {
+                    return draw_field_panels(run.frame_canvas(),
+                                             {{title(d_.animation->title), {field_layer(model.cells(), spec_)}}},
+                                             options_.scale);
+                },
+            .advance =
+                [&] {
+                    stopped = !step_until_stop(model, stop_);
+                    return !stopped;
+                },
+        });
+        // Panels asked for after the run stopped show its final state, titled with
+        // the step it stopped at.
+        for (int step : d_.panels)
+            if (step > reached) panel();
+        run.write_field_figure(panels, {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
+    }
+
+private:
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const sim::PercolationParams p_;
+    const StopRule stop_;
+    const FieldSpec spec_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_percolation(const Description& d, const SceneOptions& options) {
+    return std::make_unique<PercolationScene>(d, options);
+}
+
+}  // namespace scenes

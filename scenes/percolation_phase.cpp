@@ -1,0 +1,189 @@
+// Percolation's phase change (Think Complexity 2e, section 7.4). tc7-phase:
+// P(percolating cluster) against q, and find_critical's walk towards the
+// critical q.
+#include <cmath>
+#include <numeric>
+
+#include "scenes/field_stats.hpp"
+#include "scenes/percolation_common.hpp"
+#include "scenes/plot_page.hpp"
+#include "scenes/scene.hpp"
+
+namespace scenes {
+namespace {
+
+const std::vector<Key> param_keys = {
+    {"n", "array size"},
+    {"trials", "runs per q"},
+    {"qs", "[first, last, step] of the q values tried"},
+    {"walk_start", "find_critical's first q"},
+    {"walk_step", "find_critical's step in q"},
+    {"walk_iterations", "find_critical's runs"},
+    {"p_c", "the known threshold drawn for reference (Newman & Ziff 2000)"},
+};
+
+std::vector<Key> style_keys() {
+    return with_plot_style_keys(
+        {{"series_colour", "colour of the measured curves"}, {"reference_colour", "colour of the reference lines"}});
+}
+
+constexpr double most_q_values = 10000;
+
+// The q values tried, [first, last, step] inside [0, 1].
+std::vector<double> read_qs(Settings& s) {
+    const auto range = s.numbers("qs", {0.50, 0.70, 0.01});
+    const std::string allowed = "[first, last, step] with 0 <= first <= last <= 1 and 0 < step <= 1, at most " +
+                                std::to_string(int(most_q_values)) + " values";
+    if (range.size() != 3 || !(range[0] >= 0 && range[0] <= range[1] && range[1] <= 1) ||
+        !(range[2] > 0 && range[2] <= 1))
+        s.refuse("qs", allowed);
+    // Computed from an integer count so 0.55, 0.60, 0.65 come out as written.
+    const double steps = std::floor((range[1] - range[0]) / range[2] + 1e-9);
+    if (steps + 1 > most_q_values) s.refuse("qs", allowed);
+    const int count = static_cast<int>(steps) + 1;
+    std::vector<double> qs;
+    for (int i = 0; i < count; ++i) qs.push_back(std::round((range[0] + i * range[2]) * 1e9) / 1e9);
+    return qs;
+}
+
+// A probability drawn as a vertical line: strictly inside (0, 1).
+double read_p_c(Settings& s) {
+    const double p_c = s.number_in("p_c", 0.59274621, 0.0, 1.0);
+    if (!(p_c > 0 && p_c < 1)) s.refuse("p_c", "a number between 0 and 1, both excluded (a probability)");
+    return p_c;
+}
+
+// The sweep's numbers: per q, the fraction of trials that percolated.
+struct Sweep {
+    std::vector<double> probability;
+    nlohmann::json table = nlohmann::json::array();
+};
+
+// find_critical's walk: every q visited, its index and mean.
+struct Walk {
+    std::vector<double> q, index;
+    double mean;
+};
+
+class PercolationPhaseScene : public Scene {
+public:
+    PercolationPhaseScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, param_keys),
+          style_("style", d.style, style_keys()),
+          n_(params_.count_in("n", 100, 2, 4096)),
+          trials_(params_.count_in("trials", 100, 1, 100000)),
+          qs_(read_qs(params_)),
+          walk_start_(params_.number_in("walk_start", 0.6, 0.0, 1.0)),
+          walk_step_(params_.number_in("walk_step", 0.005, 1e-6, 0.5)),
+          iterations_(params_.count_in("walk_iterations", 100, 1, 100000)),
+          p_c_(read_p_c(params_)),
+          colour_(style_colour(style_, "series_colour", "#619aca")),
+          reference_(style_colour(style_, "reference_colour", "#526e97")),
+          plot_style_(read_plot_style(style_, options.scale)) {}
+
+    void render(Output& out) const override {
+        Progress& progress = out.progress();
+        progress.start(d_.id, static_cast<long long>(qs_.size()) * trials_ + iterations_);
+        sim::Random rng(d_.seed);  // one stream: the trials in order of q, then the walk
+        const Sweep sweep = sweep_q(rng, progress);
+        const Walk walk = find_critical(rng, progress);
+        // The plotted numbers: the q values, their fractions percolating, then the walk.
+        std::vector<double> plotted(qs_);
+        plotted.insert(plotted.end(), sweep.probability.begin(), sweep.probability.end());
+        plotted.insert(plotted.end(), walk.q.begin(), walk.q.end());
+        nlohmann::json meta = {
+            {"params", params_.used()},
+            {"style", style_.used()},
+            {"probability", sweep.table},
+            {"walk", walk.q},
+            {"walk_mean", walk.mean},
+            {"p_c", p_c_},
+            {"state_sha256", state_hash(plotted)},
+        };
+        out.figure(draw_plot_row({phase_axes(sweep), walk_axes(walk)}, scaled_even(d_.width, options_.scale),
+                                 scaled_even(d_.height, options_.scale), plot_style_),
+                   meta);
+        progress.finish();
+    }
+
+private:
+    Sweep sweep_q(sim::Random& rng, Progress& progress) const {
+        Sweep sweep;
+        for (double q : qs_) {
+            int percolating = 0;
+            for (int t = 0; t < trials_; ++t) {
+                percolating += test_perc(n_, q, rng).percolates;
+                progress.advance();
+            }
+            sweep.probability.push_back(double(percolating) / trials_);
+            sweep.table.push_back({{"q", q}, {"probability", sweep.probability.back()}});
+        }
+        return sweep;
+    }
+
+    Walk find_critical(sim::Random& rng, Progress& progress) const {
+        Walk walk;
+        walk.q = sim::find_critical(n_, walk_start_, walk_step_, iterations_, rng);
+        for (std::size_t i = 0; i < walk.q.size(); ++i) walk.index.push_back(double(i));
+        progress.advance(iterations_);
+        walk.mean = std::accumulate(walk.q.begin(), walk.q.end(), 0.0) / double(walk.q.size());
+        return walk;
+    }
+
+    // The fraction percolating against q, p_c dashed, and the book's quoted
+    // numbers as notes.
+    render::Axes phase_axes(const Sweep& sweep) const {
+        render::Axes phase;
+        phase.x_label = "q";
+        phase.y_label = "Fraction percolating";
+        phase.y_range = std::pair{-0.05, 1.05};
+        phase.legend = render::Legend::lower_right;
+        phase.series = {
+            line_series({p_c_, p_c_}, {-0.05, 1.05}, "p_c = " + format_fixed(p_c_, 4), reference_, 1.5f, true),
+            line_series(qs_, sweep.probability, std::to_string(trials_) + " runs of n = " + std::to_string(n_), colour_,
+                        2.0f, false),
+            dot_series(qs_, sweep.probability, "", colour_, 6.0f)};
+        // The book's three quoted numbers, when those q values were tried.
+        for (double quoted : {0.55, 0.60, 0.65})
+            for (std::size_t i = 0; i < qs_.size(); ++i)
+                if (std::abs(qs_[i] - quoted) < 1e-9)
+                    phase.notes.push_back(
+                        {"P(" + format_fixed(quoted, 2) + ") = " + format_fixed(sweep.probability[i], 2),
+                         {0.04f, 0.86f - 0.08f * float(phase.notes.size())},
+                         render::Align::left});
+        return phase;
+    }
+
+    // The walk's q against its iteration, and its mean dashed.
+    render::Axes walk_axes(const Walk& walk) const {
+        render::Axes axes;
+        axes.x_label = "Iteration";
+        axes.y_label = "q";
+        axes.legend = render::Legend::upper_right;
+        axes.series = {line_series(walk.index, walk.q, "find_critical walk", colour_, 1.5f, false),
+                       line_series({0, double(iterations_)}, {walk.mean, walk.mean},
+                                   "mean " + format_fixed(walk.mean, 4), reference_, 1.5f, true)};
+        return axes;
+    }
+
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const int n_, trials_;
+    const std::vector<double> qs_;
+    const double walk_start_, walk_step_;
+    const int iterations_;
+    const double p_c_;
+    const glm::vec4 colour_, reference_;
+    const render::PlotStyle plot_style_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_percolation_phase(const Description& d, const SceneOptions& options) {
+    return std::make_unique<PercolationPhaseScene>(d, options);
+}
+
+}  // namespace scenes

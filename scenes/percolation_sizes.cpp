@@ -1,0 +1,131 @@
+// Percolation clusters at several sizes (Think Complexity 2e, Fig 7.8). tc7-8:
+// one run per size, each to its stop; the animation follows the last
+// (largest) run's wetting front as it happens.
+#include <algorithm>
+#include <climits>
+
+#include "scenes/model_check.hpp"
+#include "scenes/percolation_common.hpp"
+#include "scenes/scene.hpp"
+#include "render/canvas.hpp"
+#include "sim/random.hpp"
+
+namespace scenes {
+namespace {
+
+const std::vector<Key> param_keys = {
+    {"sizes", "grid sizes, one panel each (1 to 16 of them)"},
+    {"q", "probability that a cell is porous"},
+    stop_key(),
+};
+
+// Panels side by side in one row: more than this leaves each too small to read.
+constexpr std::size_t most_sizes = 16;
+
+// One model's parameters per size, each checked by the model itself.
+std::vector<sim::PercolationParams> read_runs(Settings& s) {
+    const double q = s.number("q", 0.6);
+    const std::vector<long long> sizes = s.integers("sizes", {100, 200, 300});
+    if (sizes.empty() || sizes.size() > most_sizes)
+        s.refuse("sizes", "1 to " + std::to_string(most_sizes) + " grid sizes, one panel each");
+    std::vector<sim::PercolationParams> runs;
+    for (long long n : sizes) {
+        sim::PercolationParams p;
+        // Clamped only so that the model sees (and refuses) a size beyond an int.
+        p.n = static_cast<int>(std::clamp<long long>(n, INT_MIN, INT_MAX));
+        p.q = q;
+        check_model(s, [&] { p.validate(); }, {{"n", "sizes"}});
+        runs.push_back(p);
+    }
+    return runs;
+}
+
+class PercolationSizesScene : public Scene {
+public:
+    PercolationSizesScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, param_keys),
+          style_("style", d.style, field_spec_keys()),
+          runs_(read_runs(params_)),
+          stop_(read_stop(params_)),
+          spec_(read_field_spec(style_, default_percolation_spec())) {}
+
+    // The largest run's cells and their next step; each panel's field, kept
+    // as doubles until the figure is drawn.
+    std::vector<MemoryNeed> memory() const override {
+        int largest = 0;
+        std::vector<MemoryNeed> needs;
+        for (const sim::PercolationParams& run : runs_) {
+            largest = std::max(largest, run.n);
+            needs.push_back(grid_need("a panel's doubles", run.n, run.n, 8, 1));
+        }
+        needs.push_back(grid_need("grids of bytes", largest, largest, 1, 2));
+        return needs;
+    }
+
+    void render(Output& out) const override {
+        const bool animate = d_.animation && options_.film;
+        const int fw = animate ? scaled_even(d_.animation->width, options_.scale) : 0;
+        const int fh = animate ? scaled_even(d_.animation->height, options_.scale) : 0;
+        std::unique_ptr<Film> film = animate ? out.film(fw, fh) : nullptr;
+        std::unique_ptr<render::Canvas> film_canvas;
+        if (film) film_canvas = std::make_unique<render::Canvas>(fw, fh);
+        Progress& progress = out.progress();
+        progress.start(d_.id, static_cast<long long>(runs_.size()));
+
+        sim::Random rng(d_.seed);  // the runs draw from one stream, in order
+        std::vector<FieldPanel> panels;
+        nlohmann::json panel_meta = nlohmann::json::array();
+        for (std::size_t i = 0; i < runs_.size(); ++i) {
+            sim::Percolation model(runs_[i], rng);
+            const bool filmed = film && i + 1 == runs_.size();
+            run_to_stop(model, runs_[i].n, filmed ? film.get() : nullptr, film_canvas.get());
+            panels.push_back({titled(d_.panel_title, runs_[i].n, model), {field_layer(model.cells(), spec_)}});
+            panel_meta.push_back(panel_metadata(model, stop_, true));
+            progress.advance();
+        }
+        nlohmann::json meta = {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}};
+        if (film) meta["animation"] = film->finish();
+        out.figure(draw_field_panels(panels, scaled_even(d_.width, options_.scale),
+                                     scaled_even(d_.height, options_.scale), options_.scale),
+                   meta);
+        progress.finish();
+    }
+
+private:
+    // `pattern` with the run's {n} and the model's {step}.
+    static std::string titled(const std::string& pattern, int n, const sim::Percolation& model) {
+        return expand(pattern, {{"n", std::to_string(n)}, {"step", std::to_string(model.steps())}});
+    }
+
+    // Steps the model to its stop. With a film: a frame at step 0 if the
+    // animation shows it, at every step it shows, and the final state if it
+    // does not show that step, so the film always ends on the run's stop.
+    void run_to_stop(sim::Percolation& model, int n, Film* film, render::Canvas* canvas) const {
+        auto frame = [&] {
+            const std::string title = titled(d_.animation->title, n, model);
+            film->add(draw_field_panels(*canvas, {{title, {field_layer(model.cells(), spec_)}}}, options_.scale),
+                      model.steps());
+        };
+        if (film && d_.animation->shows(0)) frame();
+        while (step_until_stop(model, stop_))
+            if (film && d_.animation->shows(model.steps())) frame();
+        if (film && !d_.animation->shows(model.steps())) frame();  // the final state ends the film
+    }
+
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const std::vector<sim::PercolationParams> runs_;
+    const StopRule stop_;
+    const FieldSpec spec_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_percolation_sizes(const Description& d, const SceneOptions& options) {
+    return std::make_unique<PercolationSizesScene>(d, options);
+}
+
+}  // namespace scenes

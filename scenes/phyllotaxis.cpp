@@ -1,0 +1,198 @@
+// Phyllotaxis ("Plants hidden in mathematical formulas", 2017, part 2): the
+// article's drawPhy(240, 137.508, 3, 7, 200) sunflower, seeds as outlined
+// discs in the article's colours and rhombus petals from seed 200 on, beside
+// the same spiral at divergences that miss the golden angle.
+#include <cmath>
+
+#include "scenes/field_stats.hpp"
+#include "scenes/model_check.hpp"
+#include "scenes/plot_page.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/step_runner.hpp"
+#include "render/layout.hpp"
+#include "render/shapes.hpp"
+#include "render/text.hpp"
+#include "sim/phyllotaxis.hpp"
+
+namespace scenes {
+namespace {
+
+struct FlowerStyle {
+    int petal_start = 200;    // seeds from this one on are drawn as petals
+    double seed_radius = 10;  // the turtle's circle stamp: 20 units across
+    double petal_size = 60;   // side of a petal rhombus
+    double window = 500;      // the article's 500 x 500 turtle window, mapped onto a panel
+};
+
+// The article's seed colour: (255, theta % 255, 4n % 255) in 0..255, theta in radians.
+glm::vec4 seed_colour(const sim::Seed& s) {
+    return {1.0f, float(int(std::fmod(s.angle, 255.0))) / 255.0f, float((s.n * 4) % 255) / 255.0f, 1.0f};
+}
+
+// Draws the first `count` seeds of `seeds` into `panel`.
+void draw_flower(render::Shapes& shapes, const render::Rect& panel, const std::vector<sim::Seed>& seeds, int count,
+                 double divergence, const FlowerStyle& style, float line_width) {
+    const float scale = float(std::min(panel.w, panel.h) / style.window);
+    const glm::vec2 centre = panel.centre();
+    auto to_pixels = [&](glm::dvec2 p) { return centre + scale * glm::vec2(float(p.x), -float(p.y)); };
+    const glm::vec4 black{0, 0, 0, 1}, yellow{1, 1, 0, 1};
+    for (int i = 0; i < count && i < int(seeds.size()); ++i) {
+        const sim::Seed& s = seeds[i];
+        if (s.n >= style.petal_start) {
+            // The article's petal: heading n * angle, then rt 20, fd, lt 40, fd, lt 140, fd, lt 40, fd.
+            const double h = s.n * divergence;
+            auto step = [&](glm::dvec2 from, double degrees) {
+                const double a = degrees * M_PI / 180.0;
+                return from + style.petal_size * glm::dvec2(std::cos(a), std::sin(a));
+            };
+            const glm::dvec2 p0 = s.position, p1 = step(p0, h - 20), p2 = step(p1, h + 20), p3 = step(p2, h + 160);
+            const glm::vec2 corners[5] = {to_pixels(p0), to_pixels(p1), to_pixels(p2), to_pixels(p3), to_pixels(p0)};
+            shapes.convex_polygon(std::span(corners, 4), yellow);
+            shapes.polyline(corners, line_width, black);
+        } else {
+            const glm::vec2 c = to_pixels(s.position);
+            const float r = float(style.seed_radius) * scale;
+            shapes.disc(c, r, seed_colour(s));
+            shapes.ring(c, r - line_width / 2, r + line_width / 2, black);
+        }
+    }
+}
+
+// SHA-256 of the seeds in placement order: n, x, y, angle.
+std::string seeds_hash(const std::vector<sim::Seed>& seeds) {
+    std::vector<double> values;
+    values.reserve(4 * seeds.size());
+    for (const auto& s : seeds) values.insert(values.end(), {double(s.n), s.position.x, s.position.y, s.angle});
+    return state_hash(values);
+}
+
+const std::vector<Key> param_keys = {
+    {"seeds", "seeds placed (the article's t)"},
+    {"divergences", "divergence angle of each panel, degrees"},
+    {"spacing", "radius factor d: seed n at d sqrt(n)"},
+    {"petal_start", "seeds from this one on are drawn as petals"},
+    {"seed_radius", "seed disc radius in the article's turtle units"},
+    {"petal_size", "petal side in turtle units"},
+};
+
+// One flower per divergence, all with the same seeds and spacing.
+std::vector<sim::PhyllotaxisParams> read_flowers(Settings& params) {
+    const int seeds = params.count("seeds", 240);
+    const double spacing = params.number("spacing", 7);
+    const std::vector<double> divergences = params.numbers("divergences", {137.508, 137.3, 137.6});
+    if (divergences.empty()) params.refuse("divergences", "one divergence angle at least, in degrees");
+    std::vector<sim::PhyllotaxisParams> flowers;
+    for (std::size_t i = 0; i < divergences.size(); ++i) {
+        flowers.push_back({seeds, divergences[i], spacing});
+        check_model(params, [&] { flowers.back().validate(); },
+                    {{"divergence", "divergences[" + std::to_string(i) + "]"}});
+    }
+    return flowers;
+}
+
+FlowerStyle read_look(Settings& params) {
+    FlowerStyle look;
+    look.petal_start = params.count_in("petal_start", 200, 0, 100000);
+    look.seed_radius = params.number_in("seed_radius", 10, 0.1, 1000);
+    look.petal_size = params.number_in("petal_size", 60, 0.1, 1000);
+    return look;
+}
+
+
+render::PanelRowStyle row_style(double scale) {
+    render::PanelRowStyle row;
+    row.scale = float(scale);
+    return row;
+}
+
+class PhyllotaxisScene : public Scene {
+public:
+    PhyllotaxisScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, param_keys),
+          style_("style", d.style, {{"line_width", "outline width in pixels at scale 1"}}),
+          flowers_(read_flowers(params_)),
+          look_(read_look(params_)),
+          line_width_(float(style_.number_in("line_width", 1.0, 0.0, 20.0) * options.scale)),
+          row_(row_style(options.scale)) {
+        refuse_steps(d, "each panel shows a whole flower (the film places the seeds one a step)", false);
+    }
+
+    void render(Output& out) const override {
+        std::vector<std::vector<sim::Seed>> spirals;
+        for (const auto& f : flowers_) spirals.push_back(sim::vogel_spiral(f));
+        // The animation places the first flower's seeds one by one: frame k shows k seeds.
+        StepRunner run(d_, options_, out);
+        run.run({.check = {},
+                 .panel = {},
+                 .frame = [&](int step) { return draw_frame(run.frame_canvas(), spirals[0], step); },
+                 .advance = [] { return true; }});
+        nlohmann::json panel_meta = nlohmann::json::array();
+        const render::Image figure = draw_figure(spirals, panel_meta);
+        run.write_figure(figure, {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
+    }
+
+private:
+    // A title above a panel, in the panel row's title font.
+    void add_title(render::Text& text, const render::Rect& rect, const std::string& title) const {
+        render::Font& font = render::font_of_size(std::round(row_.title_size * row_.scale));
+        text.add(font, title, {rect.centre().x, rect.y - row_.title_pad * row_.scale}, {0, 0, 0, 1},
+                 render::Align::centre, render::Baseline::baseline);
+    }
+
+    render::Image draw_frame(render::Canvas& canvas, const std::vector<sim::Seed>& spiral, int step) const {
+        canvas.clear({1, 1, 1, 1});
+        const auto rects = render::panel_row(canvas.width(), canvas.height(), 1, true, row_);
+        render::Shapes shapes;
+        draw_flower(shapes, rects[0], spiral, step, flowers_[0].divergence, look_, line_width_);
+        shapes.draw(canvas);
+        render::Text text;
+        add_title(text, rects[0],
+                  format_fixed(flowers_[0].divergence, 3) + "\u00b0, " + std::to_string(step) + " seeds");
+        text.draw(canvas);
+        return canvas.read();
+    }
+
+    // Every flower whole, a panel each; their metadata into `panel_meta`.
+    render::Image draw_figure(const std::vector<std::vector<sim::Seed>>& spirals, nlohmann::json& panel_meta) const {
+        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        render::Canvas canvas(width, height);
+        canvas.clear({1, 1, 1, 1});
+        const auto rects = render::panel_row(width, height, int(flowers_.size()), true, row_);
+        render::Shapes shapes;
+        std::vector<std::string> titles;
+        for (std::size_t i = 0; i < flowers_.size(); ++i) {
+            const sim::PhyllotaxisParams& f = flowers_[i];
+            draw_flower(shapes, rects[i], spirals[i], f.seeds, f.divergence, look_, line_width_);
+            titles.push_back(format_fixed(f.divergence, 3) + "\u00b0");
+            panel_meta.push_back({{"divergence_degrees", f.divergence},
+                                  {"seeds", f.seeds},
+                                  {"petals", std::max(0, f.seeds - look_.petal_start)},
+                                  {"outer_radius", f.spacing * std::sqrt(double(f.seeds - 1))},
+                                  {"state_sha256", seeds_hash(spirals[i])}});
+        }
+        shapes.draw(canvas);
+        // Titles only: the flowers have no frames.
+        render::Text text;
+        for (std::size_t i = 0; i < rects.size(); ++i) add_title(text, rects[i], titles[i]);
+        text.draw(canvas);
+        return canvas.read();
+    }
+
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const std::vector<sim::PhyllotaxisParams> flowers_;
+    const FlowerStyle look_;
+    const float line_width_;           // pixels, scaled
+    const render::PanelRowStyle row_;  // the panels' layout and title font
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_phyllotaxis(const Description& d, const SceneOptions& options) {
+    return std::make_unique<PhyllotaxisScene>(d, options);
+}
+
+}  // namespace scenes

@@ -1,0 +1,92 @@
+#include "scenes/plot_page.hpp"
+
+#include <cmath>
+
+#include "render/colormap.hpp"
+
+namespace scenes {
+
+std::vector<Key> with_plot_style_keys(std::vector<Key> keys) {
+    keys.insert(keys.end(), {{"plot_scale", "dpi of the printed figure / 100: scales fonts, ticks and lines"},
+                             {"font_size", "tick label size in pixels at 100 dpi (matplotlib: 10 pt = 14)"},
+                             {"label_size", "axis label and legend size in pixels at 100 dpi"},
+                             {"bottom", "bottom edge of the plots, as a fraction of the page (matplotlib: 0.11)"}});
+    return keys;
+}
+
+render::PlotStyle read_plot_style(Settings& style, double output_scale) {
+    render::PlotStyle plot;
+    const double plot_scale = style.number_in("plot_scale", 1.0, 0.25, 8.0);
+    plot.scale = static_cast<float>(plot_scale * output_scale);
+    plot.font_size = static_cast<float>(style.number_in("font_size", plot.font_size, 4.0, 100.0));
+    plot.label_size = static_cast<float>(style.number_in("label_size", plot.label_size, 4.0, 100.0));
+    // Strictly below the top margin: a float just under it, not the double.
+    plot.bottom = static_cast<float>(style.number_in("bottom", plot.bottom, 0.0, std::nextafter(plot.top, 0.0f)));
+    return plot;
+}
+
+void draw_plot_row(const render::Canvas& canvas, const render::Rect& area, const std::vector<render::Axes>& axes,
+                   const render::PlotStyle& style) {
+    const auto frames =
+        render::plot_row(static_cast<int>(area.w), static_cast<int>(area.h), static_cast<int>(axes.size()), style);
+    for (std::size_t i = 0; i < axes.size(); ++i) {
+        render::Rect frame = frames[i];
+        frame.x += area.x;
+        frame.y += area.y;
+        render::draw_axes(canvas, frame, axes[i], style);
+    }
+}
+
+render::Image draw_plot_row(const std::vector<render::Axes>& axes, int width, int height,
+                            const render::PlotStyle& style) {
+    render::Canvas canvas(width, height);
+    canvas.clear({1, 1, 1, 1});
+    draw_plot_row(canvas, {0, 0, float(width), float(height)}, axes, style);
+    return canvas.read();
+}
+
+glm::vec4 style_colour(Settings& style, const std::string& key, const std::string& fallback) {
+    const std::string name = style.text(key, fallback);
+    const auto colour = render::find_colour(name);
+    if (!colour) style.refuse(key, render::colours_allowed());
+    return glm::vec4(*colour, 1.0f);
+}
+
+std::vector<glm::vec4> style_colours(Settings& style, const std::string& key,
+                                     const std::vector<std::string>& fallback) {
+    std::vector<glm::vec4> colours;
+    for (const std::string& name : style.texts(key, fallback)) {
+        const auto colour = render::find_colour(name);
+        if (!colour) style.refuse(key, "\"" + name + "\"", "a list of colours, each " + render::colours_allowed());
+        colours.push_back(glm::vec4(*colour, 1.0f));
+    }
+    if (colours.empty()) style.refuse(key, "[]", "one colour at least");
+    return colours;
+}
+
+render::Series line_series(std::vector<double> x, std::vector<double> y, std::string label, glm::vec4 colour,
+                           float width, bool dashed) {
+    render::Series s;
+    s.x = std::move(x);
+    s.y = std::move(y);
+    s.label = std::move(label);
+    s.colour = colour;
+    s.line_width = width;
+    // matplotlib's dashed pattern: 3.7 on, 1.6 off, in line widths.
+    if (dashed) s.dash = {3.7f * width, 1.6f * width};
+    return s;
+}
+
+render::Series dot_series(std::vector<double> x, std::vector<double> y, std::string label, glm::vec4 colour,
+                          float size) {
+    render::Series s;
+    s.x = std::move(x);
+    s.y = std::move(y);
+    s.label = std::move(label);
+    s.colour = colour;
+    s.line_width = 0;
+    s.marker_size = size;
+    return s;
+}
+
+}  // namespace scenes

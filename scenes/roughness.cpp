@@ -1,0 +1,222 @@
+// Ballistic deposition's roughness ("Ballistic deposition in Python"): the
+// interface width W(L, t) for several L, with the fitted KPZ-class exponents
+// beta (growth, on the last L) and alpha (W at saturation against L).
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+
+#include "scenes/field_stats.hpp"
+#include "scenes/plot_page.hpp"
+#include "scenes/scene.hpp"
+#include "sim/deposition.hpp"
+#include "sim/fractal.hpp"
+
+namespace scenes {
+namespace {
+
+const std::vector<Key> param_keys = {
+    {"widths", "system sizes L"},
+    {"seeds", "runs averaged per L"},
+    {"saturation_factor", "runs go to t = factor * L^1.5 monolayers (KPZ: saturation at L^z, z = 3/2)"},
+    {"points_per_decade", "W samples per decade of t"},
+    {"beta_range", "[t1, t2]: growth-regime times fitted for beta, monolayers"},
+    {"saturation_from", "W_sat is the mean of W over t >= this fraction of the last time"},
+};
+
+// A run's last time, monolayers: what sim::roughness_curve accepts.
+constexpr double longest_run = 1e9;
+
+std::vector<int> read_widths(Settings& s) {
+    std::vector<int> widths;
+    for (long long w : s.integers("widths", {100, 200, 500, 1000, 2000})) {
+        if (w < 8 || w > 100000) s.refuse("widths", "system sizes, each an integer from 8 to 100000");
+        widths.push_back(int(w));
+    }
+    // Two different sizes at least: alpha is the slope of W_sat against L.
+    if (widths.size() < 2 || std::adjacent_find(widths.begin(), widths.end(), std::not_equal_to<>()) == widths.end())
+        s.refuse("widths", "two different sizes at least, to fit alpha");
+    return widths;
+}
+
+std::vector<double> read_beta_range(Settings& s) {
+    const std::vector<double> range = s.numbers("beta_range", {2, 50});
+    if (range.size() != 2 || !(range[1] > range[0]) || range[0] <= 0)
+        s.refuse("beta_range", "[t1, t2] with 0 < t1 < t2");
+    return range;
+}
+
+// SHA-256 of a roughness curve's times, mean W and its error, in that order.
+std::string curve_hash(const sim::RoughnessCurve& curve) {
+    std::vector<double> values(curve.times);
+    values.insert(values.end(), curve.mean_w.begin(), curve.mean_w.end());
+    values.insert(values.end(), curve.sem_w.begin(), curve.sem_w.end());
+    return state_hash(values);
+}
+
+// What the runs measured: per L its saturated W and curve, and the last L's
+// growth regime.
+struct Measured {
+    std::vector<double> sizes, saturated;
+    nlohmann::json curves = nlohmann::json::array();
+    std::vector<double> beta_t, beta_w;
+};
+
+const glm::vec4 fit_colour = {0.85f, 0.33f, 0.1f, 1};
+
+class RoughnessScene : public Scene {
+public:
+    RoughnessScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, param_keys),
+          style_("style", d.style, with_plot_style_keys({{"colours", "one colour per L"}})),
+          widths_(read_widths(params_)),
+          seeds_(params_.count_in("seeds", 4, 1, 1000)),
+          factor_(params_.number_in("saturation_factor", 3.0, 0.01, 100)),
+          per_decade_(params_.count_in("points_per_decade", 10, 1, 100)),
+          beta_range_(read_beta_range(params_)),
+          from_(params_.number_in("saturation_from", 0.5, 0.01, 0.99)),
+          colours_(style_colours(style_, "colours", {"#c6dbef", "#6baed6", "#2171b5", "#08519c", "#08306b"})),
+          plot_style_(read_plot_style(style_, options.scale)) {
+        check_run_lengths();
+        check_beta_times();
+    }
+
+    void render(Output& out) const override {
+        Progress& progress = out.progress();
+        progress.start(d_.id, static_cast<long long>(widths_.size()));
+        render::Axes growth = growth_axes();
+        Measured m;
+        for (std::size_t i = 0; i < widths_.size(); ++i) {
+            const int L = widths_[i];
+            const double max_time = run_length(L);
+            const sim::RoughnessCurve curve = sim::roughness_curve(L, max_time, per_decade_, seeds_, d_.seed + i);
+            const glm::vec4 colour = colours_[i % colours_.size()];
+            growth.series.push_back(
+                line_series(curve.times, curve.mean_w, "L = " + std::to_string(L), colour, 1.8f, false));
+            record(curve, max_time, i + 1 == widths_.size(), m);
+            progress.advance();
+        }
+        if (m.beta_t.size() < 2) throw std::logic_error(d_.id + ": beta_range holds fewer than two sampled times");
+        const sim::LineFit beta = sim::fit_log_log(m.beta_t, m.beta_w);
+        const sim::LineFit alpha = sim::fit_log_log(m.sizes, m.saturated);
+        const std::vector<double> beta_line = sim::power_law(beta, m.beta_t);
+        growth.series.push_back(
+            line_series(m.beta_t, beta_line, "fit, beta = " + format_fixed(beta.slope, 3), fit_colour, 2.2f, true));
+        growth.notes.push_back({"KPZ: beta = 1/3", {0.62f, 0.10f}, render::Align::left});
+        out.figure(draw_plot_row({growth, scaling_axes(m, alpha)}, scaled_even(d_.width, options_.scale),
+                                 scaled_even(d_.height, options_.scale), plot_style_),
+                   metadata(m, beta, alpha));
+        progress.finish();
+    }
+
+private:
+    double run_length(int L) const { return factor_ * std::pow(double(L), 1.5); }
+
+    // Every run must be one sim::roughness_curve accepts: 1 to 1e9 monolayers.
+    void check_run_lengths() const {
+        for (int L : widths_)
+            if (const double t = run_length(L); !(t >= 1 && t <= longest_run))
+                params_.refuse("saturation_factor", "a factor giving runs of 1 to " + description::shown(longest_run) +
+                                                        " monolayers, factor * L^1.5 (L = " + std::to_string(L) +
+                                                        " would run " + description::shown(t) + ")");
+    }
+
+    // beta is fitted on the last L's samples inside beta_range: two at least.
+    void check_beta_times() const {
+        const int L = widths_.back();
+        int inside = 0;
+        for (std::uint64_t n : sim::roughness_sample_counts(L, run_length(L), per_decade_)) {
+            const double t = static_cast<double>(n) / L;  // as roughness_curve's times
+            inside += t >= beta_range_[0] && t <= beta_range_[1];
+        }
+        if (inside < 2)
+            params_.refuse("beta_range",
+                           "[t1, t2] with 0 < t1 < t2 holding two sampled times at least (L = " + std::to_string(L) +
+                               " is sampled from 1 to " + description::shown(run_length(L)) + " monolayers, " +
+                               std::to_string(per_decade_) + " times a decade)");
+    }
+
+    // Adds one L's curve: its saturated W (the mean over t >= from * t_max),
+    // its growth regime when it is the last, and its metadata.
+    void record(const sim::RoughnessCurve& curve, double max_time, bool last, Measured& m) const {
+        double sum = 0;
+        int n = 0;
+        for (std::size_t k = 0; k < curve.times.size(); ++k)
+            if (curve.times[k] >= from_ * curve.times.back()) {
+                sum += curve.mean_w[k];
+                ++n;
+            }
+        m.sizes.push_back(curve.width);
+        m.saturated.push_back(sum / n);
+        if (last) {
+            for (std::size_t k = 0; k < curve.times.size(); ++k)
+                if (curve.times[k] >= beta_range_[0] && curve.times[k] <= beta_range_[1]) {
+                    m.beta_t.push_back(curve.times[k]);
+                    m.beta_w.push_back(curve.mean_w[k]);
+                }
+        }
+        m.curves.push_back({{"width", curve.width},
+                            {"seeds", seeds_},
+                            {"max_time", max_time},
+                            {"times", curve.times},
+                            {"mean_w", curve.mean_w},
+                            {"sem_w", curve.sem_w},
+                            {"saturated_w", m.saturated.back()},
+                            {"state_sha256", curve_hash(curve)}});
+    }
+
+    static render::Axes growth_axes() {
+        render::Axes growth;
+        growth.x_scale = growth.y_scale = render::Scale::log;
+        growth.x_label = "t (monolayers)";
+        growth.y_label = "W(L, t)";
+        growth.legend = render::Legend::upper_left;
+        return growth;
+    }
+
+    // W at saturation against L, and alpha's fit.
+    render::Axes scaling_axes(const Measured& m, const sim::LineFit& alpha) const {
+        render::Axes scaling;
+        scaling.x_scale = scaling.y_scale = render::Scale::log;
+        scaling.x_label = "L";
+        scaling.y_label = "saturated W";
+        scaling.legend = render::Legend::upper_left;
+        const std::vector<double> alpha_line = sim::power_law(alpha, m.sizes);
+        scaling.series = {
+            dot_series(m.sizes, m.saturated, "W_sat, mean over t >= " + format_fixed(from_, 2) + " t_max",
+                       {0.03f, 0.19f, 0.42f, 1}, 8.0f),
+            line_series(m.sizes, alpha_line, "fit, alpha = " + format_fixed(alpha.slope, 3), fit_colour, 2.0f, true)};
+        scaling.notes.push_back({"KPZ: alpha = 1/2", {0.62f, 0.10f}, render::Align::left});
+        return scaling;
+    }
+
+    nlohmann::json metadata(const Measured& m, const sim::LineFit& beta, const sim::LineFit& alpha) const {
+        return {{"params", params_.used()},
+                {"style", style_.used()},
+                {"curves", m.curves},
+                {"beta", {{"value", beta.slope}, {"fit_range", beta_range_}, {"width", widths_.back()}, {"r", beta.r}}},
+                {"alpha", {{"value", alpha.slope}, {"widths", m.sizes}, {"saturated_w", m.saturated}, {"r", alpha.r}}}};
+    }
+
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const std::vector<int> widths_;
+    const int seeds_;
+    const double factor_;
+    const int per_decade_;
+    const std::vector<double> beta_range_;
+    const double from_;
+    const std::vector<glm::vec4> colours_;
+    const render::PlotStyle plot_style_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_roughness(const Description& d, const SceneOptions& options) {
+    return std::make_unique<RoughnessScene>(d, options);
+}
+
+}  // namespace scenes

@@ -1,0 +1,111 @@
+#include "scenes/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "render/colormap.hpp"
+#include "render/gl_context.hpp"
+
+namespace scenes {
+
+const std::vector<SceneInfo>& all_scenes() {
+    static const std::vector<SceneInfo> all = {
+        {"diffusion", read_diffusion, {"colormap"}},
+        {"gray_scott", read_gray_scott, {"a_colormap", "b_colormap"}},
+        {"gray_scott_atlas", read_gray_scott_atlas, {"colormap"}},
+        {"percolation", read_percolation, {"colormap"}},
+        {"percolation_sizes", read_percolation_sizes, {"colormap"}},
+        {"cell1d", read_cell1d, {"colormap"}},
+        {"cell_counts", read_cell_counts},
+        {"percolation_scaling", read_percolation_scaling},
+        {"percolation_phase", read_percolation_phase},
+        {"forest_fire", read_forest_fire, {"colormap"}},
+        {"cell1d_survey", read_cell1d_survey, {"colormap"}},
+        {"snowflake", read_snowflake},
+        {"snowflake_dimension", read_snowflake_dimension},
+        {"hex_lattice", read_hex_lattice},
+        {"phyllotaxis", read_phyllotaxis},
+        {"ifs", read_ifs, {"colormap"}},
+        {"deposition", read_deposition, {"band_colormap"}},
+        {"roughness", read_roughness},
+        {"lsystem", read_lsystem},
+        {"lsystem_3d", read_lsystem_3d},
+    };
+    return all;
+}
+
+namespace {
+
+const SceneInfo& scene_of(const Description& d) {
+    for (const SceneInfo& scene : all_scenes())
+        if (scene.name == d.scene) return scene;
+    std::string allowed;
+    for (const SceneInfo& scene : all_scenes()) allowed += (allowed.empty() ? "" : ", ") + scene.name;
+    throw SettingError("description.scene", "\"" + d.scene + "\"", "one of " + allowed);
+}
+
+}  // namespace
+
+std::unique_ptr<Scene> read_scene(const Description& d, const SceneOptions& options) {
+    return scene_of(d).read(d, options);
+}
+
+void apply_colormap(Description& d, const std::string& name) {
+    const auto names = render::colormap_names();
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+        std::string allowed;
+        for (const auto& n : names) allowed += (allowed.empty() ? "" : ", ") + n;
+        throw UsageError("--cmap " + name + " is not allowed: use one of " + allowed);
+    }
+    const SceneInfo& scene = scene_of(d);
+    if (scene.colormap_keys.empty()) {
+        std::string fields;
+        for (const SceneInfo& s : all_scenes())
+            if (!s.colormap_keys.empty()) fields += std::string(fields.empty() ? "" : ", ") + s.name;
+        throw UsageError("--cmap: " + d.id + " (scene " + d.scene + ") draws no field to colour; the field scenes are " +
+                         fields);
+    }
+    for (const std::string& key : scene.colormap_keys) {
+        d.style.insert_or_assign(key, name);
+        const std::string colours = key.substr(0, key.size() - std::string("colormap").size()) + "colours";
+        d.style.erase(colours);
+        d.origins["style." + key] = "--cmap " + name;
+    }
+}
+
+MemoryNeed grid_need(const std::string& what, double rows, double cols, double cell_bytes, double copies) {
+    char text[96];
+    std::snprintf(text, sizeof text, " %.0f x %.0f x %.0f", rows, cols, copies);
+    return {what + text, rows * cols * cell_bytes * copies};
+}
+
+void require_drawable(const Settings& section, const std::string& key, const std::string& what, double rows,
+                      double cols) {
+    const double most = render::GlContext::get().max_texture_size();
+    if (rows <= most && cols <= most) return;
+    char text[256];
+    std::snprintf(text, sizeof text, "%s at most %.0f cells a side (it would be %.0f x %.0f): the renderer draws one field that large",
+                  what.c_str(), most, rows, cols);
+    section.refuse(key, text);
+}
+
+std::string shown_steps(const std::vector<int>& steps) {
+    std::string text = "[";
+    for (std::size_t i = 0; i < steps.size(); ++i) text += (i ? ", " : "") + std::to_string(steps[i]);
+    return text + "]";
+}
+
+void refuse_steps(const Description& d, const std::string& why, bool film_too) {
+    if (!d.panels.empty()) throw SettingError("figure.panels", shown_steps(d.panels), "none: " + why);
+    if (film_too && d.animation)
+        throw SettingError("animation.steps", shown_steps({d.animation->first, d.animation->last}),
+                           "none: the figure has no film; " + why);
+}
+
+int scaled_even(int pixels, double scale) {
+    const int scaled = static_cast<int>(std::lround(pixels * scale));
+    return std::max(2, scaled + (scaled % 2));
+}
+
+}  // namespace scenes

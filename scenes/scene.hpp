@@ -1,0 +1,108 @@
+#pragma once
+// Scenes: the only code that knows both a model (sim/) and how to draw it
+// (render/). A scene works in three phases:
+//   1. read:  its reader (SceneInfo::read) reads and checks every setting of
+//             the description (model parameters, style, sizes, steps,
+//             colours, estimates); a mistake is a SettingError, and nothing
+//             has run;
+//   2. run:   Scene::render runs the model once, to the last step any output
+//             needs;
+//   3. draw:  and draws the figure and film into the Output.
+// render() is const: a setting cannot be read after phase 1.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scenes/description_names.hpp"
+#include "render/ticks.hpp"
+#include "scenes/output.hpp"
+
+namespace scenes {
+
+// What the command asks of every scene.
+struct SceneOptions {
+    double scale = 1.0;  // multiplies every size in pixels
+    bool film = true;    // the animation is wanted (MP4 or PNG sequence)
+};
+
+// One big allocation of a model, for the command's memory estimate.
+struct MemoryNeed {
+    std::string what;  // e.g. "grids of doubles 4096 x 4096 x 6"
+    double bytes;
+};
+// A need of `copies` rows x cols grids of `cell_bytes` each.
+MemoryNeed grid_need(const std::string& what, double rows, double cols, double cell_bytes, double copies);
+
+class Scene {
+public:
+    virtual ~Scene() = default;
+    // The model's largest allocations (phase 1's estimate, checked by the
+    // command against --max-memory before render()).
+    virtual std::vector<MemoryNeed> memory() const { return {}; }
+    // Phases 2 and 3: runs the model and writes every output into `out`.
+    virtual void render(Output& out) const = 0;
+};
+
+// A scene's phase 1: reads and checks `d`'s settings.
+using SceneReader = std::unique_ptr<Scene> (*)(const Description& d, const SceneOptions& options);
+
+struct SceneInfo {
+    std::string name;  // the description's `scene`
+    SceneReader read;
+    // The [style] keys naming its fields' colormaps: what --cmap sets
+    // (empty: the scene draws no field). A key "X" comes with "X"'s sibling
+    // list of colours, "colours" or "a_colours", which --cmap removes.
+    std::vector<std::string> colormap_keys = {};
+};
+
+const std::vector<SceneInfo>& all_scenes();
+
+// Phase 1 for `d`: its scene, every setting read and checked. Throws
+// SettingError (key, value, what is allowed) for any mistake; `d` must
+// outlive the scene.
+std::unique_ptr<Scene> read_scene(const Description& d, const SceneOptions& options);
+
+// Sets every colormap of a field figure to `name` (--cmap); throws
+// UsageError for an unknown colormap or a figure without a field.
+void apply_colormap(Description& d, const std::string& name);
+
+// Refuses `key` of `section` (SettingError) when it makes a field of rows x
+// cols cells that the renderer cannot hold as one texture; `what` names the
+// field, e.g. "the deposit's view".
+void require_drawable(const Settings& section, const std::string& key, const std::string& what, double rows,
+                      double cols);
+
+// Steps as a message shows them: "[16, 200]".
+std::string shown_steps(const std::vector<int>& steps);
+// Refuses figure.panels (and, with `film_too`, an [animation]) of a figure
+// that has no steps to show; `why` says what it shows instead.
+void refuse_steps(const Description& d, const std::string& why, bool film_too);
+
+// Pixel size at the given scale, rounded up to even (what H.264 in yuv420p needs).
+int scaled_even(int pixels, double scale);
+using render::format_fixed;  // numbers shown on a figure, "1.57"
+
+// The readers, one per scene file.
+std::unique_ptr<Scene> read_diffusion(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_gray_scott(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_gray_scott_atlas(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_percolation(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_percolation_sizes(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_cell1d(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_cell_counts(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_percolation_scaling(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_percolation_phase(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_forest_fire(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_cell1d_survey(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_snowflake(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_snowflake_dimension(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_hex_lattice(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_phyllotaxis(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_ifs(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_deposition(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_roughness(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_lsystem(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_lsystem_3d(const Description& d, const SceneOptions& options);
+
+}  // namespace scenes

@@ -1,0 +1,179 @@
+// Hexagonal snowflakes (Liu & Zhang 1987, Figs 3-6): crystals drawn cell by
+// cell as hexagons, the forbidden gaps of a restriction in a light tint,
+// each panel's letter and rule code beneath it as the paper labels them.
+#include <algorithm>
+
+#include "scenes/plot_page.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/snowflake_setup.hpp"
+#include "scenes/step_runner.hpp"
+#include "render/hex_cells.hpp"
+#include "render/layout.hpp"
+#include "render/text.hpp"
+
+namespace scenes {
+namespace {
+
+struct SnowflakeColours {
+    glm::vec4 ice, tint, text;
+};
+
+struct SnowflakePanel {
+    std::vector<glm::ivec2> ice;
+    std::vector<glm::ivec2> forbidden;  // vapour cells in the restriction's region, drawn tinted
+    int view_radius = 1;                // cells within this hex distance fit the panel
+    std::string caption;
+};
+
+SnowflakePanel panel_of(const sim::Snowflake& crystal, const sim::SnowflakeParams& p, int view_radius,
+                        std::string caption) {
+    SnowflakePanel panel;
+    for (auto c : crystal.ice_cells()) panel.ice.push_back({c.q, c.r});
+    panel.view_radius = std::max(view_radius, 1);
+    if (p.restriction.last >= p.restriction.first)
+        for (int q = -panel.view_radius; q <= panel.view_radius; ++q)
+            for (int r = -panel.view_radius; r <= panel.view_radius; ++r) {
+                const sim::HexCell c{q, r};
+                if (sim::hex_distance(c) <= panel.view_radius && p.restriction.in_region(c) && !crystal.is_ice(c))
+                    panel.forbidden.push_back({q, r});
+            }
+    panel.caption = std::move(caption);
+    return panel;
+}
+
+// A row of crystals in `area`, captions beneath.
+void draw_snowflakes(const render::Canvas& canvas, const render::Rect& area, const std::vector<SnowflakePanel>& panels,
+                     const SnowflakeColours& colours, double scale) {
+    render::PanelRowStyle style;
+    style.scale = static_cast<float>(scale);
+    const float caption_band = 1.8f * style.title_size * style.scale;
+    const render::Rect above{area.x, area.y, area.w, area.h - caption_band};
+    const auto rects = render::panel_row(above, static_cast<int>(panels.size()), false, style);
+    render::Font& font = render::font_of_size(std::round(style.title_size * style.scale));
+    render::Text captions;
+    for (std::size_t i = 0; i < panels.size(); ++i) {
+        const auto view = render::fit_hex_view(rects[i], panels[i].view_radius);
+        render::draw_hex_cells(canvas, view, panels[i].forbidden, colours.tint);
+        render::draw_hex_cells(canvas, view, panels[i].ice, colours.ice);
+        captions.add(font, panels[i].caption, {rects[i].centre().x, rects[i].bottom() + 1.3f * font.pixel_size()},
+                     colours.text, render::Align::centre, render::Baseline::baseline);
+    }
+    captions.draw(canvas);
+}
+
+// The figure's steps as a list, for messages: "[16, 200000]".
+// The run's plan: every run at `steps`, or every run at each of
+// figure.panels. No output may ask for a step past the crystal's limit.
+Description plan_of(const Description& d, int steps) {
+    const std::string most = std::to_string(snowflake_most_steps);
+    if (!d.panels.empty() && d.panels.back() > snowflake_most_steps)
+        throw SettingError("figure.panels", shown_steps(d.panels), "steps from 0 to " + most + ", ascending");
+    if (d.animation && d.animation->last > snowflake_most_steps)
+        throw SettingError("animation.steps", shown_steps({d.animation->first, d.animation->last}),
+                           "[first, last] with 0 <= first <= last <= " + most);
+    Description plan = d;
+    if (plan.panels.empty()) plan.panels = {steps};
+    return plan;
+}
+
+const std::vector<Key> style_keys = {
+    {"ice_colour", "colour of the ice cells"},
+    {"tint_colour", "colour of the restriction's forbidden region"},
+    {"caption", "caption under each panel: {label}, {rule}, {step}"},
+};
+
+class SnowflakeScene : public Scene {
+public:
+    SnowflakeScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, snowflake_keys()),
+          style_("style", d.style, style_keys),
+          runs_(read_snowflake_runs(params_)),
+          steps_(params_.count_in("steps", 40, 0, snowflake_most_steps)),
+          colours_{style_colour(style_, "ice_colour", "#1d4e89"),
+                   style_colour(style_, "tint_colour", "#dde8f3"),
+                   {0, 0, 0, 1}},
+          caption_(style_.text("caption", "{label} {rule}")),
+          plan_(plan_of(d, steps_)) {}
+
+    void render(Output& out) const override {
+        std::vector<sim::Snowflake> crystals;
+        for (const auto& run : runs_) crystals.emplace_back(run.params);
+        std::vector<SnowflakePanel> panels;
+        nlohmann::json panel_meta = nlohmann::json::array();
+        StepRunner run(plan_, options_, out);
+        run.run({
+            .check = {},
+            .panel = [&](int step) { keep_panels(crystals, step, panels, panel_meta); },
+            .frame = [&](int step) { return draw_frame(run, crystals, step); },
+            .advance =
+                [&] {
+                    for (auto& c : crystals) c.step();
+                    return true;
+                },
+        });
+
+        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        render::Canvas canvas(width, height);
+        canvas.clear({1, 1, 1, 1});
+        draw_snowflakes(canvas, {0, 0, float(width), float(height)}, panels, colours_, options_.scale);
+        nlohmann::json runs_meta = nlohmann::json::array();
+        for (const auto& r : runs_) runs_meta.push_back(r.used);
+        run.write_figure(
+            canvas.read(),
+            {{"params", params_.used()}, {"runs", runs_meta}, {"style", style_.used()}, {"panels", panel_meta}});
+    }
+
+private:
+    std::string caption_of(std::size_t i, int step) const {
+        return expand(
+            caption_,
+            {{"label", runs_[i].label}, {"rule", runs_[i].params.rule.code()}, {"step", std::to_string(step)}});
+    }
+
+    // Every crystal as it is at `step`: a panel each, and its metadata.
+    void keep_panels(const std::vector<sim::Snowflake>& crystals, int step, std::vector<SnowflakePanel>& panels,
+                     nlohmann::json& panel_meta) const {
+        for (std::size_t i = 0; i < crystals.size(); ++i) {
+            const auto& c = crystals[i];
+            panels.push_back(panel_of(c, runs_[i].params, c.radius() + 1, caption_of(i, step)));
+            nlohmann::json meta = snowflake_settings(runs_[i].params);
+            meta.update({{"label", runs_[i].label},
+                         {"step", step},
+                         {"statistics",
+                          {{"ice", c.ice_count()}, {"radius", c.radius()}, {"euclidean_radius", c.euclidean_radius()}}},
+                         {"state_sha256", snowflake_hash(c)}});
+            panel_meta.push_back(meta);
+        }
+    }
+
+    render::Image draw_frame(StepRunner& run, const std::vector<sim::Snowflake>& crystals, int step) const {
+        // A fixed view through the film: growth is at most one ring a step,
+        // so the last step bounds the radius.
+        std::vector<SnowflakePanel> frame;
+        for (std::size_t i = 0; i < crystals.size(); ++i)
+            frame.push_back(panel_of(crystals[i], runs_[i].params, run.last_step() + 1, caption_of(i, step)));
+        auto& canvas = run.frame_canvas();
+        canvas.clear({1, 1, 1, 1});
+        draw_snowflakes(canvas, {0, 0, float(canvas.width()), float(canvas.height())}, frame, colours_, options_.scale);
+        return canvas.read();
+    }
+
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const std::vector<SnowflakeRun> runs_;
+    const int steps_;
+    const SnowflakeColours colours_;
+    const std::string caption_;
+    const Description plan_;  // d_ with the panels the run shows
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_snowflake(const Description& d, const SceneOptions& options) {
+    return std::make_unique<SnowflakeScene>(d, options);
+}
+
+}  // namespace scenes

@@ -1,0 +1,150 @@
+// The snowflakes' fractal dimension (Liu & Zhang 1987, section 4): the ice
+// mass M(l) within distance l of the seed against l, log-log, each rule's
+// slope D fitted over a stated range. These are finite-size estimates: the
+// paper claims 1 < D < 2, while Gravner & Griffeath (2006) prove that rules
+// freezing on exactly one neighbour fill the plane with positive density, so
+// their slopes tend to 2 as crystals grow.
+#include <cmath>
+
+#include "scenes/field_stats.hpp"
+#include "scenes/plot_page.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/snowflake_setup.hpp"
+#include "render/colormap.hpp"
+#include "sim/fractal.hpp"
+
+namespace scenes {
+namespace {
+
+const std::vector<Key> extra_param_keys = {
+    {"fit_from", "smallest distance l fitted, cells"},
+    {"fit_to", "largest distance fitted, as a fraction of the crystal's radius"},
+};
+
+// A list of steps as messages show it: "[16, 200]".
+
+// A run's legend: its rule, and its restriction and priority if any.
+std::string legend_of(const sim::SnowflakeParams& p) {
+    std::string rule = p.rule.code();
+    const auto& restriction = p.restriction;
+    if (restriction.last >= restriction.first)
+        rule += " restricted " + std::to_string(restriction.first) + "\u2013" + std::to_string(restriction.last);
+    if (!p.priority.steps.empty()) rule += " with priority";
+    return rule;
+}
+
+class SnowflakeDimensionScene : public Scene {
+public:
+    SnowflakeDimensionScene(const Description& d, const SceneOptions& options)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, snowflake_keys(extra_param_keys)),
+          style_("style", d.style, with_plot_style_keys({{"colours", "one colour per run"}})),
+          runs_(read_snowflake_runs(params_)),
+          steps_(params_.count_in("steps", 200, 8, snowflake_most_steps)),
+          fit_from_(params_.count_in("fit_from", 4, 1, steps_)),
+          fit_to_(params_.number_in("fit_to", 0.5, 0.05, 1.0)),
+          colours_(style_colours(style_, "colours",
+                                 {"#08306b", "#2171b5", "#6baed6", "#e6550d", "#31a354", "#756bb1", "#636363"})),
+          plot_style_(read_plot_style(style_, options.scale)) {
+        refuse_empty_fit();
+        refuse_steps(d, "the plot shows every crystal at params.steps", true);
+    }
+
+    void render(Output& out) const override {
+        Progress& progress = out.progress();
+        progress.start(d_.id, static_cast<long long>(runs_.size()));
+        render::Axes axes;
+        axes.x_scale = axes.y_scale = render::Scale::log;
+        axes.x_label = "Distance from the seed l (cells)";
+        axes.y_label = "Ice cells M(l)";
+        axes.legend = render::Legend::upper_left;
+        nlohmann::json fits = nlohmann::json::array();
+        for (std::size_t i = 0; i < runs_.size(); ++i) {
+            fits.push_back(fit_run(i, axes));
+            progress.advance();
+        }
+        // A filled plane: 2 / sqrt(3) cells per unit area, so M(l) = (2 pi / sqrt 3) l^2.
+        const double filled = 2 * M_PI / std::sqrt(3.0);
+        const std::vector<double> ref_l = {1.0, double(steps_)};
+        axes.series.push_back(line_series(ref_l, {filled, filled * steps_ * steps_}, "filled plane, D = 2",
+                                          {0.6f, 0.6f, 0.6f, 1}, 1.0f, true));
+        out.figure(draw_plot_row({axes}, scaled_even(d_.width, options_.scale), scaled_even(d_.height, options_.scale),
+                                 plot_style_),
+                   {{"params", params_.used()}, {"style", style_.used()}, {"fits", fits}});
+        progress.finish();
+    }
+
+private:
+    // A crystal grows at most a ring a step, and a cell's distance from the
+    // seed is at most its ring: fit_to x steps bounds the fit's last
+    // distance, and the range must hold two distances even then.
+    void refuse_empty_fit() const {
+        if (fit_from_ + 1 > steps_)
+            params_.refuse("fit_from",
+                           "an integer from 1 to steps - 1 = " + std::to_string(steps_ - 1) +
+                               ": the fit needs two distances, and a crystal's radius grows at most a cell a step");
+        if (static_cast<int>(std::floor(fit_to_ * double(steps_))) < fit_from_ + 1)
+            params_.refuse(
+                "fit_to",
+                "a number from (fit_from + 1) / steps = " + description::shown(double(fit_from_ + 1) / steps_) +
+                    " to 1: the fit needs two distances, and a crystal's radius grows at most a cell a step");
+    }
+
+    // Run i grown `steps`: its M(l), its fit (dashed) on `axes`, and its metadata.
+    nlohmann::json fit_run(std::size_t i, render::Axes& axes) const {
+        sim::Snowflake crystal(runs_[i].params);
+        for (int s = 0; s < steps_; ++s) crystal.step();
+        const int max_l = static_cast<int>(std::floor(crystal.euclidean_radius()));
+        const std::vector<long> mass = sim::mass_within(crystal, max_l);
+        std::vector<double> l, m, fit_l, fit_m;
+        const int fit_last = static_cast<int>(std::floor(fit_to_ * crystal.euclidean_radius()));
+        for (int k = 1; k <= max_l; ++k) {
+            l.push_back(k);
+            m.push_back(double(mass[k - 1]));
+            if (k >= fit_from_ && k <= fit_last) {
+                fit_l.push_back(k);
+                fit_m.push_back(double(mass[k - 1]));
+            }
+        }
+        // Phase 1 refuses a range too short for any crystal; this one grew too slowly for it.
+        if (fit_l.size() < 2)
+            params_.refuse("fit_to", "a range from fit_from that holds two distances at least; " + runs_[i].label +
+                                         "'s crystal reached radius " + format_fixed(crystal.euclidean_radius(), 2) +
+                                         ", the range " + std::to_string(fit_from_) + ".." + std::to_string(fit_last) +
+                                         ": raise steps or fit_to");
+        const sim::LineFit fit = sim::fit_log_log(fit_l, fit_m);
+        const glm::vec4 colour = colours_[i % colours_.size()];
+        axes.series.push_back(
+            line_series(l, m, legend_of(runs_[i].params) + ", D = " + format_fixed(fit.slope, 2), colour, 2.0f, false));
+        // The fitted line over its range, dashed.
+        const std::vector<double> line_m = sim::power_law(fit, fit_l);
+        axes.series.push_back(line_series(fit_l, line_m, "", colour, 1.2f, true));
+        nlohmann::json meta = snowflake_settings(runs_[i].params);
+        meta.update({{"steps", steps_},
+                     {"ice", crystal.ice_count()},
+                     {"euclidean_radius", crystal.euclidean_radius()},
+                     {"fit_range", {fit_from_, fit_last}},
+                     {"dimension", fit.slope},
+                     {"r", fit.r},
+                     {"state_sha256", state_hash(m)}});
+        return meta;
+    }
+
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+    const std::vector<SnowflakeRun> runs_;
+    const int steps_, fit_from_;
+    const double fit_to_;
+    const std::vector<glm::vec4> colours_;
+    const render::PlotStyle plot_style_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_snowflake_dimension(const Description& d, const SceneOptions& options) {
+    return std::make_unique<SnowflakeDimensionScene>(d, options);
+}
+
+}  // namespace scenes

@@ -1,0 +1,48 @@
+#pragma once
+// The snowflake runs a description asks for, read from its [params]:
+//
+//   runs = [{rule = "0100000", restrict = [1, 16], label = "(a)"},
+//           {rule = "0110100", restrict = [5, 22]}]    one crystal each
+//   rule  = "0101010"     replaces every run's rule (e.g. --set rule=0110000)
+//   steps = 40            steps of every run
+//   restrict_radius, restrict_half_angle, priority_width: see sim/snowflake.hpp
+//
+// A run's keys: rule, label, restrict = [first, last] (freezing forbidden in
+// the gaps between the arms during those steps), priority = [steps...]
+// (growth forced at the six tips during those steps).
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "scenes/description_names.hpp"
+#include "description/settings.hpp"
+#include "sim/snowflake.hpp"
+
+namespace scenes {
+
+struct SnowflakeRun {
+    std::string label;  // "(a)", "(b)", ...
+    sim::SnowflakeParams params;
+    nlohmann::json used;  // the run's settings as read, for the metadata
+};
+
+// The most steps a crystal is grown (steps, restrict and priority steps,
+// panels): it grows up to a ring a step, and its store with it.
+inline constexpr int snowflake_most_steps = 100000;
+
+// The [params] keys of a snowflake scene; `extra` adds the scene's own.
+std::vector<Key> snowflake_keys(std::vector<Key> extra = {});
+
+// Reads and checks the runs (the model's own check included); throws the
+// SettingError of the key as written: "params.rule",
+// "params.runs[2].restrict", "params.restrict_half_angle".
+std::vector<SnowflakeRun> read_snowflake_runs(Settings& params);
+
+// The restriction and priority of a run, for the metadata.
+nlohmann::json snowflake_settings(const sim::SnowflakeParams& p);
+
+// SHA-256 of the ice cells in a fixed order: the crystal's identity.
+std::string snowflake_hash(const sim::Snowflake& crystal);
+
+}  // namespace scenes

@@ -1,0 +1,72 @@
+#include "scenes/step_runner.hpp"
+
+#include <algorithm>
+
+namespace scenes {
+
+StepRunner::StepRunner(const Description& d, const SceneOptions& options, Output& out)
+    : description_(d), options_(options), out_(out), progress_(out.progress()) {
+    const bool animate = d.animation && options.film;
+    last_ = d.last_step(animate);
+    if (animate) {
+        frame_width_ = scaled_even(d.animation->width, options.scale);
+        frame_height_ = scaled_even(d.animation->height, options.scale);
+        film_ = out.film(frame_width_, frame_height_);
+    }
+    progress_.start(d.id, last_ + 1 + (animate ? d.animation->frame_count() : 0));
+}
+
+bool StepRunner::is_panel(int step) const {
+    return std::binary_search(description_.panels.begin(), description_.panels.end(), step);
+}
+
+int StepRunner::run(const StepHooks& hooks) {
+    for (int step = 0;; ++step) {
+        const bool is_panel = this->is_panel(step), is_frame = wants_frame(step);
+        // Every step, not only those drawn: a run that goes bad stops at the
+        // step it went bad, before anything is written.
+        if (hooks.check) hooks.check(step);
+        if (is_panel && hooks.panel) hooks.panel(step);
+        if (is_frame) frame(hooks.frame(step), step);
+        if (step == last_) return step;
+        const bool going = hooks.advance();
+        stepped();
+        if (!going) {
+            // The state no longer changes: show it as the final frame if the
+            // animation would have gone on, then stop.
+            if (film_ && step + 1 <= description_.animation->last && !wants_frame(step + 1))
+                frame(hooks.frame(step + 1), step + 1);
+            return step + 1;
+        }
+    }
+}
+
+void StepRunner::frame(const render::Image& image, int step) {
+    film_->add(image, step);
+    progress_.advance();
+}
+
+render::Canvas& StepRunner::frame_canvas(bool depth) {
+    if (!frame_canvas_) frame_canvas_ = std::make_unique<render::Canvas>(frame_width_, frame_height_, 4, depth);
+    return *frame_canvas_;
+}
+
+void StepRunner::stepped() {
+    ++model_steps_;
+    progress_.advance();
+}
+
+void StepRunner::write_figure(const render::Image& figure, nlohmann::json meta) {
+    if (film_) meta["animation"] = film_->finish();
+    meta["model_steps"] = model_steps_;
+    out_.figure(figure, std::move(meta));
+    progress_.finish();
+}
+
+void StepRunner::write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta) {
+    write_figure(draw_field_panels(panels, scaled_even(description_.width, options_.scale),
+                                   scaled_even(description_.height, options_.scale), options_.scale),
+                 std::move(meta));
+}
+
+}  // namespace scenes

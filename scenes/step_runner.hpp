@@ -1,0 +1,62 @@
+#pragma once
+// The one run of a stepping model that feeds every output of a figure: it
+// knows which steps are panels, which are animation frames, and the last
+// step any output needs, so the model never runs past it. Frames go straight
+// to the MP4 / PNG sequence as they are drawn.
+
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "scenes/field_panels.hpp"
+#include "scenes/scene.hpp"
+#include "render/canvas.hpp"
+#include "render/image.hpp"
+
+namespace scenes {
+
+// What a scene does at each step of the run.
+struct StepHooks {
+    std::function<void(int step)> check;           // at every step: throws if the model went unstable
+    std::function<void(int step)> panel;           // keep what a panel at this step shows
+    std::function<render::Image(int step)> frame;  // draw the animation frame of this step
+    std::function<bool()> advance;                 // one model step; false when the model has stopped (a fixed point)
+};
+
+class StepRunner {
+public:
+    StepRunner(const Description& d, const SceneOptions& options, Output& out);
+
+    int last_step() const { return last_; }
+    // A canvas of the frame's size, made once and drawn on for every frame
+    // (with a depth buffer when `depth`, for 3-D scenes).
+    render::Canvas& frame_canvas(bool depth = false);
+
+    // Runs from step 0 to last_step() or until advance() says the model
+    // stopped; returns the last step reached.
+    int run(const StepHooks& hooks);
+
+    // Completes the animation, adds its metadata to `meta`, writes the
+    // figure's PNG and JSON and completes the progress bar.
+    void write_figure(const render::Image& figure, nlohmann::json meta);
+    // The same for a figure that is a row of field panels, drawn at the figure's size.
+    void write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta);
+
+private:
+    bool is_panel(int step) const;
+    bool wants_frame(int step) const { return film_ && description_.animation->shows(step); }
+    void frame(const render::Image& image, int step);  // hands a drawn frame to the sinks
+    void stepped();                                    // counts one model step (progress bar and metadata)
+
+    const Description& description_;
+    const SceneOptions& options_;
+    Output& out_;
+    Progress& progress_;
+    int last_ = 0;
+    long long model_steps_ = 0;  // steps the model actually took: the metadata's proof that nothing ran past last_
+    int frame_width_ = 0, frame_height_ = 0;
+    std::unique_ptr<Film> film_;
+    std::unique_ptr<render::Canvas> frame_canvas_;
+};
+
+}  // namespace scenes

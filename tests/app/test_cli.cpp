@@ -1,0 +1,455 @@
+// The figgen command's behaviour as a user sees it: exit status, one-line
+// errors naming what is wrong and what is allowed, and no output files left
+// by a failed run.
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "figgen_run.hpp"
+#include "render/png_io.hpp"
+#include "render/video.hpp"
+
+namespace fs = std::filesystem;
+
+using testkit::figgen;
+using testkit::fresh_dir;
+using testkit::Run;
+
+TEST_CASE("figgen list names tc7-1 with its title", "[cli]") {
+    const Run run = figgen("list");
+    CHECK(run.status == 0);
+    CHECK_THAT(run.output, Catch::Contains("tc7-1") && Catch::Contains("Diffusion"));
+}
+
+TEST_CASE("figgen --help documents render's options", "[cli]") {
+    const Run run = figgen("render --help");
+    CHECK(run.status == 0);
+    for (const char* option : {"--out", "--set", "--seed", "--scale", "--no-video", "--frames"})
+        CHECK_THAT(run.output, Catch::Contains(option));
+}
+
+namespace {
+
+// Every file under `dir` with its bytes: what "nothing created or changed" compares.
+std::map<std::string, std::string> folder_contents(const fs::path& dir) {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+        std::ifstream in(entry.path(), std::ios::binary);
+        files[fs::relative(entry.path(), dir).string()] =
+            std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    return files;
+}
+
+}  // namespace
+
+TEST_CASE("bad input gets one line naming the problem and what is allowed, exit status 2", "[cli]") {
+    const fs::path out = fresh_dir("errors");
+    // Earlier outputs of a figure the bad inputs name: they must stay as they are.
+    REQUIRE(figgen("render tc7-1 --out " + out.string()).status == 0);
+    const auto before = folder_contents(out);
+    const fs::path files = fresh_dir("error-descriptions");
+    auto description = [&](const std::string& name, const std::string& text) {
+        std::ofstream(files / name) << text;
+        return (files / name).string();
+    };
+    const std::string head = "id = \"mine\"\nscene = \"diffusion\"\n";
+    const std::string render = "render --out " + out.string() + " --no-video ";
+    struct Case {
+        std::string args;
+        std::string expected;
+    };
+    const Case cases[] = {
+        // The command line.
+        {"", "A subcommand is required"},
+        {"bogus-command", "unknown command 'bogus-command'; allowed: list, describe, gallery, thumbnails, render"},
+        {"list extra", "The following argument was not expected: extra"},
+        {"render --out " + out.string(), "figures is required"},
+        {render + "tc7-1 --frobnicate", "--frobnicate"},
+        {render + "tc7-1 --scale -1", "--scale -1 is not allowed: use a number from 0.1 to 8"},
+        {render + "tc7-1 --scale nan", "--scale nan is not allowed"},
+        {render + "tc7-1 --scale 0", "--scale 0 is not allowed"},
+        {render + "tc7-1 --scale 100", "--scale 100 is not allowed"},
+        {render + "tc7-1 --seed -5", "--seed"},
+        {render + "tc7-1 --seed abc", "--seed = abc"},
+        {render + "tc7-1 --seed 99999999999999999999", "--seed is not allowed: use 0..2^63-1"},
+        {render + "tc7-1 --max-memory 10q", "--max-memory: q unit not recognized"},
+        {render + "tc7-1 --max-disk lots", "--max-disk"},
+        {"render --no-video --out /dev/null/sub tc7-1", "--out /dev/null/sub: cannot create the folder"},
+        {"render --no-video --out /proc/figgen-out tc7-1", "--out /proc/figgen-out: cannot create the folder"},
+        {render + "tc7-99", "unknown figure id 'tc7-99'; closest: tc7-9, tc7-1, tc7-2 (`figgen list` shows all"},
+        {render + "gs-atlass", "unknown figure id 'gs-atlass'; closest: gs-atlas, "},
+        {render + "sf87-7", "unknown figure id 'sf87-7'; closest: sf87-2, sf87-3, sf87-4"},
+        {render + "lycopodium", "unknown figure id 'lycopodium'; closest: pl-lsys-lycopodium, "},
+        {render + "/nonexistent/my.toml", "figure file /nonexistent/my.toml does not exist"},
+        {render + "tc7-1 --size 10by20", "--size 10by20 is not allowed: use WIDTHxHEIGHT, each 2..16384"},
+        {render + "tc7-1 --size 1x5", "--size 1x5 is not allowed"},
+        {render + "tc7-1 --fps 0", "--fps 0 is not allowed: use 1..120 frames per second"},
+        {render + "tc7-9 --fps 5", "--fps: none of the figures named has an animation"},
+        {render + "tc7-1 --cmap jet", "--cmap jet is not allowed: use one of Reds, Blues, Greens, viridis, inferno, magma, plasma, cividis"},
+        {render + "tc7-9 --cmap viridis", "--cmap: tc7-9 (scene percolation_scaling) draws no field to colour; the field scenes are diffusion, "},
+        {render + "tc7-1 --format gif", "--format: gif not in {png,mp4,frames}"},
+        {render + "tc7-1 --format mp4", "--format mp4 is not allowed with --no-video or --frames: use one"},
+        // --set itself.
+        {render + "tc7-1 --set r", "--set r: expected key=value, e.g. --set r=0.2"},
+        {render + "tc7-1 --set =5", "--set =5: expected key=value"},
+        {render + "tc7-1 --set nosuch.key=1", "--set nosuch.key=1: unknown section 'nosuch'; allowed: params, style, figure, animation"},
+        {render + "tc7-1 --set bogus=1", "--set bogus=1: unknown key params.bogus; allowed: n, r, boundary"},
+        // [figure] and [animation], including windows outside the run.
+        {render + "tc7-1 --set figure.panels=[5,0]", "--set figure.panels=[5,0]: figure.panels = [ 5, 0 ] is not allowed: steps from 0 to 100000000, ascending"},
+        {render + "tc7-1 --set figure.panels=[-1]", "--set figure.panels=[-1]: figure.panels = [ -1 ] is not allowed: steps from 0 to 100000000, ascending"},
+        {render + "tc7-1 --set figure.size=[1,1]", "--set figure.size=[1,1]: figure.size = [ 1, 1 ] is not allowed: [width, height], each 2..16384"},
+        {render + "tc7-1 --set figure.size=3", "--set figure.size=3: figure.size = 3 is not allowed: expected a list of integers"},
+        {render + "tc7-1 --set animation.fps=0", "--set animation.fps=0: animation.fps = 0 is not allowed: an integer from 1 to 120"},
+        {render + "tc7-2 --set animation.fps=1000", "animation.fps = 1000 is not allowed"},
+        {render + "tc7-2 --set animation.steps=[500,100]", "--set animation.steps=[500,100]: animation.steps = [ 500, 100 ] is not allowed: [first, last] with 0 <= first <= last <= 100000000"},
+        {render + "tc7-2 --set animation.stride=0", "animation.stride = 0 is not allowed"},
+        {render + "tc7-6 --set figure.panels=[20000]", "--set figure.panels=[20000]: figure.panels = [20000] is not allowed: a step below 16384: each automaton at most 16384 rows (the renderer draws one field that large)"},
+        // Memory and disk.
+        {render + "tc7-1 --set n=8000 --max-memory 256M", "needs about 2.4 GiB of memory (grids of doubles 8000 x 8000 x 5: 2.4 GiB), more than --max-memory 256.0 MiB"},
+        {render + "tc7-1 --set figure.size=[16000,16000]", "needs about 10.5 GiB of memory (figure 16000 x 16000 RGBA: 10.5 GiB), more than --max-memory 4.0 GiB"},
+        {render + "pl-ifs-fern --set points=20000000 --max-memory 256M", "(3 x 20000000 points: 915.5 MiB)"},
+        {render + "pl-lsys-3d --set depth=40", "--set depth=40: depth = 40 is not allowed: a depth within the turtle's budget (it would draw more than 18,446,744,073,709,551,615 segments, more than the budget of 5,000,000)"},
+        {"render --frames --out " + out.string() + " tc7-2 --max-disk 10M", // 351 frames of 480 x 520 at 4 bytes, the MP4 at 0.15 and the 900 x 450 PNG: 348.3 MiB
+         "its outputs would take up to about 348.3 MiB (mostly the PNG sequence), more than --max-disk 10.0 MiB"},
+        // diffusion
+        {render + "tc7-1 --set r=0.5", "--set r=0.5: r = 0.5 is not allowed: a number from 0 to 0.25 (the explicit 5-point update's stability bound; beyond it the checkerboard grows)"},
+        {render + "tc7-1 --set r=nan", "--set r=nan: r = nan is not allowed: expected a finite number"},
+        {render + "tc7-1 --set n=-3", "--set n=-3: n = -3 is not allowed: an integer from 1 to 8192"},
+        {render + "tc7-1 --set n=2.5", "--set n=2.5: n = 2.5 is not allowed: expected an integer"},
+        {render + "tc7-1 --set boundary=torus", "--set boundary=torus: boundary = \"torus\" is not allowed: \"zero\" or \"wrap\""},
+        {render + "tc7-1 --set block_row=500", "--set block_row=500: block_row = 500 is not allowed: an integer from 0 to 6"},
+        {render + "tc7-1 --set block_value=inf", "--set block_value=inf: block_value = inf is not allowed: expected a finite number"},
+        {render + "tc7-1 --set style.colormap=jet", "--set style.colormap=jet: style.colormap = 'jet' is not allowed: one of Reds, Blues, Greens, viridis, inferno, magma, plasma, cividis"},
+        // gray_scott and its atlas
+        {render + "tc7-2 --set f=1.5", "--set f=1.5: f = 1.5 is not allowed: a number from 0 to 0.2"},
+        {render + "tc7-2 --set ra=2", "--set ra=2: ra = 2 is not allowed: a number from 0 to 1 (the 9-point diffusion is monotone up to 1, no new extremes, and blows up beyond 1.25)"},
+        {render + "tc7-3 --set n=0", "--set n=0: n = 0 is not allowed: an integer from 3 to 4096"},
+        {render + "tc7-4 --set island=[1,2,3]", "--set island=[1,2,3]: island = [ 1, 2, 3 ] is not allowed: expected a number"},
+        {render + "tc7-3 --set rb=\\\"fast\\\"", "--set rb=\"fast\": rb = 'fast' is not allowed: expected a number"},
+        {render + "gs-atlas --set tiles=[0,5]", "--set tiles=[0,5]: tiles = [ 0, 5 ] is not allowed: [columns, rows], each an integer from 1 to 64"},
+        {render + "gs-atlas --set steps=-1", "--set steps=-1: steps = -1 is not allowed: an integer from 0 to 10000000"},
+        // percolation, its sizes, scaling and phase
+        {render + "tc7-5 --set q=1.5", "--set q=1.5: q = 1.5 is not allowed: a number from 0 to 1"},
+        {render + "tc7-5 --set stop=\\\"never\\\"", "stop = 'never' is not allowed: \"bottom_or_fixed_point\" (the book's test_perc) or \"fixed_point\""},
+        {render + "tc7-8 --set sizes=[]", "--set sizes=[]: sizes = [] is not allowed: 1 to 16 grid sizes, one panel each"},
+        {render + "tc7-8 --set q=nan", "--set q=nan: q = nan is not allowed: expected a finite number"},
+        {render + "tc7-9 --set sizes=[10,-20]", "--set sizes=[10,-20]: sizes = [ 10, -20 ] is not allowed: [first, last] with 2 <= first <= last <= 4096"},
+        {render + "tc7-phase --set trials=0", "--set trials=0: trials = 0 is not allowed: an integer from 1 to 100000"},
+        {render + "tc7-phase --set qs=[0.5,1.5]", "--set qs=[0.5,1.5]: qs = [ 0.5, 1.5 ] is not allowed: [first, last, step] with 0 <= first <= last <= 1 and 0 < step <= 1, at most 10000 values"},
+        {render + "tc7-phase --set walk_step=-1", "--set walk_step=-1: walk_step = -1 is not allowed: a number from 1e-06 to 0.5"},
+        // cellular automata
+        {render + "tc7-6 --set rules=[256]", "--set rules=[256]: rules = 256 is not allowed: an integer from 0 to 255"},
+        {render + "tc7-6 --set width=200001", "--set width=200001: width = 200001 is not allowed: each automaton at most 16384 cells a side (it would be 32 x 200001): the renderer draws one field that large"},
+        {render + "tc7-7 --set rules=[-1]", "--set rules=[-1]: rules = -1 is not allowed: an integer from 0 to 255"},
+        {render + "tc7-ex1 --set fit_from=100000", "--set fit_from=100000: fit_from = 100000 is not allowed: an integer from 1 to 498"},
+        {render + "tc7-ex1 --set tolerance=-1", "--set tolerance=-1: tolerance = -1 is not allowed: a number from 0 to 0.5"},
+        // forest fire
+        {render + "tc7-ex2 --set p=2", "--set p=2: p = 2 is not allowed: a number from 0 to 1"},
+        {render + "tc7-ex2 --set initial_density=1.5", "--set initial_density=1.5: initial_density = 1.5 is not allowed: a number from 0 to 1"},
+        {render + "tc7-ex2 --set n=1", "--set n=1: n = 1 is not allowed: an integer from 3 to 8192"},
+        // snowflakes
+        {render + "sf87-3 --set rule=12345678", "rule = \"12345678\" is not allowed: a rule code is 7 binary digits d0..d6"},
+        {render + "sf87-3 --set rule=\\\"01x1000\\\"", "rule = \"01x1000\" is not allowed: a rule code is 7 binary digits d0..d6"},
+        {render + "sf87-4 --set steps=-3", "--set steps=-3: steps = -3 is not allowed: an integer from 0 to 100000"},
+        {render + "sf87-5 --set restrict_radius=-1", "--set restrict_radius=-1: restrict_radius = -1 is not allowed: an integer from 1 to 1000000000"},
+        {render + "sf87-6 --set priority_width=-2", "--set priority_width=-2: priority_width = -2 is not allowed: an integer from 0 to 1000000"},
+        {render + "sf87-dim --set fit_to=100000", "--set fit_to=100000: fit_to = 100000 is not allowed: a number from 0.05 to 1"},
+        {render + "sf87-2 --set row_cells=0", "--set row_cells=0: row_cells = 0 is not allowed: an odd number from 3 to 41"},
+        // plants
+        {render + "pl-phyllotaxis --set seeds=-10", "--set seeds=-10: seeds = -10 is not allowed: an integer from 1 to 100000"},
+        {render + "pl-phyllotaxis --set divergences=[400]", "--set divergences=[400]: divergences[0] = 400 is not allowed: a number from 1e-09 to 360"},
+        {render + "pl-ifs-fern --set discard=-5", "--set discard=-5: discard = -5 is not allowed: an integer from 0 to 100000000"},
+        {render + "pl-ifs-tree --set bounds=[1,2]", "--set bounds=[1,2]: bounds = [1, 2] is not allowed: [xmin, xmax, ymin, ymax] with xmin < xmax and ymin < ymax, each from -1e+300 to 1e+300"},
+        {render + "pl-lsys-lycopodium --set depth=-1", "--set depth=-1: depth = -1 is not allowed: an integer from 0 to 64"},
+        {render + "pl-lsys-apple --set angle=nan", "--set angle=nan: angle = nan is not allowed: expected a finite number"},
+        {render + "pl-lsys-gallery --set plus=\\\"up\\\"", "--set plus=\"up\": plus = 'up' is not allowed: \"left\" or \"right\""},
+        {render + "pl-lsys-3d --set width_decay=-1", "--set width_decay=-1: width_decay = -1 is not allowed: a finite number above 0"},
+        // Settings of the drawing, checked before the model runs like the model's own.
+        {render + "pl-lsys-3d --set style.sides=0", "--set style.sides=0: style.sides = 0 is not allowed: an integer from 3 to 256"},
+        {render + "tc7-phase --set p_c=1e308", "--set p_c=1e308: p_c = 1e+308 is not allowed: "},
+        {render + "pl-lsys-gallery --set 'plants=[{axiom=\"F\", angle=1e308}]'", "plants[0].angle = 1e+308 is not allowed: a number from -1e+300 to 1e+300"},
+        {render + "tc7-7 --set style.line_width=-1", "--set style.line_width=-1: style.line_width = -1 is not allowed: a number from 0.1 to 50"},
+        {render + "tc7-9 --set style.font_size=1000", "style.font_size = 1000 is not allowed: a number from 4 to 100"},
+        {render + "tc7-2 --set style.a_alpha=2", "style.a_alpha = 2 is not allowed: a number from 0 to 1"},
+        {render + "tc7-ex2 --set style.trees_colour=\\\"chartreuse-ish\\\"", "style.trees_colour = 'chartreuse-ish' is not allowed: #rrggbb or one of "},
+        // ballistic deposition
+        {render + "bd-500 --set width=0", "--set width=0: width = 0 is not allowed: an integer from 3 to 10000000"},
+        {render + "bd-500 --set particles=50000000 --set width=3", "--set particles=50000000: particles = 50000000 is not allowed: the deposit's view at most 16384 cells a side (it would be 40000016 x 3): the renderer draws one field that large"},
+        {render + "bd-roughness --set seeds=0", "--set seeds=0: seeds = 0 is not allowed: an integer from 1 to 1000"},
+        {render + "bd-roughness --set beta_range=[50,2]", "--set beta_range=[50,2]: beta_range = [ 50, 2 ] is not allowed: [t1, t2] with 0 < t1 < t2"},
+        // Description files: syntax, types and keys name the file and line.
+        {render + description("syntax.toml", head + "[params\nn = 3\n"), "syntax.toml:3: "},
+        {render + description("type.toml", head + "[params]\nn = 3\nr = \"fast\"\n"), "type.toml:5: r = 'fast' is not allowed: expected a number"},
+        {render + description("key.toml", head + "\n[params]\nrate = 0.1\n"), "key.toml:5: unknown key params.rate; allowed: n, r, boundary"},
+        {render + description("range.toml", head + "[params]\nr = 0.9\n"), "range.toml:4: r = 0.9 is not allowed: a number from 0 to 0.25 (the explicit 5-point update's stability bound; beyond it the checkerboard grows)"},
+        {render + description("size.toml", head + "[figure]\npanels = [0]\nsize = \"big\"\n"), "size.toml:5: figure.size = 'big' is not allowed: expected a list of integers"},
+        {render + description("top.toml", head + "colour = \"red\"\n"), "top.toml:3: unknown key description.colour; allowed: id, title"},
+        {render + description("nomodel.toml", "id = \"x\"\n"), "nomodel.toml: scene is missing: give a scene name, e.g. scene = \"gray_scott\""},
+        {render + description("model.toml", "id = \"x\"\nmodel = \"lava-lamp\"\n"), "model.toml:2: scene = \"lava-lamp\" is not allowed: one of diffusion, "},
+        {render + description("seed.toml", head + "seed = -4\n"), "seed.toml:3: seed = -4 is not allowed: an integer from 0 to 2^63-1"},
+    };
+    STATIC_REQUIRE(sizeof cases / sizeof cases[0] >= 60);
+    for (const Case& c : cases) {
+        INFO("figgen " << c.args);
+        const Run run = figgen(c.args);
+        CHECK(run.status == 2);
+        CHECK(run.lines() == 1);
+        CHECK_THAT(run.output, Catch::StartsWith("figgen: error: ") && Catch::Contains(c.expected));
+    }
+    CHECK(folder_contents(out) == before);  // nothing written or changed, not even a temporary
+}
+
+TEST_CASE("a bad setting found in phase 1 creates nothing, not even the output folder", "[cli]") {
+    const fs::path parent = fresh_dir("phase1");
+    const fs::path out = parent / "never-made";
+    for (const std::string set : {"style.sides=0 pl-lsys-3d", "p_c=1e308 tc7-phase"}) {
+        INFO(set);
+        const Run run = figgen("render --out " + out.string() + " --set " + set);
+        CHECK(run.status == 2);
+        CHECK(run.lines() == 1);
+        CHECK_FALSE(fs::exists(out));
+    }
+    CHECK(fs::is_empty(parent));
+}
+
+TEST_CASE("a malformed description names the file and line", "[cli]") {
+    const fs::path dir = fresh_dir("malformed");
+    std::ofstream(dir / "broken.toml") << "id = \"broken\"\nmodel = \"diffusion\"\n[params\nn = 3\n";
+    const Run run = figgen("render --out " + dir.string() + " " + (dir / "broken.toml").string());
+    CHECK(run.status == 2);
+    CHECK_THAT(run.output, Catch::Contains("broken.toml:3"));
+
+    std::ofstream(dir / "unknown-model.toml") << "id = \"x\"\nmodel = \"lava-lamp\"\n[figure]\npanels = [0]\n";
+    const Run unknown = figgen("render --out " + dir.string() + " " + (dir / "unknown-model.toml").string());
+    CHECK(unknown.status == 2);
+    CHECK_THAT(unknown.output, Catch::Contains("unknown-model.toml:2: scene = \"lava-lamp\" is not allowed: one of diffusion, "));
+}
+
+TEST_CASE("render writes the PNG with its text chunks and the metadata JSON, and nothing else", "[cli]") {
+    const fs::path out = fresh_dir("render");
+    const Run run = figgen("render tc7-1 --no-video --seed 9 --set r=0.2 --out " + out.string());
+    REQUIRE(run.status == 0);
+    CHECK(run.output.empty());  // stderr is not a terminal: no progress bar
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(out)) files.push_back(entry.path().filename().string());
+    std::sort(files.begin(), files.end());
+    CHECK(files == std::vector<std::string>{"tc7-1.json", "tc7-1.png"});
+
+    const auto png = render::read_png(out / "tc7-1.png");
+    CHECK(png.image.width == 900);
+    CHECK(png.image.height == 450);
+    auto chunk = [&](const std::string& key) {
+        for (const auto& [k, v] : png.text)
+            if (k == key) return v;
+        return std::string("(missing)");
+    };
+    CHECK(chunk("figgen:seed") == "9");
+    CHECK_THAT(chunk("figgen:params"), Catch::Contains("\"r\":0.2"));
+
+    std::ifstream in(out / "tc7-1.json");
+    const auto meta = nlohmann::json::parse(in);
+    CHECK(meta["id"] == "tc7-1");
+    CHECK(meta["seed"] == 9);
+    CHECK(meta["params"]["r"] == 0.2);
+    CHECK(meta["params"]["boundary"] == "zero");
+    REQUIRE(meta["panels"].size() == 3);
+    CHECK(meta["panels"][0]["step"] == 0);
+    CHECK(meta["panels"][2]["step"] == 15);
+    // Step 0 is the initial block: nine cells of 1.
+    CHECK(meta["panels"][0]["statistics"]["sum"] == 9.0);
+    CHECK(meta["panels"][0]["statistics"]["max"] == 1.0);
+    CHECK(meta["panels"][0]["state_sha256"].get<std::string>().size() == 64);
+    CHECK(meta["panels"][1]["state_sha256"] != meta["panels"][2]["state_sha256"]);
+    CHECK_FALSE(meta.contains("animation"));
+}
+
+TEST_CASE("render with --frames writes the animation as a numbered PNG sequence", "[cli]") {
+    const fs::path out = fresh_dir("frames");
+    const Run run = figgen("render tc7-1 --no-video --frames --scale 0.25 --set animation.steps=[0,9] --out " +
+                           out.string());
+    REQUIRE(run.status == 0);
+    int count = 0;
+    for (const auto& entry : fs::directory_iterator(out / "tc7-1-frames")) {
+        CHECK(entry.path().extension() == ".png");
+        ++count;
+    }
+    CHECK(count == 10);
+    const auto last = render::read_png(out / "tc7-1-frames" / "00009.png");
+    CHECK(last.image.width == 120);  // 480 * 0.25
+    CHECK(last.image.height == 130);
+    std::ifstream in(out / "tc7-1.json");
+    const auto meta = nlohmann::json::parse(in);
+    CHECK(meta["animation"]["frames"] == 10);
+    CHECK(meta["animation"]["png_sequence"] == "tc7-1-frames");
+}
+
+TEST_CASE("render writes an MP4 that decodes to every animation step", "[cli]") {
+    const fs::path out = fresh_dir("video");
+    const Run run = figgen("render tc7-1 --scale 0.5 --out " + out.string());
+    REQUIRE(run.status == 0);
+    const auto info = render::probe_video(out / "tc7-1.mp4");
+    CHECK(info.frames == 61);  // steps 0..60
+    CHECK(info.width == 240);
+    CHECK(info.height == 260);
+    CHECK(info.pixel_format == "yuv420p");
+    CHECK(info.codec == "h264");
+    CHECK(info.duration_seconds == Approx(6.1).margin(1e-6));  // 61 frames at 10 fps
+    // The first frame is step 0: the block's centre is Reds' darkest colour
+    // at alpha 0.8 over white, (133, 51, 61), give or take the YUV round trip.
+    const render::Image first = render::decode_frame(out / "tc7-1.mp4", 0);
+    const std::uint8_t* centre = first.pixel(first.width / 2, first.height / 2 + 10);
+    CHECK(int(centre[0]) == Approx(133).margin(8));
+    CHECK(int(centre[1]) == Approx(51).margin(8));
+    CHECK(int(centre[2]) == Approx(61).margin(8));
+}
+
+TEST_CASE("a run that goes unstable stops at the step it went bad and writes nothing", "[cli]") {
+    const fs::path out = fresh_dir("unstable");
+    // Strong feed, fast diffusion of both, a saturated start: A leaves [0, 1] at once.
+    const Run run = figgen("render tc7-2 --out " + out.string() +
+                           " --set n=20 --set ra=1 --set rb=1 --set f=0.2 --set k=0 --set noise=1 --set island=1");
+    CHECK(run.status == 1);
+    CHECK_THAT(run.output, Catch::StartsWith("figgen: error: gray_scott (A) went numerically unstable at step 2") &&
+                               Catch::Contains("no image written"));
+    CHECK(fs::is_empty(out));  // no PNG, no JSON, no MP4, no temporaries
+}
+
+TEST_CASE("plants whose numbers overflow stop with an error naming the point or segment and write nothing", "[cli]") {
+    const fs::path out = fresh_dir("unstable-plants");
+    struct Case {
+        std::string args;
+        std::string expected;
+    };
+    const Case cases[] = {
+        // Maps that double and triple: 4096 points reach 2^4096, far beyond 1e100.
+        {"pl-ifs-tree --set variants=[{maps=[[2,0,0,2,0,0,0.5],[3,0,0,3,1,0,0.5]]}]",
+         "the chaos game went numerically unstable at point 4096 (a coordinate beyond 1e100: the maps do not contract)"},
+        // A first step of 1e300 from the origin, a second from there: 2e300.
+        {"pl-lsys-apple --set length=1e300", "the turtle went numerically unstable at segment 2 of 340"},
+        {"pl-lsys-3d --set length=1e300", "the turtle went numerically unstable at segment 2 of 3891"},
+    };
+    for (const Case& c : cases) {
+        INFO(c.args);
+        const Run run = figgen("render --out " + out.string() + " " + c.args);
+        CHECK(run.status == 1);
+        CHECK(run.lines() == 1);
+        CHECK_THAT(run.output, Catch::StartsWith("figgen: error: ") && Catch::Contains(c.expected) &&
+                                   Catch::EndsWith("no image written\n"));
+    }
+    CHECK(fs::is_empty(out));
+}
+
+namespace {
+
+std::vector<std::string> files_in(const fs::path& dir) {
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(dir)) files.push_back(entry.path().filename().string());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+nlohmann::json metadata(const fs::path& file) {
+    std::ifstream in(file);
+    return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+TEST_CASE("render --size sets the figure's pixels before --scale", "[cli][options]") {
+    const fs::path out = fresh_dir("size");
+    REQUIRE(figgen("render tc7-1 --format png --size 300x200 --out " + out.string()).status == 0);
+    const auto png = render::read_png(out / "tc7-1.png").image;
+    CHECK(png.width == 300);
+    CHECK(png.height == 200);
+    REQUIRE(figgen("render tc7-1 --format png --size 300x200 --scale 2 --out " + out.string()).status == 0);
+    CHECK(render::read_png(out / "tc7-1.png").image.width == 600);
+    CHECK(metadata(out / "tc7-1.json")["image"]["size"] == nlohmann::json({600, 400}));
+}
+
+TEST_CASE("render --fps sets the animation's frame rate in the MP4 and its metadata", "[cli][options]") {
+    const fs::path out = fresh_dir("fps");
+    REQUIRE(figgen("render tc7-1 --fps 5 --scale 0.5 --out " + out.string()).status == 0);
+    const auto meta = metadata(out / "tc7-1.json");
+    CHECK(meta["animation"]["fps"] == 5);
+    const render::VideoInfo video = render::probe_video(out / "tc7-1.mp4");
+    CHECK(video.fps == Approx(5.0));
+    CHECK(video.frames == meta["animation"]["frames"].get<int>());
+    CHECK(video.duration_seconds == Approx(video.frames / 5.0).margin(0.21));
+}
+
+TEST_CASE("render --cmap recolours a field figure with matplotlib's colormap", "[cli][options]") {
+    const fs::path out = fresh_dir("cmap");
+    // tc7-1 at step 0 is a block of 1 on 0, drawn with vmin 0, vmax 1 at
+    // alpha 0.8 over white: the background is 0.8 * cmap(0) + 0.2 * white.
+    for (const auto& [name, first] : std::vector<std::pair<std::string, std::array<double, 3>>>{
+             {"inferno", {0.001462, 0.000466, 0.013866}},  // matplotlib's _inferno_data[0]
+             {"cividis", {0.0, 0.135112, 0.304751}},       // _cividis_data[0]
+         }) {
+        INFO(name);
+        REQUIRE(figgen("render tc7-1 --format png --cmap " + name + " --out " + out.string()).status == 0);
+        const auto meta = metadata(out / "tc7-1.json");
+        CHECK(meta["style"]["colormap"] == name);
+        const auto png = render::read_png(out / "tc7-1.png").image;
+        // A background cell of the first panel: its frame starts a little way
+        // in; take a pixel well inside the first panel, away from the block.
+        const auto* p = png.pixel(png.width / 12, png.height / 2);
+        for (int c = 0; c < 3; ++c) CHECK(std::abs(p[c] - 255.0 * (0.8 * first[c] + 0.2)) <= 2.0);
+    }
+    // Gray-Scott's two fields both take it; a list of colours gives way to it.
+    REQUIRE(figgen("render tc7-2 tc7-ex2 --format png --scale 0.3 --cmap magma --out " + out.string()).status == 0);
+    CHECK(metadata(out / "tc7-2.json")["style"]["a_colormap"] == "magma");
+    CHECK(metadata(out / "tc7-2.json")["style"]["b_colormap"] == "magma");
+    CHECK(metadata(out / "tc7-ex2.json")["style"]["colormap"] == "magma");
+    CHECK_FALSE(metadata(out / "tc7-ex2.json")["style"].contains("colours"));
+}
+
+TEST_CASE("render --format png, mp4 or frames chooses what is written besides the PNG", "[cli][options]") {
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+        {"png", {"tc7-1.json", "tc7-1.png"}},
+        {"mp4", {"tc7-1.json", "tc7-1.mp4", "tc7-1.png"}},
+        {"frames", {"tc7-1-frames", "tc7-1.json", "tc7-1.png"}},
+    };
+    for (const auto& [format, expected] : cases) {
+        INFO(format);
+        const fs::path out = fresh_dir("format-" + format);
+        REQUIRE(figgen("render tc7-1 --scale 0.3 --format " + format + " --out " + out.string()).status == 0);
+        CHECK(files_in(out) == expected);
+    }
+}
+
+TEST_CASE("figgen --version prints the version", "[cli][options]") {
+    const Run run = figgen("--version");
+    CHECK(run.status == 0);
+    CHECK_THAT(run.output, Catch::Matches("[0-9]+\\.[0-9]+\\.[0-9]+\\s*"));
+}
+
+TEST_CASE("cmake --install puts figgen and the descriptions in a prefix, and the installed figgen reads them", "[cli][install]") {
+    const fs::path prefix = fresh_dir("install");
+    const Run install = testkit::run_command(std::string(FIGGEN_CMAKE) + " --install " + FIGGEN_BUILD_DIR +
+                                             " --prefix " + prefix.string());
+    INFO(install.output);
+    REQUIRE(install.status == 0);
+    const fs::path installed = prefix / "bin" / "figgen";
+    REQUIRE(fs::exists(installed));
+    std::size_t descriptions = 0;
+    for (const auto& entry : fs::directory_iterator(prefix / "share" / "figgen" / "figures"))
+        descriptions += entry.path().extension() == ".toml";
+    CHECK(descriptions == 28);
+    // It reads the installed folder, not the source tree: take one away.
+    fs::remove(prefix / "share" / "figgen" / "figures" / "tc7-9.toml");
+    const Run list = testkit::run_command("env -u FIGGEN_FIGURES_DIR " + installed.string() + " list");
+    CHECK(list.status == 0);
+    CHECK(list.lines() == 27);
+    CHECK_THAT(list.output, !Catch::Contains("tc7-9 "));
+    const Run render = testkit::run_command("env -u FIGGEN_FIGURES_DIR " + installed.string() +
+                                            " render tc7-1 --format png --scale 0.3 --out " + (prefix / "out").string());
+    CHECK(render.status == 0);
+    CHECK(fs::exists(prefix / "out" / "tc7-1.png"));
+}

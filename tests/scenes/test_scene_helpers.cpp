@@ -1,0 +1,82 @@
+// The scenes' shared helpers and registry.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "description/catalog.hpp"
+#include "description/description.hpp"
+#include "scenes/field_stats.hpp"
+#include "scenes/scene.hpp"
+
+TEST_CASE("every catalog description names a known scene", "[scenes]") {
+    const auto& known = scenes::all_scenes();
+    for (const auto& file : description::catalog_files()) {
+        INFO(file.string());
+        const description::Description d = description::load_description(file);
+        CHECK(std::any_of(known.begin(), known.end(), [&](const auto& s) { return s.name == d.scene; }));
+    }
+}
+
+TEST_CASE("a field with a non-finite value stops the figure with an error", "[scenes]") {
+    sim::Grid<double> field(3, 3, 0.5);
+    CHECK_NOTHROW(scenes::require_finite(field, "diffusion", 4));
+    field(1, 2) = std::nan("");
+    CHECK_THROWS_WITH(scenes::require_finite(field, "gray_scott", 4),
+                      "gray_scott went numerically unstable at step 4 (non-finite values); no image written");
+    field(1, 2) = INFINITY;
+    CHECK_THROWS(scenes::require_finite(field, "diffusion", 4));
+}
+
+TEST_CASE("field statistics are exact for a known field", "[scenes]") {
+    sim::Grid<double> field(2, 2);
+    field(0, 0) = 1;
+    field(0, 1) = 2;
+    field(1, 0) = 3;
+    field(1, 1) = -2;
+    const auto stats = scenes::field_statistics(field);
+    CHECK(stats["min"] == -2.0);
+    CHECK(stats["max"] == 3.0);
+    CHECK(stats["sum"] == 4.0);
+    CHECK(stats["mean"] == 1.0);
+    // SHA-256 of the 32 bytes of four little-endian doubles, computed independently:
+    // python3 -c "import hashlib,struct; print(hashlib.sha256(struct.pack('<4d',1,2,3,-2)).hexdigest())"
+    CHECK(scenes::state_hash(field) == "2bac1189f87925bde11530a00007af4b28eea3115bd5cc1a6c0a6e4969380744");
+}
+
+TEST_CASE("a bad drawing setting or reference value is refused in phase 1, naming its key", "[scenes]") {
+    // read_scene is phase 1: a SettingError from it means no model step was taken.
+    struct Case {
+        const char* id;
+        const char* set;
+        const char* key;
+        const char* message;
+    };
+    const Case cases[] = {
+        {"pl-lsys-3d", "style.sides=0", "style.sides", "style.sides = 0 is not allowed: an integer from 3 to 256"},
+        {"tc7-phase", "p_c=1e308", "params.p_c", "p_c = 1e+308 is not allowed: "},
+        {"pl-lsys-gallery", "plants=[{axiom=\"F\", angle=1e308}]", "params.plants[0].angle",
+         "plants[0].angle = 1e+308 is not allowed: "},
+        {"tc7-1", "style.colormap=\"jet\"", "style.colormap", "style.colormap = 'jet' is not allowed: one of "},
+    };
+    for (const Case& c : cases) {
+        INFO(c.id << " --set " << c.set);
+        const description::Description d =
+            description::load_description(description::resolve_figure(c.id), {c.set});
+        try {
+            scenes::read_scene(d, scenes::SceneOptions{});
+            FAIL("phase 1 accepted it");
+        } catch (const description::SettingError& e) {
+            CHECK(e.key() == c.key);
+            CHECK_THAT(e.what(), Catch::StartsWith(c.message));
+        }
+    }
+}
+
+TEST_CASE("every catalog figure passes phase 1 as described", "[scenes]") {
+    for (const auto& file : description::catalog_files()) {
+        INFO(file.string());
+        const description::Description d = description::load_description(file);
+        CHECK_NOTHROW(scenes::read_scene(d, scenes::SceneOptions{}));
+    }
+}
