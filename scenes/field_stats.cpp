@@ -25,18 +25,5 @@ std::string state_hash(const std::vector<double>& values) {
     return render::sha256_hex(values.data(), values.size() * sizeof(double));
 }
 
-void require_finite(const sim::Grid<double>& field, const std::string& model, int step, double bound) {
-    for (double v : field.cells()) {
-        if (!std::isfinite(v))
-            throw std::runtime_error(model + " went numerically unstable at step " + std::to_string(step) +
-                                     " (non-finite values); no image written");
-        if (std::abs(v) > bound) {
-            char detail[96];
-            std::snprintf(detail, sizeof detail, " (a value of %g, beyond %g)", v, bound);
-            throw std::runtime_error(model + " went numerically unstable at step " + std::to_string(step) + detail +
-                                     "; no image written");
-        }
-    }
-}
 
 }  // namespace scenes

@@ -1,12 +1,12 @@
 #pragma once
-// Per-panel numbers for a real-valued field: what the metadata records and
-// what guards against writing an image of a model that blew up.
+// Per-panel numbers for a real-valued field: what the metadata records.
 
 #include <nlohmann/json.hpp>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "sim/check.hpp"
 #include "sim/grid.hpp"
 
 namespace scenes {
@@ -22,10 +22,7 @@ std::string state_hash(const sim::Grid<double>& field);
 // uses (counts, levels) go in as doubles, exactly.
 std::string state_hash(const std::vector<double>& values);
 
-// Throws std::runtime_error naming the model and step if any cell is NaN or
-// infinite, or farther than `bound` from 0: a model that went unstable never
-// reaches an image.
-void require_finite(const sim::Grid<double>& field, const std::string& model, int step,
-                    double bound = std::numeric_limits<double>::infinity());
+// The health check every stepping scene makes (sim/check.hpp).
+using sim::require_finite;
 
 }  // namespace scenes

@@ -1,6 +1,7 @@
 #include "sim/check.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
@@ -43,6 +44,20 @@ void require_integer(const char* name, long long value, long long low, long long
     if (value >= low && value <= high) return;
     throw ParameterError(name, std::to_string(value),
                          "an integer from " + std::to_string(low) + " to " + std::to_string(high));
+}
+
+void require_finite(const Grid<double>& field, const std::string& model, int step, double bound) {
+    for (double v : field.cells()) {
+        if (!std::isfinite(v))
+            throw std::runtime_error(model + " went numerically unstable at step " + std::to_string(step) +
+                                     " (non-finite values); no image written");
+        if (std::abs(v) > bound) {
+            char detail[96];
+            std::snprintf(detail, sizeof detail, " (a value of %g, beyond %g)", v, bound);
+            throw std::runtime_error(model + " went numerically unstable at step " + std::to_string(step) + detail +
+                                     "; no image written");
+        }
+    }
 }
 
 void require_square_field(const char* name, const Grid<double>& g, int n) {

@@ -2,6 +2,7 @@
 // Parameter checks shared by the models. Each throws ParameterError naming
 // the parameter, the bad value and what is allowed.
 
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,6 +27,12 @@ void require_number(const char* name, double value, double low, double high, con
 // An explicit starting field must be n x n and finite; `name` is e.g. "A".
 void require_square_field(const char* name, const Grid<double>& field, int n);
 void require_integer(const char* name, long long value, long long low, long long high);
+
+// A model's health: throws std::runtime_error naming `model` and `step` if
+// any cell is NaN or infinite, or farther than `bound` from 0. A run that
+// went unstable never reaches an image.
+void require_finite(const Grid<double>& field, const std::string& model, int step,
+                    double bound = std::numeric_limits<double>::infinity());
 
 // While a RangeLog lives on a thread, require_number and require_integer
 // note each name with its allowed range there: `figgen describe` lists the

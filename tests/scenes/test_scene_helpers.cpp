@@ -18,15 +18,6 @@ TEST_CASE("every catalog description names a known scene", "[scenes]") {
     }
 }
 
-TEST_CASE("a field with a non-finite value stops the figure with an error", "[scenes]") {
-    sim::Grid<double> field(3, 3, 0.5);
-    CHECK_NOTHROW(scenes::require_finite(field, "diffusion", 4));
-    field(1, 2) = std::nan("");
-    CHECK_THROWS_WITH(scenes::require_finite(field, "gray_scott", 4),
-                      "gray_scott went numerically unstable at step 4 (non-finite values); no image written");
-    field(1, 2) = INFINITY;
-    CHECK_THROWS(scenes::require_finite(field, "diffusion", 4));
-}
 
 TEST_CASE("field statistics are exact for a known field", "[scenes]") {
     sim::Grid<double> field(2, 2);
