@@ -7,7 +7,7 @@
 #include "scenes/model_check.hpp"
 #include "scenes/percolation_common.hpp"
 #include "scenes/scene.hpp"
-#include "render/canvas.hpp"
+#include "scenes/step_runner.hpp"
 #include "sim/random.hpp"
 
 namespace scenes {
@@ -64,33 +64,21 @@ public:
         return needs;
     }
 
+    // One run per size, each to its stop, through one step runner: the film
+    // follows the last (largest) run as its wetting front spreads.
     void render(Output& out) const override {
-        const bool animate = d_.animation && options_.film;
-        const int fw = animate ? scaled_even(d_.animation->width, options_.scale) : 0;
-        const int fh = animate ? scaled_even(d_.animation->height, options_.scale) : 0;
-        std::unique_ptr<Film> film = animate ? out.film(fw, fh) : nullptr;
-        std::unique_ptr<render::Canvas> film_canvas;
-        if (film) film_canvas = std::make_unique<render::Canvas>(fw, fh);
-        Progress& progress = out.progress();
-        progress.start(d_.id, static_cast<long long>(runs_.size()));
-
+        StepRunner run(d_, options_, out);
         sim::Random rng(d_.seed);  // the runs draw from one stream, in order
         std::vector<FieldPanel> panels;
         nlohmann::json panel_meta = nlohmann::json::array();
         for (std::size_t i = 0; i < runs_.size(); ++i) {
             sim::Percolation model(runs_[i], rng);
-            const bool filmed = film && i + 1 == runs_.size();
-            run_to_stop(model, runs_[i].n, filmed ? film.get() : nullptr, film_canvas.get());
+            const bool filmed = i + 1 == runs_.size();
+            run.run_to_stop(hooks(model, runs_[i].n, filmed, run));
             panels.push_back({titled(d_.panel_title, runs_[i].n, model), {field_layer(model.cells(), spec_)}});
             panel_meta.push_back(panel_metadata(model, stop_, true));
-            progress.advance();
         }
-        nlohmann::json meta = {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}};
-        if (film) meta["animation"] = film->finish();
-        out.figure(draw_field_panels(panels, scaled_even(d_.width, options_.scale),
-                                     scaled_even(d_.height, options_.scale), options_.scale),
-                   meta);
-        progress.finish();
+        run.write_field_figure(panels, {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
     }
 
 private:
@@ -99,19 +87,19 @@ private:
         return expand(pattern, {{"n", std::to_string(n)}, {"step", std::to_string(model.steps())}});
     }
 
-    // Steps the model to its stop. With a film: a frame at step 0 if the
-    // animation shows it, at every step it shows, and the final state if it
-    // does not show that step, so the film always ends on the run's stop.
-    void run_to_stop(sim::Percolation& model, int n, Film* film, render::Canvas* canvas) const {
-        auto frame = [&] {
-            const std::string title = titled(d_.animation->title, n, model);
-            film->add(draw_field_panels(*canvas, {{title, {field_layer(model.cells(), spec_)}}}, options_.scale),
-                      model.steps());
-        };
-        if (film && d_.animation->shows(0)) frame();
-        while (step_until_stop(model, stop_))
-            if (film && d_.animation->shows(model.steps())) frame();
-        if (film && !d_.animation->shows(model.steps())) frame();  // the final state ends the film
+    // The book's test_perc: the run stops when the bottom row is wet (under
+    // that rule) or when a step changes nothing.
+    StepHooks hooks(sim::Percolation& model, int n, bool filmed, StepRunner& run) const {
+        StepHooks h;
+        h.stopped = [&model, this] { return stop_ == StopRule::bottom_or_fixed_point && model.bottom_row_wet(); };
+        h.advance = [&model] { return model.step() > 0; };
+        if (filmed)
+            h.frame = [&model, &run, n, this](int) {
+                return draw_field_panels(run.frame_canvas(),
+                                         {{titled(d_.animation->title, n, model), {field_layer(model.cells(), spec_)}}},
+                                         options_.scale);
+            };
+        return h;
     }
 
     const Description& d_;

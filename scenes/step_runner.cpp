@@ -1,6 +1,7 @@
 #include "scenes/step_runner.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace scenes {
 
@@ -21,24 +22,39 @@ bool StepRunner::is_panel(int step) const {
 }
 
 int StepRunner::run(const StepHooks& hooks) {
+    return run_until(hooks, last_);
+}
+
+int StepRunner::run_to_stop(const StepHooks& hooks) {
+    return run_until(hooks, std::numeric_limits<int>::max());
+}
+
+int StepRunner::run_until(const StepHooks& hooks, int last) {
     for (int step = 0;; ++step) {
-        const bool is_panel = this->is_panel(step), is_frame = wants_frame(step);
+        const bool is_panel = this->is_panel(step), is_frame = hooks.frame && wants_frame(step);
         // Every step, not only those drawn: a run that goes bad stops at the
         // step it went bad, before anything is written.
         if (hooks.check) hooks.check(step);
         if (is_panel && hooks.panel) hooks.panel(step);
         if (is_frame) frame(hooks.frame(step), step);
-        if (step == last_) return step;
+        if (step == last) return step;
+        if (hooks.stopped && hooks.stopped()) {
+            if (!is_frame) final_frame(hooks, step);
+            return step;
+        }
         const bool going = hooks.advance();
         stepped();
         if (!going) {
-            // The state no longer changes: show it as the final frame if the
-            // animation would have gone on, then stop.
-            if (film_ && step + 1 <= description_.animation->last && !wants_frame(step + 1))
-                frame(hooks.frame(step + 1), step + 1);
+            if (!wants_frame(step + 1)) final_frame(hooks, step + 1);
             return step + 1;
         }
     }
+}
+
+// The state no longer changes: it ends the film as its final frame if the
+// animation would have gone on.
+void StepRunner::final_frame(const StepHooks& hooks, int step) {
+    if (film_ && hooks.frame && step <= description_.animation->last) frame(hooks.frame(step), step);
 }
 
 void StepRunner::frame(const render::Image& image, int step) {

@@ -19,8 +19,9 @@ namespace scenes {
 struct StepHooks {
     std::function<void(int step)> check;           // at every step: throws if the model went unstable
     std::function<void(int step)> panel;           // keep what a panel at this step shows
-    std::function<render::Image(int step)> frame;  // draw the animation frame of this step
+    std::function<render::Image(int step)> frame;  // draw the animation frame of this step (none: not filmed)
     std::function<bool()> advance;                 // one model step; false when the model has stopped (a fixed point)
+    std::function<bool()> stopped = {};            // optional: the model has reached its stop and takes no more steps
 };
 
 class StepRunner {
@@ -32,9 +33,13 @@ public:
     // (with a depth buffer when `depth`, for 3-D scenes).
     render::Canvas& frame_canvas(bool depth = false);
 
-    // Runs from step 0 to last_step() or until advance() says the model
-    // stopped; returns the last step reached.
+    // Runs from step 0 to last_step() or until the model stops (advance()
+    // or stopped() says so); returns the last step reached.
     int run(const StepHooks& hooks);
+    // The same to the model's own stop, whatever last_step() is: for models
+    // whose panels show where they stop (percolation). Call it once per model
+    // of a figure; the film takes the frames of the runs given a frame hook.
+    int run_to_stop(const StepHooks& hooks);
 
     // Completes the animation, adds its metadata to `meta`, writes the
     // figure's PNG and JSON and completes the progress bar.
@@ -43,6 +48,8 @@ public:
     void write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta);
 
 private:
+    int run_until(const StepHooks& hooks, int last);
+    void final_frame(const StepHooks& hooks, int step);
     bool is_panel(int step) const;
     bool wants_frame(int step) const { return film_ && description_.animation->shows(step); }
     void frame(const render::Image& image, int step);  // hands a drawn frame to the sinks
