@@ -77,15 +77,15 @@ const toml::node* Settings::find(const std::string& key) const {
     return table_.get(key);
 }
 
-void Settings::wrong_type(const std::string& key, const char* expected) const {
+void Settings::wrong_type(const std::string& key, const char* expected) {
     refuse(key, std::string("expected ") + expected);
 }
 
-void Settings::refuse(const std::string& key, const std::string& value, const std::string& allowed) const {
+void Settings::refuse(const std::string& key, const std::string& value, const std::string& allowed) {
     throw SettingError(section_ + "." + key, value, allowed);
 }
 
-void Settings::refuse(const std::string& key, const std::string& allowed) const {
+void Settings::refuse(const std::string& key, const std::string& allowed) {
     std::string value;
     if (const toml::node* node = table_.get(key)) {
         if (const auto* number = node->as_floating_point()) {

@@ -99,14 +99,16 @@ public:
     const std::vector<Key>& allowed() const { return allowed_; }
     const nlohmann::json& used() const { return used_; }  // every key read, with its effective value
 
-    // Throws the SettingError of this section's `key`: `value` as shown, and what is allowed.
-    [[noreturn]] void refuse(const std::string& key, const std::string& value, const std::string& allowed) const;
+    // Throws the SettingError of this section's `key`: `value` as shown, and
+    // what is allowed. Not const: a scene refuses a setting while it reads
+    // them (phase 1), never from its const render().
+    [[noreturn]] void refuse(const std::string& key, const std::string& value, const std::string& allowed);
     // The same with the value as read (numbers short, strings quoted).
-    [[noreturn]] void refuse(const std::string& key, const std::string& allowed) const;
+    [[noreturn]] void refuse(const std::string& key, const std::string& allowed);
 
 private:
     const toml::node* find(const std::string& key) const;
-    [[noreturn]] void wrong_type(const std::string& key, const char* expected) const;
+    [[noreturn]] void wrong_type(const std::string& key, const char* expected);
     void note_allowed(const std::string& key, const std::string& allowed);
 
     std::string section_;

@@ -57,7 +57,7 @@ std::vector<sim::Cell1DParams> read_automata(Settings& s, int rows) {
 // Each automaton is drawn as one field of rows x columns cells: the renderer
 // holds it as one texture. Too many rows is the panel step's fault, too many
 // columns the width's (absent: 2 * rows + 1).
-void require_automata_drawable(const Settings& params, const Description& d, double rows, double cols) {
+void require_automata_drawable(Settings& params, const Description& d, double rows, double cols) {
     const int most = render::GlContext::get().max_texture_size();
     if (rows > most)
         throw SettingError("figure.panels", steps_text(d.panels),

@@ -61,7 +61,7 @@ std::string one_line(const toml::node& node) {
 }
 
 // [[a, b, c, d, e, f, p], ...] from a variant's table; a bad map is refused by its index ("maps[1]").
-sim::Ifs read_maps(const Settings& variant, const toml::table& table) {
+sim::Ifs read_maps(Settings& variant, const toml::table& table) {
     const toml::array* maps = table["maps"].as_array();
     if (!maps)
         variant.refuse("maps", variant.has("maps") ? one_line(*table.get("maps")) : "(missing)",

@@ -4,7 +4,7 @@
 
 namespace scenes {
 
-void check_model(const Settings& section, const std::function<void()>& check, const KeyNames& names) {
+void check_model(Settings& section, const std::function<void()>& check, const KeyNames& names) {
     try {
         check();
     } catch (const sim::ParameterError& e) {

@@ -17,6 +17,6 @@ using KeyNames = std::vector<std::pair<std::string, std::string>>;
 
 // Runs `check`; a sim::ParameterError it throws becomes the SettingError of
 // `section`'s key named in `names` (else the key of the model's own name).
-void check_model(const Settings& section, const std::function<void()>& check, const KeyNames& names = {});
+void check_model(Settings& section, const std::function<void()>& check, const KeyNames& names = {});
 
 }  // namespace scenes

@@ -115,7 +115,7 @@ private:
     double run_length(int L) const { return factor_ * std::pow(double(L), 1.5); }
 
     // Every run must be one sim::roughness_curve accepts: 1 to 1e9 monolayers.
-    void check_run_lengths() const {
+    void check_run_lengths() {
         for (int L : widths_)
             if (const double t = run_length(L); !(t >= 1 && t <= longest_run))
                 params_.refuse("saturation_factor", "a factor giving runs of 1 to " + description::shown(longest_run) +
@@ -124,7 +124,7 @@ private:
     }
 
     // beta is fitted on the last L's samples inside beta_range: two at least.
-    void check_beta_times() const {
+    void check_beta_times() {
         const int L = widths_.back();
         int inside = 0;
         for (std::uint64_t n : sim::roughness_sample_counts(L, run_length(L), per_decade_)) {

@@ -80,7 +80,7 @@ MemoryNeed grid_need(const std::string& what, double rows, double cols, double c
     return {what + text, rows * cols * cell_bytes * copies};
 }
 
-void require_drawable(const Settings& section, const std::string& key, const std::string& what, double rows,
+void require_drawable(Settings& section, const std::string& key, const std::string& what, double rows,
                       double cols) {
     const double most = render::GlContext::get().max_texture_size();
     if (rows <= most && cols <= most) return;

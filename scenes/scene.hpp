@@ -8,7 +8,7 @@
 //   2. run:   Scene::render runs the model once, to the last step any output
 //             needs;
 //   3. draw:  and draws the figure and film into the Output.
-// render() is const: a setting cannot be read after phase 1.
+// render() is const: a setting can be neither read nor refused after phase 1.
 
 #include <memory>
 #include <string>
@@ -70,7 +70,7 @@ void apply_colormap(Description& d, const std::string& name);
 // Refuses `key` of `section` (SettingError) when it makes a field of rows x
 // cols cells that the renderer cannot hold as one texture; `what` names the
 // field, e.g. "the deposit's view".
-void require_drawable(const Settings& section, const std::string& key, const std::string& what, double rows,
+void require_drawable(Settings& section, const std::string& key, const std::string& what, double rows,
                       double cols);
 
 // Steps as a message shows them: "[16, 200]".

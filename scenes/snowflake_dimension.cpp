@@ -5,6 +5,7 @@
 // freezing on exactly one neighbour fill the plane with positive density, so
 // their slopes tend to 2 as crystals grow.
 #include <cmath>
+#include <stdexcept>
 
 #include "scenes/field_stats.hpp"
 #include "scenes/plot_page.hpp"
@@ -79,7 +80,7 @@ private:
     // A crystal grows at most a ring a step, and a cell's distance from the
     // seed is at most its ring: fit_to x steps bounds the fit's last
     // distance, and the range must hold two distances even then.
-    void refuse_empty_fit() const {
+    void refuse_empty_fit() {
         if (fit_from_ + 1 > steps_)
             params_.refuse("fit_from",
                            "an integer from 1 to steps - 1 = " + std::to_string(steps_ - 1) +
@@ -107,12 +108,13 @@ private:
                 fit_m.push_back(double(mass[k - 1]));
             }
         }
-        // Phase 1 refuses a range too short for any crystal; this one grew too slowly for it.
+        // Phase 1 refuses a range too short for any crystal; this one grew too
+        // slowly for it, which only the run can tell: a failure of the run.
         if (fit_l.size() < 2)
-            params_.refuse("fit_to", "a range from fit_from that holds two distances at least; " + runs_[i].label +
-                                         "'s crystal reached radius " + format_fixed(crystal.euclidean_radius(), 2) +
-                                         ", the range " + std::to_string(fit_from_) + ".." + std::to_string(fit_last) +
-                                         ": raise steps or fit_to");
+            throw std::runtime_error(d_.id + ": " + runs_[i].label + "'s crystal reached radius " +
+                                     format_fixed(crystal.euclidean_radius(), 2) + ", too small for a fit from " +
+                                     std::to_string(fit_from_) + " to " + std::to_string(fit_last) +
+                                     " (two distances at least); raise steps or fit_to; no image written");
         const sim::LineFit fit = sim::fit_log_log(fit_l, fit_m);
         const glm::vec4 colour = colours_[i % colours_.size()];
         axes.series.push_back(
