@@ -66,13 +66,10 @@ void require_automata_drawable(Settings& params, const Description& d, double ro
     require_drawable(params, "width", "each automaton", rows, cols);
 }
 
-class Cell1DScene : public Scene {
+class Cell1DScene : public SceneBase {
 public:
     Cell1DScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, field_spec_keys()),
+        : SceneBase(d, options, param_keys, field_spec_keys()),
           steps_(last_row(d)),
           automata_(read_automata(params_, steps_ + 1)),
           spec_(read_field_spec(style_, {render::colormap("Blues"), 0.0, 1.0, 0.7f, render::Sampling::nearest})) {
@@ -113,9 +110,6 @@ private:
     double rows() const { return steps_ + 1.0; }
     double columns() const { return automata_.front().width > 0 ? automata_.front().width : 2.0 * rows() + 1.0; }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const int steps_;  // the panel step: every automaton runs that many steps
     const std::vector<sim::Cell1DParams> automata_;
     const FieldSpec spec_;

@@ -73,13 +73,10 @@ render::Axes survey_plot(const Survey& survey, glm::vec4 zero_colour, glm::vec4 
     return plot;
 }
 
-class Cell1DSurveyScene : public Scene {
+class Cell1DSurveyScene : public SceneBase {
 public:
     Cell1DSurveyScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, style_keys()),
+        : SceneBase(d, options, param_keys, style_keys()),
           n_(params_.count_in("n", 500, 3, 100000)),
           fit_from_(params_.count_in("fit_from", 10, 1, n_ - 2)),
           tolerance_(params_.number_in("tolerance", 0.1, 0.0, 0.5)),
@@ -187,9 +184,6 @@ private:
         return canvas.read();
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const int n_, fit_from_;
     const double tolerance_;
     const int gallery_steps_, columns_;

@@ -43,13 +43,10 @@ sim::Boundary read_boundary(Settings& s) {
     return boundary;
 }
 
-class CellCountsScene : public Scene {
+class CellCountsScene : public SceneBase {
 public:
     CellCountsScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, style_keys()),
+        : SceneBase(d, options, param_keys, style_keys()),
           rules_(read_rules(params_)),
           n_(params_.count_in("n", 500, 3, 100000)),
           boundary_(read_boundary(params_)),
@@ -110,9 +107,6 @@ private:
         return axes;
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const std::vector<int> rules_;
     const int n_;
     const sim::Boundary boundary_;

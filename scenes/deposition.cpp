@@ -98,13 +98,10 @@ private:
     std::vector<std::int64_t> before_;
 };
 
-class DepositionScene : public Scene {
+class DepositionScene : public SceneBase {
 public:
     DepositionScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, style_keys),
+        : SceneBase(d, options, param_keys, style_keys),
           p_(read_params(params_)),
           bands_(style_.count_in("bands", 20, 1, 255)),
           spec_(band_spec(style_, bands_)),
@@ -170,9 +167,6 @@ private:
         };
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const sim::DepositionParams p_;
     const int bands_;
     const FieldSpec spec_;

@@ -34,13 +34,10 @@ sim::DiffusionParams read_params(Settings& s) {
     return p;
 }
 
-class DiffusionScene : public Scene {
+class DiffusionScene : public SceneBase {
 public:
     DiffusionScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, field_spec_keys()),
+        : SceneBase(d, options, param_keys, field_spec_keys()),
           p_(read_params(params_)),
           spec_(read_field_spec(style_, {render::colormap("Reds"), 0.0, 1.0, 0.7f, render::Sampling::nearest})) {
         if (d.panels.empty()) throw SettingError("figure.panels", "[]", "one step at least");
@@ -82,9 +79,6 @@ public:
     }
 
 private:
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const sim::DiffusionParams p_;
     const FieldSpec spec_;
 };

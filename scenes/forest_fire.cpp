@@ -114,13 +114,10 @@ render::Axes dimension_plot(const ForestDimension& dim, double cells, glm::vec4 
     return dimension;
 }
 
-class ForestFireScene : public Scene {
+class ForestFireScene : public SceneBase {
 public:
     ForestFireScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, style_keys()),
+        : SceneBase(d, options, param_keys, style_keys()),
           p_(read_params(params_)),
           spec_(read_field_spec(style_, {render::listed_colormap("forest", {{1, 1, 1}, {0, 0.5f, 0}, {1, 0.65f, 0}}),
                                          0.0, 2.0, 1.0f, render::Sampling::nearest})),
@@ -211,9 +208,6 @@ private:
         };
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const sim::ForestFireParams p_;
     const FieldSpec spec_;
     const glm::vec4 trees_colour_, fires_colour_;

@@ -61,13 +61,10 @@ nlohmann::json panel_metadata(const sim::GrayScott& model, int step) {
             {"state_sha256", render::sha256_hex(state.data(), state.size() * sizeof(double))}};
 }
 
-class GrayScottScene : public Scene {
+class GrayScottScene : public SceneBase {
 public:
     GrayScottScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, style_keys()),
+        : SceneBase(d, options, param_keys, style_keys()),
           p_(read_params(params_)),
           a_spec_(read_field_spec(style_, {render::colormap("Reds"), {}, {}, 0.7f, render::Sampling::smooth}, "a_")),
           b_spec_(read_field_spec(style_, {render::colormap("Blues"), {}, {}, 0.7f, render::Sampling::smooth}, "b_")) {
@@ -115,9 +112,6 @@ public:
     }
 
 private:
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const sim::GrayScottParams p_;
     const FieldSpec a_spec_, b_spec_;
 };

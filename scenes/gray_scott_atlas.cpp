@@ -60,13 +60,10 @@ sim::GrayScottAtlasParams read_params(Settings& s) {
     return atlas;
 }
 
-class GrayScottAtlasScene : public Scene {
+class GrayScottAtlasScene : public SceneBase {
 public:
     GrayScottAtlasScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, with_plot_style_keys(field_spec_keys())),
+        : SceneBase(d, options, param_keys, with_plot_style_keys(field_spec_keys())),
           atlas_(read_params(params_)),
           spec_(read_field_spec(style_, {render::colormap("Blues"), {}, {}, 1.0f, render::Sampling::smooth})),
           plot_(read_plot_style(style_, options.scale)) {
@@ -149,9 +146,6 @@ private:
         return canvas.read();
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const sim::GrayScottAtlasParams atlas_;
     const FieldSpec spec_;
     const render::PlotStyle plot_;

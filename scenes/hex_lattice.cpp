@@ -57,13 +57,10 @@ struct Drawing {
     render::Shapes fills, outlines;
 };
 
-class HexLatticeScene : public Scene {
+class HexLatticeScene : public SceneBase {
 public:
     HexLatticeScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, style_keys),
+        : SceneBase(d, options, param_keys, style_keys),
           row_cells_(read_row_cells(params_)),
           radius_(params_.count_in("radius", 2, 1, 10)),
           line_(style_colour(style_, "line_colour", "black")),
@@ -150,9 +147,6 @@ private:
         return patch_state;
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const int row_cells_, radius_;
     const glm::vec4 line_, fill_;
     const std::vector<std::string> captions_;

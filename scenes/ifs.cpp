@@ -158,13 +158,10 @@ struct Clouds {
     glm::dvec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
 };
 
-class IfsScene : public Scene {
+class IfsScene : public SceneBase {
 public:
     IfsScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, style_keys()),
+        : SceneBase(d, options, param_keys, style_keys()),
           game_(read_game(params_)),
           bounds_(read_bounds(params_)),
           points_mode_(read_points_mode(style_)),
@@ -241,9 +238,6 @@ private:
         return draw_field_panels(panels, width, height, options_.scale);
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const sim::ChaosGameParams game_;
     const std::vector<double> bounds_;  // [xmin, xmax, ymin, ymax]; empty: the points' own box
     const bool points_mode_;

@@ -204,13 +204,10 @@ float panel_aspect(const Drawings& drawings) {
     return float(std::clamp(aspect, 0.2, 3.0));
 }
 
-class LSystemScene : public Scene {
+class LSystemScene : public SceneBase {
 public:
     LSystemScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys()),
-          style_("style", d.style, style_keys),
+        : SceneBase(d, options, param_keys(), style_keys),
           plants_(read_plants(params_)),
           colour_(style_colour(style_, "colour", "green")),
           min_width_(float(style_.number_in("min_width", 0.6, 0.0, 100.0) * options.scale)),
@@ -287,9 +284,6 @@ private:
         text.draw(canvas);
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const std::vector<Plant> plants_;
     const glm::vec4 colour_;
     const float min_width_;  // pixels, scaled

@@ -153,13 +153,10 @@ void require_framable(const Plant& plant) {
                                  sim::shown(most) + "); no image written");
 }
 
-class LSystem3dScene : public Scene {
+class LSystem3dScene : public SceneBase {
 public:
     LSystem3dScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, style_keys),
+        : SceneBase(d, options, param_keys, style_keys),
           system_(read_system(params_)),
           depth_(params_.count_in("depth", 7, 0, max_depth)),
           turtle_(read_turtle(params_)),
@@ -250,9 +247,6 @@ private:
         return canvas.read();
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const sim::LSystem system_;
     const int depth_;
     const sim::Turtle3Params turtle_;

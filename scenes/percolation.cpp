@@ -24,13 +24,10 @@ sim::PercolationParams read_params(Settings& s) {
     return p;
 }
 
-class PercolationScene : public Scene {
+class PercolationScene : public SceneBase {
 public:
     PercolationScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, field_spec_keys()),
+        : SceneBase(d, options, param_keys, field_spec_keys()),
           p_(read_params(params_)),
           stop_(read_stop(params_)),
           spec_(read_field_spec(style_, default_percolation_spec())) {
@@ -80,9 +77,6 @@ public:
     }
 
 private:
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const sim::PercolationParams p_;
     const StopRule stop_;
     const FieldSpec spec_;

@@ -65,13 +65,10 @@ struct Walk {
     double mean;
 };
 
-class PercolationPhaseScene : public Scene {
+class PercolationPhaseScene : public SceneBase {
 public:
     PercolationPhaseScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, style_keys()),
+        : SceneBase(d, options, param_keys, style_keys()),
           n_(params_.count_in("n", 100, 2, 4096)),
           trials_(params_.count_in("trials", 100, 1, 100000)),
           qs_(read_qs(params_)),
@@ -168,9 +165,6 @@ private:
         return axes;
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const int n_, trials_;
     const std::vector<double> qs_;
     const double walk_start_, walk_step_;

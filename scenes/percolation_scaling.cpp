@@ -44,13 +44,10 @@ struct Clusters {
     std::vector<double> kept, squares, filled;
 };
 
-class PercolationScalingScene : public Scene {
+class PercolationScalingScene : public SceneBase {
 public:
     PercolationScalingScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, style_keys()),
+        : SceneBase(d, options, param_keys, style_keys()),
           q_(params_.number_in("q", 0.59, 0.0, 1.0)),
           sizes_(read_sizes(params_)),
           d2_colour_(style_colour(style_, "d2_colour", "#526e97")),
@@ -119,9 +116,6 @@ private:
         return axes;
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const double q_;
     const SizeRange sizes_;
     const glm::vec4 d2_colour_, dots_colour_, d1_colour_;

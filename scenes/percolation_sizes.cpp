@@ -40,13 +40,10 @@ std::vector<sim::PercolationParams> read_runs(Settings& s) {
     return runs;
 }
 
-class PercolationSizesScene : public Scene {
+class PercolationSizesScene : public SceneBase {
 public:
     PercolationSizesScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, field_spec_keys()),
+        : SceneBase(d, options, param_keys, field_spec_keys()),
           runs_(read_runs(params_)),
           stop_(read_stop(params_)),
           spec_(read_field_spec(style_, default_percolation_spec())) {}
@@ -102,9 +99,6 @@ private:
         return h;
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const std::vector<sim::PercolationParams> runs_;
     const StopRule stop_;
     const FieldSpec spec_;

@@ -105,13 +105,10 @@ render::PanelRowStyle row_style(double scale) {
     return row;
 }
 
-class PhyllotaxisScene : public Scene {
+class PhyllotaxisScene : public SceneBase {
 public:
     PhyllotaxisScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, {{"line_width", "outline width in pixels at scale 1"}}),
+        : SceneBase(d, options, param_keys, {{"line_width", "outline width in pixels at scale 1"}}),
           flowers_(read_flowers(params_)),
           look_(read_look(params_)),
           line_width_(float(style_.number_in("line_width", 1.0, 0.0, 20.0) * options.scale)),
@@ -180,9 +177,6 @@ private:
         return canvas.read();
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const std::vector<sim::PhyllotaxisParams> flowers_;
     const FlowerStyle look_;
     const float line_width_;           // pixels, scaled

@@ -64,13 +64,10 @@ struct Measured {
 
 const glm::vec4 fit_colour = {0.85f, 0.33f, 0.1f, 1};
 
-class RoughnessScene : public Scene {
+class RoughnessScene : public SceneBase {
 public:
     RoughnessScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, param_keys),
-          style_("style", d.style, with_plot_style_keys({{"colours", "one colour per L"}})),
+        : SceneBase(d, options, param_keys, with_plot_style_keys({{"colours", "one colour per L"}})),
           widths_(read_widths(params_)),
           seeds_(params_.count_in("seeds", 4, 1, 1000)),
           factor_(params_.number_in("saturation_factor", 3.0, 0.01, 100)),
@@ -200,9 +197,6 @@ private:
                 {"alpha", {{"value", alpha.slope}, {"widths", m.sizes}, {"saturated_w", m.saturated}, {"r", alpha.r}}}};
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const std::vector<int> widths_;
     const int seeds_;
     const double factor_;

@@ -44,6 +44,24 @@ public:
     virtual void render(Output& out) const = 0;
 };
 
+// What every scene keeps from phase 1: its description, the command's
+// options, and its [params] and [style] sections as read (their used()
+// values go into the metadata). Built before the scene's own members, which
+// are read from them.
+class SceneBase : public Scene {
+protected:
+    SceneBase(const Description& d, const SceneOptions& options, std::vector<Key> param_keys,
+              std::vector<Key> style_keys)
+        : d_(d),
+          options_(options),
+          params_("params", d.params, std::move(param_keys)),
+          style_("style", d.style, std::move(style_keys)) {}
+
+    const Description& d_;
+    const SceneOptions options_;
+    Settings params_, style_;
+};
+
 // A scene's phase 1: reads and checks `d`'s settings.
 using SceneReader = std::unique_ptr<Scene> (*)(const Description& d, const SceneOptions& options);
 

@@ -82,13 +82,10 @@ const std::vector<Key> style_keys = {
     {"caption", "caption under each panel: {label}, {rule}, {step}"},
 };
 
-class SnowflakeScene : public Scene {
+class SnowflakeScene : public SceneBase {
 public:
     SnowflakeScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, snowflake_keys()),
-          style_("style", d.style, style_keys),
+        : SceneBase(d, options, snowflake_keys(), style_keys),
           runs_(read_snowflake_runs(params_)),
           steps_(params_.count_in("steps", 40, 0, snowflake_most_steps)),
           colours_{style_colour(style_, "ice_colour", "#1d4e89"),
@@ -160,9 +157,6 @@ private:
         return canvas.read();
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const std::vector<SnowflakeRun> runs_;
     const int steps_;
     const SnowflakeColours colours_;

@@ -34,13 +34,10 @@ std::string legend_of(const sim::SnowflakeParams& p) {
     return rule;
 }
 
-class SnowflakeDimensionScene : public Scene {
+class SnowflakeDimensionScene : public SceneBase {
 public:
     SnowflakeDimensionScene(const Description& d, const SceneOptions& options)
-        : d_(d),
-          options_(options),
-          params_("params", d.params, snowflake_keys(extra_param_keys)),
-          style_("style", d.style, with_plot_style_keys({{"colours", "one colour per run"}})),
+        : SceneBase(d, options, snowflake_keys(extra_param_keys), with_plot_style_keys({{"colours", "one colour per run"}})),
           runs_(read_snowflake_runs(params_)),
           steps_(params_.count_in("steps", 200, 8, snowflake_most_steps)),
           fit_from_(params_.count_in("fit_from", 4, 1, steps_)),
@@ -133,9 +130,6 @@ private:
         return meta;
     }
 
-    const Description& d_;
-    const SceneOptions options_;
-    Settings params_, style_;
     const std::vector<SnowflakeRun> runs_;
     const int steps_, fit_from_;
     const double fit_to_;
