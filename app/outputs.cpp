@@ -1,6 +1,7 @@
 #include "app/outputs.hpp"
 
 #include <cmath>
+#include <utility>
 #include <cstdio>
 
 #include "app/version.hpp"
@@ -43,7 +44,8 @@ double frame_pixels(const Description& d, const OutputOptions& options) {
 
 }  // namespace
 
-void require_memory(const Description& d, const OutputOptions& options, const std::vector<scenes::MemoryNeed>& needs) {
+MemoryEstimate estimate_memory(const Description& d, const OutputOptions& options,
+                               const std::vector<scenes::MemoryNeed>& needs) {
     using scenes::MemoryNeed;
     // A canvas: 4x multisampled colour and depth-stencil (32 bytes a pixel),
     // the resolved colour, the copy read back and the PNG rows (12). A frame
@@ -56,17 +58,23 @@ void require_memory(const Description& d, const OutputOptions& options, const st
         all.push_back({"animation frames " + std::to_string(scaled_even(d.animation->width, options.scale)) +
                            " x " + std::to_string(scaled_even(d.animation->height, options.scale)),
                        (canvas_bytes_per_pixel + 16.0 * 1.5) * frame_pixels(d, options)});
-    double total = 0.0;
-    const MemoryNeed* largest = &all.front();
+    MemoryEstimate estimate{0.0, all.front()};
     for (const MemoryNeed& need : all) {
-        total += need.bytes;
-        if (need.bytes > largest->bytes) largest = &need;
+        estimate.bytes += need.bytes;
+        if (need.bytes > estimate.largest.bytes) estimate.largest = need;
     }
-    if (total > static_cast<double>(options.max_memory))
-        throw UsageError(d.id + ": needs about " + format_bytes(total) + " of memory (" + largest->what + ": " +
-                         format_bytes(largest->bytes) + "), more than --max-memory " +
-                         format_bytes(static_cast<double>(options.max_memory)) +
+    return estimate;
+}
+
+MemoryEstimate require_memory(const Description& d, const OutputOptions& options,
+                              const std::vector<scenes::MemoryNeed>& needs) {
+    MemoryEstimate estimate = estimate_memory(d, options, needs);
+    if (estimate.bytes > static_cast<double>(options.max_memory))
+        throw UsageError(d.id + ": needs about " + format_bytes(estimate.bytes) + " of memory (" +
+                         estimate.largest.what + ": " + format_bytes(estimate.largest.bytes) +
+                         "), more than --max-memory " + format_bytes(static_cast<double>(options.max_memory)) +
                          "; make it smaller or raise --max-memory");
+    return estimate;
 }
 
 void require_disk(const Description& d, const OutputOptions& options) {
@@ -140,11 +148,11 @@ std::unique_ptr<scenes::Film> FigureFiles::film(int width, int height) {
 }
 
 void FigureFiles::figure(const render::Image& image, nlohmann::json metadata) {
-    write_figure(description_, options_, image, std::move(metadata));
+    write_figure(description_, options_, memory_, image, std::move(metadata));
 }
 
-void write_figure(const Description& d, const OutputOptions& options, const render::Image& image,
-                  nlohmann::json metadata) {
+void write_figure(const Description& d, const OutputOptions& options, const MemoryEstimate& memory,
+                  const render::Image& image, nlohmann::json metadata) {
     const auto& gl = render::GlContext::get();
     nlohmann::json meta = {
         {"id", d.id},
@@ -157,6 +165,7 @@ void write_figure(const Description& d, const OutputOptions& options, const rend
         {"figgen_version", app::version()},
         {"renderer", {{"gl_renderer", gl.renderer()}, {"gl_version", gl.version()}}},
         {"scale", options.scale},
+        {"memory_estimate", {{"bytes", std::llround(memory.bytes)}, {"largest", memory.largest.what}}},
     };
     meta.update(metadata);
     meta["image"] = {{"file", d.id + ".png"}, {"size", {image.width, image.height}}};

@@ -42,11 +42,18 @@ struct OutputOptions {
 int figure_width(const Description& d, const OutputOptions& options);
 int figure_height(const Description& d, const OutputOptions& options);
 
-// Refuses (UsageError) a figure whose estimated memory, the model's `needs`
-// (the scene's phase-1 estimate) plus the images it draws (figure, frames,
-// encoder), exceeds options.max_memory; the message gives the estimate and
-// its largest part.
-void require_memory(const Description& d, const OutputOptions& options, const std::vector<scenes::MemoryNeed>& needs);
+// A figure's estimated peak memory: the model's `needs` (the scene's
+// phase-1 estimate) plus the images it draws (figure, frames, encoder).
+struct MemoryEstimate {
+    double bytes = 0.0;
+    scenes::MemoryNeed largest;
+};
+MemoryEstimate estimate_memory(const Description& d, const OutputOptions& options,
+                               const std::vector<scenes::MemoryNeed>& needs);
+// Refuses (UsageError) a figure whose estimate exceeds options.max_memory;
+// the message gives the estimate and its largest part. Returns the estimate.
+MemoryEstimate require_memory(const Description& d, const OutputOptions& options,
+                              const std::vector<scenes::MemoryNeed>& needs);
 // Refuses a figure whose outputs would take more than options.max_disk: the
 // PNG (at most 4 bytes a pixel), the PNG sequence likewise, the MP4 at 0.15
 // bytes a pixel and frame (our films measure 0.002..0.057).
@@ -75,8 +82,9 @@ private:
 // A figure's files in the output folder: what a scene writes through.
 class FigureFiles : public scenes::Output {
 public:
-    FigureFiles(const Description& d, const OutputOptions& options, scenes::Progress& progress)
-        : description_(d), options_(options), progress_(progress) {}
+    FigureFiles(const Description& d, const OutputOptions& options, scenes::Progress& progress,
+                MemoryEstimate memory)
+        : description_(d), options_(options), progress_(progress), memory_(std::move(memory)) {}
     std::unique_ptr<scenes::Film> film(int width, int height) override;
     void figure(const render::Image& image, nlohmann::json metadata) override;
     scenes::Progress& progress() override { return progress_; }
@@ -85,12 +93,13 @@ private:
     const Description& description_;
     const OutputOptions& options_;
     scenes::Progress& progress_;
+    MemoryEstimate memory_;
 };
 
 // Writes <id>.png and <id>.json. `metadata` holds what the scene knows
 // (params, panels with statistics and hashes, animation); the common fields
-// (id, title, source, seed, version, renderer) are added here.
-void write_figure(const Description& d, const OutputOptions& options, const render::Image& image,
-                  nlohmann::json metadata);
+// (id, title, source, seed, version, renderer, memory estimate) are added here.
+void write_figure(const Description& d, const OutputOptions& options, const MemoryEstimate& memory,
+                  const render::Image& image, nlohmann::json metadata);
 
 }  // namespace app

@@ -27,7 +27,7 @@ void render_figure(const Description& d, const scenes::Scene& scene, const Outpu
     render::clear_font_cache();  // same pixels whatever was rendered before in this process
     // The figure's files replace the earlier ones together, once all are written.
     render::CommitGroup outputs;
-    FigureFiles files(d, options, progress);
+    FigureFiles files(d, options, progress, estimate_memory(d, options, scene.memory()));
     scene.render(files);
     outputs.commit();
 }
