@@ -12,6 +12,7 @@
 #include "app/render_figure.hpp"
 #include "description/catalog.hpp"
 #include "description/description.hpp"
+#include "sim/check.hpp"
 
 namespace app {
 
@@ -127,6 +128,23 @@ std::vector<std::string> overrides_of(const RenderCommand& c) {
     return overrides;
 }
 
+// Renders a checked figure; what can only be a bug, or memory running out,
+// becomes a one-line error saying which figure and how far its run got.
+void render_reporting(const Description& d, const scenes::Scene& scene, const render::Folder& folder,
+                      const OutputOptions& options, ProgressBar& progress) {
+    try {
+        render_figure(d, scene, folder, options, progress);
+    } catch (const std::bad_alloc&) {
+        throw std::runtime_error(d.id + ": out of memory (" + progress.position() + "); its estimate was " +
+                                 format_bytes(estimate_memory(d, options, scene.memory()).bytes) +
+                                 ", so the machine had less free than that: free some, or make it smaller");
+    } catch (const sim::ParameterError&) {
+        throw;  // a model's refusal at run time: a run failure with its own message
+    } catch (const std::logic_error& e) {
+        throw InternalError(d.id + " (" + progress.position() + "): " + e.what());
+    }
+}
+
 struct CheckedFigure {
     std::unique_ptr<Description> description;  // the scene refers to it: kept in place
     std::unique_ptr<scenes::Scene> scene;
@@ -151,8 +169,9 @@ int RenderCommand::run() {
     if (fps && std::none_of(figures.begin(), figures.end(),
                             [](const CheckedFigure& f) { return f.description->animation.has_value(); }))
         throw UsageError("--fps: none of the figures named has an animation");
+    const render::Folder folder = open_output_folder(options);
     ProgressBar progress = ProgressBar::for_stderr();
-    for (const CheckedFigure& f : figures) render_figure(*f.description, *f.scene, options, progress);
+    for (const CheckedFigure& f : figures) render_reporting(*f.description, *f.scene, folder, options, progress);
     return 0;
 }
 

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,12 @@ namespace app {
 
 constexpr int exit_runtime_error = 1;  // a failure while running or writing
 constexpr int exit_usage_error = 2;    // the command, a description or a value is wrong
+
+// What can only be a bug in figgen (a broken invariant), reported as
+// "internal error" with where it happened; exit status 1.
+struct InternalError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
 // A subcommand: registered on the command line, run when given.
 class Command {

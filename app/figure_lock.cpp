@@ -5,35 +5,34 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
-#include <system_error>
-
-#include "render/atomic_file.hpp"
+#include <cstring>
+#include <stdexcept>
 
 namespace app {
 
-FigureLock::FigureLock(const std::filesystem::path& dir, const std::string& id) {
-    struct stat folder {};
-    if (::stat(dir.c_str(), &folder) != 0) return;  // the caller has made it; without it there is nothing to share
-    std::error_code ec;
-    name_ = std::filesystem::temp_directory_path(ec) / ("figgen-" + std::to_string(folder.st_dev) + "-" +
-                                                       std::to_string(folder.st_ino) + "-" + id + ".lock");
-    if (ec) return;
+FigureLock::FigureLock(const render::Folder& folder, const std::string& id) : folder_(folder), name_("." + id + "~lock") {
     for (bool told = false;;) {
-        fd_ = ::open(name_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-        if (fd_ < 0) return;  // no temporary folder: no turns, each file is still written whole
+        fd_ = ::openat(folder_.fd(), name_.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0666);
+        if (fd_ < 0 && errno == ELOOP) {
+            ::unlinkat(folder_.fd(), name_.c_str(), 0);  // a symlink planted at the lock's name: never followed
+            continue;
+        }
+        if (fd_ < 0)
+            throw std::runtime_error("cannot write into " + folder_.path().string() + ": " + std::strerror(errno));
         if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
             if (!told)
                 std::fprintf(stderr, "figgen: waiting for another figgen writing %s into %s\n", id.c_str(),
-                             dir.c_str());
+                             folder_.path().c_str());
             told = true;
             ::flock(fd_, LOCK_EX);
         }
         struct stat held {}, named {};
-        if (::fstat(fd_, &held) == 0 && ::stat(name_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
-            held.st_dev == named.st_dev)
+        if (::fstat(fd_, &held) == 0 && ::fstatat(folder_.fd(), name_.c_str(), &named, AT_SYMLINK_NOFOLLOW) == 0 &&
+            held.st_ino == named.st_ino && held.st_dev == named.st_dev)
         {
-            render::remove_on_signal(name_);
+            render::remove_on_signal(folder_, name_);
             return;  // the lock is ours and still the one the name leads to
         }
         ::close(fd_);
@@ -41,9 +40,8 @@ FigureLock::FigureLock(const std::filesystem::path& dir, const std::string& id) 
 }
 
 FigureLock::~FigureLock() {
-    if (fd_ < 0) return;
-    ::unlink(name_.c_str());  // while still held: see the constructor
-    render::keep_on_signal(name_);
+    ::unlinkat(folder_.fd(), name_.c_str(), 0);  // while still held: see the constructor
+    render::keep_on_signal(folder_, name_);
     ::close(fd_);
 }
 

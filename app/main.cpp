@@ -3,10 +3,14 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
 #include <memory>
 
 #include "app/commands.hpp"
 #include "app/version.hpp"
+#include "description/plain_name.hpp"
 #include "description/settings.hpp"
 #include "render/atomic_file.hpp"
 
@@ -19,12 +23,38 @@ bool is_unknown_command(int argc, char** argv, const std::vector<app::Command*>&
            });
 }
 
+// One line on stderr, whatever names and values the message quotes.
+void say(const char* kind, const std::string& message) {
+    std::fprintf(stderr, "figgen: %s: %s\n", kind, description::printable(message).c_str());
+}
+
+// Instead of abort() (SIGABRT) when an exception escapes a thread or a
+// noexcept function: what can only be a bug says so, removes the unfinished
+// outputs and exits with 1.
+[[noreturn]] void on_terminate() {
+    std::string what = "an exception escaped where none may";
+    if (const std::exception_ptr current = std::current_exception()) {
+        try {
+            std::rethrow_exception(current);
+        } catch (const std::bad_alloc&) {
+            what = "out of memory where nothing could report it; see --max-memory";
+        } catch (const std::exception& e) {
+            what += std::string(": ") + e.what();
+        } catch (...) {
+        }
+    }
+    say("internal error", what);
+    render::remove_temporaries_now();
+    std::_Exit(app::exit_runtime_error);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     // First, before any thread starts: an interrupted render removes its
     // unfinished files and exits with 130 (SIGINT) or 143 (SIGTERM).
     render::remove_temporaries_on_signals();
+    std::set_terminate(on_terminate);
     CLI::App cli{"figgen: publication figures and animations of complex-systems models, headless."};
     cli.set_version_flag("--version", app::version());
     cli.require_subcommand(1);
@@ -37,15 +67,14 @@ int main(int argc, char** argv) {
     if (is_unknown_command(argc, argv, commands)) {
         std::string allowed;
         for (const app::Command* c : commands) allowed += (allowed.empty() ? "" : ", ") + c->app->get_name();
-        std::fprintf(stderr, "figgen: error: unknown command '%s'; allowed: %s; see figgen --help\n", argv[1],
-                     allowed.c_str());
+        say("error", std::string("unknown command '") + argv[1] + "'; allowed: " + allowed + "; see figgen --help");
         return app::exit_usage_error;
     }
     try {
         cli.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return cli.exit(e);  // --help, --version
-        std::fprintf(stderr, "figgen: error: %s; see figgen --help\n", e.what());
+        say("error", std::string(e.what()) + "; see figgen --help");
         return app::exit_usage_error;
     }
     try {
@@ -53,10 +82,16 @@ int main(int argc, char** argv) {
             if (c->app->parsed()) return c->run();
         return app::exit_usage_error;
     } catch (const description::UsageError& e) {
-        std::fprintf(stderr, "figgen: error: %s\n", e.what());
+        say("error", e.what());
         return app::exit_usage_error;
+    } catch (const app::InternalError& e) {
+        say("internal error", e.what());
+        return app::exit_runtime_error;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "figgen: error: %s\n", e.what());
+        say("error", e.what());
+        return app::exit_runtime_error;
+    } catch (...) {
+        say("internal error", "an exception of no known type");
         return app::exit_runtime_error;
     }
 }

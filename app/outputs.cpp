@@ -92,16 +92,17 @@ void require_disk(const Description& d, const OutputOptions& options) {
                          "; make it smaller, leave out the video or raise --max-disk");
 }
 
-FrameSink::FrameSink(const Description& d, const OutputOptions& options, int width, int height)
+FrameSink::FrameSink(const Description& d, const OutputOptions& options, const render::Folder& folder, int width,
+                     int height)
     : description_(d), options_(options), width_(width), height_(height) {
     if (options.video)
-        video_ = std::make_unique<render::VideoWriter>(options.dir / (d.id + ".mp4"), width, height, [&] {
+        video_ = std::make_unique<render::VideoWriter>(folder, d.id + ".mp4", width, height, [&] {
             render::VideoOptions v = options.video_options;
             v.fps = d.animation->fps;
             return v;
         }());
     if (options.frames) {
-        frames_ = std::make_unique<render::AtomicDir>(options.dir / (d.id + "-frames"));
+        frames_ = std::make_unique<render::AtomicDir>(folder, d.id + "-frames");
     }
 }
 
@@ -112,8 +113,9 @@ void FrameSink::add(const render::Image& frame, int step) {
     if (frames_) {
         char name[32];
         std::snprintf(name, sizeof name, "%05d.png", static_cast<int>(steps_.size()));
-        render::write_png(frames_->temp_path() / name, frame,
-                          {{"Title", description_.id + " " + description::format_step("step {step}", step)}});
+        render::write_png(frames_->folder(), name, frame,
+                          {{"Title", description_.id + " " + description::format_step("step {step}", step)}},
+                          render::AtomicFile::Commit::now);  // inside the temporary folder
     }
     steps_.push_back(step);
 }
@@ -144,15 +146,19 @@ nlohmann::json FrameSink::finish() {
 
 std::unique_ptr<scenes::Film> FigureFiles::film(int width, int height) {
     if (!description_.animation || !options_.animates()) return nullptr;
-    return std::make_unique<FrameSink>(description_, options_, width, height);
+    return std::make_unique<FrameSink>(description_, options_, folder_, width, height);
 }
 
 void FigureFiles::figure(const render::Image& image, nlohmann::json metadata) {
-    write_figure(description_, options_, memory_, image, std::move(metadata));
+    write_figure(description_, options_, folder_, memory_, image, std::move(metadata));
 }
 
-void write_figure(const Description& d, const OutputOptions& options, const MemoryEstimate& memory,
-                  const render::Image& image, nlohmann::json metadata) {
+std::vector<std::string> output_names(const std::string& id) {
+    return {id + ".png", id + ".json", id + ".mp4", id + "-frames"};
+}
+
+void write_figure(const Description& d, const OutputOptions& options, const render::Folder& folder,
+                  const MemoryEstimate& memory, const render::Image& image, nlohmann::json metadata) {
     const auto& gl = render::GlContext::get();
     nlohmann::json meta = {
         {"id", d.id},
@@ -170,14 +176,14 @@ void write_figure(const Description& d, const OutputOptions& options, const Memo
     meta.update(metadata);
     meta["image"] = {{"file", d.id + ".png"}, {"size", {image.width, image.height}}};
 
-    render::write_png(options.dir / (d.id + ".png"), image,
+    render::write_png(folder, d.id + ".png", image,
                       {{"Title", d.title},
                        {"Source", d.source},
                        {"Software", std::string("figgen ") + app::version()},
                        {"figgen:id", d.id},
                        {"figgen:seed", std::to_string(d.seed)},
                        {"figgen:params", meta.value("params", nlohmann::json::object()).dump()}});
-    render::write_file_atomically(options.dir / (d.id + ".json"), meta.dump(2) + "\n");
+    render::write_file_atomically(folder, d.id + ".json", meta.dump(2) + "\n");
 }
 
 }  // namespace app

@@ -65,7 +65,8 @@ std::string format_bytes(double bytes);
 // once: nothing is kept in memory but the frame being encoded.
 class FrameSink : public scenes::Film {
 public:
-    FrameSink(const Description& d, const OutputOptions& options, int width, int height);
+    FrameSink(const Description& d, const OutputOptions& options, const render::Folder& folder, int width,
+              int height);
     ~FrameSink() override;
     void add(const render::Image& frame, int step) override;
     nlohmann::json finish() override;  // completes the MP4; returns the animation's metadata
@@ -82,9 +83,13 @@ private:
 // A figure's files in the output folder: what a scene writes through.
 class FigureFiles : public scenes::Output {
 public:
-    FigureFiles(const Description& d, const OutputOptions& options, scenes::Progress& progress,
-                MemoryEstimate memory)
-        : description_(d), options_(options), progress_(progress), memory_(std::move(memory)) {}
+    FigureFiles(const Description& d, const OutputOptions& options, render::Folder folder,
+                scenes::Progress& progress, MemoryEstimate memory)
+        : description_(d),
+          options_(options),
+          folder_(std::move(folder)),
+          progress_(progress),
+          memory_(std::move(memory)) {}
     std::unique_ptr<scenes::Film> film(int width, int height) override;
     void figure(const render::Image& image, nlohmann::json metadata) override;
     scenes::Progress& progress() override { return progress_; }
@@ -92,6 +97,7 @@ public:
 private:
     const Description& description_;
     const OutputOptions& options_;
+    render::Folder folder_;
     scenes::Progress& progress_;
     MemoryEstimate memory_;
 };
@@ -99,7 +105,10 @@ private:
 // Writes <id>.png and <id>.json. `metadata` holds what the scene knows
 // (params, panels with statistics and hashes, animation); the common fields
 // (id, title, source, seed, version, renderer, memory estimate) are added here.
-void write_figure(const Description& d, const OutputOptions& options, const MemoryEstimate& memory,
-                  const render::Image& image, nlohmann::json metadata);
+void write_figure(const Description& d, const OutputOptions& options, const render::Folder& folder,
+                  const MemoryEstimate& memory, const render::Image& image, nlohmann::json metadata);
+
+// The names of figure `id`'s files in the output folder.
+std::vector<std::string> output_names(const std::string& id);
 
 }  // namespace app

@@ -32,6 +32,11 @@ void ProgressBar::finish() {
     std::fputc('\n', stderr);
 }
 
+std::string ProgressBar::position() const {
+    if (label_.empty()) return "before its run started";
+    return label_ + ", " + std::to_string(done_) + " of " + std::to_string(total_) + " units of work done";
+}
+
 void ProgressBar::draw(bool force) {
     if (!enabled_) return;
     const auto now = std::chrono::steady_clock::now();

@@ -18,6 +18,8 @@ public:
     void start(const std::string& label, long long total) override;
     void advance(long long units = 1) override;
     void finish() override;  // completes the bar and ends its line
+    // Where the work is, for a message: "tc7-2, 350 of 7001 units of work done".
+    std::string position() const;
 
 private:
     void draw(bool force);

@@ -1,7 +1,11 @@
 #include "app/render_figure.hpp"
 
-#include <filesystem>
-#include <system_error>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
 
 #include "app/figure_lock.hpp"
 #include "render/atomic_file.hpp"
@@ -16,25 +20,34 @@ std::unique_ptr<scenes::Scene> check_figure(const Description& d, const OutputOp
     return scene;
 }
 
-void render_figure(const Description& d, const scenes::Scene& scene, const OutputOptions& options,
-                   scenes::Progress& progress) {
-    std::error_code ec;
-    std::filesystem::create_directories(options.dir, ec);
-    if (ec || !std::filesystem::is_directory(options.dir))
-        throw UsageError("--out " + options.dir.string() +
-                         ": cannot create the folder: " + (ec ? ec.message() : "not a directory"));
-    const FigureLock turn(options.dir, d.id);
+render::Folder open_output_folder(const OutputOptions& options) {
+    try {
+        render::Folder folder(options.dir, true);
+        if (::faccessat(folder.fd(), ".", W_OK | X_OK, AT_EACCESS) != 0)
+            throw std::runtime_error("cannot write there: " + std::string(std::strerror(errno)));
+        return folder;
+    } catch (const std::runtime_error& e) {
+        throw UsageError("--out " + options.dir.string() + ": " + e.what() + "; allowed: a folder figgen can write");
+    }
+}
+
+void render_figure(const Description& d, const scenes::Scene& scene, const render::Folder& folder,
+                   const OutputOptions& options, scenes::Progress& progress) {
+    const FigureLock turn(folder, d.id);
+    // Holding the turn, no live process writes this figure here: any
+    // temporaries of its files are a killed process's.
+    render::remove_stale_temporaries(folder, output_names(d.id));
     render::clear_font_cache();  // same pixels whatever was rendered before in this process
     // The figure's files replace the earlier ones together, once all are written.
     render::CommitGroup outputs;
-    FigureFiles files(d, options, progress, estimate_memory(d, options, scene.memory()));
+    FigureFiles files(d, options, folder, progress, estimate_memory(d, options, scene.memory()));
     scene.render(files);
     outputs.commit();
 }
 
 void render_figure(const Description& d, const OutputOptions& options, scenes::Progress& progress) {
     const auto scene = check_figure(d, options);
-    render_figure(d, *scene, options, progress);
+    render_figure(d, *scene, open_output_folder(options), options, progress);
 }
 
 }  // namespace app

@@ -18,11 +18,16 @@ namespace app {
 // says where a bad setting was given; nothing has run and nothing is created.
 std::unique_ptr<scenes::Scene> check_figure(const Description& d, const OutputOptions& options);
 
-// Phases 2 and 3 of a checked figure: creates the output folder, takes the
-// figure's turn against other figgen processes, runs the scene and puts its
-// files in place, all together or none.
-void render_figure(const Description& d, const scenes::Scene& scene, const OutputOptions& options,
-                   scenes::Progress& progress);
+// The output folder (options.dir), created if missing and open; UsageError
+// when it cannot be made or written. Call after every figure's phase 1: a
+// refused run creates nothing.
+render::Folder open_output_folder(const OutputOptions& options);
+
+// Phases 2 and 3 of a checked figure: takes the figure's turn against other
+// figgen processes (removing what a killed one left), runs the scene and
+// puts its files in place in `folder`, all together or none.
+void render_figure(const Description& d, const scenes::Scene& scene, const render::Folder& folder,
+                   const OutputOptions& options, scenes::Progress& progress);
 
 // All three phases.
 void render_figure(const Description& d, const OutputOptions& options, scenes::Progress& progress);

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <sstream>
+
+#include "description/plain_name.hpp"
 
 namespace description {
 namespace {
@@ -111,6 +114,7 @@ const toml::table& section_table(const toml::table& root, const char* name) {
 void read_top_level(Description& d, const toml::table& root, std::optional<std::uint64_t> seed) {
     Settings top("description", root, top_level_keys);
     d.id = top.text("id", d.file.stem().string());
+    if (!is_plain_id(d.id)) top.refuse("id", "\"" + printable(d.id) + "\"", plain_id_allowed);
     d.title = top.text("title", d.id);
     d.source = top.text("source", "");
     d.scene = top.text("scene", top.text("model", ""));
@@ -128,11 +132,11 @@ void read_top_level(Description& d, const toml::table& root, std::optional<std::
 void read_figure(Description& d, const toml::table& root) {
     Settings figure("figure", section_table(root, "figure"), figure_keys);
     for (long long step : figure.integers("panels", {})) {
-        if (step < 0 || step > 100'000'000) figure.refuse("panels", "steps from 0 to 100000000, ascending");
+        if (step < 0 || step > 100'000'000) figure.refuse("panels", "steps from 0 to 100000000, ascending, each once");
         d.panels.push_back(static_cast<int>(step));
     }
-    if (!std::is_sorted(d.panels.begin(), d.panels.end()))
-        figure.refuse("panels", "steps from 0 to 100000000, ascending");
+    if (std::adjacent_find(d.panels.begin(), d.panels.end(), std::greater_equal<int>()) != d.panels.end())
+        figure.refuse("panels", "steps from 0 to 100000000, ascending, each once");
     std::tie(d.width, d.height) = size_pair(figure, "size", {d.width, d.height});
     d.panel_title = figure.text("panel_title", d.panel_title);
 }
@@ -189,10 +193,17 @@ std::string format_step(const std::string& pattern, int step) {
 Description load_description(const std::filesystem::path& file, const std::vector<std::string>& overrides,
                              std::optional<std::uint64_t> seed) {
     std::ifstream in(file, std::ios::binary);
-    if (!in) throw UsageError("cannot read " + file.string());
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_description(text.str(), file, overrides, seed);
+    if (!in) throw UsageError("cannot read " + printable(file.string()));
+    // At most one byte more than allowed is read, so neither a huge file nor
+    // an endless one (a FIFO, /dev/zero) is taken into memory.
+    std::string text;
+    char chunk[1 << 16];
+    while (text.size() <= max_description_bytes && in.read(chunk, sizeof chunk).gcount() > 0)
+        text.append(chunk, static_cast<std::size_t>(in.gcount()));
+    if (in.bad()) throw UsageError("cannot read " + printable(file.string()));
+    if (text.size() > max_description_bytes)
+        throw UsageError(printable(file.string()) + ": a description is at most 16 MiB; this one is larger");
+    return parse_description(text, file, overrides, seed);
 }
 
 Description parse_description(std::string_view text, const std::filesystem::path& file,

@@ -1,6 +1,8 @@
 #include "render/png_io.hpp"
 
+#include <fcntl.h>
 #include <png.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -98,13 +100,14 @@ bool decode(std::FILE* in, PngFile& result, ErrorState& state) {
 
 }  // namespace
 
-void write_png(const std::filesystem::path& path, const Image& image, const TextChunks& text) {
+void write_png(const Folder& folder, const std::string& name, const Image& image, const TextChunks& text,
+               AtomicFile::Commit when) {
     if (image.width < 1 || image.height < 1 ||
         image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4)
         throw std::invalid_argument("write_png: image is empty or its pixel buffer has the wrong size");
-    AtomicFile file(path);
-    File out(std::fopen(file.temp_path().c_str(), "wb"));
-    if (!out) throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(errno));
+    AtomicFile file(folder, name, when);
+    const std::filesystem::path path = file.final_path();
+    File out(file.take_stream());
 
     std::vector<png_bytep> rows(image.height);
     for (int y = 0; y < image.height; ++y)
@@ -136,15 +139,38 @@ void write_png(const std::filesystem::path& path, const Image& image, const Text
     file.commit();
 }
 
+void write_png(const std::filesystem::path& path, const Image& image, const TextChunks& text) {
+    write_png(Folder::of(path), path.filename().string(), image, text);
+}
 
-PngFile read_png(const std::filesystem::path& path) {
-    File in(std::fopen(path.c_str(), "rb"));
-    if (!in) throw std::runtime_error("cannot read " + path.string() + ": " + std::strerror(errno));
+namespace {
+
+PngFile read_png_from(std::FILE* stream, const std::filesystem::path& path) {
+    File in(stream);
     PngFile result;
     ErrorState state;
     if (!decode(in.get(), result, state))
         throw std::runtime_error("cannot read " + path.string() + ": " + state.message);
     return result;
+}
+
+}  // namespace
+
+PngFile read_png(const Folder& folder, const std::string& name) {
+    const int fd = ::openat(folder.fd(), name.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) throw std::runtime_error("cannot read " + (folder / name).string() + ": " + std::strerror(errno));
+    std::FILE* stream = ::fdopen(fd, "rb");
+    if (!stream) {
+        ::close(fd);
+        throw std::runtime_error("cannot read " + (folder / name).string() + ": " + std::strerror(errno));
+    }
+    return read_png_from(stream, folder / name);
+}
+
+PngFile read_png(const std::filesystem::path& path) {
+    std::FILE* in = std::fopen(path.c_str(), "rb");
+    if (!in) throw std::runtime_error("cannot read " + path.string() + ": " + std::strerror(errno));
+    return read_png_from(in, path);
 }
 
 }  // namespace render

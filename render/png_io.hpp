@@ -7,14 +7,19 @@
 #include <utility>
 #include <vector>
 
+#include "render/atomic_file.hpp"
 #include "render/image.hpp"
 
 namespace render {
 
 using TextChunks = std::vector<std::pair<std::string, std::string>>;  // keyword, Latin-1 text
 
-// Writes atomically (temporary name, then rename); throws std::runtime_error
-// naming the file and the reason, leaving nothing under `path` on failure.
+// Writes folder/name atomically (an exclusive temporary, then rename; see
+// atomic_file.hpp); throws std::runtime_error naming the file and the
+// reason, leaving nothing under the name on failure.
+void write_png(const Folder& folder, const std::string& name, const Image& image, const TextChunks& text = {},
+               AtomicFile::Commit when = AtomicFile::Commit::with_group);
+// The same, for a path whose folder is the caller's.
 void write_png(const std::filesystem::path& path, const Image& image, const TextChunks& text = {});
 
 struct PngFile {
@@ -22,5 +27,7 @@ struct PngFile {
     TextChunks text;  // tEXt/zTXt/iTXt chunks in file order
 };
 PngFile read_png(const std::filesystem::path& path);
+// folder/name, which must be a file there: a symlink is not followed.
+PngFile read_png(const Folder& folder, const std::string& name);
 
 }  // namespace render

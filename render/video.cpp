@@ -1,6 +1,11 @@
 #include "render/video.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdint>
 #include <stdexcept>
 #include <utility>
 
@@ -32,9 +37,90 @@ struct FreePacket {
 struct FreeScaler {
     void operator()(SwsContext* s) const { sws_freeContext(s); }
 };
+// Our own I/O on the temporary's descriptor (AtomicFile), never a path: a
+// context of this kind is freed with close_file_io, not avio_close.
+struct FileIo {
+    int fd;
+    std::int64_t position = 0;
+};
+
+int read_file_io(void* opaque, std::uint8_t* buffer, int size) {
+    auto* io = static_cast<FileIo*>(opaque);
+    const ssize_t n = ::pread(io->fd, buffer, static_cast<std::size_t>(size), io->position);
+    if (n < 0) return AVERROR(errno);
+    if (n == 0) return AVERROR_EOF;
+    io->position += n;
+    return static_cast<int>(n);
+}
+
+int write_file_io(void* opaque, std::uint8_t* buffer, int size) {
+    auto* io = static_cast<FileIo*>(opaque);
+    for (int written = 0; written < size;) {
+        const ssize_t n = ::pwrite(io->fd, buffer + written, static_cast<std::size_t>(size - written),
+                                   io->position);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return AVERROR(errno);
+        written += static_cast<int>(n);
+        io->position += n;
+    }
+    return size;
+}
+
+std::int64_t seek_file_io(void* opaque, std::int64_t offset, int whence) {
+    auto* io = static_cast<FileIo*>(opaque);
+    if (whence & AVSEEK_SIZE) {
+        struct stat st {};
+        return ::fstat(io->fd, &st) == 0 ? st.st_size : AVERROR(errno);
+    }
+    switch (whence & ~AVSEEK_FORCE) {
+        case SEEK_SET: io->position = offset; break;
+        case SEEK_CUR: io->position += offset; break;
+        case SEEK_END: {
+            struct stat st {};
+            if (::fstat(io->fd, &st) != 0) return AVERROR(errno);
+            io->position = st.st_size + offset;
+            break;
+        }
+        default: return AVERROR(EINVAL);
+    }
+    return io->position;
+}
+
+AVIOContext* open_file_io(int fd, bool write) {
+    constexpr int size = 1 << 16;
+    auto* buffer = static_cast<unsigned char*>(av_malloc(size));
+    if (!buffer) return nullptr;
+    AVIOContext* context = avio_alloc_context(buffer, size, write ? 1 : 0, new FileIo{fd}, read_file_io,
+                                              write ? write_file_io : nullptr, seek_file_io);
+    if (!context) av_free(buffer);
+    return context;
+}
+
+// Flushes (when writing) and frees; returns the first error seen.
+int close_file_io(AVIOContext** context) {
+    if (!*context) return 0;
+    if ((*context)->write_flag) avio_flush(*context);
+    const int error = (*context)->error;
+    delete static_cast<FileIo*>((*context)->opaque);
+    av_freep(&(*context)->buffer);
+    avio_context_free(context);
+    return error;
+}
+
+// The muxer reopens its own output to move the index to the front
+// (faststart): give it the same file, never the path.
+int reopen_output(AVFormatContext* format, AVIOContext** context, const char* /*url*/, int flags,
+                  AVDictionary** /*options*/) {
+    if (flags & AVIO_FLAG_WRITE) return AVERROR(EPERM);
+    *context = open_file_io(static_cast<FileIo*>(format->pb->opaque)->fd, false);
+    return *context ? 0 : AVERROR(ENOMEM);
+}
+
+int close_reopened(AVFormatContext* /*format*/, AVIOContext* context) { return close_file_io(&context); }
+
 struct CloseOutput {
     void operator()(AVFormatContext* f) const {
-        if (f->pb && !(f->oformat->flags & AVFMT_NOFILE)) avio_closep(&f->pb);
+        close_file_io(&f->pb);
         avformat_free_context(f);
     }
 };
@@ -73,7 +159,7 @@ constexpr int kMatrix = SWS_CS_ITU709;
 }  // namespace
 
 struct VideoWriter::Encoder {
-    explicit Encoder(const std::filesystem::path& path) : file(path) {}
+    Encoder(const Folder& folder, const std::string& name) : file(folder, name) {}
 
     // Declared first so it is destroyed last: the file is closed before the
     // temporary is removed.
@@ -131,22 +217,28 @@ void validate(int width, int height, const VideoOptions& options) {
 }  // namespace
 
 VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int height, const VideoOptions& options)
-    : path_(path), width_(width), height_(height) {
+    : VideoWriter(Folder::of(path), path.filename().string(), width, height, options) {}
+
+VideoWriter::VideoWriter(const Folder& folder, const std::string& name, int width, int height,
+                         const VideoOptions& options)
+    : path_(folder / name), width_(width), height_(height) {
     quiet_ffmpeg();
     validate(width, height, options);
     const AVCodec* codec = find_encoder(options.codec);
     if (!codec)
-        throw std::runtime_error("cannot write " + path.string() + ": FFmpeg has no " + options.codec +
+        throw std::runtime_error("cannot write " + path_.string() + ": FFmpeg has no " + options.codec +
                                  " encoder");
     codec_name_ = codec->name;
 
-    auto e = std::make_unique<Encoder>(path);
-    const std::string url = file_url(e->file.temp_path());
+    auto e = std::make_unique<Encoder>(folder, name);
 
-    // The temporary name ends in ".tmp-<pid>": name the container explicitly.
+    // The file is ours (custom I/O), so the muxer is named, not guessed.
     AVFormatContext* format = nullptr;
-    e->check(avformat_alloc_output_context2(&format, nullptr, "mp4", url.c_str()), "creating the muxer");
+    e->check(avformat_alloc_output_context2(&format, nullptr, "mp4", nullptr), "creating the muxer");
     e->format.reset(format);
+    format->flags |= AVFMT_FLAG_CUSTOM_IO;
+    format->io_open = reopen_output;
+    format->io_close2 = close_reopened;
     format->flags |= AVFMT_FLAG_BITEXACT;  // no "Lavf" version string in the file
     e->stream = avformat_new_stream(format, nullptr);
     if (!e->stream) e->fail_write("creating the stream", AVERROR(ENOMEM));
@@ -187,7 +279,8 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
     e->stream->time_base = c.time_base;
     e->stream->avg_frame_rate = c.framerate;
 
-    e->check(avio_open(&format->pb, url.c_str(), AVIO_FLAG_WRITE), "opening the file");
+    format->pb = open_file_io(e->file.fd(), true);
+    if (!format->pb) e->fail_write("opening the file", AVERROR(ENOMEM));
     AVDictionary* muxer_options = nullptr;
     // No creation_time is set, so the header carries none: same frames, same bytes.
     av_dict_set(&muxer_options, "movflags", "+faststart", 0);  // index first: playable while downloading
@@ -250,7 +343,7 @@ void VideoWriter::finish() {
     e.check(av_write_trailer(e.format.get()), "writing the trailer");
     e.check(e.format->pb->error, "writing the file");
     // Closing flushes the last buffer: a full disk may show up only here.
-    e.check(avio_closep(&e.format->pb), "closing the file");
+    e.check(close_file_io(&e.format->pb), "closing the file");
     e.file.commit();
     e.finished = true;
 }

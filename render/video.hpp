@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "render/atomic_file.hpp"
 #include "render/image.hpp"
 
 namespace render {
@@ -24,6 +25,9 @@ class VideoWriter {
 public:
     // Throws std::invalid_argument for an odd or non-positive size or bad
     // options, std::runtime_error (naming the path) when FFmpeg fails.
+    // folder/name, written through an exclusive temporary (atomic_file.hpp).
+    VideoWriter(const Folder& folder, const std::string& name, int width, int height,
+                const VideoOptions& options = {});
     VideoWriter(const std::filesystem::path& path, int width, int height, const VideoOptions& options = {});
     ~VideoWriter();  // without finish(), discards the temporary file: no half-written MP4 under the real name
     VideoWriter(const VideoWriter&) = delete;

@@ -2,6 +2,7 @@
 // into one folder each leave only whole files, and earlier outputs as they were.
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -27,7 +28,8 @@ namespace {
 // for go() before it runs, so that the test can prepare for its pid.
 class Child {
 public:
-    Child(const std::vector<std::string>& args, const fs::path& log) {
+    // `file_size_limit`: the largest file the child may write (0: no limit).
+    Child(const std::vector<std::string>& args, const fs::path& log, rlim_t file_size_limit = 0) {
         int fds[2];
         REQUIRE(::pipe(fds) == 0);
         pid_ = ::fork();
@@ -39,6 +41,11 @@ public:
             const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
             ::dup2(err, 2);
             ::dup2(err, 1);
+            if (file_size_limit > 0) {
+                const struct rlimit limit = {file_size_limit, file_size_limit};
+                ::signal(SIGXFSZ, SIG_IGN);  // kept across exec: a write past the limit fails with EFBIG
+                if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(97);
+            }
             std::vector<char*> argv{const_cast<char*>(FIGGEN_EXE)};
             for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
             argv.push_back(nullptr);
@@ -92,10 +99,14 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
     return files;
 }
 
+// A temporary (".NAME~tmp~PID~N"), an earlier output moved aside
+// (".NAME~old~PID~N") or a figure's lock (".ID~lock").
 bool has_temporaries(const fs::path& dir) {
     for (const auto& entry : fs::recursive_directory_iterator(dir)) {
         const std::string name = entry.path().filename().string();
-        if (name.find(".tmp-") != std::string::npos || name.find(".old-") != std::string::npos) return true;
+        if (name.find("~tmp~") != std::string::npos || name.find("~old~") != std::string::npos ||
+            name.find("~lock") != std::string::npos)
+            return true;
     }
     return false;
 }
@@ -135,23 +146,31 @@ TEST_CASE("SIGINT or SIGTERM during a render removes its temporaries and keeps e
 }
 
 TEST_CASE("a full disk gives a clear error and leaves no partial file", "[cli][safety]") {
-    // Every output's temporary (<file>.tmp-<pid>) is made a link to /dev/full
-    // before the process runs: each write fails as on a full disk.
-    for (const std::string file : {"tc7-1.png", "tc7-1.json", "tc7-1.mp4"}) {
-        INFO(file);
+    // The child may write files of at most `limit` bytes (RLIMIT_FSIZE, with
+    // SIGXFSZ ignored): a write past it fails as on a full disk, with EFBIG
+    // instead of ENOSPC. The film (57 KiB) is written first; without it, the
+    // PNG (7 KiB), then the JSON (3 KiB).
+    struct Case {
+        std::vector<std::string> options;
+        rlim_t limit;
+        std::string file;
+    };
+    for (const Case& c : {Case{{}, 4096, "tc7-1.mp4"}, Case{{"--no-video"}, 4096, "tc7-1.png"}}) {
+        INFO(c.file);
         const fs::path out = fresh_dir("full-disk");
         REQUIRE(testkit::figgen("render tc7-1 --out " + out.string()).status == 0);
         const auto before = snapshot(out);
         const fs::path log = out.parent_path() / "full-disk.log";
-        Child child({"render", "tc7-1", "--seed", "3", "--out", out.string()}, log);
-        fs::create_symlink("/dev/full", out / (file + ".tmp-" + std::to_string(child.pid())));
+        std::vector<std::string> args = {"render", "tc7-1", "--seed", "3", "--out", out.string()};
+        args.insert(args.end(), c.options.begin(), c.options.end());
+        Child child(args, log, c.limit);
         child.go();
         const int status = child.wait();
         REQUIRE(WIFEXITED(status));
         CHECK(WEXITSTATUS(status) == 1);
         const std::string message = slurp(log);
-        CHECK_THAT(message, Catch::StartsWith("figgen: error: ") && Catch::Contains(file) &&
-                                Catch::Contains("No space left on device"));
+        CHECK_THAT(message, Catch::StartsWith("figgen: error: cannot write ") && Catch::Contains(c.file) &&
+                                Catch::Contains("File too large"));
         CHECK(std::count(message.begin(), message.end(), '\n') == 1);
         CHECK_FALSE(has_temporaries(out));
         CHECK(snapshot(out) == before);  // the earlier figure untouched, nothing half-new

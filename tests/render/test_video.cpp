@@ -68,12 +68,15 @@ std::string read_bytes(const fs::path& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// Files in `path`'s folder whose names start with `path`'s name: the final
-// file and any temporary ("<name>.tmp-<pid>").
+// Files in `path`'s folder named for `path`: the final file and any
+// temporary (".<name>~tmp~<pid>~<n>").
 int files_named_like(const fs::path& path) {
+    const std::string name = path.filename().string();
     int n = 0;
-    for (const auto& entry : fs::directory_iterator(path.parent_path()))
-        if (entry.path().filename().string().rfind(path.filename().string(), 0) == 0) ++n;
+    for (const auto& entry : fs::directory_iterator(path.parent_path())) {
+        const std::string found = entry.path().filename().string();
+        n += found == name || found.rfind("." + name + "~", 0) == 0;
+    }
     return n;
 }
 

@@ -1,0 +1,73 @@
+#include "description/plain_name.hpp"
+
+#include <cstdint>
+#include <cstdio>
+
+namespace description {
+
+bool is_plain_id(std::string_view id) {
+    if (id.empty() || id.size() > 100 || id.front() == '.' || id.find("..") != std::string_view::npos) return false;
+    for (const char c : id) {
+        const bool alnum = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+        if (!alnum && c != '-' && c != '_' && c != '.') return false;
+    }
+    return true;
+}
+
+namespace {
+
+// The length of the UTF-8 sequence starting at text[at] and its code point,
+// or 0 when it is not valid UTF-8.
+std::size_t decode_utf8(std::string_view text, std::size_t at, std::uint32_t& code) {
+    const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+    const unsigned char lead = byte(at);
+    std::size_t length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xE ? 3 : (lead >> 3) == 0x1E ? 4 : 0;
+    if (length == 0 || at + length > text.size()) return 0;
+    code = length == 1 ? lead : lead & (0x7F >> length);
+    for (std::size_t i = 1; i < length; ++i) {
+        if ((byte(at + i) & 0xC0) != 0x80) return 0;
+        code = (code << 6) | (byte(at + i) & 0x3F);
+    }
+    static const std::uint32_t smallest[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (code < smallest[length] || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return 0;
+    return length;
+}
+
+bool is_bidi_control(std::uint32_t code) {
+    return (code >= 0x202A && code <= 0x202E) || (code >= 0x2066 && code <= 0x2069) || code == 0x200E ||
+           code == 0x200F || code == 0x061C;
+}
+
+}  // namespace
+
+std::string printable(std::string_view text) {
+    std::string shown;
+    char escape[16];
+    for (std::size_t at = 0; at < text.size();) {
+        std::uint32_t code = 0;
+        const std::size_t length = decode_utf8(text, at, code);
+        if (length == 0) {
+            std::snprintf(escape, sizeof escape, "\\x%02X", static_cast<unsigned char>(text[at]));
+            shown += escape;
+            ++at;
+            continue;
+        }
+        if (code == '\n') {
+            shown += "\\n";
+        } else if (code == '\t') {
+            shown += "\\t";
+        } else if (code < 0x20 || code == 0x7F || (code >= 0x80 && code < 0xA0)) {
+            std::snprintf(escape, sizeof escape, "\\x%02X", static_cast<unsigned>(code));
+            shown += escape;
+        } else if (is_bidi_control(code)) {
+            std::snprintf(escape, sizeof escape, "\\u%04X", static_cast<unsigned>(code));
+            shown += escape;
+        } else {
+            shown.append(text.substr(at, length));
+        }
+        at += length;
+    }
+    return shown;
+}
+
+}  // namespace description

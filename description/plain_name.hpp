@@ -1,0 +1,26 @@
+#pragma once
+// Names that come from a description or the command line and end up in file
+// names or in one-line messages.
+
+#include <string>
+#include <string_view>
+
+namespace description {
+
+// What a figure id may be, for messages: it names the figure's files inside
+// the output folder, so it cannot lead anywhere else.
+inline constexpr const char* plain_id_allowed =
+    "a plain name of ASCII letters, digits, '-', '_' and '.', not starting with '.', without '..', 1 to 100 "
+    "characters";
+
+// Whether `id` is such a name: no path separator, no "..", no control,
+// bidirectional or other non-ASCII character, not empty, not hidden.
+bool is_plain_id(std::string_view id);
+
+// `text` quoted for a one-line message: control characters, the
+// bidirectional controls (U+202A..U+202E, U+2066..U+2069, U+200E, U+200F,
+// U+061C) and invalid UTF-8 are written as escapes (\n, \x00, \u202E), so a
+// hostile name can neither break the line nor reorder what a terminal shows.
+std::string printable(std::string_view text);
+
+}  // namespace description
