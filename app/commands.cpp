@@ -1,6 +1,8 @@
 #include "app/commands.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -15,6 +17,32 @@
 #include "sim/check.hpp"
 
 namespace app {
+
+std::uint64_t parse_size(const std::string& option, const std::string& text) {
+    const std::string allowed = ": use a size from 1 byte to 1 PiB, e.g. 512M, 8G or 1.5G";
+    double number = 0.0;
+    std::size_t used = 0;
+    const bool digits_first = !text.empty() && ((text[0] >= '0' && text[0] <= '9') || text[0] == '.');
+    try {
+        if (digits_first) number = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    std::string unit = text.substr(used);
+    for (char& ch : unit) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    if (unit.size() > 1 && unit.back() == 'B') unit.pop_back();
+    if (unit.size() > 1 && unit.back() == 'I') unit.pop_back();
+    static const std::string units = "KMGTP";
+    const auto power = unit.empty() || unit == "B" ? 0 : units.find(unit) == std::string::npos || unit.size() != 1
+                                                             ? std::string::npos
+                                                             : units.find(unit) + 1;
+    if (!digits_first || used == 0 || power == std::string::npos || !std::isfinite(number))
+        throw UsageError(option + " " + text + " is not allowed" + allowed);
+    const double bytes = std::floor(number * std::pow(1024.0, static_cast<double>(power)));
+    if (!(bytes >= 1.0 && bytes <= std::pow(1024.0, 5)))
+        throw UsageError(option + " " + text + " is not allowed" + allowed);
+    return static_cast<std::uint64_t>(bytes);
+}
 
 ListCommand::ListCommand(CLI::App& parent) {
     app = parent.add_subcommand("list", "List the figure ids and titles of the catalog");
@@ -76,11 +104,9 @@ RenderCommand::RenderCommand(CLI::App& parent) {
     app->add_option("--seed", seed, "Seed of the random generator (0..2^63-1)");
     app->add_option("--scale", scale, "Scale every pixel size by X (0.1..8)")->capture_default_str();
     app->add_option("--max-memory", max_memory, "Refuse a figure whose estimated memory exceeds SIZE (e.g. 512M, 8G)")
-        ->transform(CLI::AsSizeValue(false))
-        ->default_str("4G");
+        ->capture_default_str();
     app->add_option("--max-disk", max_disk, "Refuse a figure whose outputs would exceed SIZE (e.g. 100M, 8G)")
-        ->transform(CLI::AsSizeValue(false))
-        ->default_str("4G");
+        ->capture_default_str();
     app->add_flag("--no-video", no_video, "Do not write the MP4 animation (as --format png)");
     app->add_flag("--frames", frames, "Also write the animation as a PNG sequence");
     app->add_option("--size", size, "The figure's size in pixels before --scale, WxH (e.g. 1200x600)");
@@ -111,8 +137,8 @@ OutputOptions output_options(const RenderCommand& c) {
     options.scale = c.scale;
     options.video = !c.no_video && c.format != "png" && c.format != "frames";
     options.frames = c.frames || c.format == "frames";
-    options.max_memory = c.max_memory;
-    options.max_disk = c.max_disk;
+    options.max_memory = parse_size("--max-memory", c.max_memory);
+    options.max_disk = parse_size("--max-disk", c.max_disk);
     return options;
 }
 

@@ -20,6 +20,11 @@ struct InternalError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// "512M", "8G", "1.5GiB", "4096": bytes (K, M, G, T, P are powers of 1024; a
+// trailing "B" or "iB" is allowed). UsageError naming `option` unless it is
+// a size from 1 byte to 1 PiB.
+std::uint64_t parse_size(const std::string& option, const std::string& text);
+
 // A subcommand: registered on the command line, run when given.
 class Command {
 public:
@@ -62,7 +67,7 @@ struct RenderCommand : Command {
     std::optional<int> fps;
     double scale = 1.0;
     bool no_video = false, frames = false;
-    std::uint64_t max_memory = 4ull << 30, max_disk = 4ull << 30;
+    std::string max_memory = "4G", max_disk = "4G";  // sizes, read by parse_size
 };
 
 }  // namespace app

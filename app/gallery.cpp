@@ -1,8 +1,12 @@
 #include "app/gallery.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -21,6 +25,11 @@ namespace {
 
 constexpr int thumb_width = 480, thumb_height = 360;
 
+// The gallery's folder (the rendered figures, index.html) and the two it makes.
+struct Folders {
+    render::Folder figures, thumbs, posters;
+};
+
 std::string escape(const std::string& text) {
     std::string out;
     out.reserve(text.size());
@@ -35,6 +44,29 @@ std::string escape(const std::string& text) {
         }
     }
     return out;
+}
+
+// What the metadata says, read as untrusted: a missing or mistyped field
+// gives the fallback, never an exception.
+const nlohmann::json& member(const nlohmann::json& node, const char* key) {
+    static const nlohmann::json none;
+    if (!node.is_object()) return none;
+    const auto found = node.find(key);
+    return found == node.end() ? none : *found;
+}
+std::string text_of(const nlohmann::json& node, const char* key, const std::string& fallback) {
+    const nlohmann::json& value = member(node, key);
+    return value.is_string() ? value.get<std::string>() : fallback;
+}
+// A positive integer up to a million (a size, a count), else 0.
+int count_of(const nlohmann::json& value) {
+    return value.is_number_integer() && value.get<long long>() > 0 && value.get<long long>() <= 1'000'000
+               ? static_cast<int>(value.get<long long>())
+               : 0;
+}
+std::string seed_of(const nlohmann::json& meta) {
+    const nlohmann::json& seed = member(meta, "seed");
+    return seed.is_number_unsigned() ? std::to_string(seed.get<std::uint64_t>()) : "?";
 }
 
 std::string number_text(const nlohmann::json& value) {
@@ -79,7 +111,7 @@ bool short_value(const nlohmann::json& value, std::string& text) {
 // the fields every figure has, with its path ("panels.2.statistics.max"),
 // hashes and file bookkeeping left out; at most `limit` rows.
 void computed_rows(const nlohmann::json& node, const std::string& path, std::vector<std::string>& rows,
-                   std::size_t limit) {
+                   std::size_t limit, int depth = 0) {
     static const std::vector<std::string> skipped = {
         "id", "title", "source", "scene", "caption", "seed", "description", "figgen_version", "renderer",
         "scale", "params", "style", "image", "state_sha256", "file", "codec", "pixel_format",
@@ -91,8 +123,8 @@ void computed_rows(const nlohmann::json& node, const std::string& path, std::vec
         std::string text;
         if (short_value(value, text))
             rows.push_back("<tr><th>" + escape(here) + "</th><td>" + escape(text) + "</td></tr>");
-        else if (value.is_object() || value.is_array())
-            computed_rows(value, here, rows, limit);
+        else if ((value.is_object() || value.is_array()) && depth < 6)
+            computed_rows(value, here, rows, limit, depth + 1);
     }
 }
 
@@ -137,18 +169,43 @@ td { font-family: "DejaVu Sans Mono", monospace; }
 
 }  // namespace
 
+namespace {
+
+// Whether `name` in `folder` is a file of its own: not a symlink (which could
+// lead out of the folder), not a folder.
+bool is_file_in(const render::Folder& folder, const std::string& name) {
+    struct stat st {};
+    return ::fstatat(folder.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode);
+}
+
+// The metadata folder/name, read without following a symlink; null when it
+// is not there or not JSON.
+nlohmann::json read_metadata(const render::Folder& folder, const std::string& name) {
+    const int fd = ::openat(folder.fd(), name.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) return nullptr;
+    std::string text;
+    char chunk[1 << 16];
+    for (ssize_t n; (n = ::read(fd, chunk, sizeof chunk)) > 0 && text.size() < (16u << 20);)
+        text.append(chunk, static_cast<std::size_t>(n));
+    ::close(fd);
+    return nlohmann::json::parse(text, nullptr, false);  // discarded (not an exception) when malformed
+}
+
+}  // namespace
+
 int write_thumbnails(const std::filesystem::path& from, const std::filesystem::path& to, int max_width,
                      int max_height) {
-    std::filesystem::create_directories(to);
+    const render::Folder source(from), target(to, true);
     int written = 0;
     for (const auto& file : catalog_files()) {
         const std::string id = file.stem().string();
-        if (!std::filesystem::exists(from / (id + ".png"))) continue;
-        const render::PngFile png = render::read_png(from / (id + ".png"));
+        if (!is_file_in(source, id + ".png")) continue;
+        const render::PngFile png = render::read_png(source, id + ".png");
         std::string title = id;
         for (const auto& [key, value] : png.text)
             if (key == "Title") title = value;
-        render::write_png(to / (id + ".png"), render::thumbnail(png.image, max_width, max_height), {{"Title", title}});
+        render::write_png(target, id + ".png", render::thumbnail(png.image, max_width, max_height),
+                          {{"Title", title}});
         ++written;
     }
     return written;
@@ -156,23 +213,26 @@ int write_thumbnails(const std::filesystem::path& from, const std::filesystem::p
 
 namespace {
 
-// The card's <video>, where the metadata names a film and its file is there;
-// writes its poster, the film's last frame decoded from the MP4: what the
-// film grows into, where the first frame (what a browser shows by itself)
-// is often nearly empty. Returns the film's file name, or "" for none.
-std::string film_html(const std::filesystem::path& dir, const std::string& id, const std::string& title,
+// The card's <video>, where the figure's film ID.mp4 is in the folder (its
+// name is never taken from the metadata); writes its poster, the film's last
+// frame decoded from the MP4: what the film grows into, where the first
+// frame (what a browser shows by itself) is often nearly empty. Returns the
+// film's file name, or "" for none.
+std::string film_html(const Folders& folders, const std::string& id, const std::string& title,
                       const nlohmann::json& meta, std::ostringstream& card) {
-    const nlohmann::json film = meta.value("animation", nlohmann::json::object());
-    const std::string movie = film.value("file", "");
-    if (movie.empty() || !std::filesystem::exists(dir / movie)) return "";
-    const int width = film["size"][0].get<int>(), height = film["size"][1].get<int>();
-    const int frames = film["frames"].get<int>();
-    render::write_png(dir / "posters" / (id + ".png"), render::decode_frame(dir / movie, frames - 1, 0),
+    const std::string movie = id + ".mp4";
+    const nlohmann::json& film = member(meta, "animation");
+    const nlohmann::json& size = member(film, "size");
+    const int width = size.is_array() && size.size() == 2 ? count_of(size[0]) : 0;
+    const int height = size.is_array() && size.size() == 2 ? count_of(size[1]) : 0;
+    const int frames = count_of(member(film, "frames")), fps = count_of(member(film, "fps"));
+    if (!is_file_in(folders.figures, movie) || !width || !height || !frames || !fps) return "";
+    render::write_png(folders.posters, id + ".png", render::decode_frame(folders.figures / movie, frames - 1, 0),
                       {{"Title", title + " (last frame of " + movie + ")"}});
     card << "<video controls preload=\"metadata\" src=\"" << escape(movie) << "\" poster=\"posters/" << escape(id)
          << ".png\" width=\"" << width << "\" height=\"" << height << "\" data-width=\"" << width
-         << "\" data-height=\"" << height << "\" data-frames=\"" << frames << "\" data-fps=\""
-         << film["fps"].get<int>() << "\"></video>\n";
+         << "\" data-height=\"" << height << "\" data-frames=\"" << frames << "\" data-fps=\"" << fps
+         << "\"></video>\n";
     return movie;
 }
 
@@ -180,15 +240,14 @@ std::string film_html(const std::filesystem::path& dir, const std::string& id, c
 void details_html(const std::string& id, const std::string& movie, const nlohmann::json& meta,
                   std::ostringstream& card) {
     card << "<div class=\"links\"><a href=\"" << escape(id) << ".png\">full PNG";
-    if (meta.contains("image")) {
-        const auto& size = meta["image"]["size"];
-        card << " (" << size[0].get<int>() << " x " << size[1].get<int>() << ")";
-    }
+    const nlohmann::json& size = member(member(meta, "image"), "size");
+    if (size.is_array() && size.size() == 2 && count_of(size[0]) && count_of(size[1]))
+        card << " (" << count_of(size[0]) << " x " << count_of(size[1]) << ")";
     card << "</a><a href=\"" << escape(id) << ".json\">metadata</a>";
     if (!movie.empty()) card << "<a href=\"" << escape(movie) << "\">MP4</a>";
     card << "</div>\n"
-         << "<details><summary>parameters, seed " << meta.value("seed", 0ull) << "</summary><table>"
-         << "<tr><th>seed</th><td>" << meta.value("seed", 0ull) << "</td></tr>" << parameter_list(meta)
+         << "<details><summary>parameters, seed " << seed_of(meta) << "</summary><table>"
+         << "<tr><th>seed</th><td>" << seed_of(meta) << "</td></tr>" << parameter_list(meta)
          << "</table></details>\n";
     std::vector<std::string> numbers;
     computed_rows(meta, "", numbers, 40);
@@ -197,24 +256,24 @@ void details_html(const std::string& id, const std::string& movie, const nlohman
         for (const auto& row : numbers) card << row;
         card << "</table></details>\n";
     }
-    if (!meta.value("caption", "").empty())
-        card << "<details><summary>notes</summary><p>" << escape(meta.value("caption", "")) << "</p></details>\n";
+    if (!text_of(meta, "caption", "").empty())
+        card << "<details><summary>notes</summary><p>" << escape(text_of(meta, "caption", "")) << "</p></details>\n";
 }
 
 // One figure's card; writes its thumbnail (and poster).
-std::string card_html(const std::filesystem::path& dir, const std::string& id, const nlohmann::json& meta) {
+std::string card_html(const Folders& folders, const std::string& id, const nlohmann::json& meta) {
+    const std::string title = text_of(meta, "title", id);
     const render::Image thumb =
-        render::thumbnail(render::read_png(dir / (id + ".png")).image, thumb_width, thumb_height);
-    render::write_png(dir / "thumbs" / (id + ".png"), thumb, {{"Title", meta.value("title", id)}});
-    const std::string title = meta.value("title", id);
+        render::thumbnail(render::read_png(folders.figures, id + ".png").image, thumb_width, thumb_height);
+    render::write_png(folders.thumbs, id + ".png", thumb, {{"Title", title}});
     std::ostringstream card;
     card << "<article id=\"" << escape(id) << "\">\n"
          << "<h2>" << escape(title) << "</h2>\n"
          << "<div class=\"id\">" << escape(id) << "</div>\n"
-         << "<p class=\"source\">" << escape(meta.value("source", "")) << "</p>\n"
+         << "<p class=\"source\">" << escape(text_of(meta, "source", "")) << "</p>\n"
          << "<a href=\"" << escape(id) << ".png\"><img src=\"thumbs/" << escape(id) << ".png\" width=\""
          << thumb.width << "\" height=\"" << thumb.height << "\" alt=\"" << escape(title) << "\"></a>\n";
-    const std::string movie = film_html(dir, id, title, meta, card);
+    const std::string movie = film_html(folders, id, title, meta, card);
     details_html(id, movie, meta, card);
     card << "</article>\n";
     return card.str();
@@ -236,21 +295,21 @@ std::string page_html(const std::string& cards, int shown, int missing) {
 }  // namespace
 
 int write_gallery(const std::filesystem::path& dir) {
+    const render::Folder figures(dir);
+    const Folders folders{figures, render::Folder(figures, "thumbs"), render::Folder(figures, "posters")};
     std::string cards;
     int shown = 0, missing = 0;
-    std::filesystem::create_directories(dir / "thumbs");
-    std::filesystem::create_directories(dir / "posters");
     for (const auto& file : catalog_files()) {
         const std::string id = file.stem().string();
-        std::ifstream in(dir / (id + ".json"));
-        if (!in || !std::filesystem::exists(dir / (id + ".png"))) {
+        const nlohmann::json meta = read_metadata(figures, id + ".json");
+        if (!meta.is_object() || !is_file_in(figures, id + ".png")) {
             ++missing;
             continue;
         }
-        cards += card_html(dir, id, nlohmann::json::parse(in));
+        cards += card_html(folders, id, meta);
         ++shown;
     }
-    render::write_file_atomically(dir / "index.html", page_html(cards, shown, missing));
+    render::write_file_atomically(figures, "index.html", page_html(cards, shown, missing));
     return shown;
 }
 
