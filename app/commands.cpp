@@ -100,7 +100,8 @@ RenderCommand::RenderCommand(CLI::App& parent) {
     app->add_option("figures", targets, "Figure ids (see `figgen list`) or .toml description files")->required();
     app->add_option("--out", out_dir, "Output folder, created if missing")->capture_default_str();
     app->add_option("--set", overrides,
-                    "Override a value: key=value for [params], or section.key=value (style, figure, animation)");
+                    "Override a value: key=value for [params], section.key=value (style, figure, animation), or "
+                    "id=NAME, title=TEXT");
     app->add_option("--seed", seed, "Seed of the random generator (0..2^63-1)");
     app->add_option("--scale", scale, "Scale every pixel size by X (0.1..8)")->capture_default_str();
     app->add_option("--max-memory", max_memory, "Refuse a figure whose estimated memory exceeds SIZE (e.g. 512M, 8G)")
@@ -132,6 +133,7 @@ OutputOptions output_options(const RenderCommand& c) {
         throw UsageError("--format " + c.format + " is not allowed with --no-video or --frames: use one");
     if (c.fps && !(*c.fps >= 1 && *c.fps <= 120))
         throw UsageError("--fps " + std::to_string(*c.fps) + " is not allowed: use 1..120 frames per second");
+    if (c.out_dir.empty()) throw UsageError("--out is empty: give the folder the figures go into, e.g. --out out");
     OutputOptions options;
     options.dir = c.out_dir;
     options.scale = c.scale;

@@ -51,8 +51,12 @@ toml::node_view<toml::node> parse_value(const std::string& text, toml::table& ho
     return holder["v"];
 }
 
+// The top-level keys that --set may give by their bare names.
+bool is_top_level_override(const std::string& key) { return key == "id" || key == "title"; }
+
 std::string section_of(const std::string& assignment) {
     const std::string key = assignment.substr(0, assignment.find('='));
+    if (is_top_level_override(key)) return "description." + key;
     return key.find('.') == std::string::npos ? "params." + key : key;
 }
 
@@ -77,6 +81,10 @@ void apply_override(toml::table& root, const std::string& assignment) {
     if (eq == std::string::npos || eq == 0)
         throw UsageError("--set " + assignment + ": expected key=value, e.g. --set r=0.2 or --set figure.panels=[0,5]");
     std::string key = assignment.substr(0, eq);
+    if (is_top_level_override(key)) {  // --set id=NAME, --set title=TEXT: always text
+        root.insert_or_assign(key, assignment.substr(eq + 1));
+        return;
+    }
     std::string section = "params";
     if (const auto dot = key.find('.'); dot != std::string::npos) {
         section = key.substr(0, dot);

@@ -77,7 +77,8 @@ auto at_source(const Description& d, Read&& read) -> decltype(read()) {
 // The largest description file read; a larger one is refused before it is parsed.
 inline constexpr std::size_t max_description_bytes = 16u << 20;
 
-// Reads `file`, applies `overrides` ("key=value"; a bare key means params.key)
+// Reads `file`, applies `overrides` ("key=value"; a bare key means params.key,
+// except id and title, the figure's own)
 // and `seed` if given. Throws UsageError naming the file, key and what is allowed.
 Description load_description(const std::filesystem::path& file, const std::vector<std::string>& overrides = {},
                              std::optional<std::uint64_t> seed = std::nullopt);

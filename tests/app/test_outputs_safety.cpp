@@ -15,71 +15,16 @@
 #include <sstream>
 #include <thread>
 
+#include "child_process.hpp"
 #include "figgen_run.hpp"
 #include "render/digest.hpp"
 #include "render/png_io.hpp"
 
 namespace fs = std::filesystem;
+using testkit::Child;
 using testkit::fresh_dir;
 
 namespace {
-
-// A figgen process started with `args`, its stderr going to `log`. It waits
-// for go() before it runs, so that the test can prepare for its pid.
-class Child {
-public:
-    // `file_size_limit`: the largest file the child may write (0: no limit).
-    Child(const std::vector<std::string>& args, const fs::path& log, rlim_t file_size_limit = 0) {
-        int fds[2];
-        REQUIRE(::pipe(fds) == 0);
-        pid_ = ::fork();
-        REQUIRE(pid_ >= 0);
-        if (pid_ == 0) {
-            ::close(fds[1]);
-            char ready;
-            if (::read(fds[0], &ready, 1) != 1) ::_exit(99);
-            const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            ::dup2(err, 2);
-            ::dup2(err, 1);
-            if (file_size_limit > 0) {
-                const struct rlimit limit = {file_size_limit, file_size_limit};
-                ::signal(SIGXFSZ, SIG_IGN);  // kept across exec: a write past the limit fails with EFBIG
-                if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(97);
-            }
-            std::vector<char*> argv{const_cast<char*>(FIGGEN_EXE)};
-            for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-            argv.push_back(nullptr);
-            ::execv(FIGGEN_EXE, argv.data());
-            ::_exit(98);
-        }
-        ::close(fds[0]);
-        go_ = fds[1];
-    }
-    ~Child() {
-        if (go_ >= 0) ::close(go_);
-        if (pid_ > 0 && !waited_) {
-            ::kill(pid_, SIGKILL);
-            ::waitpid(pid_, nullptr, 0);
-        }
-    }
-    pid_t pid() const { return pid_; }
-    void go() {
-        REQUIRE(::write(go_, "g", 1) == 1);
-        ::close(go_);
-        go_ = -1;
-    }
-    int wait() {  // raw wait status
-        int status = 0;
-        ::waitpid(pid_, &status, 0);
-        waited_ = true;
-        return status;
-    }
-
-private:
-    pid_t pid_ = -1;
-    int go_ = -1;
-    bool waited_ = false;
-};
 
 std::string slurp(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
@@ -145,6 +90,42 @@ TEST_CASE("SIGINT or SIGTERM during a render removes its temporaries and keeps e
     }
 }
 
+TEST_CASE("after a SIGKILL the next render into the folder removes what the killed one left", "[cli][safety]") {
+    const fs::path out = fresh_dir("killed");
+    REQUIRE(testkit::figgen("render tc7-1 --frames --out " + out.string()).status == 0);
+    Child child({"render", "tc7-2", "--frames", "--scale", "2", "--out", out.string()},
+                out.parent_path() / "killed.log");
+    child.go();
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!has_temporaries(out) && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the film, frames and lock under way
+    ::kill(child.pid(), SIGKILL);
+    const int status = child.wait();
+    REQUIRE(WIFSIGNALED(status));
+    REQUIRE(has_temporaries(out));  // nothing can clean up after SIGKILL
+    const auto earlier = snapshot(out);
+
+    // Another process, with another TMPDIR: the lock is in the output folder.
+    Child again({"render", "tc7-2", "--frames", "--set", "animation.steps=[0,200]", "--out", out.string()},
+                out.parent_path() / "killed-again.log", {{}, 0, false, {"TMPDIR=" + out.parent_path().string()}});
+    again.go();
+    const int second = again.wait();
+    REQUIRE(WIFEXITED(second));
+    CHECK(WEXITSTATUS(second) == 0);
+    CHECK_FALSE(has_temporaries(out));
+    const auto now = snapshot(out);
+    for (const std::string name : {"tc7-1.png", "tc7-1.json", "tc7-1.mp4", "tc7-1-frames/00000.png"}) {
+        INFO(name);
+        CHECK(now.at(name) == earlier.at(name));  // the other figure's files untouched
+    }
+    CHECK(now.count("tc7-2.png") == 1);
+    CHECK(now.count("tc7-2.mp4") == 1);
+    CHECK(now.count("tc7-2-frames/00010.png") == 1);
+    const auto meta = nlohmann::json::parse(slurp(out / "tc7-2.json"));
+    CHECK(meta["animation"]["frames"] == 11);
+}
+
 TEST_CASE("a full disk gives a clear error and leaves no partial file", "[cli][safety]") {
     // The child may write files of at most `limit` bytes (RLIMIT_FSIZE, with
     // SIGXFSZ ignored): a write past it fails as on a full disk, with EFBIG
@@ -163,7 +144,7 @@ TEST_CASE("a full disk gives a clear error and leaves no partial file", "[cli][s
         const fs::path log = out.parent_path() / "full-disk.log";
         std::vector<std::string> args = {"render", "tc7-1", "--seed", "3", "--out", out.string()};
         args.insert(args.end(), c.options.begin(), c.options.end());
-        Child child(args, log, c.limit);
+        Child child(args, log, {{}, c.limit, false, {}});
         child.go();
         const int status = child.wait();
         REQUIRE(WIFEXITED(status));

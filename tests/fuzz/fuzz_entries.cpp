@@ -1,9 +1,12 @@
 #include "fuzz/fuzz_entries.hpp"
 
+#include <algorithm>
+#include <filesystem>
 #include <stdexcept>
 #include <string_view>
 
 #include "description/description.hpp"
+#include "description/plain_name.hpp"
 #include "scenes/scene.hpp"
 #include "sim/lsystem.hpp"
 #include "sim/snowflake.hpp"
@@ -27,16 +30,61 @@ std::vector<std::string> lines_of(std::string_view text) {
     return lines;
 }
 
+// What the output paths rely on, checked apart from is_plain_id: a bug if
+// an accepted id could name anything but a plain file in the output folder.
+void require_inside_output_folder(const std::string& id) {
+    const bool control = std::any_of(id.begin(), id.end(), [](char c) {
+        const auto b = static_cast<unsigned char>(c);
+        return b < 0x20 || b == 0x7F || b >= 0x80;
+    });
+    if (id.empty() || id.front() == '.' || id.find('/') != std::string::npos || control ||
+        std::filesystem::path(id).filename() != id || id.size() > 100)
+        throw std::logic_error("an id that leaves the output folder was accepted: " + description::printable(id));
+}
+
+// What figgen prints for a refusal: one line, no control or bidirectional
+// character a terminal would act on.
+void require_one_clean_line(const std::string& message) {
+    const std::string shown = description::printable(message);
+    for (std::size_t i = 0; i < shown.size(); ++i) {
+        const auto b = static_cast<unsigned char>(shown[i]);
+        const bool bidi = b == 0xE2 && i + 2 < shown.size() &&
+                          ((shown[i + 1] == '\x80' && (static_cast<unsigned char>(shown[i + 2]) == 0x8E ||
+                                                        static_cast<unsigned char>(shown[i + 2]) == 0x8F ||
+                                                        (static_cast<unsigned char>(shown[i + 2]) >= 0xAA &&
+                                                         static_cast<unsigned char>(shown[i + 2]) <= 0xAE))) ||
+                           (shown[i + 1] == '\x81' && static_cast<unsigned char>(shown[i + 2]) >= 0xA6 &&
+                            static_cast<unsigned char>(shown[i + 2]) <= 0xA9));
+        if (b < 0x20 || b == 0x7F || bidi)
+            throw std::logic_error("a message would print a control or bidirectional character");
+    }
+}
+
 }  // namespace
+
+Outcome output_name(const std::uint8_t* data, std::size_t size) {
+    const std::string id(text_of(data, size));
+    try {
+        const description::Description d =
+            description::parse_description("scene = \"diffusion\"\n", "fuzz.toml", {"id=" + id});
+        require_inside_output_folder(d.id);
+        return Outcome::accepted;
+    } catch (const description::UsageError& e) {
+        require_one_clean_line(e.what());
+        return Outcome::refused;
+    }
+}
 
 Outcome description(const std::uint8_t* data, std::size_t size) {
     try {
         const description::Description d = description::parse_description(text_of(data, size), "fuzz.toml");
+        require_inside_output_folder(d.id);
         (void)d.last_step(true);
         // The scene's phase 1: every setting read and checked, nothing run.
         description::at_source(d, [&] { return scenes::read_scene(d, scenes::SceneOptions{0.3, false}); });
         return Outcome::accepted;
-    } catch (const description::UsageError&) {
+    } catch (const description::UsageError& e) {
+        require_one_clean_line(e.what());
         return Outcome::refused;
     }
 }
@@ -106,6 +154,7 @@ const std::vector<Target>& targets() {
         {"set", set_assignments},
         {"snowflake_rule", snowflake_rule},
         {"lsystem", lsystem},
+        {"output_name", output_name},
     };
     return all;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The four parsers that read what users type, as fuzz entries: each takes
+// The parsers that read what users type, as fuzz entries: each takes
 // raw bytes, feeds them to the parser (and a little beyond it, to the first
 // use of what was parsed) and says whether the input was accepted or refused
 // with the parser's own error. Anything else, an exception of another type,
@@ -30,6 +30,12 @@ Outcome snowflake_rule(const std::uint8_t* data, std::size_t size);
 // an accepted system is counted to depth 4, and drawn by both turtles when
 // that is under 20,000 segments.
 Outcome lsystem(const std::uint8_t* data, std::size_t size);
+
+// A figure id as `--set id=` gives it (any bytes: NUL, newlines, invalid
+// UTF-8): accepted only when it names a file inside the output folder (no
+// separator, not hidden, not "." or ".."), and a refusal's message, as
+// figgen prints it, is one line without control or bidirectional characters.
+Outcome output_name(const std::uint8_t* data, std::size_t size);
 
 struct Target {
     const char* name;  // the folder under tests/fuzz/corpus/ and regressions/
