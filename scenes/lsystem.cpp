@@ -158,6 +158,8 @@ Plant read_plant(const toml::table& own, Settings& shared, std::size_t index) {
 
 std::vector<Plant> read_plants(Settings& params) {
     auto tables = params.tables("plants");
+    if (params.has("plants") && tables.empty())
+        params.refuse("plants", "one plant at least; leave plants out for one plant of the [params] settings");
     if (tables.empty()) tables.push_back(toml::table{});
     std::vector<Plant> plants;
     for (std::size_t i = 0; i < tables.size(); ++i) plants.push_back(read_plant(tables[i], params, i));

@@ -117,9 +117,12 @@ public:
         draw_snowflakes(canvas, {0, 0, float(width), float(height)}, panels, colours_, options_.scale);
         nlohmann::json runs_meta = nlohmann::json::array();
         for (const auto& r : runs_) runs_meta.push_back(r.used);
-        run.write_figure(
-            canvas.read(),
-            {{"params", params_.used()}, {"runs", runs_meta}, {"style", style_.used()}, {"panels", panel_meta}});
+        // What ran: figure.panels, when given, decide the steps, not params.steps.
+        run.write_figure(canvas.read(), {{"params", params_.used()},
+                                         {"runs", runs_meta},
+                                         {"steps_run", run.last_step()},
+                                         {"style", style_.used()},
+                                         {"panels", panel_meta}});
     }
 
 private:

@@ -92,6 +92,9 @@ std::vector<Key> snowflake_keys(std::vector<Key> extra) {
 
 std::vector<SnowflakeRun> read_snowflake_runs(Settings& params) {
     const auto tables = params.tables("runs");
+    if (params.has("runs") && tables.empty())
+        params.refuse("runs", "one run at least, e.g. [{rule = \"0101010\"}]; leave runs out for one run of the "
+                              "default rule");
     const bool override_rule = params.has("rule");
     const sim::SnowflakeParams shared = read_shared(params);
     std::vector<SnowflakeRun> runs;

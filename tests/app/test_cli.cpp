@@ -107,7 +107,7 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-1 --set nosuch.key=1", "--set nosuch.key=1: unknown section 'nosuch'; allowed: params, style, figure, animation"},
         {render + "tc7-1 --set bogus=1", "--set bogus=1: unknown key params.bogus; allowed: n, r, boundary"},
         // [figure] and [animation], including windows outside the run.
-        {render + "tc7-1 --set figure.panels=[5,0]", "--set figure.panels=[5,0]: figure.panels = [ 5, 0 ] is not allowed: steps from 0 to 100000000, ascending"},
+        {render + "tc7-1 --set figure.panels=[5,0]", "--set figure.panels=[5,0]: figure.panels = [ 5, 0 ] is not allowed: steps from 0 to 100000000, ascending, each once"},
         {render + "tc7-1 --set figure.panels=[-1]", "--set figure.panels=[-1]: figure.panels = [ -1 ] is not allowed: steps from 0 to 100000000, ascending"},
         {render + "tc7-1 --set figure.size=[1,1]", "--set figure.size=[1,1]: figure.size = [ 1, 1 ] is not allowed: [width, height], each 2..16384"},
         {render + "tc7-1 --set figure.size=3", "--set figure.size=3: figure.size = 3 is not allowed: expected a list of integers"},
@@ -160,6 +160,10 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-ex2 --set initial_density=1.5", "--set initial_density=1.5: initial_density = 1.5 is not allowed: a number from 0 to 1"},
         {render + "tc7-ex2 --set n=1", "--set n=1: n = 1 is not allowed: an integer from 3 to 8192"},
         // snowflakes
+        {render + "sf87-3 --set runs=[]", "--set runs=[]: runs = [] is not allowed: one run at least"},
+        {render + "sf87-dim --set runs=[]", "--set runs=[]: runs = [] is not allowed: one run at least"},
+        {render + "pl-lsys-gallery --set plants=[]", "--set plants=[]: plants = [] is not allowed: one plant at least"},
+        {render + "tc7-1 --set figure.panels=[3,3]", "figure.panels = [ 3, 3 ] is not allowed: steps from 0 to 100000000, ascending, each once"},
         {render + "sf87-3 --set rule=12345678", "rule = \"12345678\" is not allowed: a rule code is 7 binary digits d0..d6"},
         {render + "sf87-3 --set rule=\\\"01x1000\\\"", "rule = \"01x1000\" is not allowed: a rule code is 7 binary digits d0..d6"},
         {render + "sf87-4 --set steps=-3", "--set steps=-3: steps = -3 is not allowed: an integer from 0 to 100000"},
