@@ -20,10 +20,32 @@
 namespace testkit {
 
 struct ChildOptions {
-    std::filesystem::path cwd;     // empty: the test's
-    rlim_t file_size_limit = 0;    // the largest file it may write; 0: no limit
-    bool unprivileged = false;     // when the test runs as root, run as nobody (65534)
+    std::filesystem::path cwd;             // empty: the test's
+    rlim_t file_size_limit = 0;            // the largest file it may write; 0: no limit
+    rlim_t address_space_limit = 0;        // its largest address space (RLIMIT_AS); 0: no limit
+    bool unprivileged = false;             // when the test runs as root, run as nobody (65534)
     std::vector<std::string> environment;  // "NAME=value" set in the child
+
+    static ChildOptions files_up_to(rlim_t bytes) {
+        ChildOptions o;
+        o.file_size_limit = bytes;
+        return o;
+    }
+    static ChildOptions memory_up_to(rlim_t bytes) {
+        ChildOptions o;
+        o.address_space_limit = bytes;
+        return o;
+    }
+    static ChildOptions as_nobody() {
+        ChildOptions o;
+        o.unprivileged = true;
+        return o;
+    }
+    static ChildOptions with_environment(std::vector<std::string> assignments) {
+        ChildOptions o;
+        o.environment = std::move(assignments);
+        return o;
+    }
 };
 
 class Child {
@@ -48,6 +70,10 @@ public:
                 const struct rlimit limit = {options.file_size_limit, options.file_size_limit};
                 ::signal(SIGXFSZ, SIG_IGN);  // kept across exec: a write past the limit fails with EFBIG
                 if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(97);
+            }
+            if (options.address_space_limit > 0) {
+                const struct rlimit limit = {options.address_space_limit, options.address_space_limit};
+                if (::setrlimit(RLIMIT_AS, &limit) != 0) ::_exit(94);
             }
             if (options.unprivileged && ::geteuid() == 0) {
                 const gid_t nogroup = 65534;

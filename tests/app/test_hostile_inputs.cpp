@@ -169,7 +169,7 @@ std::vector<Hostile> hostile_cases() {
                                                     fs::perms::group_read | fs::perms::group_exec |
                                                     fs::perms::others_read | fs::perms::others_exec);
          },
-         {{}, 0, true, {}}},
+         testkit::ChildOptions::as_nobody()},
         {"--out a read-only folder", {"render", "mine.toml", "--out", "locked", "--no-video"}, 2,
          "--out locked: cannot write there",
          [](const Sandbox& s) {
@@ -178,7 +178,7 @@ std::vector<Hostile> hostile_cases() {
                                                     fs::perms::group_read | fs::perms::group_exec |
                                                     fs::perms::others_read | fs::perms::others_exec);
          },
-         {{}, 0, true, {}}},
+         testkit::ChildOptions::as_nobody()},
         description("a 17 MiB description", mine("id = \"big\"") + "# " + std::string(17 << 20, 'x') + "\n", 2,
                     "a description is at most 16 MiB"),
         {"/dev/zero as the description", {"render", "/dev/zero", "--out", "out"}, 2, "/dev/zero"},
@@ -229,7 +229,7 @@ std::vector<Hostile> hostile_cases() {
              spill(s.out / "mine-frames", "a file\n");
          }},
         {"a full disk", {"render", "mine.toml", "--out", "out", "--seed", "7"}, 1, "File too large",
-         render_earlier, {{}, 2048, false, {}}},
+         render_earlier, testkit::ChildOptions::files_up_to(2048)},
         // The gallery reads only ID.* files of its folder.
         {"gallery with symlinked figures and a JSON naming files outside", {"gallery", "--out", "out"}, 0, "",
          [](const Sandbox& s) {

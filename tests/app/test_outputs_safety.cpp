@@ -108,7 +108,8 @@ TEST_CASE("after a SIGKILL the next render into the folder removes what the kill
 
     // Another process, with another TMPDIR: the lock is in the output folder.
     Child again({"render", "tc7-2", "--frames", "--set", "animation.steps=[0,200]", "--out", out.string()},
-                out.parent_path() / "killed-again.log", {{}, 0, false, {"TMPDIR=" + out.parent_path().string()}});
+                out.parent_path() / "killed-again.log",
+                testkit::ChildOptions::with_environment({"TMPDIR=" + out.parent_path().string()}));
     again.go();
     const int second = again.wait();
     REQUIRE(WIFEXITED(second));
@@ -144,7 +145,7 @@ TEST_CASE("a full disk gives a clear error and leaves no partial file", "[cli][s
         const fs::path log = out.parent_path() / "full-disk.log";
         std::vector<std::string> args = {"render", "tc7-1", "--seed", "3", "--out", out.string()};
         args.insert(args.end(), c.options.begin(), c.options.end());
-        Child child(args, log, {{}, c.limit, false, {}});
+        Child child(args, log, testkit::ChildOptions::files_up_to(c.limit));
         child.go();
         const int status = child.wait();
         REQUIRE(WIFEXITED(status));
@@ -201,3 +202,23 @@ TEST_CASE("two figgen processes rendering into one folder leave whole, matching 
         CHECK(written == expected);  // the same files, byte for byte (the seeds' films differ in length)
     }
 }
+
+#if !defined(__SANITIZE_ADDRESS__)  // ASan reserves terabytes of address space: no limit fits under it
+TEST_CASE("memory running out is reported as memory, with the figure's estimate", "[cli][safety]") {
+    // 8000^2 cells of doubles, five grids: about 2.4 GiB, in a process allowed 1.5 GiB.
+    const fs::path out = fresh_dir("out-of-memory");
+    const fs::path log = out.parent_path() / "out-of-memory.log";
+    Child child({"render", "tc7-1", "--set", "n=8000", "--set", "figure.panels=[0,1]", "--no-video", "--max-memory",
+                 "16G", "--out", out.string()},
+                log, testkit::ChildOptions::memory_up_to(1500ull << 20));
+    child.go();
+    const int status = child.wait();
+    REQUIRE(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 1);
+    const std::string message = slurp(log);
+    CHECK_THAT(message, Catch::StartsWith("figgen: error: tc7-1: out of memory (tc7-1, ") &&
+                            Catch::Contains("its estimate was ") && Catch::Contains(" GiB"));
+    CHECK(std::count(message.begin(), message.end(), '\n') == 1);
+    CHECK(fs::is_empty(out));  // nothing written, no temporary left
+}
+#endif
