@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -46,6 +47,16 @@ inline Run figgen_env(const std::string& assignments, const std::string& args) {
 
 // Runs `figgen args` as a user would: its exit status and everything it printed.
 inline Run figgen(const std::string& args) { return figgen_env("", args); }
+
+// A file's bytes, and a file made of `text`.
+inline std::string slurp(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+inline void spill(const std::filesystem::path& file, const std::string& text) {
+    std::ofstream out(file, std::ios::binary);
+    out << text;
+}
 
 // A fresh folder under the test artifacts, private to this process: ctest
 // runs test cases side by side, and two of them may render the same figure.

@@ -18,20 +18,10 @@
 #include "render/digest.hpp"
 
 namespace fs = std::filesystem;
+using testkit::slurp;
+using testkit::spill;
 
 namespace {
-
-std::string slurp(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-void spill(const fs::path& file, const std::string& text) {
-    std::ofstream out(file, std::ios::binary);
-    out << text;
-}
 
 // Every name under `root` with its type and contents, symlinks not followed.
 std::map<std::string, std::string> tree(const fs::path& root) {
@@ -131,6 +121,13 @@ void render_earlier(const Sandbox& s) {
     REQUIRE(fs::is_regular_file(s.out / "mine.json"));
 }
 
+// work/locked: a folder no one but root may write into.
+void make_locked(const Sandbox& s) {
+    fs::create_directory(s.work / "locked");
+    fs::permissions(s.work / "locked", fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                           fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+}
+
 std::vector<Hostile> hostile_cases() {
     const std::string id_rule = "is not allowed: a plain name of ASCII letters, digits";
     std::vector<Hostile> cases = {
@@ -163,21 +160,11 @@ std::vector<Hostile> hostile_cases() {
         {"--out empty", {"render", "mine.toml", "--out", "", "--no-video"}, 2, "--out is empty"},
         {"--out inside a read-only folder", {"render", "mine.toml", "--out", "locked/out", "--no-video"}, 2,
          "--out locked/out: cannot create the folder",
-         [](const Sandbox& s) {
-             fs::create_directory(s.work / "locked");
-             fs::permissions(s.work / "locked", fs::perms::owner_read | fs::perms::owner_exec |
-                                                    fs::perms::group_read | fs::perms::group_exec |
-                                                    fs::perms::others_read | fs::perms::others_exec);
-         },
+         make_locked,
          testkit::ChildOptions::as_nobody()},
         {"--out a read-only folder", {"render", "mine.toml", "--out", "locked", "--no-video"}, 2,
          "--out locked: cannot write there",
-         [](const Sandbox& s) {
-             fs::create_directory(s.work / "locked");
-             fs::permissions(s.work / "locked", fs::perms::owner_read | fs::perms::owner_exec |
-                                                    fs::perms::group_read | fs::perms::group_exec |
-                                                    fs::perms::others_read | fs::perms::others_exec);
-         },
+         make_locked,
          testkit::ChildOptions::as_nobody()},
         description("a 17 MiB description", mine("id = \"big\"") + "# " + std::string(17 << 20, 'x') + "\n", 2,
                     "a description is at most 16 MiB"),

@@ -23,15 +23,9 @@
 namespace fs = std::filesystem;
 using testkit::Child;
 using testkit::fresh_dir;
+using testkit::slurp;
 
 namespace {
-
-std::string slurp(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 // Every file under `dir` (recursively) with the SHA-256 of its bytes.
 std::map<std::string, std::string> snapshot(const fs::path& dir) {

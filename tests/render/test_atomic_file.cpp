@@ -10,20 +10,10 @@
 #include "render/atomic_file.hpp"
 
 namespace fs = std::filesystem;
+using testkit::slurp;
+using testkit::spill;
 
 namespace {
-
-std::string slurp(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-void spill(const fs::path& file, const std::string& text) {
-    std::ofstream out(file, std::ios::binary);
-    out << text;
-}
 
 // The names in `dir` that start with `prefix`.
 std::vector<std::string> named(const fs::path& dir, const std::string& prefix) {
