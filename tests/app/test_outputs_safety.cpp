@@ -163,10 +163,15 @@ TEST_CASE("two figgen processes rendering into one folder leave whole, matching 
         alone[seed] = snapshot(solo);
     }
 
+    // Each with a TMPDIR of its own: the lock they share is in the output folder.
+    fs::create_directories(out.parent_path() / "tmp-a");
+    fs::create_directories(out.parent_path() / "tmp-b");
     Child a({"render", "tc7-1", "tc7-5", "--frames", "--seed", "1", "--out", out.string()},
-            out.parent_path() / "together-a.log");
+            out.parent_path() / "together-a.log",
+            testkit::ChildOptions::with_environment({"TMPDIR=" + (out.parent_path() / "tmp-a").string()}));
     Child b({"render", "tc7-1", "tc7-5", "--frames", "--seed", "2", "--out", out.string()},
-            out.parent_path() / "together-b.log");
+            out.parent_path() / "together-b.log",
+            testkit::ChildOptions::with_environment({"TMPDIR=" + (out.parent_path() / "tmp-b").string()}));
     a.go();
     b.go();
     const int status_a = a.wait(), status_b = b.wait();
