@@ -65,6 +65,8 @@ std::filesystem::path resolve_figure(const std::string& id_or_path) {
     const std::filesystem::path given(id_or_path);
     if (given.extension() == ".toml" || id_or_path.find('/') != std::string::npos) {
         if (std::filesystem::is_regular_file(given)) return given;
+        if (std::filesystem::exists(given))
+            throw UsageError("figure file " + id_or_path + " is not allowed: a description is a regular .toml file");
         throw UsageError("figure file " + id_or_path + " does not exist");
     }
     const auto file = catalog_dir() / (id_or_path + ".toml");
