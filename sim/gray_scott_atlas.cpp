@@ -74,12 +74,14 @@ std::vector<GrayScottAtlasTile> run_gray_scott_atlas(const GrayScottAtlasParams&
             params.f = tiles[t].f;
             params.k = tiles[t].k;
             tiles[t].b = run_tile(params, start, atlas.steps, name);
+            // The progress report inside the try too: it formats text, and
+            // a bad_alloc there must not leave the region either.
+#pragma omp critical(figgen_progress)
+            tile_done();
         } catch (...) {
 #pragma omp critical(figgen_atlas_failure)
             if (!failure) failure = std::current_exception();
         }
-#pragma omp critical(figgen_progress)
-        tile_done();
     }
     if (failure) std::rethrow_exception(failure);
     return tiles;
