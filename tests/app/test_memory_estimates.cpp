@@ -201,6 +201,8 @@ TEST_CASE("memory estimates hold over the catalog and its scaled variants", "[.m
         {"tc7-ex2", "n x4 (800)", "--no-video --set n=800"},
         {"tc7-ex2", "n 2000, panels 1..3", "--no-video --set n=2000 --set figure.panels=[1,2,3]"},
         {"tc7-phase", "n x4 (400)", "--no-video --set n=400 --set trials=10 --set walk_iterations=10"},
+        {"tc7-phase", "n max 4096", "--no-video --set n=4096 --set trials=1 --set walk_iterations=1 --set qs=[0.6,0.62,0.01]"},
+        {"tc7-9", "sizes 2000..2048", "--no-video --set sizes=[2000,2048]"},
         {"gs-atlas", "n x4 (512), 50 steps", "--no-video --set n=512 --set steps=50"},
         {"gs-atlas", "tiles 48 x 48, 50 steps", "--no-video --set tiles=[48,48] --set steps=50"},
         {"gs-atlas", "n max 4096, 64 x 64 tiles", "--no-video --set n=4096 --set tiles=[64,64] --set steps=1"},
