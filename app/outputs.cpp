@@ -1,6 +1,5 @@
 #include "app/outputs.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <cstdio>
@@ -76,7 +75,7 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
                                  std::to_string(scaled_even(d.animation->height, options.scale));
         all.push_back({"animation frames " + size, canvas_bytes_per_pixel * frame_pixels(d, options)});
         if (options.video) {
-            const int held = std::min(d.animation->frame_count(), encoder_frames_held);
+            const int frames = d.animation->frame_count(), held = frames < encoder_frames_held ? frames : encoder_frames_held;
             all.push_back({"the video encoder's frames " + size,
                            encoder_bytes + (encoder_bytes_per_pixel + encoder_bytes_per_pixel_frame * held) *
                                                frame_pixels(d, options)});
