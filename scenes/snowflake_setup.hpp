@@ -29,8 +29,8 @@ struct SnowflakeRun {
 
 // The most steps a crystal is grown (steps, restrict and priority steps,
 // panels): it grows up to a ring a step, and its store with it. One crystal
-// of 4000 rings needs about 2.6 GiB (snowflake_crystal_bytes), what
-// --max-memory 4G serves; 100,000 would need 2 TiB.
+// of 4000 rings is estimated at 2.8 GiB (snowflake_crystal_bytes; sf87-6
+// peaked at 2.0 GiB), what --max-memory 4G serves; 100,000 would need 2 TiB.
 inline constexpr int snowflake_most_steps = 4000;
 
 // The [params] keys of a snowflake scene; `extra` adds the scene's own.
