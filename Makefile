@@ -75,6 +75,9 @@ fuzz:
 # Kernel throughput (Google Benchmark), then run time against error, the
 # book's numpy/scipy/matplotlib route side by side and whole-pipeline times
 # (`make figures` from clean among them): bench/results/, out/bench-pareto.png.
+# Last, every figure's memory estimate against its peak RSS, over the catalog
+# and scaled variants up to the largest documented values
+# (tests/app/test_memory_estimates.cpp): bench/results/memory.txt.
 bench: build
 	@scripts/deps.sh bench || echo "figgen: the book's route will be skipped" >&2
 	cmake --build $(BUILD) --target figgen_bench figgen_accuracy -j $(JOBS)
@@ -82,6 +85,7 @@ bench: build
 	$(BUILD)/bench/figgen_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
 	  --benchmark_out=bench/results/benchmarks.json --benchmark_out_format=json
 	$(BUILD)/bench/figgen_accuracy --results bench/results --figures out
+	FIGGEN_MEMORY_TABLE=bench/results/memory.txt $(BUILD)/tests/figgen_tests "[memory-sweep]"
 
 # Rewrites the image-checksum goldens under tests/golden/ from this machine's
 # renderer. Explicit only: CI never runs it.

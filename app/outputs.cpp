@@ -34,7 +34,26 @@ std::string format_bytes(double bytes) {
 
 namespace {
 
+// What the process holds before any scene allocates: Mesa's llvmpipe with
+// LLVM, FFmpeg, FreeType, HarfBuzz and fontconfig loaded and initialised.
+// Measured as the peak RSS (wait4's ru_maxrss) of the smallest figure,
+// tc7-6 --no-video --scale 0.1 (a 90 x 46 canvas): 108.6 MiB on Debian 12's
+// Mesa 22.3 / LLVM 15; 120 MiB leaves room for another Mesa or font set.
+constexpr double program_bytes = 120.0 * 1024 * 1024;
+// A canvas: 4x multisampled colour and depth-stencil (32 bytes a pixel), the
+// resolved colour, the copy read back and the PNG rows (12). What llvmpipe
+// touches of it is less: 23 bytes a pixel measured at 2000^2 to 6000^2.
 constexpr double canvas_bytes_per_pixel = 44.0;
+// The film's encoder (x264, preset medium: 40 frames of look-ahead, 3
+// B-frames, 3 references, each frame with its half-pel planes and its
+// quarter-size copy), over the frame canvas. Measured on tc7-1 at
+// 1000 x 1000 with 2, 4, 11, 21, 61 and 201 frames: 62, 80, 117, 152, 241
+// and 244 bytes a pixel above the program; at 400 x 400 and 2000 x 2000
+// (61 frames) 227 and 210 bytes a pixel over about 14 MiB of its own.
+constexpr double encoder_bytes = 16.0 * 1024 * 1024;
+constexpr double encoder_bytes_per_pixel = 64.0;
+constexpr double encoder_bytes_per_pixel_frame = 5.0;
+constexpr int encoder_frames_held = 40;
 
 double frame_pixels(const Description& d, const OutputOptions& options) {
     if (!d.animation) return 0.0;
@@ -47,18 +66,23 @@ double frame_pixels(const Description& d, const OutputOptions& options) {
 MemoryEstimate estimate_memory(const Description& d, const OutputOptions& options,
                                const std::vector<scenes::MemoryNeed>& needs) {
     using scenes::MemoryNeed;
-    // A canvas: 4x multisampled colour and depth-stencil (32 bytes a pixel),
-    // the resolved colour, the copy read back and the PNG rows (12). A frame
-    // likewise, plus the encoder's YUV frames and look-ahead (~16 of 1.5).
     std::vector<MemoryNeed> all = needs;
     all.push_back({"figure " + std::to_string(figure_width(d, options)) + " x " +
                        std::to_string(figure_height(d, options)) + " RGBA",
                    canvas_bytes_per_pixel * figure_width(d, options) * figure_height(d, options)});
-    if (d.animation && options.animates())
-        all.push_back({"animation frames " + std::to_string(scaled_even(d.animation->width, options.scale)) +
-                           " x " + std::to_string(scaled_even(d.animation->height, options.scale)),
-                       (canvas_bytes_per_pixel + 16.0 * 1.5) * frame_pixels(d, options)});
-    MemoryEstimate estimate{0.0, all.front()};
+    if (d.animation && options.animates()) {
+        const std::string size = std::to_string(scaled_even(d.animation->width, options.scale)) + " x " +
+                                 std::to_string(scaled_even(d.animation->height, options.scale));
+        all.push_back({"animation frames " + size, canvas_bytes_per_pixel * frame_pixels(d, options)});
+        if (options.video) {
+            const int frames = d.animation->frame_count(), held = frames < encoder_frames_held ? frames : encoder_frames_held;
+            all.push_back({"the video encoder's frames " + size,
+                           encoder_bytes + (encoder_bytes_per_pixel + encoder_bytes_per_pixel_frame * held) *
+                                               frame_pixels(d, options)});
+        }
+    }
+    // The largest of what a setting can make smaller, then the program's own.
+    MemoryEstimate estimate{program_bytes, all.front()};
     for (const MemoryNeed& need : all) {
         estimate.bytes += need.bytes;
         if (need.bytes > estimate.largest.bytes) estimate.largest = need;

@@ -68,7 +68,13 @@ void draw_hex_cells(const Canvas& canvas, const HexView& view, const std::vector
     glEnableVertexAttribArray(0);
     glVertexAttribIPointer(0, 2, GL_INT, sizeof(glm::ivec2), nullptr);
     glVertexAttribDivisor(0, 1);
-    glDrawArraysInstanced(GL_TRIANGLES, 0, 12, static_cast<GLsizei>(cells.size()));
+    // Batches of cells (4 triangles each), finishing each: see triangles_per_finish.
+    const long long total = static_cast<long long>(cells.size()), batch = triangles_per_finish / 4;
+    for (long long first = 0; first < total; first += batch) {
+        if (first > 0) glFinish();
+        glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 12, static_cast<GLsizei>(std::min(batch, total - first)),
+                                          static_cast<GLuint>(first));
+    }
     glVertexAttribDivisor(0, 0);
     glBindVertexArray(0);
     check_gl("draw_hex_cells");

@@ -62,10 +62,20 @@ void Shapes::line(glm::vec2 a, glm::vec2 b, float width, const glm::vec4& colour
     triangle(a + n, b - n, a - n, colour);
 }
 
+namespace {
+
+// Chords of about two pixels: finer than the 4x multisampling can show.
+int disc_chords(float radius) { return std::clamp(int(std::ceil(std::numbers::pi_v<float> * radius)), 12, 96); }
+
+}  // namespace
+
+std::size_t Shapes::disc_vertices(float radius) {
+    return radius > 0 ? 3 * static_cast<std::size_t>(disc_chords(radius)) : 0;
+}
+
 void Shapes::disc(glm::vec2 centre, float radius, const glm::vec4& colour) {
     if (!(radius > 0)) return;
-    // Chords of about two pixels: finer than the 4x multisampling can show.
-    const int n = std::clamp(int(std::ceil(std::numbers::pi_v<float> * radius)), 12, 96);
+    const int n = disc_chords(radius);
     glm::vec2 previous = centre + glm::vec2(radius, 0);
     for (int i = 1; i <= n; ++i) {
         const float a = 2 * std::numbers::pi_v<float> * float(i) / float(n);
@@ -205,7 +215,11 @@ void Shapes::draw(const Canvas& canvas) const {
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex),
                           reinterpret_cast<const void*>(offsetof(Vertex, colour)));
-    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices_.size()));
+    const long long total = static_cast<long long>(vertices_.size()), batch = 3 * triangles_per_finish;
+    for (long long first = 0; first < total; first += batch) {
+        if (first > 0) glFinish();  // see triangles_per_finish
+        glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(std::min(batch, total - first)));
+    }
     glBindVertexArray(0);
     check_gl("Shapes::draw");
 }

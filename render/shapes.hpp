@@ -42,8 +42,15 @@ public:
                   std::span<const float> dash = {}, float dash_offset = 0, LineCap cap = LineCap::butt);
 
     bool empty() const { return vertices_.empty(); }
-    // What line() adds: two triangles of vertices (position and colour), for memory estimates.
-    static constexpr std::size_t bytes_per_line = 6 * (2 + 4) * sizeof(float);
+    // Bytes of one vertex (position and colour), here and again in the GL
+    // buffer draw() fills; line() adds 6 vertices, disc() disc_vertices(radius).
+    static constexpr std::size_t bytes_per_vertex = (2 + 4) * sizeof(float);
+    static constexpr std::size_t line_vertices = 6;
+    static std::size_t disc_vertices(float radius);
+    static constexpr std::size_t min_disc_vertices = 3 * 12;  // a disc of radius 3.8 pixels or less
+    // Makes room for `more` vertices at once, so that a batch of known size
+    // is one allocation (not a doubling vector's 1.5 to 3 times its size).
+    void reserve(std::size_t more) { vertices_.reserve(vertices_.size() + more); }
     void clear() { vertices_.clear(); }
     void draw(const Canvas& canvas) const;
 

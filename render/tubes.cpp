@@ -293,7 +293,14 @@ void draw_tubes(const Canvas& canvas, const Rect& viewport, const std::vector<Tu
                                                                           : glm::vec3(0, 1, 0);
         glUniform3f(program.uniform("light_direction"), towards_light.x, towards_light.y, towards_light.z);
         glUniform3f(program.uniform("light"), light.ambient, light.diffuse, light.specular);
-        glDrawElementsInstanced(GL_TRIANGLES, pipeline.index_count, GL_UNSIGNED_INT, nullptr, GLsizei(tubes.size()));
+        // Batches of tubes, finishing each: see triangles_per_finish.
+        const long long total = static_cast<long long>(tubes.size());
+        const long long batch = std::max(1LL, triangles_per_finish / (pipeline.index_count / 3));
+        for (long long first = 0; first < total; first += batch) {
+            if (first > 0) glFinish();
+            glDrawElementsInstancedBaseInstance(GL_TRIANGLES, pipeline.index_count, GL_UNSIGNED_INT, nullptr,
+                                                GLsizei(std::min(batch, total - first)), GLuint(first));
+        }
         glBindVertexArray(0);
     }
     // Back to what 2-D drawing expects.

@@ -1,5 +1,6 @@
 // Diffusion (Think Complexity 2e, Fig 7.1): one run, panels and frames taken
 // from it as it passes their steps.
+#include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/field_stats.hpp"
 #include "scenes/model_check.hpp"
@@ -45,7 +46,8 @@ public:
 
     // The field and its next step, and one copy per panel.
     std::vector<MemoryNeed> memory() const override {
-        return {grid_need("grids of doubles", p_.n, p_.n, 8, 2.0 + double(d_.panels.size()))};
+        return {grid_need("grids of doubles", p_.n, p_.n, 8, 2.0 + double(d_.panels.size())),
+                grid_need("field textures", p_.n, p_.n, field_layer_bytes_per_cell, double(d_.panels.size()))};
     }
 
     void render(Output& out) const override {

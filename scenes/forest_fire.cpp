@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/model_check.hpp"
 #include "scenes/plot_page.hpp"
@@ -130,7 +131,9 @@ public:
 
     // The cells, their next step, the colour index and a copy per panel.
     std::vector<MemoryNeed> memory() const override {
-        return {grid_need("grids of bytes", p_.n, p_.n, 1, 3.0 + double(d_.panels.size()))};
+        // The model's grids, each panel's values as doubles and its texture.
+        return {grid_need("grids of bytes", p_.n, p_.n, 1, 3.0 + double(d_.panels.size())),
+                grid_need("field panels", p_.n, p_.n, 8 + field_layer_bytes_per_cell, double(d_.panels.size()))};
     }
 
     void render(Output& out) const override {

@@ -1,6 +1,7 @@
 // Gray-Scott reaction-diffusion (Think Complexity 2e, Figs 7.2-7.4): drawn as
 // the book draws it, A through Reds and B through Blues, each autoscaled to
 // its own range, stacked at alpha 0.7 with bicubic-like smoothing.
+#include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/field_stats.hpp"
 #include "scenes/model_check.hpp"
@@ -74,7 +75,8 @@ public:
 
     // A and B and their next steps, and a copy of both per panel.
     std::vector<MemoryNeed> memory() const override {
-        return {grid_need("grids of doubles", p_.n, p_.n, 8, 4.0 + 2.0 * double(d_.panels.size()))};
+        return {grid_need("grids of doubles", p_.n, p_.n, 8, 4.0 + 2.0 * double(d_.panels.size())),
+                grid_need("field textures", p_.n, p_.n, field_layer_bytes_per_cell, 2.0 * double(d_.panels.size()))};
     }
 
     void render(Output& out) const override {

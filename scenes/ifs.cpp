@@ -168,10 +168,13 @@ public:
           spec_(read_field_spec(style_, {render::colormap("Greens"), 0.0, {}, 1.0f, render::Sampling::nearest})),
           variants_(read_variants(params_)) {}
 
-    // Every panel's points, two doubles each, kept until the figure is drawn.
+    // Every panel's points, two doubles each, kept until the figure is drawn,
+    // and one panel's copy for its hash. Measured at 20,000,000 points, 3
+    // panels: 19.2 bytes a point above the program.
     std::vector<MemoryNeed> memory() const override {
         return {{std::to_string(variants_.size()) + " x " + std::to_string(game_.points) + " points",
-                 16.0 * double(game_.points) * double(variants_.size())}};
+                 16.0 * double(game_.points) * double(variants_.size())},
+                {"a panel's points hashed", 16.0 * double(game_.points)}};
     }
 
     void render(Output& out) const override {

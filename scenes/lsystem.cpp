@@ -46,6 +46,16 @@ const std::vector<Key> style_keys = {{"colour", "line colour"}, {"min_width", "t
 
 constexpr int max_depth = 64;  // far past any budget: the counts are cheap, the drawing is not
 
+// The most segments a plant may draw: at segment_bytes (3.9 KB) each, what
+// --max-memory 4G serves beside the program, a canvas and llvmpipe's queue
+// (the turtle's own budget, 5,000,000, would need 20 GB).
+constexpr std::uint64_t plant_segment_budget = 800'000;
+
+// Memory a drawn segment takes, see memory().
+constexpr double segment_bytes =
+    sizeof(sim::Segment2) + 6 * sizeof(double) +
+    2.0 * render::Shapes::bytes_per_vertex * (render::Shapes::line_vertices + 2 * render::Shapes::min_disc_vertices);
+
 struct Plant {
     std::string title;
     sim::LSystem system;
@@ -147,6 +157,7 @@ Plant read_plant(const toml::table& own, Settings& shared, std::size_t index) {
     keys.check([&] { p.system = sim::LSystem::parse(axiom, rules); }, names);
     p.depth = read_depth(keys);
     p.turtle = read_turtle(keys, read_choice(keys, "plus", "right", "left", "right"));
+    p.turtle.segment_budget = plant_segment_budget;
     p.article = read_choice(keys, "reading", "rewrite", "article", "rewrite");
     p.segments = sim::segment_count(p.system, p.depth, p.article);
     // The turtle's own refusal (sim/turtle.cpp), here in phase 1, naming the key.
@@ -177,6 +188,13 @@ void add_plant(render::Shapes& shapes, const render::Rect& panel, const std::vec
     auto at = [&](glm::dvec2 p) {
         return panel.centre() + glm::vec2(float((p.x - mid.x) * scale), float(-(p.y - mid.y) * scale));
     };
+    // One allocation for the whole plant: a doubling vector would peak at up
+    // to three times its vertices while it copies.
+    std::size_t vertices = 0;
+    for (const auto& s : segments)
+        vertices += render::Shapes::line_vertices +
+                    2 * render::Shapes::disc_vertices(std::max(min_width, float(s.width * scale)) / 2);
+    shapes.reserve(vertices);
     for (const auto& s : segments) {
         const float w = std::max(min_width, float(s.width * scale));
         const glm::vec2 a = at(s.a), b = at(s.b);
@@ -215,13 +233,20 @@ public:
           min_width_(float(style_.number_in("min_width", 0.6, 0.0, 100.0) * options.scale)),
           columns_(std::min<int>(int(plants_.size()), params_.has("plants") ? 3 : 1)) {}
 
-    // Each plant's segments, from the turtle and as lines to draw.
+    // Each plant's segments, from the turtle and as lines to draw: per
+    // segment the turtle's Segment2, its 6 doubles hashed, and a line with a
+    // disc at each end, in the batch and again in llvmpipe's copy of it.
+    // The discs are counted at their fewest vertices (12 chords, a radius up
+    // to 3.8 pixels): thicker pens are the few segments near the root. Measured
+    // (make bench's memory sweep): 3.8 KB a segment over the program, for
+    // pl-lsys-lycopodium at depth 7 (335,922 segments) and F -> FF at depth 19.
     std::vector<MemoryNeed> memory() const override {
         std::vector<MemoryNeed> needs;
         for (const auto& p : plants_)
-            needs.push_back({"plant of depth " + std::to_string(p.depth),
-                             static_cast<double>(p.segments) *
-                                 (sizeof(sim::Segment2) + render::Shapes::bytes_per_line)});
+            needs.push_back({"plant of depth " + std::to_string(p.depth) + ", " + std::to_string(p.segments) +
+                                 " segments",
+                             static_cast<double>(p.segments) * segment_bytes});
+        needs.push_back({"llvmpipe's queue of binned triangles", render::queued_triangles_bytes});
         return needs;
     }
 

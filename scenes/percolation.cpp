@@ -1,6 +1,7 @@
 // Percolation as the book's cellular automaton (Think Complexity 2e, Fig 7.5):
 // blocked 0, porous 1, wet 5, drawn in Blues from 0 to 5. tc7-5: one small
 // model, panels after the first steps, the animation to the end.
+#include "scenes/field_panels.hpp"
 #include "scenes/model_check.hpp"
 #include "scenes/percolation_common.hpp"
 #include "scenes/scene.hpp"
@@ -36,7 +37,9 @@ public:
 
     // The cells, their next step and a copy per panel.
     std::vector<MemoryNeed> memory() const override {
-        return {grid_need("grids of bytes", p_.n, p_.n, 1, 2.0 + double(d_.panels.size()))};
+        // The model's grids, each panel's values as doubles and its texture.
+        return {grid_need("grids of bytes", p_.n, p_.n, 1, 2.0 + double(d_.panels.size())),
+                grid_need("field panels", p_.n, p_.n, 8 + field_layer_bytes_per_cell, double(d_.panels.size()))};
     }
 
     void render(Output& out) const override {

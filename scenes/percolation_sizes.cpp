@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <climits>
 
+#include "scenes/field_panels.hpp"
 #include "scenes/model_check.hpp"
 #include "scenes/percolation_common.hpp"
 #include "scenes/scene.hpp"
@@ -55,7 +56,7 @@ public:
         std::vector<MemoryNeed> needs;
         for (const sim::PercolationParams& run : runs_) {
             largest = std::max(largest, run.n);
-            needs.push_back(grid_need("a panel's doubles", run.n, run.n, 8, 1));
+            needs.push_back(grid_need("a panel's doubles and texture", run.n, run.n, 8 + field_layer_bytes_per_cell, 1));
         }
         needs.push_back(grid_need("grids of bytes", largest, largest, 1, 2));
         return needs;

@@ -77,7 +77,9 @@ const std::vector<Key> param_keys = {
 
 // One flower per divergence, all with the same seeds and spacing.
 std::vector<sim::PhyllotaxisParams> read_flowers(Settings& params) {
-    const int seeds = params.count("seeds", 240);
+    // At most what --max-memory 4G serves for the default three flowers at the
+    // figure's size (50,000 seeds: 2.0 GiB; the model's 100,000 would need 4.1).
+    const int seeds = params.count_in("seeds", 240, 1, 50000);
     const double spacing = params.number("spacing", 7);
     const std::vector<double> divergences = params.numbers("divergences", {137.508, 137.3, 137.6});
     if (divergences.empty()) params.refuse("divergences", "one divergence angle at least, in degrees");
@@ -128,6 +130,34 @@ public:
         nlohmann::json panel_meta = nlohmann::json::array();
         const render::Image figure = draw_figure(spirals, panel_meta);
         run.write_figure(figure, {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
+    }
+
+    // Each flower's seeds, and its discs, rings and petals as triangles, in
+    // the batch and again in llvmpipe's copy of it (the batch's growth
+    // touches no more: a doubling copy is the same twice). The figure draws
+    // every flower; a frame only the first, so the figure bounds it too.
+    std::vector<MemoryNeed> memory() const override {
+        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        int most = std::min(width, height);
+        if (d_.animation && options_.film)
+            most = std::max(most, std::min(scaled_even(d_.animation->width, options_.scale),
+                                           scaled_even(d_.animation->height, options_.scale)));
+        // A seed's disc and outline ring at their largest (a panel the figure's
+        // size); a petal's two triangles and its outline of four segments, each
+        // joint at most a bevel and a fan of 12.
+        const float radius = float(look_.seed_radius * most / look_.window);
+        const double seed = double(render::Shapes::disc_vertices(radius) +
+                                   2 * render::Shapes::disc_vertices(radius + line_width_ / 2));
+        const double petal = 6.0 + 4 * 6.0 + 3 * (6.0 + render::Shapes::min_disc_vertices);
+        double vertices = 0, seeds = 0;
+        for (const auto& f : flowers_) {
+            const double discs = std::min(f.seeds, look_.petal_start);
+            vertices += discs * seed + (f.seeds - discs) * petal;
+            seeds += f.seeds;
+        }
+        return {{std::to_string(flowers_.size()) + " flowers of " + std::to_string(flowers_.front().seeds) + " seeds",
+                 seeds * (sizeof(sim::Seed) + 4 * sizeof(double)) +
+                     2.0 * render::Shapes::bytes_per_vertex * vertices}};
     }
 
 private:

@@ -94,6 +94,26 @@ public:
           caption_(style_.text("caption", "{label} {rule}")),
           plan_(plan_of(d, steps_)) {}
 
+    // Every crystal at once, grown to the last step shown, and the panels'
+    // copies of its ice (and, for a restriction, of the forbidden cells in
+    // view), at most every cell within the radius.
+    std::vector<MemoryNeed> memory() const override {
+        int last = plan_.panels.back();
+        if (d_.animation && options_.film) last = std::max(last, d_.animation->last);
+        constexpr double cell = sizeof(glm::ivec2);
+        double bytes = 0;
+        for (const auto& run : runs_) {
+            const bool restricted = run.params.restriction.last >= run.params.restriction.first;
+            bytes += snowflake_crystal_bytes(snowflake_radius_bound(run.params, last));
+            for (int step : plan_.panels)
+                bytes += (restricted ? 2 : 1) * cell *
+                         snowflake_cells_within(snowflake_radius_bound(run.params, step) + 1);
+            if (restricted && d_.animation && options_.film) bytes += 2 * cell * snowflake_cells_within(last + 1);
+        }
+        return {{std::to_string(runs_.size()) + " crystals of " + std::to_string(last) + " steps", bytes},
+                {"llvmpipe's queue of binned triangles", render::queued_triangles_bytes}};
+    }
+
     void render(Output& out) const override {
         std::vector<sim::Snowflake> crystals;
         for (const auto& run : runs_) crystals.emplace_back(run.params);

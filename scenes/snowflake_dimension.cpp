@@ -49,6 +49,15 @@ public:
         refuse_steps(d, "the plot shows every crystal at params.steps", true);
     }
 
+    // One crystal at a time, grown to params.steps, and its masses.
+    std::vector<MemoryNeed> memory() const override {
+        double bytes = 0;
+        for (const auto& run : runs_)
+            bytes = std::max(bytes, snowflake_crystal_bytes(snowflake_radius_bound(run.params, steps_)) +
+                                        sizeof(long) * (steps_ + 1.0));
+        return {{"a crystal of " + std::to_string(steps_) + " steps", bytes}};
+    }
+
     void render(Output& out) const override {
         Progress& progress = out.progress();
         progress.start(d_.id, static_cast<long long>(runs_.size()));

@@ -79,7 +79,7 @@ std::vector<Key> snowflake_keys(std::vector<Key> extra) {
     std::vector<Key> keys = {
         {"runs", "list of runs, e.g. [{rule = \"0101010\", label = \"(a)\"}]"},
         {"rule", "rule code for every run, replacing the runs' own"},
-        {"steps", "steps of every run, 0..100000"},
+        {"steps", "steps of every run, 0.." + std::to_string(snowflake_most_steps)},
         {"restrict_radius", "restriction applies from this hex distance out, >= 1"},
         {"restrict_half_angle", "half-width in degrees of each forbidden wedge, (0, 30]"},
         {"priority_width", "cells beside each tip forced too, >= 0"},
@@ -114,6 +114,19 @@ nlohmann::json snowflake_settings(const sim::SnowflakeParams& p) {
         meta["priority"] = {
             {"steps", p.priority.steps}, {"width", p.priority.width}, {"exclusive", p.priority.exclusive}};
     return meta;
+}
+
+int snowflake_radius_bound(const sim::SnowflakeParams& p, int steps) {
+    if (p.rule.freeze[1]) return steps;
+    return static_cast<int>(
+        std::count_if(p.priority.steps.begin(), p.priority.steps.end(), [&](int s) { return s <= steps; }));
+}
+
+double snowflake_cells_within(int radius) { return 3.0 * radius * (radius + 1.0) + 1.0; }
+
+double snowflake_crystal_bytes(int radius) {
+    return sim::Snowflake::storage_peak_bytes(radius) +
+           (16.0 + 24.0) * sizeof(sim::HexCell) / 8.0 * snowflake_cells_within(radius);
 }
 
 std::string snowflake_hash(const sim::Snowflake& crystal) {

@@ -28,8 +28,10 @@ struct SnowflakeRun {
 };
 
 // The most steps a crystal is grown (steps, restrict and priority steps,
-// panels): it grows up to a ring a step, and its store with it.
-inline constexpr int snowflake_most_steps = 100000;
+// panels): it grows up to a ring a step, and its store with it. One crystal
+// of 4000 rings is estimated at 2.8 GiB (snowflake_crystal_bytes; sf87-6
+// peaked at 2.0 GiB), what --max-memory 4G serves; 100,000 would need 2 TiB.
+inline constexpr int snowflake_most_steps = 4000;
 
 // The [params] keys of a snowflake scene; `extra` adds the scene's own.
 std::vector<Key> snowflake_keys(std::vector<Key> extra = {});
@@ -41,6 +43,17 @@ std::vector<SnowflakeRun> read_snowflake_runs(Settings& params);
 
 // The restriction and priority of a run, for the metadata.
 nlohmann::json snowflake_settings(const sim::SnowflakeParams& p);
+
+// Memory estimates, before anything grows. The radius a run's crystal can
+// reach in `steps` steps: a ring a step when d1 = 1 (the cell beyond each tip
+// has one ice neighbour), else only the priority steps' forced tips.
+int snowflake_radius_bound(const sim::SnowflakeParams& p, int steps);
+// Cells within hex distance `radius` of the seed: the most ice it can hold.
+double snowflake_cells_within(int radius);
+// A crystal of that radius: its store at its peak, its list of ice cells
+// (16 bytes a cell while it doubles) and the copies a panel, a frame or
+// the hash makes of the list (24 bytes a cell while they grow).
+double snowflake_crystal_bytes(int radius);
 
 // SHA-256 of the ice cells in a fixed order: the crystal's identity.
 std::string snowflake_hash(const sim::Snowflake& crystal);

@@ -67,6 +67,7 @@ std::vector<GrayScottAtlasTile> run_gray_scott_atlas(const GrayScottAtlasParams&
     // 128^2 cells a step is too short to split, the barrier would cost more).
     // Each tile depends only on its own (f, k), so the order does not matter.
     std::exception_ptr failure;  // an exception must not leave an OpenMP region: kept, rethrown after
+    std::exception_ptr report_failure;  // tile_done's, written only inside critical(figgen_progress)
 #pragma omp parallel for schedule(dynamic)
     for (int t = 0; t < count; ++t) {
         try {
@@ -78,10 +79,19 @@ std::vector<GrayScottAtlasTile> run_gray_scott_atlas(const GrayScottAtlasParams&
 #pragma omp critical(figgen_atlas_failure)
             if (!failure) failure = std::current_exception();
         }
+        // The progress report formats text: a bad_alloc there must leave
+        // neither the critical section nor the region.
 #pragma omp critical(figgen_progress)
-        tile_done();
+        {
+            try {
+                tile_done();
+            } catch (...) {
+                if (!report_failure) report_failure = std::current_exception();
+            }
+        }
     }
     if (failure) std::rethrow_exception(failure);
+    if (report_failure) std::rethrow_exception(report_failure);
     return tiles;
 }
 

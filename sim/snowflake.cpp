@@ -237,6 +237,14 @@ void Snowflake::grow_storage() {
     half_ = half;
 }
 
+double Snowflake::storage_peak_bytes(int radius) {
+    // grow_storage's doublings, from the first store to one that holds `radius`.
+    double half = first_half, before = 0;
+    while (radius + margin > half) before = half, half *= 2;
+    auto sites = [](double h) { return (2 * h + 1) * (2 * h + 1); };
+    return (sites(half) + (before > 0 ? sites(before) : 0)) * double(sizeof(Site));
+}
+
 std::vector<long> mass_within(const Snowflake& flake, int max_l) {
     require_integer("max_l", max_l, 0, 1000000000);
     // first[l]: ice cells whose smallest l with distance_squared <= l * l is l (the seed counts from l = 1).

@@ -109,6 +109,10 @@ public:
     std::vector<HexCell> ice_cells() const;                            // by step frozen, then r, then q
     std::size_t storage_cells() const { return sites_.size(); }        // <= max(17, 4 radius + 5)^2: grows with the ice
     const SnowflakeParams& params() const { return params_; }
+    // Bytes of the store at its peak when the ice reaches hex distance
+    // `radius`: the store then and the one it grew from, both alive while
+    // it copies. For memory estimates, before anything runs.
+    static double storage_peak_bytes(int radius);
 
 private:
     struct Site {

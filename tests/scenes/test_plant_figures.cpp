@@ -47,13 +47,13 @@ TEST_CASE("malformed L-system rules are refused with one line naming the problem
     const Run deep = figgen("render pl-lsys-lycopodium --no-video --out " + out_dir("deep").string() +
                             " --set depth=7 --max-memory 1M");
     CHECK(deep.status == 2);
-    CHECK_THAT(deep.output, Catch::Contains("of memory (plant of depth 7: ") &&
+    CHECK_THAT(deep.output, Catch::Contains("of memory (plant of depth 7, 335922 segments: ") &&
                                 Catch::Contains("more than --max-memory 1.0 MiB"));
     // Beyond it, the budget refuses it in phase 1, whatever the memory.
     const Run budget = figgen("render pl-lsys-lycopodium --no-video --out " + out_dir("deep").string() +
                               " --set depth=12 --max-memory 1000G");
     CHECK(budget.status == 2);
-    CHECK_THAT(budget.output, Catch::Contains("segments, more than the budget of 5,000,000"));
+    CHECK_THAT(budget.output, Catch::Contains("segments, more than the budget of 800,000"));
 }
 
 TEST_CASE("the ABOP gallery draws the six plants with their closed-form segment counts", "[plants]") {
