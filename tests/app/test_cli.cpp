@@ -117,8 +117,8 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-2 --set animation.stride=0", "animation.stride = 0 is not allowed"},
         {render + "tc7-6 --set figure.panels=[20000]", "--set figure.panels=[20000]: figure.panels = [20000] is not allowed: a step below 16384: each automaton at most 16384 rows (the renderer draws one field that large)"},
         // Memory and disk.
-        {render + "tc7-1 --set n=8000 --max-memory 256M", "needs about 2.4 GiB of memory (grids of doubles 8000 x 8000 x 5: 2.4 GiB), more than --max-memory 256.0 MiB"},
-        {render + "tc7-1 --set figure.size=[16000,16000]", "needs about 10.5 GiB of memory (figure 16000 x 16000 RGBA: 10.5 GiB), more than --max-memory 4.0 GiB"},
+        {render + "tc7-1 --set n=8000 --max-memory 256M", "needs about 3.9 GiB of memory (grids of doubles 8000 x 8000 x 5: 2.4 GiB), more than --max-memory 256.0 MiB"},
+        {render + "tc7-1 --set figure.size=[16000,16000]", "needs about 10.6 GiB of memory (figure 16000 x 16000 RGBA: 10.5 GiB), more than --max-memory 4.0 GiB"},
         {render + "pl-ifs-fern --set points=20000000 --max-memory 256M", "(3 x 20000000 points: 915.5 MiB)"},
         {render + "pl-lsys-3d --set depth=40", "--set depth=40: depth = 40 is not allowed: a depth within the turtle's budget (it would draw more than 18,446,744,073,709,551,615 segments, more than the budget of 5,000,000)"},
         {"render --frames --out " + out.string() + " tc7-2 --max-disk 10M", // 351 frames of 480 x 520 at 4 bytes, the MP4 at 0.15 and the 900 x 450 PNG: 348.3 MiB
@@ -166,13 +166,13 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-1 --set figure.panels=[3,3]", "figure.panels = [ 3, 3 ] is not allowed: steps from 0 to 100000000, ascending, each once"},
         {render + "sf87-3 --set rule=12345678", "rule = \"12345678\" is not allowed: a rule code is 7 binary digits d0..d6"},
         {render + "sf87-3 --set rule=\\\"01x1000\\\"", "rule = \"01x1000\" is not allowed: a rule code is 7 binary digits d0..d6"},
-        {render + "sf87-4 --set steps=-3", "--set steps=-3: steps = -3 is not allowed: an integer from 0 to 100000"},
+        {render + "sf87-4 --set steps=-3", "--set steps=-3: steps = -3 is not allowed: an integer from 0 to 4000"},
         {render + "sf87-5 --set restrict_radius=-1", "--set restrict_radius=-1: restrict_radius = -1 is not allowed: an integer from 1 to 1000000000"},
         {render + "sf87-6 --set priority_width=-2", "--set priority_width=-2: priority_width = -2 is not allowed: an integer from 0 to 1000000"},
         {render + "sf87-dim --set fit_to=100000", "--set fit_to=100000: fit_to = 100000 is not allowed: a number from 0.05 to 1"},
         {render + "sf87-2 --set row_cells=0", "--set row_cells=0: row_cells = 0 is not allowed: an odd number from 3 to 41"},
         // plants
-        {render + "pl-phyllotaxis --set seeds=-10", "--set seeds=-10: seeds = -10 is not allowed: an integer from 1 to 100000"},
+        {render + "pl-phyllotaxis --set seeds=-10", "--set seeds=-10: seeds = -10 is not allowed: an integer from 1 to 50000"},
         {render + "pl-phyllotaxis --set divergences=[400]", "--set divergences=[400]: divergences[0] = 400 is not allowed: a number from 1e-09 to 360"},
         {render + "pl-ifs-fern --set discard=-5", "--set discard=-5: discard = -5 is not allowed: an integer from 0 to 100000000"},
         {render + "pl-ifs-tree --set bounds=[1,2]", "--set bounds=[1,2]: bounds = [1, 2] is not allowed: [xmin, xmax, ymin, ymax] with xmin < xmax and ymin < ymax, each from -1e+300 to 1e+300"},
