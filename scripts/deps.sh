@@ -20,7 +20,7 @@ packages=(
   chromium chromium-driver python3-selenium  # the gallery's browser test
 )
 if [ "${1:-}" = bench ]; then
-  packages+=(python3 python3-numpy python3-scipy python3-matplotlib)
+  packages+=(python3 python3-numpy python3-scipy python3-matplotlib ffmpeg)  # ffmpeg: matplotlib's FFMpegWriter
 fi
 if [ "${1:-}" = fuzz ]; then
   packages+=(clang libclang-rt-14-dev libomp-14-dev)  # libFuzzer and clang's OpenMP
