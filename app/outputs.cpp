@@ -139,7 +139,8 @@ void FrameSink::add(const render::Image& frame, int step) {
         std::snprintf(name, sizeof name, "%05d.png", static_cast<int>(steps_.size()));
         render::write_png(frames_->folder(), name, frame,
                           {{"Title", description_.id + " " + description::format_step("step {step}", step)}},
-                          render::AtomicFile::Commit::now);  // inside the temporary folder
+                          render::AtomicFile::Commit::now,  // inside the temporary folder
+                          render::PngCompression::fast);
     }
     steps_.push_back(step);
 }

@@ -39,7 +39,7 @@ void on_warning(png_structp, png_const_charp) {}
 
 // Encodes `image` into `out`. Kept free of C++ objects with destructors, as
 // code between setjmp and longjmp must be; returns false with state.message set.
-bool encode(std::FILE* out, png_bytep* rows, const Image& image, png_text* records, int record_count,
+bool encode(std::FILE* out, png_bytep* rows, const Image& image, png_text* records, int record_count, bool fast,
             ErrorState& state) {
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, on_error, on_warning);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -55,6 +55,10 @@ bool encode(std::FILE* out, png_bytep* rows, const Image& image, png_text* recor
     png_init_io(png, out);
     png_set_IHDR(png, info, image.width, image.height, 8, PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    if (fast) {
+        png_set_compression_level(png, 1);
+        png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+    }
     if (record_count > 0) png_set_text(png, info, records, record_count);
     png_write_info(png, info);
     png_write_image(png, rows);
@@ -101,7 +105,7 @@ bool decode(std::FILE* in, PngFile& result, ErrorState& state) {
 }  // namespace
 
 void write_png(const Folder& folder, const std::string& name, const Image& image, const TextChunks& text,
-               AtomicFile::Commit when) {
+               AtomicFile::Commit when, PngCompression compression) {
     if (image.width < 1 || image.height < 1 ||
         image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4)
         throw std::invalid_argument("write_png: image is empty or its pixel buffer has the wrong size");
@@ -124,7 +128,8 @@ void write_png(const Folder& folder, const std::string& name, const Image& image
     }
     ErrorState state;
     errno = 0;
-    if (!encode(out.get(), rows.data(), image, records.data(), static_cast<int>(records.size()), state)) {
+    if (!encode(out.get(), rows.data(), image, records.data(), static_cast<int>(records.size()),
+                compression == PngCompression::fast, state)) {
         // libpng says only "Write Error" when fwrite fails; the system says why.
         const bool system = std::ferror(out.get()) && errno != 0;
         throw std::runtime_error("cannot write " + path.string() + ": " +

@@ -47,6 +47,29 @@ TEST_CASE("a PNG written and read back gives the same pixels and text chunks", "
     CHECK(std::string(std::istreambuf_iterator<char>(a), {}) == std::string(std::istreambuf_iterator<char>(b), {}));
 }
 
+TEST_CASE("a PNG written fast holds the same pixels as one written smallest", "[png]") {
+    // A smooth gradient with noise, like a field: the two zlib settings give
+    // different bytes, and the fast one the larger file.
+    render::Image image(320, 200);
+    std::uint32_t noise = 12345;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            noise = noise * 1664525u + 1013904223u;
+            std::uint8_t* p = image.pixel(x, y);
+            p[0] = static_cast<std::uint8_t>(x * 255 / 319);
+            p[1] = static_cast<std::uint8_t>(y * 255 / 199);
+            p[2] = static_cast<std::uint8_t>(noise >> 28);
+            p[3] = 255;
+        }
+    const fs::path dir = scratch("fast").parent_path();
+    const render::Folder folder(dir);
+    render::write_png(folder, "smallest.png", image);
+    render::write_png(folder, "fast.png", image, {}, render::AtomicFile::Commit::now, render::PngCompression::fast);
+    CHECK(render::read_png(dir / "fast.png").image.rgba == image.rgba);
+    CHECK(render::read_png(dir / "smallest.png").image.rgba == image.rgba);
+    CHECK(fs::file_size(dir / "fast.png") > fs::file_size(dir / "smallest.png"));
+}
+
 TEST_CASE("a PNG that cannot be written leaves nothing behind", "[png]") {
     render::Image image(4, 4);
     const fs::path inside_a_file = scratch("not-a-folder.txt");
