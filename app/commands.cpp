@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 
@@ -19,28 +20,31 @@
 namespace app {
 
 std::uint64_t parse_size(const std::string& option, const std::string& text) {
-    const std::string allowed = ": use a size from 1 byte to 1 PiB, e.g. 512M, 8G or 1.5G";
+    const UsageError refused(option + " " + text +
+                             " is not allowed: use a size from 1 byte to 1 PiB, e.g. 512M, 8G or 1.5G");
+    if (text.empty() || !(std::isdigit(static_cast<unsigned char>(text[0])) || text[0] == '.')) throw refused;
     double number = 0.0;
     std::size_t used = 0;
-    const bool digits_first = !text.empty() && ((text[0] >= '0' && text[0] <= '9') || text[0] == '.');
     try {
-        if (digits_first) number = std::stod(text, &used);
+        number = std::stod(text, &used);
     } catch (const std::exception&) {
-        used = 0;
+        throw refused;
     }
+    // The unit: none or B, else K, M, G, T or P, each with an optional B or iB.
     std::string unit = text.substr(used);
     for (char& ch : unit) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-    if (unit.size() > 1 && unit.back() == 'B') unit.pop_back();
-    if (unit.size() > 1 && unit.back() == 'I') unit.pop_back();
+    for (const char* suffix : {"IB", "B"})
+        if (unit.size() > std::strlen(suffix) &&
+            unit.compare(unit.size() - std::strlen(suffix), std::string::npos, suffix) == 0) {
+            unit.resize(unit.size() - std::strlen(suffix));
+            break;
+        }
     static const std::string units = "KMGTP";
-    const auto power = unit.empty() || unit == "B" ? 0 : units.find(unit) == std::string::npos || unit.size() != 1
-                                                             ? std::string::npos
-                                                             : units.find(unit) + 1;
-    if (!digits_first || used == 0 || power == std::string::npos || !std::isfinite(number))
-        throw UsageError(option + " " + text + " is not allowed" + allowed);
-    const double bytes = std::floor(number * std::pow(1024.0, static_cast<double>(power)));
-    if (!(bytes >= 1.0 && bytes <= std::pow(1024.0, 5)))
-        throw UsageError(option + " " + text + " is not allowed" + allowed);
+    if (unit == "B") unit.clear();
+    if (unit.size() > 1 || (unit.size() == 1 && units.find(unit[0]) == std::string::npos)) throw refused;
+    const double power = unit.empty() ? 0.0 : static_cast<double>(units.find(unit[0]) + 1);
+    const double bytes = std::floor(number * std::pow(1024.0, power));
+    if (!(bytes >= 1.0 && bytes <= std::pow(1024.0, 5))) throw refused;  // also NaN and infinity
     return static_cast<std::uint64_t>(bytes);
 }
 
@@ -72,8 +76,7 @@ GalleryCommand::GalleryCommand(CLI::App& parent) {
 }
 
 int GalleryCommand::run() {
-    if (!std::filesystem::is_directory(dir))
-        throw UsageError("--out " + dir + " is not a folder of rendered figures");
+    if (!std::filesystem::is_directory(dir)) throw UsageError("--out " + dir + " is not a folder of rendered figures");
     const int shown = write_gallery(dir);
     std::printf("%s/index.html: %d figures\n", dir.c_str(), shown);
     return 0;
