@@ -74,6 +74,8 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
         const std::string size = std::to_string(scaled_even(d.animation->width, options.scale)) + " x " +
                                  std::to_string(scaled_even(d.animation->height, options.scale));
         all.push_back({"animation frames " + size, canvas_bytes_per_pixel * frame_pixels(d, options)});
+        // The frames queued for the encoding thread and the one it is on.
+        all.push_back({"animation frames queued " + size, 4.0 * (FrameSink::frames_queued + 1) * frame_pixels(d, options)});
         if (options.video) {
             const int frames = d.animation->frame_count(), held = frames < encoder_frames_held ? frames : encoder_frames_held;
             all.push_back({"the video encoder's frames " + size,
@@ -128,11 +130,17 @@ FrameSink::FrameSink(const Description& d, const OutputOptions& options, const r
     if (options.frames) {
         frames_ = std::make_unique<render::AtomicDir>(folder, d.id + "-frames");
     }
+    pipe_ = std::make_unique<FramePipe>([this](const render::Image& frame, int step) { write(frame, step); },
+                                        frames_queued);
 }
 
 FrameSink::~FrameSink() = default;
 
-void FrameSink::add(const render::Image& frame, int step) {
+void FrameSink::add(render::Image frame, int step) {
+    pipe_->push(std::move(frame), step);
+}
+
+void FrameSink::write(const render::Image& frame, int step) {
     if (video_) video_->add(frame);
     if (frames_) {
         char name[32];
@@ -146,6 +154,7 @@ void FrameSink::add(const render::Image& frame, int step) {
 }
 
 nlohmann::json FrameSink::finish() {
+    pipe_->finish();  // every frame encoded and written, or what failed is thrown here
     nlohmann::json meta = {
         {"frames", steps_.size()},
         {"first", description_.animation->first},

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "app/frame_pipe.hpp"
 #include "description/description.hpp"
 #include "render/atomic_file.hpp"
 #include "render/image.hpp"
@@ -61,23 +62,30 @@ void require_disk(const Description& d, const OutputOptions& options);
 // "1.5 GiB", "12 MiB", "640 KiB", "100 bytes".
 std::string format_bytes(double bytes);
 
-// Receives the animation's frames as the model runs and passes each on at
-// once: nothing is kept in memory but the frame being encoded.
+// Receives the animation's frames as the model runs and passes each to a
+// thread that encodes and writes it (app/frame_pipe.hpp) while the next is
+// simulated and drawn: nothing is kept in memory but the frames queued
+// (frames_queued) and the one being encoded.
 class FrameSink : public scenes::Film {
 public:
+    static constexpr int frames_queued = 2;
+
     FrameSink(const Description& d, const OutputOptions& options, const render::Folder& folder, int width,
               int height);
     ~FrameSink() override;
-    void add(const render::Image& frame, int step) override;
+    void add(render::Image frame, int step) override;
     nlohmann::json finish() override;  // completes the MP4; returns the animation's metadata
 
 private:
+    void write(const render::Image& frame, int step);  // on the pipe's thread, frame by frame in order
+
     const Description& description_;
     const OutputOptions& options_;
     std::unique_ptr<render::VideoWriter> video_;
     std::unique_ptr<render::AtomicDir> frames_;  // the PNG sequence, in place at finish()
     nlohmann::json steps_ = nlohmann::json::array();
     int width_, height_;
+    std::unique_ptr<FramePipe> pipe_;  // last: its thread stops before the writers it uses go
 };
 
 // A figure's files in the output folder: what a scene writes through.

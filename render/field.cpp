@@ -71,6 +71,13 @@ void main() {
 struct Pipeline {
     Program program{vertex_shader, fragment_shader};
     GLuint vao = 0, field_texture = 0, colormap_texture = 0;
+    // What the textures hold, so that a film's frames, which draw the same
+    // colour table into a field of the same size frame after frame, send
+    // only what changed: the table when its colours differ, and the cells
+    // into the texture already there (no reallocation, no page faults).
+    std::vector<glm::vec4> colormap_loaded;
+    int field_rows = 0, field_cols = 0;
+    std::vector<float> texels;  // the upload buffer, kept between draws
     Pipeline() {
         glGenVertexArrays(1, &vao);
         glGenTextures(1, &field_texture);
@@ -92,6 +99,37 @@ Pipeline& pipeline() {
     return p;
 }
 
+// The colour table as N x 1 RGBA texels, sent only when it differs from the
+// one loaded (compared by colours: a map's address may be reused by another).
+void load_colormap(Pipeline& p, const Colormap& map) {
+    const int n = map.size();
+    std::vector<glm::vec4> rgba(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) rgba[i] = glm::vec4(map.colours[i], 1.0f);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, p.colormap_texture);
+    if (rgba == p.colormap_loaded) return;
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, 1, 0, GL_RGBA, GL_FLOAT, rgba.data());
+    p.colormap_loaded = std::move(rgba);
+}
+
+// Normalise on the CPU in double precision and upload as floats relative
+// to the colour range: float32 then loses nothing a lookup table can show.
+void load_field(Pipeline& p, int rows, int cols, std::span<const double> values, const FieldStyle& style) {
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, p.field_texture);
+    p.texels.resize(values.size());
+    const double span = style.vmax - style.vmin;
+    for (std::size_t i = 0; i < values.size(); ++i) p.texels[i] = static_cast<float>((values[i] - style.vmin) / span);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    if (rows == p.field_rows && cols == p.field_cols) {
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, cols, rows, GL_RED, GL_FLOAT, p.texels.data());
+    } else {
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, cols, rows, 0, GL_RED, GL_FLOAT, p.texels.data());
+        p.field_rows = rows;
+        p.field_cols = cols;
+    }
+}
+
 }  // namespace
 
 void draw_field(const Canvas& canvas, const Rect& where, int rows, int cols, std::span<const double> values,
@@ -105,27 +143,8 @@ void draw_field(const Canvas& canvas, const Rect& where, int rows, int cols, std
     Pipeline& p = pipeline();
     canvas.bind();
 
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, p.colormap_texture);
-    {  // N texels: cheaper to send each time than to track which map is loaded
-        const int n = style.colormap->size();
-        std::vector<float> rgba(static_cast<std::size_t>(n) * 4);
-        for (int i = 0; i < n; ++i) {
-            for (int c = 0; c < 3; ++c) rgba[i * 4 + c] = style.colormap->colours[i][c];
-            rgba[i * 4 + 3] = 1.0f;
-        }
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, 1, 0, GL_RGBA, GL_FLOAT, rgba.data());
-    }
-
-    // Normalise on the CPU in double precision and upload as floats relative
-    // to the colour range: float32 then loses nothing a lookup table can show.
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, p.field_texture);
-    std::vector<float> texels(values.size());
-    const double span = style.vmax - style.vmin;
-    for (std::size_t i = 0; i < values.size(); ++i) texels[i] = static_cast<float>((values[i] - style.vmin) / span);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, cols, rows, 0, GL_RED, GL_FLOAT, texels.data());
+    load_colormap(p, *style.colormap);
+    load_field(p, rows, cols, values, style);
 
     p.program.use();
     p.program.set("projection", canvas.projection());

@@ -138,7 +138,7 @@ public:
                      [&](int step) {
                          return draw_field_panels(
                              run.frame_canvas(),
-                             {{format_step(d_.animation->title, step), {field_layer(film.field(), spec_)}}},
+                             {{format_step(d_.animation->title, step), {field_layer(film.field(), spec_, Cells::viewed)}}},
                              options_.scale);
                      },
                  .advance =

@@ -55,21 +55,22 @@ public:
         sim::Diffusion model(p_);
         std::vector<FieldPanel> panels;
         nlohmann::json panel_meta = nlohmann::json::array();
-        auto panel = [&](const std::string& pattern, int step) {
-            return FieldPanel{format_step(pattern, step), {field_layer(model.field(), spec_)}};
+        // A kept panel copies the field; a frame, drawn at once, only looks at it.
+        auto panel = [&](const std::string& pattern, int step, Cells cells) {
+            return FieldPanel{format_step(pattern, step), {field_layer(model.field(), spec_, cells)}};
         };
         run.run({
             .check = [&](int step) { require_finite(model.field(), "diffusion", step); },
             .panel =
                 [&](int step) {
-                    panels.push_back(panel(d_.panel_title, step));
+                    panels.push_back(panel(d_.panel_title, step, Cells::copied));
                     panel_meta.push_back({{"step", step},
                                           {"statistics", field_statistics(model.field())},
                                           {"state_sha256", state_hash(model.field())}});
                 },
             .frame =
                 [&](int step) {
-                    return draw_field_panels(run.frame_canvas(), {panel(d_.animation->title, step)}, options_.scale);
+                    return draw_field_panels(run.frame_canvas(), {panel(d_.animation->title, step, Cells::viewed)}, options_.scale);
                 },
             .advance =
                 [&] {

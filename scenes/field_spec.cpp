@@ -53,20 +53,34 @@ FieldSpec read_field_spec(Settings& style, const FieldSpec& defaults, const std:
     return spec;
 }
 
-FieldLayer field_layer(const sim::Grid<double>& values, const FieldSpec& spec) {
-    FieldLayer layer{values.rows(), values.cols(), values.cells(), {}};
-    const auto [lo, hi] = std::minmax_element(layer.values.begin(), layer.values.end());
-    double vmin = spec.vmin.value_or(*lo), vmax = spec.vmax.value_or(*hi);
+namespace {
+
+FieldLayer layer_over(LayerCells cells, int rows, int cols, const FieldSpec& spec) {
+    FieldLayer layer{rows, cols, std::move(cells), {}};
+    double vmin = 0, vmax = 0;
+    if (!spec.vmin || !spec.vmax) {  // autoscale: a pass over the cells only when a bound is missing
+        const auto [lo, hi] = std::minmax_element(layer.values.begin(), layer.values.end());
+        vmin = *lo;
+        vmax = *hi;
+    }
+    vmin = spec.vmin.value_or(vmin);
+    vmax = spec.vmax.value_or(vmax);
     // matplotlib maps everything to the first colour when the range is empty.
     if (!(vmax > vmin)) vmax = vmin + 1;
     layer.style = {&spec.colormap, vmin, vmax, spec.alpha, spec.sampling};
     return layer;
 }
 
+}  // namespace
+
+FieldLayer field_layer(const sim::Grid<double>& values, const FieldSpec& spec, Cells cells) {
+    return layer_over(cells == Cells::viewed ? LayerCells::view(values.cells()) : LayerCells(values.cells()),
+                      values.rows(), values.cols(), spec);
+}
+
 FieldLayer field_layer(const sim::Grid<std::uint8_t>& values, const FieldSpec& spec) {
-    sim::Grid<double> as_double(values.rows(), values.cols());
-    std::copy(values.cells().begin(), values.cells().end(), as_double.data());
-    return field_layer(as_double, spec);
+    std::vector<double> as_double(values.cells().begin(), values.cells().end());
+    return layer_over(std::move(as_double), values.rows(), values.cols(), spec);
 }
 
 }  // namespace scenes

@@ -28,8 +28,13 @@ std::vector<Key> field_spec_keys(const std::string& prefix = "");
 // Reads the keys; absent ones keep `defaults`. Throws UsageError for bad values.
 FieldSpec read_field_spec(Settings& style, const FieldSpec& defaults, const std::string& prefix = "");
 
+// Whether a layer copies its grid's cells (a panel kept while the model runs
+// on) or looks at them where they are (a frame drawn at once, the grid
+// unchanged until it is).
+enum class Cells { copied, viewed };
+
 // One layer of a panel: the values as doubles with the spec's colour range.
-FieldLayer field_layer(const sim::Grid<double>& values, const FieldSpec& spec);
+FieldLayer field_layer(const sim::Grid<double>& values, const FieldSpec& spec, Cells cells = Cells::copied);
 FieldLayer field_layer(const sim::Grid<std::uint8_t>& values, const FieldSpec& spec);
 
 }  // namespace scenes

@@ -44,8 +44,10 @@ std::vector<Key> style_keys() {
     return keys;
 }
 
-FieldPanel panel_of(const sim::GrayScott& model, const FieldSpec& a, const FieldSpec& b, std::string title) {
-    return {std::move(title), {field_layer(model.a(), a), field_layer(model.b(), b)}};
+// A kept panel copies the fields; a frame, drawn at once, only looks at them.
+FieldPanel panel_of(const sim::GrayScott& model, const FieldSpec& a, const FieldSpec& b, std::string title,
+                    Cells cells) {
+    return {std::move(title), {field_layer(model.a(), a, cells), field_layer(model.b(), b, cells)}};
 }
 
 nlohmann::json panel_metadata(const sim::GrayScott& model, int step) {
@@ -94,14 +96,14 @@ public:
                 },
             .panel =
                 [&](int step) {
-                    panels.push_back(panel_of(model, a_spec_, b_spec_, format_step(d_.panel_title, step)));
+                    panels.push_back(panel_of(model, a_spec_, b_spec_, format_step(d_.panel_title, step), Cells::copied));
                     panel_meta.push_back(panel_metadata(model, step));
                 },
             .frame =
                 [&](int step) {
                     return draw_field_panels(
                         run.frame_canvas(),
-                        {panel_of(model, a_spec_, b_spec_, format_step(d_.animation->title, step))}, options_.scale);
+                        {panel_of(model, a_spec_, b_spec_, format_step(d_.animation->title, step), Cells::viewed)}, options_.scale);
                 },
             .advance =
                 [&] {

@@ -25,7 +25,7 @@ public:
 class Film {
 public:
     virtual ~Film() = default;
-    virtual void add(const render::Image& frame, int step) = 0;
+    virtual void add(render::Image frame, int step) = 0;  // by value: a sink may keep it (a queue to its encoder)
     virtual nlohmann::json finish() = 0;  // completes it; returns the animation's metadata
 };
 

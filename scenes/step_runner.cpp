@@ -57,8 +57,8 @@ void StepRunner::final_frame(const StepHooks& hooks, int step) {
     if (film_ && hooks.frame && step <= description_.animation->last) frame(hooks.frame(step), step);
 }
 
-void StepRunner::frame(const render::Image& image, int step) {
-    film_->add(image, step);
+void StepRunner::frame(render::Image image, int step) {
+    film_->add(std::move(image), step);
     progress_.advance();
 }
 

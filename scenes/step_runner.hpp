@@ -52,7 +52,7 @@ private:
     void final_frame(const StepHooks& hooks, int step);
     bool is_panel(int step) const;
     bool wants_frame(int step) const { return film_ && description_.animation->shows(step); }
-    void frame(const render::Image& image, int step);  // hands a drawn frame to the sinks
+    void frame(render::Image image, int step);  // hands a drawn frame to the sinks
     void stepped();                                    // counts one model step (progress bar and metadata)
 
     const Description& description_;
