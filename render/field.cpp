@@ -138,8 +138,7 @@ void draw_field(const Canvas& canvas, const Rect& where, int rows, int cols, std
         throw std::invalid_argument("draw_field: " + std::to_string(values.size()) + " values do not fill " +
                                     std::to_string(rows) + "x" + std::to_string(cols) + " cells");
     if (!style.colormap) throw std::invalid_argument("draw_field: no colormap");
-    if (!(style.vmax > style.vmin))
-        throw std::invalid_argument("draw_field: vmax must exceed vmin");
+    if (!(style.vmax > style.vmin)) throw std::invalid_argument("draw_field: vmax must exceed vmin");
     Pipeline& p = pipeline();
     canvas.bind();
 

@@ -1,14 +1,15 @@
 // Ballistic deposition ("Ballistic deposition in Python"): the deposit of
 // L^2 particles coloured by arrival time in bands, and its growth as a film.
+#include "sim/deposition.hpp"
+
 #include <algorithm>
 
+#include "render/colormap.hpp"
+#include "render/digest.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/model_check.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/step_runner.hpp"
-#include "render/colormap.hpp"
-#include "render/digest.hpp"
-#include "sim/deposition.hpp"
 
 namespace scenes {
 namespace {
@@ -132,23 +133,23 @@ public:
         sim::Deposition deposit(p_, d_.seed);
         FilmField film(deposit, view_rows_, band_size_);
         StepRunner run(plan_, options_, out);
-        run.run({.check = {},
-                 .panel = {},
-                 .frame =
-                     [&](int step) {
-                         return draw_field_panels(
-                             run.frame_canvas(),
-                             {{format_step(d_.animation->title, step), {field_layer(film.field(), spec_, Cells::viewed)}}},
-                             options_.scale);
-                     },
-                 .advance =
-                     [&] {
-                         const std::uint64_t left = p_.particles - deposit.dropped();
-                         for (std::uint64_t k = 0, n = std::min<std::uint64_t>(left, std::uint64_t(p_.width)); k < n;
-                              ++k)
-                             film.drop_one(deposit);
-                         return true;
-                     }});
+        run.run(
+            {.check = {},
+             .panel = {},
+             .frame =
+                 [&](int step) {
+                     return draw_field_panels(
+                         run.frame_canvas(false, field_panel_samples),
+                         {{format_step(d_.animation->title, step), {field_layer(film.field(), spec_, Cells::viewed)}}},
+                         options_.scale);
+                 },
+             .advance =
+                 [&] {
+                     const std::uint64_t left = p_.particles - deposit.dropped();
+                     for (std::uint64_t k = 0, n = std::min<std::uint64_t>(left, std::uint64_t(p_.width)); k < n; ++k)
+                         film.drop_one(deposit);
+                     return true;
+                 }});
         const std::int64_t top = max_height(deposit);
         const auto field = deposit_field(deposit, int(top) + 2, band_size_);
         run.write_figure(

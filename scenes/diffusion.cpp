@@ -1,12 +1,13 @@
 // Diffusion (Think Complexity 2e, Fig 7.1): one run, panels and frames taken
 // from it as it passes their steps.
+#include "sim/diffusion.hpp"
+
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/field_stats.hpp"
 #include "scenes/model_check.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/step_runner.hpp"
-#include "sim/diffusion.hpp"
 
 namespace scenes {
 namespace {
@@ -70,7 +71,8 @@ public:
                 },
             .frame =
                 [&](int step) {
-                    return draw_field_panels(run.frame_canvas(), {panel(d_.animation->title, step, Cells::viewed)}, options_.scale);
+                    return draw_field_panels(run.frame_canvas(false, field_panel_samples),
+                                             {panel(d_.animation->title, step, Cells::viewed)}, options_.scale);
                 },
             .advance =
                 [&] {

@@ -29,7 +29,7 @@ render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldP
 }
 
 render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale) {
-    render::Canvas canvas(width, height);
+    render::Canvas canvas(width, height, field_panel_samples);
     return draw_field_panels(canvas, panels, scale);
 }
 

@@ -22,7 +22,8 @@ render::Colormap read_colormap(Settings& style, const FieldSpec& defaults, const
         std::vector<glm::vec3> colours;
         for (const std::string& c : style.texts(prefix + "colours", {})) {
             const auto colour = render::find_colour(c);
-            if (!colour) style.refuse(prefix + "colours", "\"" + c + "\"", "colours, each " + render::colours_allowed());
+            if (!colour)
+                style.refuse(prefix + "colours", "\"" + c + "\"", "colours, each " + render::colours_allowed());
             colours.push_back(*colour);
         }
         if (colours.empty() || colours.size() > 4096) style.refuse(prefix + "colours", "1 to 4096 colours");

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "scenes/description_names.hpp"
-#include "scenes/field_panels.hpp"
 #include "description/settings.hpp"
 #include "render/colormap.hpp"
+#include "scenes/description_names.hpp"
+#include "scenes/field_panels.hpp"
 #include "sim/grid.hpp"
 
 namespace scenes {

@@ -1,17 +1,18 @@
 // The forest-fire model (Bak, Chen & Tang 1990; Think Complexity 2e,
 // exercise 7.2): the forest at three steps, the tree and fire counts over
 // time, and the forest's box-counting dimension at the last step.
+#include "sim/forest_fire.hpp"
+
 #include <cmath>
 #include <numeric>
 
+#include "render/digest.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/model_check.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/step_runner.hpp"
-#include "render/digest.hpp"
-#include "sim/forest_fire.hpp"
 #include "sim/fractal.hpp"
 
 namespace scenes {
@@ -162,7 +163,8 @@ private:
                 },
             .frame =
                 [&](int step) {
-                    return draw_field_panels(run.frame_canvas(), {panel(d_.animation->title, step)}, options_.scale);
+                    return draw_field_panels(run.frame_canvas(false, field_panel_samples),
+                                             {panel(d_.animation->title, step)}, options_.scale);
                 },
             .advance =
                 [&] {
@@ -206,8 +208,7 @@ private:
               {"occupied", dim.boxes.occupied},
               {"dimension", dim.boxes.dimension},
               {"r", dim.boxes.fit.r}}},
-            {"central_box_mass",
-             {{"sizes", dim.mass.sizes}, {"mass", dim.mass.mass}, {"slope", dim.mass.fit.slope}}},
+            {"central_box_mass", {{"sizes", dim.mass.sizes}, {"mass", dim.mass.mass}, {"slope", dim.mass.fit.slope}}},
         };
     }
 

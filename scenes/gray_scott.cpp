@@ -1,14 +1,15 @@
 // Gray-Scott reaction-diffusion (Think Complexity 2e, Figs 7.2-7.4): drawn as
 // the book draws it, A through Reds and B through Blues, each autoscaled to
 // its own range, stacked at alpha 0.7 with bicubic-like smoothing.
+#include "sim/gray_scott.hpp"
+
+#include "render/digest.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/field_stats.hpp"
 #include "scenes/model_check.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/step_runner.hpp"
-#include "render/digest.hpp"
-#include "sim/gray_scott.hpp"
 #include "sim/random.hpp"
 
 namespace scenes {
@@ -96,14 +97,16 @@ public:
                 },
             .panel =
                 [&](int step) {
-                    panels.push_back(panel_of(model, a_spec_, b_spec_, format_step(d_.panel_title, step), Cells::copied));
+                    panels.push_back(
+                        panel_of(model, a_spec_, b_spec_, format_step(d_.panel_title, step), Cells::copied));
                     panel_meta.push_back(panel_metadata(model, step));
                 },
             .frame =
                 [&](int step) {
                     return draw_field_panels(
-                        run.frame_canvas(),
-                        {panel_of(model, a_spec_, b_spec_, format_step(d_.animation->title, step), Cells::viewed)}, options_.scale);
+                        run.frame_canvas(false, field_panel_samples),
+                        {panel_of(model, a_spec_, b_spec_, format_step(d_.animation->title, step), Cells::viewed)},
+                        options_.scale);
                 },
             .advance =
                 [&] {

@@ -62,7 +62,7 @@ public:
             .panel = [&](int) { panel(); },
             .frame =
                 [&](int) {
-                    return draw_field_panels(run.frame_canvas(),
+                    return draw_field_panels(run.frame_canvas(false, field_panel_samples),
                                              {{title(d_.animation->title), {field_layer(model.cells(), spec_)}}},
                                              options_.scale);
                 },

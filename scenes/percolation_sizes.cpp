@@ -56,7 +56,8 @@ public:
         std::vector<MemoryNeed> needs;
         for (const sim::PercolationParams& run : runs_) {
             largest = std::max(largest, run.n);
-            needs.push_back(grid_need("a panel's doubles and texture", run.n, run.n, 8 + field_layer_bytes_per_cell, 1));
+            needs.push_back(
+                grid_need("a panel's doubles and texture", run.n, run.n, 8 + field_layer_bytes_per_cell, 1));
         }
         needs.push_back(grid_need("grids of bytes", largest, largest, 1, 2));
         return needs;
@@ -93,7 +94,7 @@ private:
         h.advance = [&model] { return model.step() > 0; };
         if (filmed)
             h.frame = [&model, &run, n, this](int) {
-                return draw_field_panels(run.frame_canvas(),
+                return draw_field_panels(run.frame_canvas(false, field_panel_samples),
                                          {{titled(d_.animation->title, n, model), {field_layer(model.cells(), spec_)}}},
                                          options_.scale);
             };

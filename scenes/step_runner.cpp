@@ -62,8 +62,8 @@ void StepRunner::frame(render::Image image, int step) {
     progress_.advance();
 }
 
-render::Canvas& StepRunner::frame_canvas(bool depth) {
-    if (!frame_canvas_) frame_canvas_ = std::make_unique<render::Canvas>(frame_width_, frame_height_, 4, depth);
+render::Canvas& StepRunner::frame_canvas(bool depth, int samples) {
+    if (!frame_canvas_) frame_canvas_ = std::make_unique<render::Canvas>(frame_width_, frame_height_, samples, depth);
     return *frame_canvas_;
 }
 

@@ -8,10 +8,10 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "scenes/field_panels.hpp"
-#include "scenes/scene.hpp"
 #include "render/canvas.hpp"
 #include "render/image.hpp"
+#include "scenes/field_panels.hpp"
+#include "scenes/scene.hpp"
 
 namespace scenes {
 
@@ -30,8 +30,9 @@ public:
 
     int last_step() const { return last_; }
     // A canvas of the frame's size, made once and drawn on for every frame
-    // (with a depth buffer when `depth`, for 3-D scenes).
-    render::Canvas& frame_canvas(bool depth = false);
+    // (with a depth buffer when `depth`, for 3-D scenes; `samples` per pixel:
+    // field_panel_samples for field panels).
+    render::Canvas& frame_canvas(bool depth = false, int samples = 4);
 
     // Runs from step 0 to last_step() or until the model stops (advance()
     // or stopped() says so); returns the last step reached.
@@ -53,7 +54,7 @@ private:
     bool is_panel(int step) const;
     bool wants_frame(int step) const { return film_ && description_.animation->shows(step); }
     void frame(render::Image image, int step);  // hands a drawn frame to the sinks
-    void stepped();                                    // counts one model step (progress bar and metadata)
+    void stepped();                             // counts one model step (progress bar and metadata)
 
     const Description& description_;
     const SceneOptions& options_;

@@ -1,8 +1,7 @@
 // The film's frame pipe: frames reach the consuming thread in order, no more
 // than its depth wait, and what the consumer throws reaches the producer.
-#include <catch2/catch.hpp>
-
 #include <atomic>
+#include <catch2/catch.hpp>
 #include <chrono>
 #include <stdexcept>
 #include <thread>
