@@ -42,6 +42,15 @@ int StepRunner::run_until(const StepHooks& hooks, int last) {
             if (!is_frame) final_frame(hooks, step);
             return step;
         }
+        if (hooks.leap) {
+            const int next = next_stop(hooks, step, last);
+            hooks.leap(next - step);
+            model_steps_ += next - step - 1;
+            progress_.advance(next - step - 1);
+            stepped();
+            step = next - 1;
+            continue;
+        }
         const bool going = hooks.advance();
         stepped();
         if (!going) {
@@ -49,6 +58,14 @@ int StepRunner::run_until(const StepHooks& hooks, int last) {
             return step + 1;
         }
     }
+}
+
+int StepRunner::next_stop(const StepHooks& hooks, int step, int last) const {
+    // A leap of at most this many steps when no output bounds it (run_to_stop).
+    constexpr int longest_leap = 1000;
+    int next = step + 1;
+    while (next < last && next - step < longest_leap && !is_panel(next) && !(hooks.frame && wants_frame(next))) ++next;
+    return next;
 }
 
 // The state no longer changes: it ends the film as its final frame if the

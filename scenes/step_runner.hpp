@@ -22,6 +22,12 @@ struct StepHooks {
     std::function<render::Image(int step)> frame;  // draw the animation frame of this step (none: not filmed)
     std::function<bool()> advance;                 // one model step; false when the model has stopped (a fixed point)
     std::function<bool()> stopped = {};            // optional: the model has reached its stop and takes no more steps
+    // Optional, for a model stepped by a fast kernel: `steps` steps at once
+    // (instead of as many advance() calls), to the next step an output
+    // needs. It must itself make sure every step it took was sound (and
+    // throw naming the first that was not), since check() then runs only at
+    // the steps the runner stops at.
+    std::function<void(int steps)> leap = {};
 };
 
 class StepRunner {
@@ -52,6 +58,7 @@ private:
     int run_until(const StepHooks& hooks, int last);
     void final_frame(const StepHooks& hooks, int step);
     bool is_panel(int step) const;
+    int next_stop(const StepHooks& hooks, int step, int last) const;  // the next step an output needs, or last
     bool wants_frame(int step) const { return film_ && description_.animation->shows(step); }
     void frame(render::Image image, int step);  // hands a drawn frame to the sinks
     void stepped();                             // counts one model step (progress bar and metadata)

@@ -2,7 +2,6 @@
 // and what reaches the outputs, with a counter for a model and an Output
 // that records what it is given.
 #include <catch2/catch.hpp>
-
 #include <memory>
 #include <vector>
 
@@ -72,7 +71,9 @@ TEST_CASE("a model that stops early ends the film on its final state", "[step-ru
         RecordingOutput out;
         scenes::StepRunner run(d, options, out);
         Counter model{0, 7};
-        const int reached = run.run({.check = {}, .panel = {}, .frame = [&](int) { return render::Image(8, 8); },
+        const int reached = run.run({.check = {},
+                                     .panel = {},
+                                     .frame = [&](int) { return render::Image(8, 8); },
                                      .advance = [&] { return model.step(); }});
         CHECK(reached == 7);
         CHECK(model.steps == 7);
@@ -82,7 +83,9 @@ TEST_CASE("a model that stops early ends the film on its final state", "[step-ru
         RecordingOutput out;
         scenes::StepRunner run(d, options, out);
         Counter model{0, 1000};
-        const int reached = run.run({.check = {}, .panel = {}, .frame = [&](int) { return render::Image(8, 8); },
+        const int reached = run.run({.check = {},
+                                     .panel = {},
+                                     .frame = [&](int) { return render::Image(8, 8); },
                                      .advance = [&] { return model.step(); },
                                      .stopped = [&] { return model.steps == 5; }});
         CHECK(reached == 5);
@@ -100,7 +103,9 @@ TEST_CASE("run_to_stop goes past the last step to the model's stop, filming only
     Counter first{0, 12}, second{0, 3};
     CHECK(run.run_to_stop({.check = {}, .panel = {}, .frame = {}, .advance = [&] { return first.step(); }}) == 12);
     CHECK(out.frames.empty());
-    CHECK(run.run_to_stop({.check = {}, .panel = {}, .frame = [&](int) { return render::Image(8, 8); },
+    CHECK(run.run_to_stop({.check = {},
+                           .panel = {},
+                           .frame = [&](int) { return render::Image(8, 8); },
                            .advance = [&] { return second.step(); }}) == 3);
     CHECK(out.frames == std::vector<int>{0, 2, 3});
     run.write_figure(render::Image(8, 8), {});
@@ -114,8 +119,40 @@ TEST_CASE("without a film the runner asks for no frame and runs only to the last
     scenes::StepRunner run(d, options, out);
     Counter model{0, 1000};
     int frames_drawn = 0;
-    CHECK(run.run({.check = {}, .panel = {}, .frame = [&](int) { return ++frames_drawn, render::Image(8, 8); },
+    CHECK(run.run({.check = {},
+                   .panel = {},
+                   .frame = [&](int) { return ++frames_drawn, render::Image(8, 8); },
                    .advance = [&] { return model.step(); }}) == 4);
     CHECK(frames_drawn == 0);
     CHECK(out.frames.empty());
+}
+
+TEST_CASE("a kernel's leaps land on every step an output needs and count every step taken", "[step-runner]") {
+    const bool film = GENERATE(true, false);
+    const auto d = film_of({7, 30}, 4, 20, 5);  // frames at 4, 9, 14, 19; panels at 7 and 30
+    RecordingOutput out;
+    const scenes::SceneOptions options{1.0, film};
+    scenes::StepRunner run(d, options, out);
+    std::vector<int> leaps, checked, panels, drawn_at;
+    int steps = 0;
+    const int reached =
+        run.run({.check = [&](int step) { checked.push_back(step); },
+                 .panel = [&](int step) { panels.push_back(steps - step); },
+                 .frame = [&](int step) { return drawn_at.push_back(steps - step), render::Image(8, 8); },
+                 .advance = {},
+                 .leap = [&](int n) { leaps.push_back(n), steps += n; }});
+    CHECK(reached == 30);
+    CHECK(steps == 30);
+    CHECK(panels == std::vector<int>{0, 0});  // each drawn with the model at its step
+    CHECK(drawn_at == std::vector<int>(film ? 4 : 0, 0));
+    if (film) {
+        CHECK(leaps == std::vector<int>{4, 3, 2, 5, 5, 11});  // to 4, 7, 9, 14, 19, 30
+        CHECK(checked == std::vector<int>{0, 4, 7, 9, 14, 19, 30});
+        CHECK(out.frames == std::vector<int>{4, 9, 14, 19});
+    } else {
+        CHECK(leaps == std::vector<int>{7, 23});
+        CHECK(checked == std::vector<int>{0, 7, 30});
+    }
+    run.write_figure(render::Image(8, 8), {});
+    CHECK(out.metadata["model_steps"] == 30);
 }
