@@ -55,4 +55,9 @@ nlohmann::json gray_scott_long_run(long long steps);
 nlohmann::json peer_comparison(const Paths& paths);
 nlohmann::json pipeline_times(const Paths& paths, const nlohmann::json& peer);
 
+// Issue 17's targets, each against its measured value from this run
+// (latest.json so far) and Google Benchmark's benchmarks.json; also written
+// to results/targets.md (accuracy_targets.cpp).
+nlohmann::json target_table(const nlohmann::json& latest, const Paths& paths);
+
 }  // namespace bench

@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "figgen_accuracy: whole-pipeline times (make figures from clean)\n");
             out["pipeline"] = bench::pipeline_times(paths, out["book_route"]);
         }
+        out["targets"] = bench::target_table(out, paths);
         // After the pipeline study, which starts out/ afresh.
         std::filesystem::create_directories(figure_dir);
         render::write_file_atomically(paths.results / "latest.json", out.dump(2) + "\n");
