@@ -204,6 +204,18 @@ const AVCodec* find_encoder(const std::string& name) {
     throw std::invalid_argument("video codec \"" + name + "\" is not allowed: use auto, libx264 or mpeg4");
 }
 
+// Checked here rather than left to libx264, which would refuse an unknown
+// name only as "opening the encoder: Invalid argument".
+void check_name(const char* what, const std::string& name, const std::vector<std::string>& allowed,
+                bool may_be_empty) {
+    if (may_be_empty && name.empty()) return;
+    if (std::find(allowed.begin(), allowed.end(), name) != allowed.end()) return;
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+    throw std::invalid_argument(std::string(what) + " \"" + name + "\" is not allowed: use one of " + list +
+                                (may_be_empty ? " (or empty for none)" : ""));
+}
+
 void validate(int width, int height, const VideoOptions& options) {
     if (width <= 0 || height <= 0 || width % 2 != 0 || height % 2 != 0)
         throw std::invalid_argument("video size " + std::to_string(width) + "x" + std::to_string(height) +
@@ -212,9 +224,24 @@ void validate(int width, int height, const VideoOptions& options) {
     // 0 would mean "as many as there are cores", and the bytes would differ by machine.
     if (options.threads < 1) throw std::invalid_argument("video threads must be at least 1");
     if (options.crf < 0 || options.crf > 51) throw std::invalid_argument("video crf must be in 0..51");
+    check_name("video preset", options.preset, x264_presets(), false);
+    check_name("video tune", options.tune, x264_tunes(), true);
 }
 
 }  // namespace
+
+// As x264.h's x264_preset_names and x264_tune_names (x264 0.164).
+const std::vector<std::string>& x264_presets() {
+    static const std::vector<std::string> names = {"ultrafast", "superfast", "veryfast", "faster", "fast",
+                                                   "medium",    "slow",      "slower",   "veryslow", "placebo"};
+    return names;
+}
+
+const std::vector<std::string>& x264_tunes() {
+    static const std::vector<std::string> names = {"film", "animation", "grain",      "stillimage",
+                                                   "psnr", "ssim",      "fastdecode", "zerolatency"};
+    return names;
+}
 
 VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int height, const VideoOptions& options)
     : VideoWriter(Folder::of(path), path.filename().string(), width, height, options) {}
@@ -264,7 +291,8 @@ VideoWriter::VideoWriter(const Folder& folder, const std::string& name, int widt
     AVDictionary* codec_options = nullptr;
     if (codec_name_ == "libx264") {
         av_dict_set(&codec_options, "crf", std::to_string(options.crf).c_str(), 0);
-        av_dict_set(&codec_options, "preset", "medium", 0);  // pinned like the threads: it shapes the bytes
+        av_dict_set(&codec_options, "preset", options.preset.c_str(), 0);  // pinned like the threads: it shapes the bytes
+        if (!options.tune.empty()) av_dict_set(&codec_options, "tune", options.tune.c_str(), 0);
     } else {
         // Fixed quantiser: crf 18 -> qscale 3, about as transparent as x264 at crf 18.
         const int qscale = std::clamp((options.crf + 3) / 6, 1, 31);

@@ -222,3 +222,61 @@ TEST_CASE("the same frames with the same options give the same bytes", "[video]"
     // faststart: the index ("moov") comes before the frames ("mdat").
     CHECK(bytes_a.find("moov") < bytes_a.find("mdat"));
 }
+
+TEST_CASE("an unknown x264 preset or tune is refused, naming it and the allowed names", "[video]") {
+    const fs::path path = scratch("bad_preset.mp4");
+    VideoOptions options;
+    options.preset = "quick";
+    CHECK_THROWS_WITH(VideoWriter(path, 64, 48, options),
+                      "video preset \"quick\" is not allowed: use one of ultrafast, superfast, veryfast, faster, fast, "
+                      "medium, slow, slower, veryslow, placebo");
+    options = {};
+    options.preset = "";  // a preset is required; only the tune may be left out
+    CHECK_THROWS_AS(VideoWriter(path, 64, 48, options), std::invalid_argument);
+    options = {};
+    options.tune = "cartoon";
+    CHECK_THROWS_WITH(VideoWriter(path, 64, 48, options),
+                      "video tune \"cartoon\" is not allowed: use one of film, animation, grain, stillimage, psnr, ssim, "
+                      "fastdecode, zerolatency (or empty for none)");
+    CHECK(files_named_like(path) == 0);
+}
+
+// libx264 writes its settings into the stream (an SEI user-data message in
+// the first frame: "x264 - core ... options: cabac=1 ref=3 ... subme=7 ...").
+// The preset's name is not among them, but what it sets is: x264's preset
+// table gives medium subme=7 and rc_lookahead=40, veryfast 2 and 10,
+// ultrafast subme 0, diamond search, no B-frames, CABAC off; the animation tune raises deblocking to
+// 1:1 and the stillimage tune lowers it to -3:-3.
+TEST_CASE("the chosen x264 preset and tune are the ones the stream was encoded with", "[video]") {
+    struct Case {
+        std::string preset, tune;
+        std::vector<std::string> options;
+    };
+    const std::vector<Case> cases = {
+        {"medium", "", {"cabac=1", "subme=7", "rc_lookahead=40", "deblock=1:0:0"}},
+        {"veryfast", "", {"cabac=1", "subme=2", "rc_lookahead=10", "deblock=1:0:0"}},
+        {"ultrafast", "", {"cabac=0", "subme=0", "me=dia", "bframes=0"}},
+        {"veryfast", "animation", {"subme=2", "deblock=1:1:1"}},
+        {"veryfast", "stillimage", {"subme=2", "deblock=1:-3:-3"}},
+    };
+    for (const Case& c : cases) {
+        INFO("preset " << c.preset << ", tune " << c.tune);
+        const fs::path path = scratch("preset_" + c.preset + "_" + c.tune + ".mp4");
+        VideoOptions options;
+        options.codec = "libx264";
+        options.preset = c.preset;
+        options.tune = c.tune;
+        try {
+            encode_bar(path, options);
+        } catch (const std::runtime_error& e) {
+            WARN("no libx264 in this FFmpeg: " << e.what());
+            return;
+        }
+        const std::string bytes = read_bytes(path);
+        const std::size_t sei = bytes.find("x264 - core");
+        REQUIRE(sei != std::string::npos);
+        const std::string settings = bytes.substr(sei, bytes.find('\0', sei) - sei);
+        INFO(settings);
+        for (const std::string& o : c.options) CHECK(settings.find(" " + o + " ") != std::string::npos);
+    }
+}
