@@ -60,4 +60,11 @@ nlohmann::json pipeline_times(const Paths& paths, const nlohmann::json& peer);
 // to results/targets.md (accuracy_targets.cpp).
 nlohmann::json target_table(const nlohmann::json& latest, const Paths& paths);
 
+// x264 presets and tunes on the same drawn frames of two films (tc7-2, bd-500):
+// encoding time, file size, SSIM against the drawn frames (FFmpeg's ssim
+// filter, the ffmpeg program), and the fastest setting inside issue 17's
+// bounds; also written to results/encoder.json and encoder.md
+// (accuracy_encoder.cpp).
+nlohmann::json encoder_settings(const Paths& paths);
+
 }  // namespace bench

@@ -1,5 +1,5 @@
-// `make bench`, second half: run time against error, the book's route side
-// by side, and whole-pipeline times. Results go to bench/results/latest.json;
+// `make bench`, second half: run time against error, x264's settings on
+// figgen's frames, the book's route side by side, and whole-pipeline times. Results go to bench/results/latest.json;
 // the Pareto figure (run time against error, log-log, one curve per method)
 // to out/bench-pareto.png, drawn with figgen's own plot layer.
 #include <CLI/CLI.hpp>
@@ -55,14 +55,21 @@ int main(int argc, char** argv) {
     bench::Paths paths{FIGGEN_SOURCE_DIR, FIGGEN_BINARY_DIR, FIGGEN_EXE, "bench/results"};
     std::filesystem::path figure_dir = "out";
     long long long_run = 1'000'000;
-    bool skip_pipeline = false;
+    bool skip_pipeline = false, skip_encoder = false, encoder_only = false;
     app.add_option("--results", paths.results, "folder for latest.json and the book's route's peer.json");
     app.add_option("--figures", figure_dir, "folder for bench-pareto.png");
     app.add_option("--long-run", long_run, "steps of the Gray-Scott stability run at n = 64")->check(CLI::Range(0LL, 100'000'000LL));
     app.add_flag("--no-pipeline", skip_pipeline, "skip the book's route and the whole-pipeline times");
+    app.add_flag("--no-encoder", skip_encoder, "skip the x264 presets and tunes (bench/results/encoder.md)");
+    app.add_flag("--encoder-only", encoder_only, "only the x264 presets and tunes: encoder.json and encoder.md");
     CLI11_PARSE(app, argc, argv);
     try {
         std::filesystem::create_directories(paths.results);
+        if (encoder_only) {
+            bench::encoder_settings(paths);
+            std::printf("wrote %s\n", (paths.results / "encoder.md").c_str());
+            return 0;
+        }
         bench::Curves curves;
         nlohmann::json out;
         std::fprintf(stderr, "figgen_accuracy: arithmetic and estimators\n");
@@ -72,6 +79,7 @@ int main(int argc, char** argv) {
         out["fractal_dimensions"] = bench::fractal_dimensions(curves);
         std::fprintf(stderr, "figgen_accuracy: Gray-Scott stability, %lld steps at n = 64\n", long_run);
         out["gray_scott_long_run"] = bench::gray_scott_long_run(long_run);
+        if (!skip_encoder) out["encoder"] = bench::encoder_settings(paths);
         if (!skip_pipeline) {
             out["book_route"] = bench::peer_comparison(paths);
             std::fprintf(stderr, "figgen_accuracy: whole-pipeline times (make figures from clean)\n");
