@@ -168,8 +168,10 @@ nlohmann::json FrameSink::finish() {
         video_->finish();
         meta["file"] = description_.id + ".mp4";
         meta["codec"] = video_->codec_name();
-        meta["preset"] = options_.video_options.preset;  // x264's; with the settings below they shape the bytes
-        meta["tune"] = options_.video_options.tune;      // "" = none
+        if (video_->codec_name() == "libx264") {  // the mpeg4 fallback has neither
+            meta["preset"] = options_.video_options.preset;  // with the settings below they shape the bytes
+            meta["tune"] = options_.video_options.tune;      // "" = none
+        }
         meta["pixel_format"] = "yuv420p";
         meta["encoder_threads"] = options_.video_options.threads;
     }
