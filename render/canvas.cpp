@@ -1,10 +1,9 @@
 #include "render/canvas.hpp"
 
 #include <algorithm>
+#include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 #include <string>
-
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "render/gl_context.hpp"
 
@@ -20,9 +19,17 @@ Canvas::Canvas(int width, int height, int samples, bool depth)
     // y down: the top edge of the canvas is y = 0.
     projection_ = glm::ortho(0.0f, float(width), float(height), 0.0f, -1.0f, 1.0f);
 
+    // One sample is a plain renderbuffer: asked for 1 sample, Mesa rounds up
+    // to the smallest multisampled count it has (4 on llvmpipe).
+    auto storage = [&](GLenum format) {
+        if (samples_ > 1)
+            glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples_, format, width, height);
+        else
+            glRenderbufferStorage(GL_RENDERBUFFER, format, width, height);
+    };
     glGenRenderbuffers(1, &msaa_colour_);
     glBindRenderbuffer(GL_RENDERBUFFER, msaa_colour_);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples_, GL_RGBA8, width, height);
+    storage(GL_RGBA8);
     glGenFramebuffers(1, &msaa_fbo_);
     glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_colour_);
@@ -30,27 +37,32 @@ Canvas::Canvas(int width, int height, int samples, bool depth)
         // Same sample count as the colour: a multisampled FBO needs its attachments to agree.
         glGenRenderbuffers(1, &msaa_depth_);
         glBindRenderbuffer(GL_RENDERBUFFER, msaa_depth_);
-        glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples_, GL_DEPTH_COMPONENT24, width, height);
+        storage(GL_DEPTH_COMPONENT24);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_);
     }
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw std::runtime_error("multisampled framebuffer incomplete");
 
+    if (samples_ > 1) make_resolve_target();
+    bind();
+    check_gl("Canvas");
+}
+
+// The single-sample framebuffer read() resolves the samples into.
+void Canvas::make_resolve_target() {
     glGenRenderbuffers(1, &resolve_colour_);
     glBindRenderbuffer(GL_RENDERBUFFER, resolve_colour_);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width_, height_);
     glGenFramebuffers(1, &resolve_fbo_);
     glBindFramebuffer(GL_FRAMEBUFFER, resolve_fbo_);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_colour_);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw std::runtime_error("resolve framebuffer incomplete");
-    bind();
-    check_gl("Canvas");
 }
 
 Canvas::~Canvas() {
-    glDeleteFramebuffers(1, &resolve_fbo_);
-    glDeleteRenderbuffers(1, &resolve_colour_);
+    if (resolve_fbo_) glDeleteFramebuffers(1, &resolve_fbo_);
+    if (resolve_colour_) glDeleteRenderbuffers(1, &resolve_colour_);
     glDeleteFramebuffers(1, &msaa_fbo_);
     glDeleteRenderbuffers(1, &msaa_colour_);
     if (msaa_depth_) glDeleteRenderbuffers(1, &msaa_depth_);
@@ -79,10 +91,12 @@ void Canvas::clear(const glm::vec4& colour) {
 }
 
 Image Canvas::read() const {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
-    glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_);
+    if (resolve_fbo_) {  // multisampled: resolve first
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
+        glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_ ? resolve_fbo_ : msaa_fbo_);
     glFinish();  // llvmpipe renders lazily: wait before reading
     Image image(width_, height_);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);

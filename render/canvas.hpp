@@ -1,10 +1,9 @@
 #pragma once
 // A drawing surface of a given size: a 4x multisampled framebuffer (the most
 // llvmpipe offers) that read() resolves into a single-sample one and reads
-// back. Coordinates everywhere in render/ are pixels, origin at the top left,
-// y down, as in the PNG that comes out. A canvas made with `depth` also has a
-// multisampled depth buffer, for 3-D drawings (draw_tubes); 2-D drawing never
-// tests depth.
+// back, or, made with one sample, a plain framebuffer read directly. Coordinates everywhere in render/ are pixels,
+// origin at the top left, y down, as in the PNG that comes out. A canvas made with `depth` also has a multisampled
+// depth buffer, for 3-D drawings (draw_tubes); 2-D drawing never tests depth.
 
 #include <glm/glm.hpp>
 
@@ -48,16 +47,18 @@ public:
     // Pixel coordinates (top-left origin, y down) to clip space.
     const glm::mat4& projection() const { return projection_; }
 
-    void bind() const;                   // makes this canvas the draw target
+    void bind() const;                    // makes this canvas the draw target
     void clear(const glm::vec4& colour);  // also binds; resets depth to far when there is a depth buffer
-    Image read() const;                  // resolves the samples and reads RGBA
+    Image read() const;                   // resolves the samples and reads RGBA
 
 private:
+    void make_resolve_target();
+
     int width_, height_, samples_;
     glm::mat4 projection_;
     GLuint msaa_fbo_ = 0, msaa_colour_ = 0;
-    GLuint msaa_depth_ = 0;  // 0 when made without depth
-    GLuint resolve_fbo_ = 0, resolve_colour_ = 0;
+    GLuint msaa_depth_ = 0;                        // 0 when made without depth
+    GLuint resolve_fbo_ = 0, resolve_colour_ = 0;  // 0 with one sample: read straight from the canvas
 };
 
 }  // namespace render

@@ -138,10 +138,8 @@ public:
              .panel = {},
              .frame =
                  [&](int step) {
-                     return draw_field_panels(
-                         run.frame_canvas(false, field_panel_samples),
-                         {{format_step(d_.animation->title, step), {field_layer(film.field(), spec_, Cells::viewed)}}},
-                         options_.scale);
+                     return run.draw_field_frame(
+                         {{format_step(d_.animation->title, step), {field_layer(film.field(), spec_, Cells::viewed)}}});
                  },
              .advance =
                  [&] {

@@ -69,11 +69,7 @@ public:
                                           {"statistics", field_statistics(model.field())},
                                           {"state_sha256", state_hash(model.field())}});
                 },
-            .frame =
-                [&](int step) {
-                    return draw_field_panels(run.frame_canvas(false, field_panel_samples),
-                                             {panel(d_.animation->title, step, Cells::viewed)}, options_.scale);
-                },
+            .frame = [&](int step) { return run.draw_field_frame({panel(d_.animation->title, step, Cells::viewed)}); },
             .advance =
                 [&] {
                     model.step();

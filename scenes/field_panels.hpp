@@ -55,17 +55,19 @@ struct FieldLayer {
 // this term included.
 inline constexpr double field_layer_bytes_per_cell = 2 * sizeof(float);
 
-// Samples per pixel of a page of field panels: one. Fields are axis-aligned
-// quads drawn without multisampling anyway, frames are axis-aligned and text
-// carries its own coverage, so nothing on the page needs anti-aliasing: a
-// 4x multisampled page gave the same bytes (every golden) at the cost of
-// clearing, blending into and resolving four samples a pixel.
-inline constexpr int field_panel_samples = 1;
-
 struct FieldPanel {
     std::string title;
     std::vector<FieldLayer> layers;  // drawn first to last
 };
+
+// Samples per pixel a page of field panels needs: one when every panel's
+// frame lies on whole pixels, else four. Fields are quads drawn without
+// multisampling anyway and text carries its own coverage (with a clear
+// border), so only a frame edge between pixels needs the samples; on whole
+// pixels one sample gives the same bytes without clearing, blending into
+// and resolving four a pixel (a film's frame at scale 1: 480 x 520 and
+// 1280 x 720 measured byte-identical).
+int field_page_samples(const std::vector<FieldPanel>& panels, int width, int height, double scale);
 
 // A row of panels on a white width x height page (pixels, already scaled).
 render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale);

@@ -161,11 +161,7 @@ private:
                     history.panels.push_back(panel(d_.panel_title, step));
                     history.panel_meta.push_back(panel_metadata(model, step));
                 },
-            .frame =
-                [&](int step) {
-                    return draw_field_panels(run.frame_canvas(false, field_panel_samples),
-                                             {panel(d_.animation->title, step)}, options_.scale);
-                },
+            .frame = [&](int step) { return run.draw_field_frame({panel(d_.animation->title, step)}); },
             .advance =
                 [&] {
                     history.count(model);

@@ -147,10 +147,8 @@ public:
                 },
             .frame =
                 [&](int step) {
-                    return draw_field_panels(
-                        run.frame_canvas(false, field_panel_samples),
-                        {panel_of(model, a_spec_, b_spec_, format_step(d_.animation->title, step), Cells::viewed)},
-                        options_.scale);
+                    return run.draw_field_frame(
+                        {panel_of(model, a_spec_, b_spec_, format_step(d_.animation->title, step), Cells::viewed)});
                 },
             .advance = {},
             .leap = [&](int steps) { model.leap(steps); },

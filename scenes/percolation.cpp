@@ -62,9 +62,7 @@ public:
             .panel = [&](int) { panel(); },
             .frame =
                 [&](int) {
-                    return draw_field_panels(run.frame_canvas(false, field_panel_samples),
-                                             {{title(d_.animation->title), {field_layer(model.cells(), spec_)}}},
-                                             options_.scale);
+                    return run.draw_field_frame({{title(d_.animation->title), {field_layer(model.cells(), spec_)}}});
                 },
             .advance =
                 [&] {

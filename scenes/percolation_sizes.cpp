@@ -94,9 +94,8 @@ private:
         h.advance = [&model] { return model.step() > 0; };
         if (filmed)
             h.frame = [&model, &run, n, this](int) {
-                return draw_field_panels(run.frame_canvas(false, field_panel_samples),
-                                         {{titled(d_.animation->title, n, model), {field_layer(model.cells(), spec_)}}},
-                                         options_.scale);
+                return run.draw_field_frame(
+                    {{titled(d_.animation->title, n, model), {field_layer(model.cells(), spec_)}}});
             };
         return h;
     }

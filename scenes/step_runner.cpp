@@ -79,9 +79,16 @@ void StepRunner::frame(render::Image image, int step) {
     progress_.advance();
 }
 
-render::Canvas& StepRunner::frame_canvas(bool depth, int samples) {
-    if (!frame_canvas_) frame_canvas_ = std::make_unique<render::Canvas>(frame_width_, frame_height_, samples, depth);
+render::Canvas& StepRunner::frame_canvas(bool depth) {
+    if (!frame_canvas_) frame_canvas_ = std::make_unique<render::Canvas>(frame_width_, frame_height_, 4, depth);
     return *frame_canvas_;
+}
+
+render::Image StepRunner::draw_field_frame(const std::vector<FieldPanel>& panels) {
+    if (!frame_canvas_)
+        frame_canvas_ = std::make_unique<render::Canvas>(
+            frame_width_, frame_height_, field_page_samples(panels, frame_width_, frame_height_, options_.scale));
+    return draw_field_panels(*frame_canvas_, panels, options_.scale);
 }
 
 void StepRunner::stepped() {

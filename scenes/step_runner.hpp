@@ -36,9 +36,11 @@ public:
 
     int last_step() const { return last_; }
     // A canvas of the frame's size, made once and drawn on for every frame
-    // (with a depth buffer when `depth`, for 3-D scenes; `samples` per pixel:
-    // field_panel_samples for field panels).
-    render::Canvas& frame_canvas(bool depth = false, int samples = 4);
+    // (with a depth buffer when `depth`, for 3-D scenes).
+    render::Canvas& frame_canvas(bool depth = false);
+    // A frame of field panels, on a canvas made once with the samples the
+    // first frame's page needs (field_page_samples; the layout stays).
+    render::Image draw_field_frame(const std::vector<FieldPanel>& panels);
 
     // Runs from step 0 to last_step() or until the model stops (advance()
     // or stopped() says so); returns the last step reached.

@@ -38,3 +38,25 @@ TEST_CASE("a filled rectangle lands on the pixels it covers, top-left origin") {
     const auto* below = image.pixel(20, 15);
     CHECK(int(below[1]) == 255);
 }
+
+TEST_CASE("a one-sample canvas is a plain framebuffer and not the smallest multisampled one Mesa has") {
+    render::Canvas one(40, 30, 1), four(40, 30, 4);
+    CHECK(one.samples() == 1);
+    CHECK(four.samples() == 4);
+    // Asked for 1 sample, glRenderbufferStorageMultisample gives llvmpipe's
+    // 4; a plain renderbuffer has none. A diagonal edge shows which it got:
+    // one sample per pixel leaves only fully on or off pixels.
+    for (render::Canvas* canvas : {&one, &four}) {
+        canvas->clear({1, 1, 1, 1});
+        render::Shapes shapes;
+        shapes.triangle({0, 0}, {40, 0}, {0, 30}, {0, 0, 0, 1});
+        shapes.draw(*canvas);
+    }
+    auto partial = [](const render::Image& image) {
+        int count = 0;
+        for (std::size_t i = 0; i < image.rgba.size(); i += 4) count += image.rgba[i] != 0 && image.rgba[i] != 255;
+        return count;
+    };
+    CHECK(partial(one.read()) == 0);
+    CHECK(partial(four.read()) > 20);  // the edge's pixels, about one per row
+}

@@ -1,11 +1,13 @@
 // The scenes' shared helpers and registry.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
+#include <tuple>
 
 #include "description/catalog.hpp"
 #include "description/description.hpp"
+#include "render/colormap.hpp"
+#include "scenes/field_panels.hpp"
 #include "scenes/field_stats.hpp"
 #include "scenes/scene.hpp"
 
@@ -17,7 +19,6 @@ TEST_CASE("every catalog description names a known scene", "[scenes]") {
         CHECK(std::any_of(known.begin(), known.end(), [&](const auto& s) { return s.name == d.scene; }));
     }
 }
-
 
 TEST_CASE("field statistics are exact for a known field", "[scenes]") {
     sim::Grid<double> field(2, 2);
@@ -52,8 +53,7 @@ TEST_CASE("a bad drawing setting or reference value is refused in phase 1, namin
     };
     for (const Case& c : cases) {
         INFO(c.id << " --set " << c.set);
-        const description::Description d =
-            description::load_description(description::resolve_figure(c.id), {c.set});
+        const description::Description d = description::load_description(description::resolve_figure(c.id), {c.set});
         try {
             scenes::read_scene(d, scenes::SceneOptions{});
             FAIL("phase 1 accepted it");
@@ -70,4 +70,21 @@ TEST_CASE("every catalog figure passes phase 1 as described", "[scenes]") {
         const description::Description d = description::load_description(file);
         CHECK_NOTHROW(scenes::read_scene(d, scenes::SceneOptions{}));
     }
+}
+
+TEST_CASE("a page of field panels takes one sample a pixel only where one gives the same bytes as four", "[scenes]") {
+    scenes::FieldPanel panel{"step 10", {}};
+    std::vector<double> values(36);
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::sin(0.7 * double(i));
+    panel.layers.push_back({6, 6, values, {&render::colormap("Reds"), -1, 1, 0.7f, render::Sampling::smooth}});
+    const std::vector<scenes::FieldPanel> page = {panel};
+    // At scale 1 the frames lie on whole pixels (a film's frames); at 0.5 their 0.5-pixel lines do not.
+    CHECK(scenes::field_page_samples(page, 480, 520, 1.0) == 1);
+    CHECK(scenes::field_page_samples(page, 240, 260, 0.5) == 4);
+    for (const auto& [width, height, scale] : {std::tuple{480, 520, 1.0}, std::tuple{1280, 720, 1.0}}) {
+        render::Canvas one(width, height, 1), four(width, height, 4);
+        CHECK(scenes::draw_field_panels(one, page, scale).rgba == scenes::draw_field_panels(four, page, scale).rgba);
+    }
+    render::Canvas one(240, 260, 1), four(240, 260, 4);
+    CHECK(scenes::draw_field_panels(one, page, 0.5).rgba != scenes::draw_field_panels(four, page, 0.5).rgba);
 }
