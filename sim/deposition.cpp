@@ -12,6 +12,22 @@ namespace {
 
 constexpr std::uint64_t most_recorded = std::numeric_limits<std::uint32_t>::max();
 
+struct MeanSem {
+    double mean;
+    double sem;  // sample deviation / sqrt(n); 0 for one value
+};
+
+// Two passes, in the values' order: the same values give the same bits.
+MeanSem mean_and_sem(std::span<const double> values) {
+    const auto n = static_cast<double>(values.size());
+    double total = 0;
+    for (double x : values) total += x;
+    const double mean = total / n;
+    double squares = 0;
+    for (double x : values) squares += (x - mean) * (x - mean);
+    return {mean, values.size() > 1 ? std::sqrt(squares / (n - 1) / n) : 0.0};
+}
+
 }  // namespace
 
 void DepositionParams::validate() const {
@@ -125,13 +141,113 @@ RoughnessCurve roughness_curve(int width, double max_time, int points_per_decade
         }
     }
     for (std::size_t k = 0; k < counts.size(); ++k) {
-        double total = 0;
-        for (double x : w[k]) total += x;
-        const double mean = total / seeds;
-        double squares = 0;
-        for (double x : w[k]) squares += (x - mean) * (x - mean);
-        curve.mean_w[k] = mean;
-        curve.sem_w[k] = seeds > 1 ? std::sqrt(squares / (seeds - 1) / seeds) : 0.0;
+        const MeanSem m = mean_and_sem(w[k]);
+        curve.mean_w[k] = m.mean;
+        curve.sem_w[k] = m.sem;
+    }
+    return curve;
+}
+
+void SaturationRule::validate() const {
+    require_number("window", window, 1.1, 100);
+    require_number("tolerance", tolerance, 0.01, 100);
+    require_number("hold", hold, 1, 100);
+    require_integer("min_samples", min_samples, 2, 1000);
+}
+
+WindowComparison compare_windows(std::span<const double> times, std::span<const double> w, const SaturationRule& rule) {
+    if (times.size() != w.size()) throw std::invalid_argument("compare_windows: times and w differ in size");
+    WindowComparison c;
+    if (times.empty()) return c;
+    // The slack keeps a sample exactly at a window's edge (T/r of a power of
+    // ten) in the window it ends, whatever pow rounded.
+    const double end = times.back() * (1 + 1e-12), middle = end / rule.window, start = middle / rule.window;
+    std::size_t first_last = times.size(), first_previous = times.size();
+    while (first_last > 0 && times[first_last - 1] > middle) --first_last;
+    first_previous = first_last;
+    while (first_previous > 0 && times[first_previous - 1] > start) --first_previous;
+    c.previous_samples = first_last - first_previous;
+    c.last_samples = times.size() - first_last;
+    const auto minimum = static_cast<std::size_t>(rule.min_samples);
+    if (c.previous_samples < minimum || c.last_samples < minimum) return c;
+    c.compared = true;
+    const MeanSem previous = mean_and_sem(w.subspan(first_previous, c.previous_samples));
+    const MeanSem last = mean_and_sem(w.subspan(first_last, c.last_samples));
+    c.previous_mean = previous.mean, c.previous_sem = previous.sem;
+    c.last_mean = last.mean, c.last_sem = last.sem;
+    const double difference = last.mean - previous.mean, error = std::hypot(previous.sem, last.sem);
+    c.z = difference == 0 ? 0.0 : error > 0 ? difference / error : std::copysign(HUGE_VAL, difference);
+    c.agree = std::abs(c.z) < rule.tolerance;
+    return c;
+}
+
+SaturationDetector::SaturationDetector(const SaturationRule& rule) : rule_(rule) { rule_.validate(); }
+
+bool SaturationDetector::add(double t, double w) {
+    if (!times_.empty() && !(t > times_.back()))
+        throw std::invalid_argument("SaturationDetector: times must increase");
+    times_.push_back(t);
+    w_.push_back(w);
+    last_ = compare_windows(times_, w_, rule_);
+    if (!last_.agree) {
+        since_ = -1;
+        return false;
+    }
+    if (since_ < 0) since_ = t;
+    return t >= since_ * rule_.hold * (1 - 1e-12);  // the slack as in compare_windows
+}
+
+namespace {
+
+// One run from an empty floor, W sampled at `counts` until the rule says
+// saturated at or after min_time (in particles), else to the last count.
+RoughnessRun run_until_saturated(int width, std::uint64_t seed, const std::vector<std::uint64_t>& counts,
+                                 std::uint64_t min_count, const SaturationRule& rule) {
+    Deposition run(DepositionParams{width, 0, false}, seed);
+    SaturationDetector detector(rule);
+    bool saturated = false;
+    for (std::uint64_t n : counts) {
+        run.drop(n - run.dropped());
+        saturated = detector.add(static_cast<double>(n) / width, run.roughness()) && n >= min_count;
+        if (saturated) break;
+    }
+    const WindowComparison& check = detector.last();
+    // Without a comparison (a very short run) the last window is every sample.
+    const double saturated_w = check.compared ? check.last_mean : mean_and_sem(detector.widths()).mean;
+    return {seed, detector.times(), detector.widths(), saturated, detector.times().back(),
+            saturated ? detector.agreeing_since() : -1.0, check, saturated_w};
+}
+
+}  // namespace
+
+std::vector<RoughnessRun> roughness_until_saturated(int width, double min_time, double max_time, int points_per_decade,
+                                                    int seeds, std::uint64_t seed, const SaturationRule& rule) {
+    require_integer("width", width, 3, 10000000);
+    require_number("max_time", max_time, 1.0, 1e9);
+    require_number("min_time", min_time, 1.0, max_time);
+    require_integer("points_per_decade", points_per_decade, 1, 1000);
+    require_integer("seeds", seeds, 1, 1000000);
+    rule.validate();
+    const std::vector<std::uint64_t> counts = roughness_sample_counts(width, max_time, points_per_decade);
+    const auto min_count = static_cast<std::uint64_t>(std::ceil(min_time * width));
+    std::vector<RoughnessRun> runs;
+    SplitMix64 run_seeds(seed);
+    for (int r = 0; r < seeds; ++r) runs.push_back(run_until_saturated(width, run_seeds.next(), counts, min_count, rule));
+    return runs;
+}
+
+RoughnessCurve mean_over_runs(int width, const std::vector<RoughnessRun>& runs) {
+    if (runs.empty()) throw std::invalid_argument("mean_over_runs: no runs");
+    std::size_t samples = runs[0].times.size();
+    for (const auto& run : runs) samples = std::min(samples, run.times.size());
+    RoughnessCurve curve{width, {}, {}, {}};
+    std::vector<double> w(runs.size());
+    for (std::size_t k = 0; k < samples; ++k) {
+        for (std::size_t r = 0; r < runs.size(); ++r) w[r] = runs[r].w[k];
+        const MeanSem m = mean_and_sem(w);
+        curve.times.push_back(runs[0].times[k]);  // every run samples the same times
+        curve.mean_w.push_back(m.mean);
+        curve.sem_w.push_back(m.sem);
     }
     return curve;
 }

@@ -14,6 +14,7 @@
 // Randomness: one rng.below(width) per particle, nothing else.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "sim/random.hpp"
@@ -21,9 +22,10 @@
 namespace sim {
 
 struct DepositionParams {
-    int width = 500;                    // columns L, periodic, 3..10,000,000
-    std::uint64_t particles = 250000;   // particles the deposit makes room for up front (drop() may go past), 0..4,294,967,295
-    bool record = true;                 // keep every particle's cell; off when only the heights matter (roughness runs)
+    int width = 500;  // columns L, periodic, 3..10,000,000
+    std::uint64_t particles =
+        250000;          // particles the deposit makes room for up front (drop() may go past), 0..4,294,967,295
+    bool record = true;  // keep every particle's cell; off when only the heights matter (roughness runs)
 
     void validate() const;  // throws std::invalid_argument naming the bad parameter
 };
@@ -75,10 +77,10 @@ private:
 
 // W(L, t) at logarithmically spaced times, averaged over independent runs.
 struct RoughnessCurve {
-    int width;                  // L
-    std::vector<double> times;  // t in monolayers (L particles), 10^(k / points_per_decade) rounded to whole particles
-    std::vector<double> mean_w; // W at each time, mean over the runs
-    std::vector<double> sem_w;  // standard error of that mean (sample deviation / sqrt(runs)); 0 for one run
+    int width;                   // L
+    std::vector<double> times;   // t in monolayers (L particles), 10^(k / points_per_decade) rounded to whole particles
+    std::vector<double> mean_w;  // W at each time, mean over the runs
+    std::vector<double> sem_w;   // standard error of that mean (sample deviation / sqrt(runs)); 0 for one run
 };
 
 // Runs `seeds` depositions of width L (3..10,000,000) from t = 1 up to
@@ -89,5 +91,78 @@ struct RoughnessCurve {
 RoughnessCurve roughness_curve(int width, double max_time, int points_per_decade, int seeds, std::uint64_t seed);
 // The times roughness_curve samples, in particles (times t are counts / L).
 std::vector<std::uint64_t> roughness_sample_counts(int width, double max_time, int points_per_decade);
+
+// When one run's W(t) has stopped growing, judged from its own samples at
+// log-spaced times T. Two windows end at T: the last, times in (T/r, T], and
+// the one before, (T/r^2, T/r]. While W grows as t^beta the last window's
+// mean exceeds the other's by r^beta (23% for r = 2, beta = 0.3); saturated,
+// they differ by noise. A single run's W fluctuates slowly (over about the
+// saturation time), so a single agreement can be luck during growth: the
+// windows must agree at every sample over a further factor `hold` in time.
+struct SaturationRule {
+    double window = 2;  // r, the windows' ratio of end to start time: 1.1..100
+    double tolerance =
+        2;  // windows agree when their means differ by less than this many standard errors of the difference: 0.01..100
+    double hold = 2;      // they must have agreed at every sample since T/hold: 1..100 (1: a single agreement)
+    int min_samples = 3;  // samples each window needs before the two are compared: 2..1000
+
+    void validate() const;  // throws std::invalid_argument naming the bad field
+};
+
+// One comparison of the two windows ending at the last sample.
+struct WindowComparison {
+    bool compared = false;  // both windows held min_samples samples
+    std::size_t previous_samples = 0, last_samples = 0;
+    double previous_mean = 0,
+           previous_sem = 0;             // W over (T/r^2, T/r]: mean, standard error (sample deviation / sqrt(n))
+    double last_mean = 0, last_sem = 0;  // W over (T/r, T]
+    double z = 0;        // (last - previous) / hypot(sems); 0 for equal means, +-inf for unequal means without spread
+    bool agree = false;  // compared and |z| < tolerance
+};
+
+// Compares the windows ending at times.back(); times increasing, w the same size.
+WindowComparison compare_windows(std::span<const double> times, std::span<const double> w, const SaturationRule& rule);
+
+// Feeds one run's samples in time order and says when its W has saturated.
+class SaturationDetector {
+public:
+    explicit SaturationDetector(const SaturationRule& rule);  // validates the rule
+    // Adds W at time t (> the previous t); true once the windows have agreed
+    // at every sample from some t0 <= t / hold up to t.
+    bool add(double t, double w);
+    const WindowComparison& last() const { return last_; }  // the comparison made at the latest sample
+    double agreeing_since() const { return since_; }        // the first time of the current agreement, or -1
+    const std::vector<double>& times() const { return times_; }
+    const std::vector<double>& widths() const { return w_; }
+
+private:
+    SaturationRule rule_;
+    std::vector<double> times_, w_;
+    WindowComparison last_;
+    double since_ = -1;
+};
+
+// One run of width L sampled at roughness_sample_counts' times until its W
+// has saturated by `rule` (and t >= min_time), or at the latest to max_time.
+struct RoughnessRun {
+    std::uint64_t seed;         // the run's generator seed
+    std::vector<double> times;  // t sampled, monolayers, up to the stop
+    std::vector<double> w;      // W at each
+    bool saturated;             // the rule stopped it; false: max_time did
+    double stop_time;           // times.back()
+    double agreeing_since;      // when the windows began to agree for good, or -1
+    WindowComparison check;     // the comparison at the stop
+    double saturated_w;         // W over the last window (T/r, T]: the saturated part only
+};
+
+// `seeds` runs of width L (3..10,000,000), run r seeded with the r-th output
+// of SplitMix64(seed) as roughness_curve does, each stopped on its own.
+// min_time <= max_time, both 1..1e9 monolayers.
+std::vector<RoughnessRun> roughness_until_saturated(int width, double min_time, double max_time, int points_per_decade,
+                                                    int seeds, std::uint64_t seed, const SaturationRule& rule);
+
+// The mean W over runs at the times every run reached (up to the earliest
+// stop), as roughness_curve averages them.
+RoughnessCurve mean_over_runs(int width, const std::vector<RoughnessRun>& runs);
 
 }  // namespace sim

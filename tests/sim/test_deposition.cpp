@@ -204,3 +204,108 @@ TEST_CASE("deposition rejects bad parameters with messages naming them", "[depos
     CHECK_THROWS_WITH(sim::roughness_curve(100, 10, 0, 1, 1),
                       "points_per_decade = 0 is not allowed: an integer from 1 to 1000");
 }
+
+namespace {
+
+// W at t = 1, 10^0.1, 10^0.2, ... (10 a decade) for `samples` samples, from `w_of(t)`.
+template <class W>
+void feed(sim::SaturationDetector& detector, int samples, W w_of, int* stopped_at) {
+    *stopped_at = -1;
+    for (int k = 0; k < samples; ++k) {
+        const double t = std::pow(10.0, k / 10.0);
+        if (detector.add(t, w_of(t, k)) && *stopped_at < 0) *stopped_at = k;
+    }
+}
+
+}  // namespace
+
+TEST_CASE("saturation rule: a flat W stops, a growing one does not", "[deposition]") {
+    const sim::SaturationRule rule;  // r = 2, 2 standard errors, held for a factor 2, 3 samples a window
+    int stopped = 0;
+    // Flat with a little alternating noise: the windows agree from the first
+    // comparison (t = 10^0.6: (2, 4] holds 3 samples, (4, 8] 4) and have held
+    // for a factor 2 at t = 10 (10^0.9 falls just short of 2 x 10^0.6).
+    sim::SaturationDetector flat(rule);
+    feed(flat, 40, [](double, int k) { return 10.0 + (k % 2 ? 0.3 : -0.3); }, &stopped);
+    CHECK(stopped == 10);
+    CHECK(flat.last().compared);
+    CHECK(flat.last().previous_samples == 3);
+    CHECK(flat.last().last_samples == 4);
+    CHECK(std::abs(flat.last().z) < rule.tolerance);
+    CHECK(flat.agreeing_since() == Approx(std::pow(10.0, 0.6)));
+    // Exactly constant: no spread at all still agrees (z = 0).
+    sim::SaturationDetector constant(rule);
+    feed(constant, 20, [](double, int) { return 4.0; }, &stopped);
+    CHECK(stopped == 10);
+    CHECK(constant.last().z == 0);
+    // Growing as t^0.3 with the same noise: the last window's mean stays
+    // 23% above the one before, many standard errors, over five decades.
+    sim::SaturationDetector growing(rule);
+    feed(growing, 50, [](double t, int k) { return 2 * std::pow(t, 0.3) + (k % 2 ? 0.05 : -0.05); }, &stopped);
+    CHECK(stopped == -1);
+    CHECK(growing.last().z > rule.tolerance);
+    CHECK(growing.agreeing_since() == -1);
+    // Growth that then saturates at t = 1000: stops only once the plateau
+    // fills most of both windows and the agreement has held, t = 10^3.8
+    // (an independent replay of the rule gives this sample).
+    sim::SaturationDetector crossover(rule);
+    feed(crossover, 60, [](double t, int k) { return 2 * std::pow(std::min(t, 1000.0), 0.3) + (k % 2 ? 0.05 : -0.05); },
+         &stopped);
+    CHECK(stopped == 38);
+}
+
+TEST_CASE("saturation rule: windows, refusals", "[deposition]") {
+    const std::vector<double> t{1, 2, 3, 4, 5, 6, 7, 8}, w{1, 1, 1, 2, 2, 4, 4, 4};
+    sim::SaturationRule rule;
+    rule.min_samples = 2;
+    // T = 8: last window (4, 8] holds 5..8, the one before (2, 4] holds 3, 4.
+    const auto c = sim::compare_windows(t, w, rule);
+    REQUIRE(c.compared);
+    CHECK(c.last_samples == 4);
+    CHECK(c.previous_samples == 2);
+    CHECK(c.last_mean == Approx(3.5));
+    CHECK(c.previous_mean == Approx(1.5));
+    CHECK(c.previous_sem == Approx(0.5));
+    CHECK(c.last_sem == Approx(0.5));
+    CHECK(c.z == Approx(2 / std::hypot(0.5, 0.5)));
+    CHECK_FALSE(c.agree);  // z = 2.83 > 2
+    rule.min_samples = 3;
+    CHECK_FALSE(sim::compare_windows(t, w, rule).compared);
+    rule = {};
+    rule.window = 1;
+    CHECK_THROWS_WITH(sim::SaturationDetector(rule), "window = 1 is not allowed: a number from 1.1 to 100");
+    rule = {};
+    rule.tolerance = 0;
+    CHECK_THROWS_AS(sim::SaturationDetector(rule), std::invalid_argument);
+    sim::SaturationDetector detector(sim::SaturationRule{});
+    detector.add(2, 1);
+    CHECK_THROWS_AS(detector.add(2, 1), std::invalid_argument);
+}
+
+TEST_CASE("roughness runs stop where the same seed stopped them, bit for bit", "[deposition]") {
+    const sim::SaturationRule rule;
+    const auto a = sim::roughness_until_saturated(64, 20, 3 * 512, 10, 4, 99, rule);
+    const auto b = sim::roughness_until_saturated(64, 20, 3 * 512, 10, 4, 99, rule);
+    REQUIRE(a.size() == 4);
+    bool any_before_bound = false;
+    for (std::size_t r = 0; r < a.size(); ++r) {
+        CHECK(a[r].seed == b[r].seed);
+        CHECK(a[r].stop_time == b[r].stop_time);
+        CHECK(a[r].w == b[r].w);
+        CHECK(a[r].saturated_w == b[r].saturated_w);
+        CHECK(a[r].stop_time >= 20);  // min_time
+        any_before_bound = any_before_bound || (a[r].saturated && a[r].stop_time < 3 * 512);
+    }
+    CHECK(any_before_bound);  // at L = 64 W saturates near t = 50, long before 3 L^1.5
+    // Run 0 replays from SplitMix64(99)'s first output, as roughness_curve's.
+    sim::SplitMix64 seeds(99);
+    CHECK(a[0].seed == seeds.next());
+    const auto c = sim::roughness_until_saturated(64, 20, 3 * 512, 10, 4, 100, rule);
+    CHECK(c[0].w != a[0].w);
+    // The mean curve stops at the earliest stop, every run averaged.
+    const auto curve = sim::mean_over_runs(64, a);
+    double earliest = a[0].stop_time;
+    for (const auto& run : a) earliest = std::min(earliest, run.stop_time);
+    CHECK(curve.times.back() == earliest);
+    CHECK(curve.mean_w[0] == Approx((a[0].w[0] + a[1].w[0] + a[2].w[0] + a[3].w[0]) / 4));
+}
