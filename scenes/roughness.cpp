@@ -1,6 +1,8 @@
 // Ballistic deposition's roughness ("Ballistic deposition in Python"): the
 // interface width W(L, t) for several L, with the fitted KPZ-class exponents
-// beta (growth, on the last L) and alpha (W at saturation against L).
+// beta (growth, on the last L) and alpha (W at saturation against L). Each
+// run stops once its own W has saturated (sim::SaturationRule), so the time
+// goes where the figure needs it rather than to a fixed multiple of L^1.5.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -18,10 +20,17 @@ namespace {
 const std::vector<Key> param_keys = {
     {"widths", "system sizes L"},
     {"seeds", "runs averaged per L"},
-    {"saturation_factor", "runs go to t = factor * L^1.5 monolayers (KPZ: saturation at L^z, z = 3/2)"},
+    {"saturation_factor",
+     "the bound: a run stops at t = factor * L^1.5 monolayers at the latest, saturated or not "
+     "(KPZ: saturation at L^z, z = 3/2)"},
     {"points_per_decade", "W samples per decade of t"},
-    {"beta_range", "[t1, t2]: growth-regime times fitted for beta, monolayers"},
-    {"saturation_from", "W_sat is the mean of W over t >= this fraction of the last time"},
+    {"beta_range", "[t1, t2]: growth-regime times fitted for beta, monolayers; no run stops before t2"},
+    {"saturation_window", "r: a run's W over (T/r, T] is compared with W over (T/r^2, T/r] at each sample time T"},
+    {"saturation_tolerance", "the two windows agree when their means differ by less than this many standard errors"},
+    {"saturation_hold",
+     "saturated once they have agreed at every sample for this factor in time; W_sat is each "
+     "run's mean W over its last window, (T/r, T] at the stop"},
+    {"saturation_samples", "samples each window needs before the two are compared"},
 };
 
 // A run's last time, monolayers: what sim::roughness_curve accepts.
@@ -46,12 +55,55 @@ std::vector<double> read_beta_range(Settings& s) {
     return range;
 }
 
-// SHA-256 of a roughness curve's times, mean W and its error, in that order.
-std::string curve_hash(const sim::RoughnessCurve& curve) {
-    std::vector<double> values(curve.times);
-    values.insert(values.end(), curve.mean_w.begin(), curve.mean_w.end());
-    values.insert(values.end(), curve.sem_w.begin(), curve.sem_w.end());
+sim::SaturationRule read_rule(Settings& s) {
+    sim::SaturationRule rule;
+    rule.window = s.number_in("saturation_window", 2.0, 1.1, 100);
+    rule.tolerance = s.number_in("saturation_tolerance", 2.0, 0.01, 100);
+    rule.hold = s.number_in("saturation_hold", 2.0, 1, 100);
+    rule.min_samples = s.count_in("saturation_samples", 3, 2, 1000);
+    return rule;
+}
+
+// SHA-256 of every run's sampled times and W, run by run: the whole state
+// the figure is drawn from.
+std::string runs_hash(const std::vector<sim::RoughnessRun>& runs) {
+    std::vector<double> values;
+    for (const auto& run : runs) {
+        values.insert(values.end(), run.times.begin(), run.times.end());
+        values.insert(values.end(), run.w.begin(), run.w.end());
+    }
     return state_hash(values);
+}
+
+struct Stats {
+    double mean;
+    double sem;  // sample deviation / sqrt(n); 0 for one value
+};
+
+Stats stats_of(const std::vector<double>& values) {
+    const auto n = static_cast<double>(values.size());
+    double total = 0, squares = 0;
+    for (double x : values) total += x;
+    const double mean = total / n;
+    for (double x : values) squares += (x - mean) * (x - mean);
+    return {mean, values.size() > 1 ? std::sqrt(squares / (n - 1) / n) : 0.0};
+}
+
+nlohmann::json window_json(std::size_t samples, double mean, double sem) {
+    return {{"samples", samples}, {"mean_w", mean}, {"sem_w", sem}};
+}
+
+// A run's stop and the rule's numbers at it.
+nlohmann::json run_json(const sim::RoughnessRun& run) {
+    const sim::WindowComparison& c = run.check;
+    return {{"seed", run.seed},
+            {"stop_time", run.stop_time},
+            {"saturated", run.saturated},
+            {"agreeing_since", run.agreeing_since},
+            {"previous_window", window_json(c.previous_samples, c.previous_mean, c.previous_sem)},
+            {"last_window", window_json(c.last_samples, c.last_mean, c.last_sem)},
+            {"z", std::isfinite(c.z) ? nlohmann::json(c.z) : nlohmann::json(c.z > 0 ? "inf" : "-inf")},
+            {"saturated_w", run.saturated_w}};
 }
 
 // What the runs measured: per L its saturated W and curve, and the last L's
@@ -73,7 +125,7 @@ public:
           factor_(params_.number_in("saturation_factor", 3.0, 0.01, 100)),
           per_decade_(params_.count_in("points_per_decade", 10, 1, 100)),
           beta_range_(read_beta_range(params_)),
-          from_(params_.number_in("saturation_from", 0.5, 0.01, 0.99)),
+          rule_(read_rule(params_)),
           colours_(style_colours(style_, "colours", {"#c6dbef", "#6baed6", "#2171b5", "#08519c", "#08306b"})),
           plot_style_(read_plot_style(style_, options.scale)) {
         check_run_lengths();
@@ -87,12 +139,14 @@ public:
         Measured m;
         for (std::size_t i = 0; i < widths_.size(); ++i) {
             const int L = widths_[i];
-            const double max_time = run_length(L);
-            const sim::RoughnessCurve curve = sim::roughness_curve(L, max_time, per_decade_, seeds_, d_.seed + i);
+            const double max_time = run_length(L), min_time = std::min(beta_range_[1], max_time);
+            const auto runs =
+                sim::roughness_until_saturated(L, min_time, max_time, per_decade_, seeds_, d_.seed + i, rule_);
+            const sim::RoughnessCurve curve = sim::mean_over_runs(L, runs);
             const glm::vec4 colour = colours_[i % colours_.size()];
             growth.series.push_back(
                 line_series(curve.times, curve.mean_w, "L = " + std::to_string(L), colour, 1.8f, false));
-            record(curve, max_time, i + 1 == widths_.size(), m);
+            record(curve, runs, max_time, i + 1 == widths_.size(), m);
             progress.advance();
         }
         if (m.beta_t.size() < 2) throw std::logic_error(d_.id + ": beta_range holds fewer than two sampled times");
@@ -111,7 +165,7 @@ public:
 private:
     double run_length(int L) const { return factor_ * std::pow(double(L), 1.5); }
 
-    // Every run must be one sim::roughness_curve accepts: 1 to 1e9 monolayers.
+    // Every run must be one sim::roughness_until_saturated accepts: 1 to 1e9 monolayers.
     void check_run_lengths() {
         for (int L : widths_)
             if (const double t = run_length(L); !(t >= 1 && t <= longest_run))
@@ -121,6 +175,7 @@ private:
     }
 
     // beta is fitted on the last L's samples inside beta_range: two at least.
+    // No run stops before beta_range's end, so every run has them.
     void check_beta_times() {
         const int L = widths_.back();
         int inside = 0;
@@ -135,18 +190,22 @@ private:
                                std::to_string(per_decade_) + " times a decade)");
     }
 
-    // Adds one L's curve: its saturated W (the mean over t >= from * t_max),
-    // its growth regime when it is the last, and its metadata.
-    void record(const sim::RoughnessCurve& curve, double max_time, bool last, Measured& m) const {
-        double sum = 0;
-        int n = 0;
-        for (std::size_t k = 0; k < curve.times.size(); ++k)
-            if (curve.times[k] >= from_ * curve.times.back()) {
-                sum += curve.mean_w[k];
-                ++n;
-            }
+    // Adds one L: its saturated W (the mean over runs of each run's last
+    // window at its stop), its growth regime when it is the last, its
+    // metadata with every run's stop.
+    void record(const sim::RoughnessCurve& curve, const std::vector<sim::RoughnessRun>& runs, double max_time,
+                bool last, Measured& m) const {
+        std::vector<double> saturated_w;
+        nlohmann::json stops = nlohmann::json::array();
+        int saturated = 0;
+        for (const auto& run : runs) {
+            saturated_w.push_back(run.saturated_w);
+            stops.push_back(run_json(run));
+            saturated += run.saturated;
+        }
+        const Stats w_sat = stats_of(saturated_w);
         m.sizes.push_back(curve.width);
-        m.saturated.push_back(sum / n);
+        m.saturated.push_back(w_sat.mean);
         if (last) {
             for (std::size_t k = 0; k < curve.times.size(); ++k)
                 if (curve.times[k] >= beta_range_[0] && curve.times[k] <= beta_range_[1]) {
@@ -157,11 +216,14 @@ private:
         m.curves.push_back({{"width", curve.width},
                             {"seeds", seeds_},
                             {"max_time", max_time},
+                            {"runs_saturated", saturated},
+                            {"runs", stops},
                             {"times", curve.times},
                             {"mean_w", curve.mean_w},
                             {"sem_w", curve.sem_w},
-                            {"saturated_w", m.saturated.back()},
-                            {"state_sha256", curve_hash(curve)}});
+                            {"saturated_w", w_sat.mean},
+                            {"saturated_w_sem", w_sat.sem},
+                            {"state_sha256", runs_hash(runs)}});
     }
 
     static render::Axes growth_axes() {
@@ -182,8 +244,8 @@ private:
         scaling.legend = render::Legend::upper_left;
         const std::vector<double> alpha_line = sim::power_law(alpha, m.sizes);
         scaling.series = {
-            dot_series(m.sizes, m.saturated, "W_sat, mean over t >= " + format_fixed(from_, 2) + " t_max",
-                       {0.03f, 0.19f, 0.42f, 1}, 8.0f),
+            dot_series(m.sizes, m.saturated, "W_sat, runs' last windows", {0.03f, 0.19f, 0.42f, 1},
+                       8.0f),
             line_series(m.sizes, alpha_line, "fit, alpha = " + format_fixed(alpha.slope, 3), fit_colour, 2.0f, true)};
         scaling.notes.push_back({"KPZ: alpha = 1/2", {0.62f, 0.10f}, render::Align::left});
         return scaling;
@@ -192,6 +254,17 @@ private:
     nlohmann::json metadata(const Measured& m, const sim::LineFit& beta, const sim::LineFit& alpha) const {
         return {{"params", params_.used()},
                 {"style", style_.used()},
+                {"saturation_rule",
+                 {{"rule",
+                   "at each sample time T (t >= beta_range's end), compare a run's mean W over (T/r, T] with "
+                   "its mean over (T/r^2, T/r]; they agree when |difference| < tolerance * hypot of their "
+                   "standard errors; the run stops once they have agreed at every sample since T/hold, or "
+                   "at saturation_factor * L^1.5"},
+                  {"window", rule_.window},
+                  {"tolerance", rule_.tolerance},
+                  {"hold", rule_.hold},
+                  {"min_samples", rule_.min_samples},
+                  {"max_factor", factor_}}},
                 {"curves", m.curves},
                 {"beta", {{"value", beta.slope}, {"fit_range", beta_range_}, {"width", widths_.back()}, {"r", beta.r}}},
                 {"alpha", {{"value", alpha.slope}, {"widths", m.sizes}, {"saturated_w", m.saturated}, {"r", alpha.r}}}};
@@ -202,7 +275,7 @@ private:
     const double factor_;
     const int per_decade_;
     const std::vector<double> beta_range_;
-    const double from_;
+    const sim::SaturationRule rule_;
     const std::vector<glm::vec4> colours_;
     const render::PlotStyle plot_style_;
 };
