@@ -155,39 +155,71 @@ void SaturationRule::validate() const {
     require_integer("min_samples", min_samples, 2, 1000);
 }
 
-WindowComparison compare_windows(std::span<const double> times, std::span<const double> w, const SaturationRule& rule) {
-    if (times.size() != w.size()) throw std::invalid_argument("compare_windows: times and w differ in size");
-    WindowComparison c;
-    if (times.empty()) return c;
+namespace {
+
+// The indices [first, times.size()) of the samples in (end / r, end], where
+// end = times.back(), and [first_previous, first) of those in the window before.
+struct Windows {
+    std::size_t first_previous, first;
+};
+
+Windows windows_ending_last(std::span<const double> times, double r) {
     // The slack keeps a sample exactly at a window's edge (T/r of a power of
     // ten) in the window it ends, whatever pow rounded.
-    const double end = times.back() * (1 + 1e-12), middle = end / rule.window, start = middle / rule.window;
-    std::size_t first_last = times.size(), first_previous = times.size();
-    while (first_last > 0 && times[first_last - 1] > middle) --first_last;
-    first_previous = first_last;
+    const double end = times.back() * (1 + 1e-12), middle = end / r, start = middle / r;
+    std::size_t first = times.size();
+    while (first > 0 && times[first - 1] > middle) --first;
+    std::size_t first_previous = first;
     while (first_previous > 0 && times[first_previous - 1] > start) --first_previous;
-    c.previous_samples = first_last - first_previous;
-    c.last_samples = times.size() - first_last;
+    return {first_previous, first};
+}
+
+double mean_of(std::span<const double> values) { return mean_and_sem(values).mean; }
+
+}  // namespace
+
+WindowComparison compare_windows(std::span<const double> times, std::span<const std::vector<double>> w,
+                                 const SaturationRule& rule) {
+    if (w.empty()) throw std::invalid_argument("compare_windows: no runs");
+    for (const auto& run : w)
+        if (run.size() != times.size()) throw std::invalid_argument("compare_windows: a run's w and times differ in size");
+    WindowComparison c;
+    if (times.empty()) return c;
+    const Windows at = windows_ending_last(times, rule.window);
+    c.previous_samples = at.first - at.first_previous;
+    c.last_samples = times.size() - at.first;
     const auto minimum = static_cast<std::size_t>(rule.min_samples);
     if (c.previous_samples < minimum || c.last_samples < minimum) return c;
     c.compared = true;
-    const MeanSem previous = mean_and_sem(w.subspan(first_previous, c.previous_samples));
-    const MeanSem last = mean_and_sem(w.subspan(first_last, c.last_samples));
-    c.previous_mean = previous.mean, c.previous_sem = previous.sem;
-    c.last_mean = last.mean, c.last_sem = last.sem;
-    const double difference = last.mean - previous.mean, error = std::hypot(previous.sem, last.sem);
-    c.z = difference == 0 ? 0.0 : error > 0 ? difference / error : std::copysign(HUGE_VAL, difference);
+    // Per run its two window means, then the ensemble's statistics across runs, in run order.
+    std::vector<double> previous, last, difference;
+    for (const auto& run : w) {
+        const std::span<const double> all(run);
+        previous.push_back(mean_of(all.subspan(at.first_previous, c.previous_samples)));
+        last.push_back(mean_of(all.subspan(at.first, c.last_samples)));
+        difference.push_back(last.back() - previous.back());
+    }
+    const MeanSem p = mean_and_sem(previous), l = mean_and_sem(last), d = mean_and_sem(difference);
+    c.previous_mean = p.mean, c.previous_sem = p.sem;
+    c.last_mean = l.mean, c.last_sem = l.sem;
+    c.difference = d.mean, c.difference_sem = d.sem;
+    c.z = d.mean == 0 ? 0.0 : d.sem > 0 ? d.mean / d.sem : std::copysign(HUGE_VAL, d.mean);
     c.agree = std::abs(c.z) < rule.tolerance;
     return c;
 }
 
-SaturationDetector::SaturationDetector(const SaturationRule& rule) : rule_(rule) { rule_.validate(); }
+SaturationDetector::SaturationDetector(const SaturationRule& rule, int runs) : rule_(rule) {
+    rule_.validate();
+    require_integer("runs", runs, 1, 1000000);
+    w_.resize(static_cast<std::size_t>(runs));
+}
 
-bool SaturationDetector::add(double t, double w) {
+bool SaturationDetector::add(double t, std::span<const double> w) {
     if (!times_.empty() && !(t > times_.back()))
         throw std::invalid_argument("SaturationDetector: times must increase");
+    if (w.size() != w_.size()) throw std::invalid_argument("SaturationDetector: one W per run");
     times_.push_back(t);
-    w_.push_back(w);
+    for (std::size_t r = 0; r < w.size(); ++r) w_[r].push_back(w[r]);
     last_ = compare_windows(times_, w_, rule_);
     if (!last_.agree) {
         since_ = -1;
@@ -199,53 +231,64 @@ bool SaturationDetector::add(double t, double w) {
 
 namespace {
 
-// One run from an empty floor, W sampled at `counts` until the rule says
-// saturated at or after min_time (in particles), else to the last count.
-RoughnessRun run_until_saturated(int width, std::uint64_t seed, const std::vector<std::uint64_t>& counts,
-                                 std::uint64_t min_count, const SaturationRule& rule) {
-    Deposition run(DepositionParams{width, 0, false}, seed);
-    SaturationDetector detector(rule);
-    bool saturated = false;
-    for (std::uint64_t n : counts) {
-        run.drop(n - run.dropped());
-        saturated = detector.add(static_cast<double>(n) / width, run.roughness()) && n >= min_count;
-        if (saturated) break;
+// W_sat: the ensemble's last window at the stop; without a comparison (a
+// very short run) the last window is every sample.
+void set_saturated_w(RoughnessEnsemble& e) {
+    if (e.check.compared) {
+        e.saturated_w = e.check.last_mean, e.saturated_w_sem = e.check.last_sem;
+        return;
     }
-    const WindowComparison& check = detector.last();
-    // Without a comparison (a very short run) the last window is every sample.
-    const double saturated_w = check.compared ? check.last_mean : mean_and_sem(detector.widths()).mean;
-    return {seed, detector.times(), detector.widths(), saturated, detector.times().back(),
-            saturated ? detector.agreeing_since() : -1.0, check, saturated_w};
+    std::vector<double> per_run;
+    for (const auto& run : e.w) per_run.push_back(mean_and_sem(run).mean);
+    const MeanSem m = mean_and_sem(per_run);
+    e.saturated_w = m.mean, e.saturated_w_sem = m.sem;
 }
 
 }  // namespace
 
-std::vector<RoughnessRun> roughness_until_saturated(int width, double min_time, double max_time, int points_per_decade,
-                                                    int seeds, std::uint64_t seed, const SaturationRule& rule) {
+RoughnessEnsemble roughness_until_saturated(int width, double min_time, double max_time, int points_per_decade,
+                                            int seeds, std::uint64_t seed, const SaturationRule& rule) {
     require_integer("width", width, 3, 10000000);
     require_number("max_time", max_time, 1.0, 1e9);
     require_number("min_time", min_time, 1.0, max_time);
     require_integer("points_per_decade", points_per_decade, 1, 1000);
     require_integer("seeds", seeds, 1, 1000000);
-    rule.validate();
+    SaturationDetector detector(rule, seeds);
     const std::vector<std::uint64_t> counts = roughness_sample_counts(width, max_time, points_per_decade);
     const auto min_count = static_cast<std::uint64_t>(std::ceil(min_time * width));
-    std::vector<RoughnessRun> runs;
+    RoughnessEnsemble e{width, {}, {}, {}, false, 0, -1, {}, 0, 0};
+    std::vector<Deposition> runs;
     SplitMix64 run_seeds(seed);
-    for (int r = 0; r < seeds; ++r) runs.push_back(run_until_saturated(width, run_seeds.next(), counts, min_count, rule));
-    return runs;
+    for (int r = 0; r < seeds; ++r) {
+        e.seeds.push_back(run_seeds.next());
+        runs.emplace_back(DepositionParams{width, 0, false}, e.seeds.back());
+    }
+    // Each run owns its generator, so advancing them in turn leaves every
+    // run's draws as they would be alone; the order is fixed, so is the result.
+    std::vector<double> w(runs.size());
+    for (std::uint64_t n : counts) {
+        for (std::size_t r = 0; r < runs.size(); ++r) {
+            runs[r].drop(n - runs[r].dropped());
+            w[r] = runs[r].roughness();
+        }
+        e.saturated = detector.add(static_cast<double>(n) / width, w) && n >= min_count;
+        if (e.saturated) break;
+    }
+    e.times = detector.times();
+    e.w = detector.widths();
+    e.stop_time = e.times.back();
+    e.agreeing_since = e.saturated ? detector.agreeing_since() : -1.0;
+    e.check = detector.last();
+    set_saturated_w(e);
+    return e;
 }
 
-RoughnessCurve mean_over_runs(int width, const std::vector<RoughnessRun>& runs) {
-    if (runs.empty()) throw std::invalid_argument("mean_over_runs: no runs");
-    std::size_t samples = runs[0].times.size();
-    for (const auto& run : runs) samples = std::min(samples, run.times.size());
-    RoughnessCurve curve{width, {}, {}, {}};
-    std::vector<double> w(runs.size());
-    for (std::size_t k = 0; k < samples; ++k) {
-        for (std::size_t r = 0; r < runs.size(); ++r) w[r] = runs[r].w[k];
+RoughnessCurve mean_over_runs(const RoughnessEnsemble& ensemble) {
+    RoughnessCurve curve{ensemble.width, ensemble.times, {}, {}};
+    std::vector<double> w(ensemble.w.size());
+    for (std::size_t k = 0; k < ensemble.times.size(); ++k) {
+        for (std::size_t r = 0; r < w.size(); ++r) w[r] = ensemble.w[r][k];
         const MeanSem m = mean_and_sem(w);
-        curve.times.push_back(runs[0].times[k]);  // every run samples the same times
         curve.mean_w.push_back(m.mean);
         curve.sem_w.push_back(m.sem);
     }

@@ -92,77 +92,88 @@ RoughnessCurve roughness_curve(int width, double max_time, int points_per_decade
 // The times roughness_curve samples, in particles (times t are counts / L).
 std::vector<std::uint64_t> roughness_sample_counts(int width, double max_time, int points_per_decade);
 
-// When one run's W(t) has stopped growing, judged from its own samples at
-// log-spaced times T. Two windows end at T: the last, times in (T/r, T], and
-// the one before, (T/r^2, T/r]. While W grows as t^beta the last window's
-// mean exceeds the other's by r^beta (23% for r = 2, beta = 0.3); saturated,
-// they differ by noise. A single run's W fluctuates slowly (over about the
-// saturation time), so a single agreement can be luck during growth: the
-// windows must agree at every sample over a further factor `hold` in time.
+// When W(t) has stopped growing, judged on an ensemble of independent runs
+// sampled together at log-spaced times T. Two windows end at T: the last,
+// times in (T/r, T], and the one before, (T/r^2, T/r]. While W grows as
+// t^beta the last window's mean exceeds the other's by r^beta (39% for
+// r = 3, beta = 0.3); saturated, they differ by noise. One run's W wanders
+// over about the saturation time, so its own samples are correlated and
+// their spread is no standard error; the runs are independent, so the spread
+// of per-run window means across runs is one. Even so a single agreement can
+// be luck during growth: the windows must agree at every sample over a
+// further factor `hold` in time.
 struct SaturationRule {
-    double window = 2;  // r, the windows' ratio of end to start time: 1.1..100
-    double tolerance =
-        2;  // windows agree when their means differ by less than this many standard errors of the difference: 0.01..100
-    double hold = 2;      // they must have agreed at every sample since T/hold: 1..100 (1: a single agreement)
-    int min_samples = 3;  // samples each window needs before the two are compared: 2..1000
+    double window = 3;  // r, the windows' ratio of end to start time: 1.1..100
+    double tolerance = 2;  // windows agree when their means differ by less than this many standard errors: 0.01..100
+    double hold = 2;       // they must have agreed at every sample since T/hold: 1..100 (1: a single agreement)
+    int min_samples = 3;   // samples each window needs before the two are compared: 2..1000
 
     void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
-// One comparison of the two windows ending at the last sample.
+// One comparison of the two windows ending at the last sample, on an
+// ensemble: each run's mean W over each window, then over the runs.
 struct WindowComparison {
     bool compared = false;  // both windows held min_samples samples
-    std::size_t previous_samples = 0, last_samples = 0;
-    double previous_mean = 0,
-           previous_sem = 0;             // W over (T/r^2, T/r]: mean, standard error (sample deviation / sqrt(n))
-    double last_mean = 0, last_sem = 0;  // W over (T/r, T]
-    double z = 0;        // (last - previous) / hypot(sems); 0 for equal means, +-inf for unequal means without spread
+    std::size_t previous_samples = 0, last_samples = 0;  // sample times in each window
+    double previous_mean = 0, previous_sem = 0;  // W over (T/r^2, T/r]: mean over runs, standard error across runs
+    double last_mean = 0, last_sem = 0;          // W over (T/r, T]
+    // last - previous, and its standard error from the spread of the runs'
+    // own differences: a run's two windows are correlated, so the paired
+    // error is the right one (0 for one run).
+    double difference = 0, difference_sem = 0;
+    double z = 0;        // difference / difference_sem; 0 for no difference, +-inf for one without spread
     bool agree = false;  // compared and |z| < tolerance
 };
 
-// Compares the windows ending at times.back(); times increasing, w the same size.
-WindowComparison compare_windows(std::span<const double> times, std::span<const double> w, const SaturationRule& rule);
+// Compares the windows ending at times.back(); times increasing, w[r] run r's
+// W at each time (every run the same size as times, one run at least).
+WindowComparison compare_windows(std::span<const double> times, std::span<const std::vector<double>> w,
+                                 const SaturationRule& rule);
 
-// Feeds one run's samples in time order and says when its W has saturated.
+// Feeds an ensemble's samples in time order and says when its W has saturated.
 class SaturationDetector {
 public:
-    explicit SaturationDetector(const SaturationRule& rule);  // validates the rule
-    // Adds W at time t (> the previous t); true once the windows have agreed
-    // at every sample from some t0 <= t / hold up to t.
-    bool add(double t, double w);
+    SaturationDetector(const SaturationRule& rule, int runs);  // validates the rule; runs >= 1
+    // Adds each run's W at time t (> the previous t; one value per run); true
+    // once the windows have agreed at every sample from some t0 <= t / hold up to t.
+    bool add(double t, std::span<const double> w);
     const WindowComparison& last() const { return last_; }  // the comparison made at the latest sample
     double agreeing_since() const { return since_; }        // the first time of the current agreement, or -1
     const std::vector<double>& times() const { return times_; }
-    const std::vector<double>& widths() const { return w_; }
+    const std::vector<std::vector<double>>& widths() const { return w_; }  // per run, W at each time
 
 private:
     SaturationRule rule_;
-    std::vector<double> times_, w_;
+    std::vector<double> times_;
+    std::vector<std::vector<double>> w_;
     WindowComparison last_;
     double since_ = -1;
 };
 
-// One run of width L sampled at roughness_sample_counts' times until its W
-// has saturated by `rule` (and t >= min_time), or at the latest to max_time.
-struct RoughnessRun {
-    std::uint64_t seed;         // the run's generator seed
-    std::vector<double> times;  // t sampled, monolayers, up to the stop
-    std::vector<double> w;      // W at each
-    bool saturated;             // the rule stopped it; false: max_time did
-    double stop_time;           // times.back()
-    double agreeing_since;      // when the windows began to agree for good, or -1
-    WindowComparison check;     // the comparison at the stop
-    double saturated_w;         // W over the last window (T/r, T]: the saturated part only
+// The runs of one width L, advanced side by side through
+// roughness_sample_counts' times until their ensemble W has saturated by
+// `rule` (and t >= min_time), or at the latest to max_time.
+struct RoughnessEnsemble {
+    int width;                            // L
+    std::vector<std::uint64_t> seeds;     // run r's generator seed
+    std::vector<double> times;            // t sampled, monolayers, up to the stop (every run the same)
+    std::vector<std::vector<double>> w;   // w[r][k]: run r's W at times[k]
+    bool saturated;                       // the rule stopped the runs; false: max_time did
+    double stop_time;                     // times.back()
+    double agreeing_since;                // when the windows began to agree for good, or -1
+    WindowComparison check;               // the comparison at the stop
+    double saturated_w, saturated_w_sem;  // W over the last window (T/r, T], mean over runs and its standard error
 };
 
 // `seeds` runs of width L (3..10,000,000), run r seeded with the r-th output
-// of SplitMix64(seed) as roughness_curve does, each stopped on its own.
+// of SplitMix64(seed) as roughness_curve does; each run draws exactly what
+// it would alone, so only the stop depends on the ensemble.
 // min_time <= max_time, both 1..1e9 monolayers.
-std::vector<RoughnessRun> roughness_until_saturated(int width, double min_time, double max_time, int points_per_decade,
-                                                    int seeds, std::uint64_t seed, const SaturationRule& rule);
+RoughnessEnsemble roughness_until_saturated(int width, double min_time, double max_time, int points_per_decade,
+                                            int seeds, std::uint64_t seed, const SaturationRule& rule);
 
-// The mean W over runs at the times every run reached (up to the earliest
-// stop), as roughness_curve averages them.
-RoughnessCurve mean_over_runs(int width, const std::vector<RoughnessRun>& runs);
+// The mean W over the ensemble's runs at each sampled time, as roughness_curve averages them.
+RoughnessCurve mean_over_runs(const RoughnessEnsemble& ensemble);
 
 }  // namespace sim

@@ -207,105 +207,140 @@ TEST_CASE("deposition rejects bad parameters with messages naming them", "[depos
 
 namespace {
 
-// W at t = 1, 10^0.1, 10^0.2, ... (10 a decade) for `samples` samples, from `w_of(t)`.
+// An ensemble's W at t = 1, 10^0.1, 10^0.2, ... (10 a decade) for `samples`
+// samples, run r's from `w_of(t, k, r)`; the sample at which the detector
+// first said saturated, or -1.
 template <class W>
-void feed(sim::SaturationDetector& detector, int samples, W w_of, int* stopped_at) {
-    *stopped_at = -1;
+int feed(sim::SaturationDetector& detector, int runs, int samples, W w_of) {
+    int stopped_at = -1;
+    std::vector<double> w(static_cast<std::size_t>(runs));
     for (int k = 0; k < samples; ++k) {
         const double t = std::pow(10.0, k / 10.0);
-        if (detector.add(t, w_of(t, k)) && *stopped_at < 0) *stopped_at = k;
+        for (int r = 0; r < runs; ++r) w[static_cast<std::size_t>(r)] = w_of(t, k, r);
+        if (detector.add(t, w) && stopped_at < 0) stopped_at = k;
     }
+    return stopped_at;
 }
+
+double wiggle(int k, int r) { return (k + r) % 3 == 0 ? 0.4 : -0.2; }  // mean zero over any 3 samples
 
 }  // namespace
 
-TEST_CASE("saturation rule: a flat W stops, a growing one does not", "[deposition]") {
-    const sim::SaturationRule rule;  // r = 2, 2 standard errors, held for a factor 2, 3 samples a window
-    int stopped = 0;
-    // Flat with a little alternating noise: the windows agree from the first
-    // comparison (t = 10^0.6: (2, 4] holds 3 samples, (4, 8] 4) and have held
-    // for a factor 2 at t = 10 (10^0.9 falls just short of 2 x 10^0.6).
-    sim::SaturationDetector flat(rule);
-    feed(flat, 40, [](double, int k) { return 10.0 + (k % 2 ? 0.3 : -0.3); }, &stopped);
-    CHECK(stopped == 10);
+TEST_CASE("saturation rule on an ensemble: a flat W stops where expected, a growing one never", "[deposition]") {
+    const sim::SaturationRule rule;  // r = 3, 2 standard errors, held for a factor 2, 3 samples a window
+    // Four runs on different levels with a wiggle of period 3 out of phase.
+    // First comparison at t = 10^0.7: (10^0.7 / 9, 10^0.7 / 3] holds t = 1,
+    // 10^0.1, 10^0.2, its 3 samples. The runs' differences scatter around 0,
+    // so the windows agree from there; the hold needs t >= 2 x 10^0.7 = 10.02,
+    // which 10^1.0 misses: the stop is sample 11.
+    sim::SaturationDetector flat(rule, 4);
+    CHECK(feed(flat, 4, 30, [](double, int k, int r) { return 10.0 + r + wiggle(k, r); }) == 11);
     CHECK(flat.last().compared);
-    CHECK(flat.last().previous_samples == 3);
-    CHECK(flat.last().last_samples == 4);
+    CHECK(flat.last().previous_samples == 5);  // (10^2.9 / 9, 10^2.9 / 3]: 10^2.0 .. 10^2.4
+    CHECK(flat.last().last_samples == 5);
+    CHECK(flat.last().last_mean == Approx(11.5).margin(0.2));  // the levels' mean, 10 + 1.5
+    CHECK(flat.last().last_sem == Approx(std::sqrt(5.0 / 3 / 4)).margin(0.1));  // the levels' spread across runs
     CHECK(std::abs(flat.last().z) < rule.tolerance);
-    CHECK(flat.agreeing_since() == Approx(std::pow(10.0, 0.6)));
-    // Exactly constant: no spread at all still agrees (z = 0).
-    sim::SaturationDetector constant(rule);
-    feed(constant, 20, [](double, int) { return 4.0; }, &stopped);
-    CHECK(stopped == 10);
-    CHECK(constant.last().z == 0);
-    // Growing as t^0.3 with the same noise: the last window's mean stays
-    // 23% above the one before, many standard errors, over five decades.
-    sim::SaturationDetector growing(rule);
-    feed(growing, 50, [](double t, int k) { return 2 * std::pow(t, 0.3) + (k % 2 ? 0.05 : -0.05); }, &stopped);
-    CHECK(stopped == -1);
+    CHECK(flat.agreeing_since() == Approx(std::pow(10.0, 0.7)));
+    // A single run has no spread across runs: only an exactly equal pair agrees.
+    sim::SaturationDetector one(rule, 1);
+    CHECK(feed(one, 1, 20, [](double, int, int) { return 4.0; }) == 11);
+    CHECK(one.last().z == 0);
+    // Growing as t^0.3 on run-dependent prefactors: every run's last window
+    // is 39% above its previous one, so the paired differences sit many
+    // standard errors above 0 for five decades.
+    sim::SaturationDetector growing(rule, 4);
+    CHECK(feed(growing, 4, 50,
+               [](double t, int k, int r) { return (1 + 0.3 * r) * std::pow(t, 0.3) + 0.05 * wiggle(k, r); }) == -1);
     CHECK(growing.last().z > rule.tolerance);
     CHECK(growing.agreeing_since() == -1);
-    // Growth that then saturates at t = 1000: stops only once the plateau
-    // fills most of both windows and the agreement has held, t = 10^3.8
-    // (an independent replay of the rule gives this sample).
-    sim::SaturationDetector crossover(rule);
-    feed(crossover, 60, [](double t, int k) { return 2 * std::pow(std::min(t, 1000.0), 0.3) + (k % 2 ? 0.05 : -0.05); },
-         &stopped);
-    CHECK(stopped == 38);
+    // Growth that saturates at t = 1000: no stop until the previous window,
+    // (T/9, T/3], starts past the plateau's corner at a factor hold later.
+    sim::SaturationDetector crossover(rule, 4);
+    const int stop = feed(crossover, 4, 60, [](double t, int k, int r) {
+        return (1 + 0.3 * r) * std::pow(std::min(t, 1000.0), 0.3) + 0.05 * wiggle(k, r);
+    });
+    INFO("crossover stopped at sample " << stop);
+    CHECK(stop > 30);  // past the corner
+    CHECK(stop <= 30 + 9 + 3 + 1);  // the windows clear of it (a factor 9, 9.5 samples) and held a factor 2 (3 samples)
 }
 
-TEST_CASE("saturation rule: windows, refusals", "[deposition]") {
-    const std::vector<double> t{1, 2, 3, 4, 5, 6, 7, 8}, w{1, 1, 1, 2, 2, 4, 4, 4};
+TEST_CASE("saturation rule: ensemble windows, paired differences, refusals", "[deposition]") {
+    const std::vector<double> t{1, 2, 3, 4, 5, 6, 7, 8};
+    // Two runs. T = 8: the last window (8/2, 8] holds t = 5..8, the one before (2, 4] holds 3, 4.
+    const std::vector<std::vector<double>> w{{1, 1, 1, 2, 2, 4, 4, 4}, {9, 9, 3, 3, 5, 5, 5, 5}};
     sim::SaturationRule rule;
+    rule.window = 2;
     rule.min_samples = 2;
-    // T = 8: last window (4, 8] holds 5..8, the one before (2, 4] holds 3, 4.
     const auto c = sim::compare_windows(t, w, rule);
     REQUIRE(c.compared);
     CHECK(c.last_samples == 4);
     CHECK(c.previous_samples == 2);
-    CHECK(c.last_mean == Approx(3.5));
-    CHECK(c.previous_mean == Approx(1.5));
-    CHECK(c.previous_sem == Approx(0.5));
-    CHECK(c.last_sem == Approx(0.5));
-    CHECK(c.z == Approx(2 / std::hypot(0.5, 0.5)));
-    CHECK_FALSE(c.agree);  // z = 2.83 > 2
+    // Per run: previous 1.5 and 3, last 3.5 and 5, differences 2 and 2.
+    CHECK(c.previous_mean == Approx(2.25));
+    CHECK(c.previous_sem == Approx(0.75));  // sample deviation 1.06 / sqrt(2)
+    CHECK(c.last_mean == Approx(4.25));
+    CHECK(c.last_sem == Approx(0.75));
+    CHECK(c.difference == Approx(2));
+    CHECK(c.difference_sem == 0);  // both runs grew alike: the spread of the windows is between runs, not growth noise
+    CHECK(c.z == HUGE_VAL);
+    CHECK_FALSE(c.agree);
     rule.min_samples = 3;
     CHECK_FALSE(sim::compare_windows(t, w, rule).compared);
+    const std::vector<std::vector<double>> short_run{{1, 2}};
+    CHECK_THROWS_AS(sim::compare_windows(t, short_run, rule), std::invalid_argument);
     rule = {};
     rule.window = 1;
-    CHECK_THROWS_WITH(sim::SaturationDetector(rule), "window = 1 is not allowed: a number from 1.1 to 100");
+    CHECK_THROWS_WITH(sim::SaturationDetector(rule, 4), "window = 1 is not allowed: a number from 1.1 to 100");
     rule = {};
     rule.tolerance = 0;
-    CHECK_THROWS_AS(sim::SaturationDetector(rule), std::invalid_argument);
-    sim::SaturationDetector detector(sim::SaturationRule{});
-    detector.add(2, 1);
-    CHECK_THROWS_AS(detector.add(2, 1), std::invalid_argument);
+    CHECK_THROWS_AS(sim::SaturationDetector(rule, 4), std::invalid_argument);
+    CHECK_THROWS_WITH(sim::SaturationDetector(sim::SaturationRule{}, 0),
+                      "runs = 0 is not allowed: an integer from 1 to 1000000");
+    sim::SaturationDetector detector(sim::SaturationRule{}, 2);
+    const std::vector<double> two{1, 1}, three{1, 1, 1};
+    detector.add(2, two);
+    CHECK_THROWS_AS(detector.add(2, two), std::invalid_argument);
+    CHECK_THROWS_AS(detector.add(3, three), std::invalid_argument);
 }
 
-TEST_CASE("roughness runs stop where the same seed stopped them, bit for bit", "[deposition]") {
+TEST_CASE("roughness ensembles stop where the same seed stopped them, bit for bit, with each run's own draws",
+          "[deposition]") {
     const sim::SaturationRule rule;
     const auto a = sim::roughness_until_saturated(64, 20, 3 * 512, 10, 4, 99, rule);
     const auto b = sim::roughness_until_saturated(64, 20, 3 * 512, 10, 4, 99, rule);
-    REQUIRE(a.size() == 4);
-    bool any_before_bound = false;
-    for (std::size_t r = 0; r < a.size(); ++r) {
-        CHECK(a[r].seed == b[r].seed);
-        CHECK(a[r].stop_time == b[r].stop_time);
-        CHECK(a[r].w == b[r].w);
-        CHECK(a[r].saturated_w == b[r].saturated_w);
-        CHECK(a[r].stop_time >= 20);  // min_time
-        any_before_bound = any_before_bound || (a[r].saturated && a[r].stop_time < 3 * 512);
-    }
-    CHECK(any_before_bound);  // at L = 64 W saturates near t = 50, long before 3 L^1.5
-    // Run 0 replays from SplitMix64(99)'s first output, as roughness_curve's.
+    REQUIRE(a.w.size() == 4);
+    CHECK(a.seeds == b.seeds);
+    CHECK(a.times == b.times);
+    CHECK(a.w == b.w);
+    CHECK(a.saturated_w == b.saturated_w);
+    CHECK(a.saturated_w_sem == b.saturated_w_sem);
+    CHECK(a.stop_time == a.times.back());
+    CHECK(a.stop_time >= 20);  // min_time
+    CHECK(a.saturated);
+    CHECK(a.stop_time < 3 * 512);  // at L = 64 W saturates near t = 50, long before 3 L^1.5
+    CHECK(a.saturated_w == a.check.last_mean);
+    CHECK(a.saturated_w_sem > 0);
+    // Side by side changes no run's draws: run r replays alone from
+    // SplitMix64(99)'s r-th output, as roughness_curve seeds it.
     sim::SplitMix64 seeds(99);
-    CHECK(a[0].seed == seeds.next());
+    for (std::size_t r = 0; r < 4; ++r) {
+        const std::uint64_t s = seeds.next();
+        CHECK(a.seeds[r] == s);
+        Deposition alone(DepositionParams{64, 0, false}, s);
+        alone.drop(static_cast<std::uint64_t>(std::llround(a.stop_time * 64)));
+        CHECK(a.w[r].back() == alone.roughness());
+    }
     const auto c = sim::roughness_until_saturated(64, 20, 3 * 512, 10, 4, 100, rule);
-    CHECK(c[0].w != a[0].w);
-    // The mean curve stops at the earliest stop, every run averaged.
-    const auto curve = sim::mean_over_runs(64, a);
-    double earliest = a[0].stop_time;
-    for (const auto& run : a) earliest = std::min(earliest, run.stop_time);
-    CHECK(curve.times.back() == earliest);
-    CHECK(curve.mean_w[0] == Approx((a[0].w[0] + a[1].w[0] + a[2].w[0] + a[3].w[0]) / 4));
+    CHECK(c.w[0] != a.w[0]);
+    // The mean curve averages every run at every sampled time.
+    const auto curve = sim::mean_over_runs(a);
+    CHECK(curve.times == a.times);
+    CHECK(curve.mean_w[0] == Approx((a.w[0][0] + a.w[1][0] + a.w[2][0] + a.w[3][0]) / 4));
+    // A bound below saturation (and before the hold could end, at 2 x 10^0.7):
+    // the runs stop at its last sample, unsaturated.
+    const auto bounded = sim::roughness_until_saturated(64, 1, 10, 10, 4, 99, rule);
+    CHECK_FALSE(bounded.saturated);
+    CHECK(bounded.stop_time == 10);
+    CHECK(bounded.agreeing_since == -1);
 }
