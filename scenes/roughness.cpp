@@ -1,8 +1,9 @@
 // Ballistic deposition's roughness ("Ballistic deposition in Python"): the
 // interface width W(L, t) for several L, with the fitted KPZ-class exponents
-// beta (growth, on the last L) and alpha (W at saturation against L). Each
-// run stops once its own W has saturated (sim::SaturationRule), so the time
-// goes where the figure needs it rather than to a fixed multiple of L^1.5.
+// beta (growth, on the last L) and alpha (W at saturation against L). The
+// runs of one L stop together once their ensemble W has saturated
+// (sim::SaturationRule), so the time goes where the figure needs it rather
+// than to a fixed multiple of L^1.5.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -21,15 +22,18 @@ const std::vector<Key> param_keys = {
     {"widths", "system sizes L"},
     {"seeds", "runs averaged per L"},
     {"saturation_factor",
-     "the bound: a run stops at t = factor * L^1.5 monolayers at the latest, saturated or not "
+     "the bound: an L's runs stop at t = factor * L^1.5 monolayers at the latest, saturated or not "
      "(KPZ: saturation at L^z, z = 3/2)"},
     {"points_per_decade", "W samples per decade of t"},
     {"beta_range", "[t1, t2]: growth-regime times fitted for beta, monolayers; no run stops before t2"},
-    {"saturation_window", "r: a run's W over (T/r, T] is compared with W over (T/r^2, T/r] at each sample time T"},
-    {"saturation_tolerance", "the two windows agree when their means differ by less than this many standard errors"},
+    {"saturation_window",
+     "r: at each sample time T the runs' mean W over (T/r, T] is compared with their mean over (T/r^2, T/r]"},
+    {"saturation_tolerance",
+     "the two windows agree when their means differ by less than this many standard errors (from the spread of "
+     "the runs' own differences)"},
     {"saturation_hold",
-     "saturated once they have agreed at every sample for this factor in time; W_sat is each "
-     "run's mean W over its last window, (T/r, T] at the stop"},
+     "an L's runs stop once the windows have agreed at every sample for this factor in time; W_sat is the runs' "
+     "mean W over the last window, (T/r, T] at the stop"},
     {"saturation_samples", "samples each window needs before the two are compared"},
 };
 
@@ -57,53 +61,41 @@ std::vector<double> read_beta_range(Settings& s) {
 
 sim::SaturationRule read_rule(Settings& s) {
     sim::SaturationRule rule;
-    rule.window = s.number_in("saturation_window", 2.0, 1.1, 100);
+    rule.window = s.number_in("saturation_window", 3.0, 1.1, 100);
     rule.tolerance = s.number_in("saturation_tolerance", 2.0, 0.01, 100);
     rule.hold = s.number_in("saturation_hold", 2.0, 1, 100);
     rule.min_samples = s.count_in("saturation_samples", 3, 2, 1000);
     return rule;
 }
 
-// SHA-256 of every run's sampled times and W, run by run: the whole state
-// the figure is drawn from.
-std::string runs_hash(const std::vector<sim::RoughnessRun>& runs) {
-    std::vector<double> values;
-    for (const auto& run : runs) {
-        values.insert(values.end(), run.times.begin(), run.times.end());
-        values.insert(values.end(), run.w.begin(), run.w.end());
-    }
+// SHA-256 of the sampled times and every run's W, run by run: the whole
+// state the figure is drawn from.
+std::string runs_hash(const sim::RoughnessEnsemble& e) {
+    std::vector<double> values = e.times;
+    for (const auto& run : e.w) values.insert(values.end(), run.begin(), run.end());
     return state_hash(values);
 }
 
-struct Stats {
-    double mean;
-    double sem;  // sample deviation / sqrt(n); 0 for one value
-};
-
-Stats stats_of(const std::vector<double>& values) {
-    const auto n = static_cast<double>(values.size());
-    double total = 0, squares = 0;
-    for (double x : values) total += x;
-    const double mean = total / n;
-    for (double x : values) squares += (x - mean) * (x - mean);
-    return {mean, values.size() > 1 ? std::sqrt(squares / (n - 1) / n) : 0.0};
+nlohmann::json number_json(double x) {  // JSON has no infinity: +-inf as text
+    return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(x > 0 ? "inf" : "-inf");
 }
 
 nlohmann::json window_json(std::size_t samples, double mean, double sem) {
     return {{"samples", samples}, {"mean_w", mean}, {"sem_w", sem}};
 }
 
-// A run's stop and the rule's numbers at it.
-nlohmann::json run_json(const sim::RoughnessRun& run) {
-    const sim::WindowComparison& c = run.check;
-    return {{"seed", run.seed},
-            {"stop_time", run.stop_time},
-            {"saturated", run.saturated},
-            {"agreeing_since", run.agreeing_since},
+// An L's stop and the rule's numbers at it.
+nlohmann::json stop_json(const sim::RoughnessEnsemble& e) {
+    const sim::WindowComparison& c = e.check;
+    return {{"stop_time", e.stop_time},
+            {"stop_time_over_L1.5", e.stop_time / std::pow(double(e.width), 1.5)},
+            {"saturated", e.saturated},
+            {"agreeing_since", e.agreeing_since},
             {"previous_window", window_json(c.previous_samples, c.previous_mean, c.previous_sem)},
             {"last_window", window_json(c.last_samples, c.last_mean, c.last_sem)},
-            {"z", std::isfinite(c.z) ? nlohmann::json(c.z) : nlohmann::json(c.z > 0 ? "inf" : "-inf")},
-            {"saturated_w", run.saturated_w}};
+            {"difference", c.difference},
+            {"difference_sem", c.difference_sem},
+            {"z", number_json(c.z)}};
 }
 
 // What the runs measured: per L its saturated W and curve, and the last L's
@@ -140,9 +132,9 @@ public:
         for (std::size_t i = 0; i < widths_.size(); ++i) {
             const int L = widths_[i];
             const double max_time = run_length(L), min_time = std::min(beta_range_[1], max_time);
-            const auto runs =
+            const sim::RoughnessEnsemble runs =
                 sim::roughness_until_saturated(L, min_time, max_time, per_decade_, seeds_, d_.seed + i, rule_);
-            const sim::RoughnessCurve curve = sim::mean_over_runs(L, runs);
+            const sim::RoughnessCurve curve = sim::mean_over_runs(runs);
             const glm::vec4 colour = colours_[i % colours_.size()];
             growth.series.push_back(
                 line_series(curve.times, curve.mean_w, "L = " + std::to_string(L), colour, 1.8f, false));
@@ -190,22 +182,13 @@ private:
                                std::to_string(per_decade_) + " times a decade)");
     }
 
-    // Adds one L: its saturated W (the mean over runs of each run's last
-    // window at its stop), its growth regime when it is the last, its
-    // metadata with every run's stop.
-    void record(const sim::RoughnessCurve& curve, const std::vector<sim::RoughnessRun>& runs, double max_time,
-                bool last, Measured& m) const {
-        std::vector<double> saturated_w;
-        nlohmann::json stops = nlohmann::json::array();
-        int saturated = 0;
-        for (const auto& run : runs) {
-            saturated_w.push_back(run.saturated_w);
-            stops.push_back(run_json(run));
-            saturated += run.saturated;
-        }
-        const Stats w_sat = stats_of(saturated_w);
+    // Adds one L: its saturated W (the runs' mean over the last window at
+    // the stop), its growth regime when it is the last, its metadata with
+    // the stop and every run's seed.
+    void record(const sim::RoughnessCurve& curve, const sim::RoughnessEnsemble& runs, double max_time, bool last,
+                Measured& m) const {
         m.sizes.push_back(curve.width);
-        m.saturated.push_back(w_sat.mean);
+        m.saturated.push_back(runs.saturated_w);
         if (last) {
             for (std::size_t k = 0; k < curve.times.size(); ++k)
                 if (curve.times[k] >= beta_range_[0] && curve.times[k] <= beta_range_[1]) {
@@ -215,14 +198,14 @@ private:
         }
         m.curves.push_back({{"width", curve.width},
                             {"seeds", seeds_},
+                            {"run_seeds", runs.seeds},
                             {"max_time", max_time},
-                            {"runs_saturated", saturated},
-                            {"runs", stops},
+                            {"stop", stop_json(runs)},
                             {"times", curve.times},
                             {"mean_w", curve.mean_w},
                             {"sem_w", curve.sem_w},
-                            {"saturated_w", w_sat.mean},
-                            {"saturated_w_sem", w_sat.sem},
+                            {"saturated_w", runs.saturated_w},
+                            {"saturated_w_sem", runs.saturated_w_sem},
                             {"state_sha256", runs_hash(runs)}});
     }
 
@@ -244,7 +227,7 @@ private:
         scaling.legend = render::Legend::upper_left;
         const std::vector<double> alpha_line = sim::power_law(alpha, m.sizes);
         scaling.series = {
-            dot_series(m.sizes, m.saturated, "W_sat, runs' last windows", {0.03f, 0.19f, 0.42f, 1},
+            dot_series(m.sizes, m.saturated, "W_sat, last window at the stop", {0.03f, 0.19f, 0.42f, 1},
                        8.0f),
             line_series(m.sizes, alpha_line, "fit, alpha = " + format_fixed(alpha.slope, 3), fit_colour, 2.0f, true)};
         scaling.notes.push_back({"KPZ: alpha = 1/2", {0.62f, 0.10f}, render::Align::left});
@@ -256,10 +239,12 @@ private:
                 {"style", style_.used()},
                 {"saturation_rule",
                  {{"rule",
-                   "at each sample time T (t >= beta_range's end), compare a run's mean W over (T/r, T] with "
-                   "its mean over (T/r^2, T/r]; they agree when |difference| < tolerance * hypot of their "
-                   "standard errors; the run stops once they have agreed at every sample since T/hold, or "
-                   "at saturation_factor * L^1.5"},
+                   "an L's runs advance side by side; at each sample time T (t >= beta_range's end) each run's "
+                   "mean W over (T/r, T] and over (T/r^2, T/r] is taken; the windows agree when the mean over "
+                   "runs of (last - previous) is below tolerance times its standard error across runs; all runs "
+                   "of that L stop once they have agreed at every sample since T/hold, or at "
+                   "saturation_factor * L^1.5; W_sat is the mean over runs of the last window, its error the "
+                   "standard error across runs"},
                   {"window", rule_.window},
                   {"tolerance", rule_.tolerance},
                   {"hold", rule_.hold},
