@@ -11,8 +11,8 @@
 //
 // Reproducibility: every cell is computed from the old state only, with the
 // same operations in the same order whatever the thread count, the vector
-// width (SSE2 or AVX2, picked at load time) or the row's split into vector
-// body and scalar tail; the project builds with -ffp-contract=off, so no FMA.
+// width (SSE2, AVX2 or AVX-512, picked at load time) or the row's split into
+// vector body and scalar tail; the project builds with -ffp-contract=off, so no FMA.
 // Results are therefore identical for any number of threads, and the double
 // kernel equals sim::GrayScott bit for bit (same order of additions). The
 // float kernel flushes subnormals to zero (values below 1.2e-38 count as 0;
@@ -45,6 +45,11 @@ private:
     int current_ = 0;  // which of the pairs holds the state
     int steps_ = 0;
 };
+
+// The vector code the float kernel's rows run on this CPU: "avx512f" (an
+// AVX-512 row written with intrinsics) or "target_clones" (the portable row,
+// compiled for AVX-512, AVX2 and SSE2, the widest picked at load time).
+const char* float_kernel_vectors();
 
 extern template class GrayScottKernel<float>;
 extern template class GrayScottKernel<double>;

@@ -5,9 +5,12 @@
 #include <cstddef>
 #include <limits>
 #include <numeric>
+#include <string>
+#include <vector>
 
 #include "sim/gray_scott.hpp"
 #include "sim/gray_scott_kernels.hpp"
+#include "sim/parallel_steps.hpp"
 #include "sim/random.hpp"
 
 using sim::GrayScott;
@@ -159,4 +162,60 @@ TEST_CASE("gray-scott float kernel flushes subnormals and leaves the thread's fl
     exact.step(50, 2);
     for (int i = 0; i < 50; ++i) model.step();
     CHECK(exact.b() == model.b());
+}
+
+namespace {
+
+// The float update written out cell by cell, the scalar way, in update_row's
+// order of operations (no FMA: the tests build with -ffp-contract=off too),
+// on a plain torus with subnormals flushed as the kernel flushes them.
+void reference_float_step(const GrayScottParams& p, std::vector<float>& a, std::vector<float>& b) {
+    const int n = p.n;
+    const float ra = float(p.ra), rb = float(p.rb), f = float(p.f), fk = float(p.f + p.k);
+    const float corner = 0.05f, edge = 0.2f;
+    std::vector<float> na(a.size()), nb(b.size());
+    auto at = [n](const std::vector<float>& g, int i, int j) { return g[((i + n) % n) * n + (j + n) % n]; };
+    auto laplacian = [&](const std::vector<float>& g, int i, int j) {
+        const float corners = (at(g, i - 1, j - 1) + at(g, i + 1, j + 1)) + (at(g, i - 1, j + 1) + at(g, i + 1, j - 1));
+        const float edges = (at(g, i - 1, j) + at(g, i + 1, j)) + (at(g, i, j - 1) + at(g, i, j + 1));
+        return corner * corners + edge * edges - at(g, i, j);
+    };
+    const sim::SubnormalsFlushed flushed;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const float ca = laplacian(a, i, j), cb = laplacian(b, i, j), old_a = a[i * n + j], old_b = b[i * n + j];
+            const float reaction = old_a * (old_b * old_b);
+            na[i * n + j] = old_a + ((ra * ca - reaction) + f * (1.0f - old_a));
+            nb[i * n + j] = old_b + ((rb * cb + reaction) - fk * old_b);
+        }
+    a.swap(na);
+    b.swap(nb);
+}
+
+std::vector<float> as_floats(const Grid<double>& g) { return {g.cells().begin(), g.cells().end()}; }
+
+}  // namespace
+
+TEST_CASE("gray-scott float kernel equals a scalar float update bit for bit, in the vector code this CPU runs",
+          "[gs_kernel]") {
+    // n 16 and 64: whole 16-cell AVX-512 blocks; 17 and 100: a block body
+    // and a tail of 1 and 4 cells; 5: tail only.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    // This machine's CPU has AVX-512 (lscpu: avx512f): the kernel must run it.
+    if (__builtin_cpu_supports("avx512f")) CHECK(std::string(sim::float_kernel_vectors()) == "avx512f");
+#endif
+    INFO("rows run on: " << sim::float_kernel_vectors());
+    for (int n : {5, 16, 17, 64, 100}) {
+        GrayScottParams p;
+        p.n = n;
+        const GrayScott s = start(p, static_cast<std::uint64_t>(n));
+        GrayScottKernel<float> fast(p, s.a(), s.b());
+        std::vector<float> a = as_floats(s.a()), b = as_floats(s.b());
+        for (int step = 0; step < 60; ++step) reference_float_step(p, a, b);
+        fast.step(60, 2);
+        INFO("n = " << n);
+        CHECK(as_floats(fast.a()) == a);
+        CHECK(as_floats(fast.b()) == b);
+        CHECK(b != as_floats(s.b()));  // it did move
+    }
 }
