@@ -168,6 +168,18 @@ Grid<double> GrayScottKernel<Real>::b() const {
 }
 
 template <class Real>
+Grid<Real> GrayScottKernel<Real>::b_as_stored() const {
+    return b_[current_].template extract<Real>();
+}
+
+template <class Real>
+bool GrayScottKernel<Real>::unchanged() const {
+    // The other pair holds the state one step back once a step has run.
+    const int before = current_ ^ 1;
+    return steps_ > 0 && a_[current_].same_bits(a_[before]) && b_[current_].same_bits(b_[before]);
+}
+
+template <class Real>
 void GrayScottKernel<Real>::step(int steps, int threads) {
     const int n = params_.n;
     const Rates<Real> rates{static_cast<Real>(params_.ra), static_cast<Real>(params_.rb), static_cast<Real>(params_.f),

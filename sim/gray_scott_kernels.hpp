@@ -36,6 +36,19 @@ public:
 
     Grid<double> a() const;  // the current fields, converted to double
     Grid<double> b() const;
+    Grid<Real> b_as_stored() const;  // B as the kernel holds it: no rounding, half the memory in float
+
+    // Exact tests of the current state, read in place (no copy). B is +0
+    // everywhere (-0 does not count): then B stays +0 at every later step,
+    // whatever A is, as long as A stays finite.
+    bool b_is_zero() const { return b_[current_].all_positive_zero(); }
+    // The last step left every cell of A and B with the same bits: the state
+    // is a fixed point of the step, which is a function of the state alone,
+    // so every later step gives these bits again. False before any step.
+    bool unchanged() const;
+    // Every cell of A and B is finite and within `bound` of 0 (the test of
+    // sim::require_finite, without converting the fields).
+    bool within(double bound) const { return a_[current_].within(bound) && b_[current_].within(bound); }
     int steps() const { return steps_; }
     const GrayScottParams& params() const { return params_; }
 

@@ -219,3 +219,30 @@ TEST_CASE("gray-scott float kernel equals a scalar float update bit for bit, in 
         CHECK(b != as_floats(s.b()));  // it did move
     }
 }
+
+TEST_CASE("gray-scott kernel's exact state tests: B at +0, an unchanged step, the health bound", "[gs_kernel]") {
+    GrayScottParams p;
+    p.n = 8;
+    Grid<double> a(8, 8, 1.0), b(8, 8, 0.0);
+    GrayScottKernel<float> rest(p, a, b);
+    CHECK(rest.b_is_zero());
+    CHECK_FALSE(rest.unchanged());  // no step yet: nothing to compare with
+    rest.step(1, 1);
+    CHECK(rest.unchanged());  // A = 1, B = 0 is the trivial steady state, exactly
+    CHECK(rest.within(1.0));
+    CHECK_FALSE(rest.within(0.5));
+
+    b(2, 5) = -0.0;  // -0 is not +0: the B rule must not take it
+    CHECK_FALSE(GrayScottKernel<float>(p, a, b).b_is_zero());
+    b(2, 5) = 1e-30;
+    GrayScottKernel<float> moving(p, a, b);
+    CHECK_FALSE(moving.b_is_zero());
+    moving.step(1, 1);
+    CHECK_FALSE(moving.unchanged());  // B diffuses
+
+    a(7, 7) = 11.0;  // beyond the atlas's health bound of 10
+    GrayScottKernel<double> loud(p, a, b);
+    CHECK_FALSE(loud.within(10.0));
+    CHECK(loud.within(11.0));
+    CHECK(loud.b_as_stored() == b);
+}
