@@ -58,9 +58,29 @@ update_row(const Real* __restrict a_up, const Real* __restrict a_mid, const Real
     }
 }
 
+// The rows [begin, end) of one step, each followed by its halo copies (its
+// thread's rows: no other thread writes them or reads them before the barrier).
 template <class Real>
-using RowUpdate = void (*)(const Real*, const Real*, const Real*, const Real*, const Real*, const Real*, Real*, Real*,
-                           std::ptrdiff_t, Rates<Real>);
+using RowsUpdate = void (*)(const PaddedRows<Real>& a, const PaddedRows<Real>& b, const PaddedRows<Real>& next_a,
+                            const PaddedRows<Real>& next_b, int begin, int end, Rates<Real> c);
+
+// One call of update_row at row i.
+template <class Real>
+void update_row_at(const PaddedRows<Real>& a, const PaddedRows<Real>& b, const PaddedRows<Real>& next_a,
+                   const PaddedRows<Real>& next_b, int i, Rates<Real> c) {
+    update_row<Real>(a.row(i - 1), a.row(i), a.row(i + 1), b.row(i - 1), b.row(i), b.row(i + 1), next_a.row(i),
+                     next_b.row(i), a.n, c);
+}
+
+template <class Real>
+void update_rows(const PaddedRows<Real>& a, const PaddedRows<Real>& b, const PaddedRows<Real>& next_a,
+                 const PaddedRows<Real>& next_b, int begin, int end, Rates<Real> c) {
+    for (int i = begin; i < end; ++i) {
+        update_row_at(a, b, next_a, next_b, i, c);
+        next_a.wrap_row(i);
+        next_b.wrap_row(i);
+    }
+}
 
 #ifdef FIGGEN_GS_AVX512
 #pragma GCC push_options
@@ -104,44 +124,74 @@ inline __m512 laplacian(const Columns& up, const Columns& mid, const Columns& do
     return _mm512_sub_ps(weighted, mid.here);
 }
 
-// update_row for float with AVX-512 intrinsics: 16-cell blocks, then
-// update_row itself for the last n % 16 cells. Each lane does update_row's
-// arithmetic in its order (no FMA), so the bits are the same.
-void update_row_avx512(const float* a_up, const float* a_mid, const float* a_down, const float* b_up,
-                       const float* b_mid, const float* b_down, float* next_a, float* next_b, std::ptrdiff_t n,
-                       Rates<float> c) {
-    RowStream au(a_up), am(a_mid), ad(a_down), bu(b_up), bm(b_mid), bd(b_down);
-    const __m512 ra = _mm512_set1_ps(c.ra), rb = _mm512_set1_ps(c.rb), f = _mm512_set1_ps(c.f),
-                 fk = _mm512_set1_ps(c.fk), one = _mm512_set1_ps(1.0f);
+struct BlockRates {
+    __m512 ra, rb, f, fk;
+    explicit BlockRates(Rates<float> c)
+        : ra(_mm512_set1_ps(c.ra)), rb(_mm512_set1_ps(c.rb)), f(_mm512_set1_ps(c.f)), fk(_mm512_set1_ps(c.fk)) {}
+};
+
+// 16 cells of a row from the columns of A and B above, at and below them:
+// update_row's arithmetic, lane by lane, in its order (no FMA), so the same bits.
+inline void update_block(const Columns& au, const Columns& am, const Columns& ad, const Columns& bu,
+                         const Columns& bm, const Columns& bd, const BlockRates& c, float* next_a, float* next_b) {
+    const __m512 ca = laplacian(au, am, ad), cb = laplacian(bu, bm, bd), old_a = am.here, old_b = bm.here;
+    const __m512 reaction = _mm512_mul_ps(old_a, _mm512_mul_ps(old_b, old_b));
+    const __m512 da = _mm512_add_ps(_mm512_sub_ps(_mm512_mul_ps(c.ra, ca), reaction),
+                                    _mm512_mul_ps(c.f, _mm512_sub_ps(_mm512_set1_ps(1.0f), old_a)));
+    const __m512 db = _mm512_sub_ps(_mm512_add_ps(_mm512_mul_ps(c.rb, cb), reaction), _mm512_mul_ps(c.fk, old_b));
+    _mm512_store_ps(next_a, _mm512_add_ps(old_a, da));
+    _mm512_store_ps(next_b, _mm512_add_ps(old_b, db));
+}
+
+// Rows i and i + 1 at once, block by block: they share the input rows i and
+// i + 1, so a block reads and shifts 4 rows of each field for its 2 outputs
+// instead of 6 (measured with the rows in L1: 7-14% faster than one row at
+// a time). update_row itself does the last n % 16 cells of each.
+void update_row_pair_avx512(const PaddedRows<float>& a, const PaddedRows<float>& b, const PaddedRows<float>& next_a,
+                            const PaddedRows<float>& next_b, int i, Rates<float> c) {
+    RowStream a0(a.row(i - 1)), a1(a.row(i)), a2(a.row(i + 1)), a3(a.row(i + 2));
+    RowStream b0(b.row(i - 1)), b1(b.row(i)), b2(b.row(i + 1)), b3(b.row(i + 2));
+    float *na0 = next_a.row(i), *na1 = next_a.row(i + 1), *nb0 = next_b.row(i), *nb1 = next_b.row(i + 1);
+    const BlockRates rates(c);
+    const std::ptrdiff_t n = a.n;
     std::ptrdiff_t j = 0;
     for (; j + 16 <= n; j += 16) {
-        const Columns a_mid_j = am.at(j), b_mid_j = bm.at(j);
-        const __m512 ca = laplacian(au.at(j), a_mid_j, ad.at(j)), cb = laplacian(bu.at(j), b_mid_j, bd.at(j));
-        const __m512 old_a = a_mid_j.here, old_b = b_mid_j.here;
-        const __m512 reaction = _mm512_mul_ps(old_a, _mm512_mul_ps(old_b, old_b));
-        const __m512 da = _mm512_add_ps(_mm512_sub_ps(_mm512_mul_ps(ra, ca), reaction),
-                                        _mm512_mul_ps(f, _mm512_sub_ps(one, old_a)));
-        const __m512 db = _mm512_sub_ps(_mm512_add_ps(_mm512_mul_ps(rb, cb), reaction), _mm512_mul_ps(fk, old_b));
-        _mm512_store_ps(next_a + j, _mm512_add_ps(old_a, da));
-        _mm512_store_ps(next_b + j, _mm512_add_ps(old_b, db));
+        const Columns au = a0.at(j), am = a1.at(j), ad = a2.at(j), aw = a3.at(j);
+        const Columns bu = b0.at(j), bm = b1.at(j), bd = b2.at(j), bw = b3.at(j);
+        update_block(au, am, ad, bu, bm, bd, rates, na0 + j, nb0 + j);
+        update_block(am, ad, aw, bm, bd, bw, rates, na1 + j, nb1 + j);
     }
-    if (j < n)
-        update_row<float>(a_up + j, a_mid + j, a_down + j, b_up + j, b_mid + j, b_down + j, next_a + j, next_b + j,
-                          n - j, c);
+    for (int k = i; j < n && k <= i + 1; ++k)
+        update_row<float>(a.row(k - 1) + j, a.row(k) + j, a.row(k + 1) + j, b.row(k - 1) + j, b.row(k) + j,
+                          b.row(k + 1) + j, next_a.row(k) + j, next_b.row(k) + j, n - j, c);
+}
+
+// update_rows for float with AVX-512: pairs of rows, an odd last row by update_row.
+void update_rows_avx512(const PaddedRows<float>& a, const PaddedRows<float>& b, const PaddedRows<float>& next_a,
+                        const PaddedRows<float>& next_b, int begin, int end, Rates<float> c) {
+    int i = begin;
+    for (; i + 1 < end; i += 2) {
+        update_row_pair_avx512(a, b, next_a, next_b, i, c);
+        for (int k : {i, i + 1}) {
+            next_a.wrap_row(k);
+            next_b.wrap_row(k);
+        }
+    }
+    if (i < end) update_rows(a, b, next_a, next_b, i, end, c);
 }
 
 #pragma GCC pop_options
 #endif
 
-// The row update a kernel runs: update_row_avx512 for float on a CPU (and
-// OS) with AVX-512, update_row (its target_clones) otherwise.
+// The rows update a kernel runs: update_rows_avx512 for float on a CPU (and
+// OS) with AVX-512, update_rows (update_row's target_clones) otherwise.
 template <class Real>
-RowUpdate<Real> row_update() {
+RowsUpdate<Real> rows_update() {
 #ifdef FIGGEN_GS_AVX512
     if constexpr (std::is_same_v<Real, float>)
-        if (__builtin_cpu_supports("avx512f")) return update_row_avx512;
+        if (__builtin_cpu_supports("avx512f")) return update_rows_avx512;
 #endif
-    return update_row<Real>;
+    return update_rows<Real>;
 }
 
 }  // namespace
@@ -181,31 +231,25 @@ bool GrayScottKernel<Real>::unchanged() const {
 
 template <class Real>
 void GrayScottKernel<Real>::step(int steps, int threads) {
-    const int n = params_.n;
     const Rates<Real> rates{static_cast<Real>(params_.ra), static_cast<Real>(params_.rb), static_cast<Real>(params_.f),
                             static_cast<Real>(params_.f + params_.k)};
     const int first = current_;
-    const RowUpdate<Real> update = row_update<Real>();
-    parallel_steps(n, steps, threads, [&](int s, int begin, int end) {
+    const RowsUpdate<Real> update = rows_update<Real>();
+    parallel_steps(params_.n, steps, threads, [&](int s, int begin, int end) {
         // float flushes subnormals (see SubnormalsFlushed); double keeps
         // gradual underflow, so that it stays equal to sim::GrayScott.
         std::optional<SubnormalsFlushed> flushed;
         if constexpr (std::is_same_v<Real, float>) flushed.emplace();
         const int from = (first + s) & 1, to = from ^ 1;
         const PaddedRows<Real> a = a_[from].rows(), b = b_[from].rows(), next_a = a_[to].rows(), next_b = b_[to].rows();
-        for (int i = begin; i < end; ++i) {
-            update(a.row(i - 1), a.row(i), a.row(i + 1), b.row(i - 1), b.row(i), b.row(i + 1), next_a.row(i),
-                   next_b.row(i), n, rates);
-            next_a.wrap_row(i);
-            next_b.wrap_row(i);
-        }
+        update(a, b, next_a, next_b, begin, end, rates);
     });
     current_ = (first + steps) & 1;
     steps_ += steps;
 }
 
 const char* float_kernel_vectors() {
-    return row_update<float>() == update_row<float> ? "target_clones" : "avx512f";
+    return rows_update<float>() == update_rows<float> ? "target_clones" : "avx512f";
 }
 
 template class GrayScottKernel<float>;
