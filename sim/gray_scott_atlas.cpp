@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <stdexcept>
 
 #include "sim/check.hpp"
@@ -51,9 +52,15 @@ TileStop stop_reason(const GrayScottKernel<float>& kernel) {
     return TileStop::ran;
 }
 
-// One tile's run from the start state, to `steps` or to an early stop.
-GrayScottAtlasTile run_tile(const GrayScottParams& params, const GrayScott& start, int steps, const std::string& name) {
-    GrayScottKernel<float> kernel(params, start.a(), start.b());
+// One tile's run from the start state, to `steps` or to an early stop, in
+// `reused`, the calling thread's kernel (its buffers kept from tile to tile).
+GrayScottAtlasTile run_tile(std::optional<GrayScottKernel<float>>& reused, const GrayScottParams& params,
+                            const GrayScott& start, int steps, const std::string& name) {
+    if (reused)
+        reused->restart(params, start.a(), start.b());
+    else
+        reused.emplace(params, start.a(), start.b());
+    GrayScottKernel<float>& kernel = *reused;
     const std::string run = name + " (f = " + rate(params.f) + ", k = " + rate(params.k) + ")";
     constexpr int check = gray_scott_atlas_stop_check;
     TileStop stop = TileStop::ran;
@@ -105,25 +112,29 @@ std::vector<GrayScottAtlasTile> run_gray_scott_atlas(const GrayScottAtlasParams&
     // Each tile depends only on its own (f, k), so the order does not matter.
     std::exception_ptr failure;  // an exception must not leave an OpenMP region: kept, rethrown after
     std::exception_ptr report_failure;  // tile_done's, written only inside critical(figgen_progress)
-#pragma omp parallel for schedule(dynamic)
-    for (int t = 0; t < count; ++t) {
-        try {
-            GrayScottParams params = atlas.base;
-            params.f = tiles[t].f;
-            params.k = tiles[t].k;
-            tiles[t] = run_tile(params, start, atlas.steps, name);
-        } catch (...) {
-#pragma omp critical(figgen_atlas_failure)
-            if (!failure) failure = std::current_exception();
-        }
-        // The progress report formats text: a bad_alloc there must leave
-        // neither the critical section nor the region.
-#pragma omp critical(figgen_progress)
-        {
+#pragma omp parallel
+    {
+        std::optional<GrayScottKernel<float>> kernel;  // this thread's, for all its tiles
+#pragma omp for schedule(dynamic)
+        for (int t = 0; t < count; ++t) {
             try {
-                tile_done();
+                GrayScottParams params = atlas.base;
+                params.f = tiles[t].f;
+                params.k = tiles[t].k;
+                tiles[t] = run_tile(kernel, params, start, atlas.steps, name);
             } catch (...) {
-                if (!report_failure) report_failure = std::current_exception();
+#pragma omp critical(figgen_atlas_failure)
+                if (!failure) failure = std::current_exception();
+            }
+            // The progress report formats text: a bad_alloc there must leave
+            // neither the critical section nor the region.
+#pragma omp critical(figgen_progress)
+            {
+                try {
+                    tile_done();
+                } catch (...) {
+                    if (!report_failure) report_failure = std::current_exception();
+                }
             }
         }
     }

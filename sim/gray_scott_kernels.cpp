@@ -197,14 +197,22 @@ RowsUpdate<Real> rows_update() {
 }  // namespace
 
 template <class Real>
-GrayScottKernel<Real>::GrayScottKernel(const GrayScottParams& params, const Grid<double>& a, const Grid<double>& b)
-    : params_(params) {
-    params_.validate();
-    require_square_field("A", a, params_.n);
-    require_square_field("B", b, params_.n);
-    for (PaddedField<Real>* field : {&a_[0], &a_[1], &b_[0], &b_[1]}) *field = PaddedField<Real>(params_.n);
+GrayScottKernel<Real>::GrayScottKernel(const GrayScottParams& params, const Grid<double>& a, const Grid<double>& b) {
+    restart(params, a, b);
+}
+
+template <class Real>
+void GrayScottKernel<Real>::restart(const GrayScottParams& params, const Grid<double>& a, const Grid<double>& b) {
+    params.validate();
+    require_square_field("A", a, params.n);
+    require_square_field("B", b, params.n);
+    if (a_[0].n() != params.n)
+        for (PaddedField<Real>* field : {&a_[0], &a_[1], &b_[0], &b_[1]}) *field = PaddedField<Real>(params.n);
+    params_ = params;
     a_[0].load(a);
     b_[0].load(b);
+    current_ = 0;
+    steps_ = 0;
 }
 
 template <class Real>

@@ -30,6 +30,11 @@ public:
     // Copies the start state (n x n each, finite); validates params.
     GrayScottKernel(const GrayScottParams& params, const Grid<double>& a, const Grid<double>& b);
 
+    // Starts again from a new state (n x n each, finite) with new params, as
+    // if newly constructed (steps() is 0), in the same buffers when n is
+    // unchanged: a run of many short runs (gs-atlas) maps its pages once.
+    void restart(const GrayScottParams& params, const Grid<double>& a, const Grid<double>& b);
+
     // Advances `steps` steps (>= 0) on `threads` OpenMP threads (0: OpenMP's
     // default; > 0: exactly that many). The result does not depend on threads.
     void step(int steps = 1, int threads = 0);

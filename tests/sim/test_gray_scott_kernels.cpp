@@ -246,3 +246,34 @@ TEST_CASE("gray-scott kernel's exact state tests: B at +0, an unchanged step, th
     CHECK(loud.within(11.0));
     CHECK(loud.b_as_stored() == b);
 }
+
+TEST_CASE("gray-scott kernel restarted on a new state and rates runs as a new kernel would", "[gs_kernel]") {
+    GrayScottParams p;
+    p.n = 48;
+    const GrayScott first = start(p, 1);
+    GrayScottKernel<float> reused(p, first.a(), first.b());
+    reused.step(70, 1);
+    GrayScottParams q = p;
+    q.f = 0.055;
+    q.k = 0.062;
+    const GrayScott second = start(q, 2);
+    reused.restart(q, second.a(), second.b());
+    CHECK(reused.steps() == 0);
+    CHECK_FALSE(reused.unchanged());  // no step since the restart
+    CHECK(reused.b() == GrayScottKernel<float>(q, second.a(), second.b()).b());
+    GrayScottKernel<float> fresh(q, second.a(), second.b());
+    reused.step(101, 2);  // odd: the other buffer pair holds the state
+    fresh.step(101, 2);
+    CHECK(reused.a() == fresh.a());
+    CHECK(reused.b() == fresh.b());
+    CHECK(reused.params().f == 0.055);
+    GrayScottParams r = p;  // a new size: new buffers
+    r.n = 20;
+    const GrayScott third = start(r, 3);
+    reused.restart(r, third.a(), third.b());
+    reused.step(10, 1);
+    GrayScottKernel<float> small(r, third.a(), third.b());
+    small.step(10, 1);
+    CHECK(reused.b() == small.b());
+    CHECK_THROWS_AS(reused.restart(r, first.a(), third.b()), std::invalid_argument);  // 48 x 48 A for n = 20
+}
