@@ -2,7 +2,10 @@
 // of Pearson (Science 1993): each tile is one run from the same start, its B
 // drawn through Blues; f rises upwards, k to the right. It shows off the fast
 // float kernel (sim/gray_scott_kernels): 576 runs of 128^2 cells x 10,000
-// steps in about 37 s on two cores. The runs themselves are sim/gray_scott_atlas.
+// steps, of which 365 reach an exact fixed point early and stop there. The
+// runs themselves are sim/gray_scott_atlas; the scene keeps only the tiles'
+// float B (no double copies of 576 fields: on this VM each fresh page costs
+// a fault) and summarises them on all threads.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -71,17 +74,16 @@ public:
         require_drawable(params_, "n", "each tile", atlas_.base.n, atlas_.base.n);
     }
 
-    // The starting A and B, each tile's B kept, its copy drawn and that
-    // copy's texture (measured: 17.5 bytes a cell a tile at n = 512 and at
-    // 48 x 48 tiles), and per thread a float kernel's padded A, B and their
-    // next steps.
+    // The starting A and B, each tile's B kept as floats and, while it is
+    // drawn, its texture, and per thread a float kernel's padded A, B and
+    // their next steps, and a tile's B as doubles to hash and to draw.
     std::vector<MemoryNeed> memory() const override {
         const int n = atlas_.base.n;
         const double tiles = double(atlas_.columns) * atlas_.rows;
         return {grid_need("grids of doubles", n, n, 8, 2.0),
-                grid_need("tiles' B, kept and drawn", n, n, 16 + field_layer_bytes_per_cell, tiles),
-                grid_need("kernel grids of floats", n + 2, n + 2, 4,
-                          4.0 * std::max(1u, std::thread::hardware_concurrency()))};
+                grid_need("tiles' B, kept as floats and drawn", n, n, 4 + field_layer_bytes_per_cell, tiles),
+                grid_need("kernel grids of floats and a B of doubles", n + 2, n + 2, 4 * 4 + 8,
+                          std::max(1u, std::thread::hardware_concurrency()))};
     }
 
     void render(Output& out) const override {
@@ -89,41 +91,86 @@ public:
         progress.start(d_.id, static_cast<long long>(atlas_.columns) * atlas_.rows);
         const std::vector<sim::GrayScottAtlasTile> tiles =
             sim::run_gray_scott_atlas(atlas_, d_.seed, d_.id, [&] { progress.advance(); });
+        const std::vector<TileSummary> summaries = summarise(tiles);
         nlohmann::json tile_meta = nlohmann::json::array();
-        const std::vector<FieldLayer> layers = tile_layers(tiles, tile_meta);
-        out.figure(draw_map(layers), {{"params", params_.used()}, {"style", style_.used()}, {"tiles", tile_meta}});
+        int stopped = 0;
+        for (std::size_t t = 0; t < tiles.size(); ++t) {
+            const sim::GrayScottAtlasTile& tile = tiles[t];
+            stopped += tile.stop != sim::TileStop::ran;
+            tile_meta.push_back({{"f", tile.f},
+                                 {"k", tile.k},
+                                 {"mean_B", summaries[t].mean_b},
+                                 {"state_sha256", summaries[t].state_sha256},
+                                 {"stopped_at", tile.stopped_at},
+                                 {"stop", sim::to_string(tile.stop)}});
+        }
+        const nlohmann::json early_stop = {
+            {"rule", "a run stops once B is +0 in every cell (b_gone) or a step changes no bit of A or B "
+                     "(fixed_point), tested every " + std::to_string(sim::gray_scott_atlas_stop_check) +
+                         " steps: both leave B as the full run would"},
+            {"tiles_stopped", stopped}};
+        out.figure(draw_map(tiles, summaries), {{"params", params_.used()},
+                                                {"style", style_.used()},
+                                                {"early_stop", early_stop},
+                                                {"tiles", tile_meta}});
         progress.finish();
     }
 
 private:
-    // Each tile's B as a layer of the map, and its numbers in `tile_meta`.
-    std::vector<FieldLayer> tile_layers(const std::vector<sim::GrayScottAtlasTile>& tiles,
-                                        nlohmann::json& tile_meta) const {
-        std::vector<FieldLayer> layers;
-        for (const sim::GrayScottAtlasTile& tile : tiles) {
-            const sim::Grid<double>& b = tile.b;
-            for (double v : b.cells())
-                if (!std::isfinite(v))
-                    throw std::runtime_error(d_.id + ": the run at f = " + format_fixed(tile.f, 4) + ", k = " +
-                                             format_fixed(tile.k, 4) + " went numerically unstable; no image written");
-            layers.push_back(field_layer(b, spec_));
-            // Where the spots die B decays towards 0 and, as the float kernel
-            // flushes subnormals, stops near 1e-38 instead: a tile whose B is
-            // below 1e-20 everywhere holds no chemical, and is drawn flat (as
-            // matplotlib draws an empty range), not as an autoscaled picture of
-            // rounding.
-            if (!spec_.vmin && !spec_.vmax && layers.back().style.vmax < 1e-20)
-                layers.back().style.vmax = layers.back().style.vmin + 1;
-            double mean = 0;
-            for (double v : b.cells()) mean += v;
-            tile_meta.push_back(
-                {{"f", tile.f}, {"k", tile.k}, {"mean_B", mean / double(b.size())}, {"state_sha256", state_hash(b)}});
+    // What the map and the metadata need of a tile's B.
+    struct TileSummary {
+        render::FieldStyle style;  // its colour range
+        double mean_b = 0;
+        std::string state_sha256;  // of B as doubles (exact copies of the floats)
+        bool finite = true;
+    };
+
+    // Every tile's summary, the tiles spread over the OpenMP threads (each
+    // hashes 128 KiB); then the first non-finite tile, if any, is refused.
+    std::vector<TileSummary> summarise(const std::vector<sim::GrayScottAtlasTile>& tiles) const {
+        std::vector<TileSummary> summaries(tiles.size());
+        const long long count = static_cast<long long>(tiles.size());
+#pragma omp parallel
+        {
+            std::vector<double> b;  // one tile's B as doubles, reused: no fresh pages a tile
+#pragma omp for schedule(dynamic)
+            for (long long t = 0; t < count; ++t) summaries[t] = summarise(tiles[t], b);
         }
-        return layers;
+        for (std::size_t t = 0; t < tiles.size(); ++t)
+            if (!summaries[t].finite)
+                throw std::runtime_error(d_.id + ": the run at f = " + format_fixed(tiles[t].f, 4) + ", k = " +
+                                         format_fixed(tiles[t].k, 4) + " went numerically unstable; no image written");
+        return summaries;
+    }
+
+    // One tile's summary; `b` is scratch space. Nothing here throws but
+    // bad_alloc, which ends the program inside OpenMP as anywhere else.
+    TileSummary summarise(const sim::GrayScottAtlasTile& tile, std::vector<double>& b) const {
+        b.assign(tile.b.cells().begin(), tile.b.cells().end());
+        TileSummary summary;
+        double lo = b[0], hi = b[0], sum = 0;
+        for (double v : b) {
+            summary.finite &= std::isfinite(v);
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+            sum += v;  // in cell order, as the metadata has always summed
+        }
+        summary.mean_b = sum / double(b.size());
+        summary.state_sha256 = state_hash(b);
+        // The range as field_layer gives it (matplotlib maps an empty range
+        // to the first colour). Where the spots die B freezes near 1e-37
+        // (the float kernel flushes subnormals: f + k times B rounds to 0):
+        // a tile whose B is below 1e-20 everywhere holds no chemical, and is
+        // drawn flat, not as an autoscaled picture of rounding.
+        double vmin = spec_.vmin.value_or(lo), vmax = spec_.vmax.value_or(hi);
+        if (!(vmax > vmin) || (!spec_.vmin && !spec_.vmax && vmax < 1e-20)) vmax = vmin + 1;
+        summary.style = {&spec_.colormap, vmin, vmax, spec_.alpha, spec_.sampling};
+        return summary;
     }
 
     // The tiles in a square plot frame, k along x and f up y, with the axes drawn over them.
-    render::Image draw_map(const std::vector<FieldLayer>& layers) const {
+    render::Image draw_map(const std::vector<sim::GrayScottAtlasTile>& tiles,
+                           const std::vector<TileSummary>& summaries) const {
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
         const int columns = atlas_.columns, rows = atlas_.rows;
         render::Canvas canvas(width, height);
@@ -134,11 +181,14 @@ private:
         frame.x += (frame.w - side) / 2;
         frame.w = frame.h = side;
         const float tw = side / float(columns), th = side / float(rows);
+        std::vector<double> b;  // the tile's B as doubles, reused
         for (int r = 0; r < rows; ++r)
             for (int c = 0; c < columns; ++c) {
-                const FieldLayer& t = layers[r * columns + c];
-                render::draw_field(canvas, {frame.x + c * tw, frame.y + r * th, tw, th}, t.rows, t.cols, t.values,
-                                   t.style);
+                const std::size_t t = static_cast<std::size_t>(r) * columns + c;
+                const sim::Grid<float>& cells = tiles[t].b;
+                b.assign(cells.cells().begin(), cells.cells().end());
+                render::draw_field(canvas, {frame.x + c * tw, frame.y + r * th, tw, th}, cells.rows(), cells.cols(), b,
+                                   summaries[t].style);
             }
         render::Axes axes;
         axes.x_range = std::pair{atlas_.k_low, atlas_.k_high};

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <stdexcept>
 
 #include "sim/check.hpp"
@@ -24,23 +25,66 @@ std::string rate(double value) {
 }
 
 
-// One tile's run from the start state.
-Grid<double> run_tile(const GrayScottParams& params, const GrayScott& start, int steps, const std::string& name) {
-    GrayScottKernel<float> kernel(params, start.a(), start.b());
+// The health check every 1000 steps and at the end, as the stepping scenes
+// make it at every step: A and B live in [0, 1].
+constexpr int health_every = 1000;
+constexpr double health_bound = 10.0;
+
+bool healthy(const GrayScottKernel<float>& kernel) { return kernel.within(health_bound); }
+
+// Throws sim::require_finite's error if the state fails the health check.
+// The test reads the float buffers in place; only a failing state is
+// converted, to word the message as the other scenes do.
+void require_healthy(const GrayScottKernel<float>& kernel, const std::string& run) {
+    if (healthy(kernel)) return;
+    require_finite(kernel.a(), run + " A", kernel.steps(), health_bound);
+    require_finite(kernel.b(), run + " B", kernel.steps(), health_bound);
+}
+
+// Whether the run may stop at its current state, and why (TileStop::ran: go on).
+TileStop stop_reason(const GrayScottKernel<float>& kernel) {
+    const GrayScottParams& p = kernel.params();
+    // With B +0 everywhere, A's step is a weighted mean of A's neighbours and
+    // 1 with non-negative weights when ra + f <= 1 (see gray_scott.hpp's
+    // stability note), so A keeps within its bounds and finite, and B stays +0.
+    if (p.ra + p.f <= 1.0 && kernel.b_is_zero()) return TileStop::b_gone;
+    if (kernel.unchanged()) return TileStop::fixed_point;
+    return TileStop::ran;
+}
+
+// One tile's run from the start state, to `steps` or to an early stop, in
+// `reused`, the calling thread's kernel (its buffers kept from tile to tile).
+GrayScottAtlasTile run_tile(std::optional<GrayScottKernel<float>>& reused, const GrayScottParams& params,
+                            const GrayScott& start, int steps, const std::string& name) {
+    if (reused)
+        reused->restart(params, start.a(), start.b());
+    else
+        reused.emplace(params, start.a(), start.b());
+    GrayScottKernel<float>& kernel = *reused;
     const std::string run = name + " (f = " + rate(params.f) + ", k = " + rate(params.k) + ")";
-    // The health check every 1000 steps and at the end, as the stepping
-    // scenes do at every step: A and B live in [0, 1].
-    for (int done = 0; done < steps;) {
-        const int chunk = std::min(1000, steps - done);
-        kernel.step(chunk, 1);
-        done += chunk;
-        require_finite(kernel.a(), run + " A", done, 10.0);
-        require_finite(kernel.b(), run + " B", done, 10.0);
+    constexpr int check = gray_scott_atlas_stop_check;
+    TileStop stop = TileStop::ran;
+    while (kernel.steps() < steps && stop == TileStop::ran) {
+        kernel.step(std::min(check - kernel.steps() % check, steps - kernel.steps()), 1);
+        const bool health_due = kernel.steps() % health_every == 0 || kernel.steps() == steps;
+        if (health_due) require_healthy(kernel, run);
+        stop = stop_reason(kernel);
+        // An unhealthy state runs on, to fail where and as the full run does.
+        if (stop != TileStop::ran && !health_due && !healthy(kernel)) stop = TileStop::ran;
     }
-    return kernel.b();
+    return {params.f, params.k, kernel.b_as_stored(), kernel.steps(), stop};
 }
 
 }  // namespace
+
+const char* to_string(TileStop stop) {
+    switch (stop) {
+        case TileStop::b_gone: return "b_gone";
+        case TileStop::fixed_point: return "fixed_point";
+        case TileStop::ran: break;
+    }
+    return "ran";
+}
 
 void GrayScottAtlasParams::validate() const {
     base.validate();
@@ -68,25 +112,29 @@ std::vector<GrayScottAtlasTile> run_gray_scott_atlas(const GrayScottAtlasParams&
     // Each tile depends only on its own (f, k), so the order does not matter.
     std::exception_ptr failure;  // an exception must not leave an OpenMP region: kept, rethrown after
     std::exception_ptr report_failure;  // tile_done's, written only inside critical(figgen_progress)
-#pragma omp parallel for schedule(dynamic)
-    for (int t = 0; t < count; ++t) {
-        try {
-            GrayScottParams params = atlas.base;
-            params.f = tiles[t].f;
-            params.k = tiles[t].k;
-            tiles[t].b = run_tile(params, start, atlas.steps, name);
-        } catch (...) {
-#pragma omp critical(figgen_atlas_failure)
-            if (!failure) failure = std::current_exception();
-        }
-        // The progress report formats text: a bad_alloc there must leave
-        // neither the critical section nor the region.
-#pragma omp critical(figgen_progress)
-        {
+#pragma omp parallel
+    {
+        std::optional<GrayScottKernel<float>> kernel;  // this thread's, for all its tiles
+#pragma omp for schedule(dynamic)
+        for (int t = 0; t < count; ++t) {
             try {
-                tile_done();
+                GrayScottParams params = atlas.base;
+                params.f = tiles[t].f;
+                params.k = tiles[t].k;
+                tiles[t] = run_tile(kernel, params, start, atlas.steps, name);
             } catch (...) {
-                if (!report_failure) report_failure = std::current_exception();
+#pragma omp critical(figgen_atlas_failure)
+                if (!failure) failure = std::current_exception();
+            }
+            // The progress report formats text: a bad_alloc there must leave
+            // neither the critical section nor the region.
+#pragma omp critical(figgen_progress)
+            {
+                try {
+                    tile_done();
+                } catch (...) {
+                    if (!report_failure) report_failure = std::current_exception();
+                }
             }
         }
     }

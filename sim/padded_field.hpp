@@ -9,9 +9,14 @@
 // copies row 0, column -1 copies column n - 1, column n copies column 0.
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <memory>
 #include <new>
+#include <type_traits>
 
 #include "sim/grid.hpp"
 
@@ -71,14 +76,47 @@ public:
         }
     }
 
-    Grid<double> extract() const {  // the n x n cells, converted to double
+    template <class T = double>
+    Grid<T> extract() const {  // the n x n cells, converted to T
         const PaddedRows<const Real> cells = rows();
-        Grid<double> g(n_, n_);
+        Grid<T> g(n_, n_);
         for (int i = 0; i < n_; ++i) {
             const Real* src = cells.row(i);
-            for (int j = 0; j < n_; ++j) g(i, j) = static_cast<double>(src[j]);
+            for (int j = 0; j < n_; ++j) g(i, j) = static_cast<T>(src[j]);
         }
         return g;
+    }
+
+    // Whether every cell is +0 (all bits clear; -0 does not count).
+    bool all_positive_zero() const {
+        using Bits = std::conditional_t<sizeof(Real) == 4, std::uint32_t, std::uint64_t>;
+        const PaddedRows<const Real> cells = rows();
+        Bits any = 0;
+        for (int i = 0; i < n_; ++i) {
+            const Real* src = cells.row(i);
+            for (int j = 0; j < n_; ++j) any |= std::bit_cast<Bits>(src[j]);  // no branch: vectorizes
+        }
+        return any == 0;
+    }
+
+    // Whether every cell has the same bits as `other`'s (the same n).
+    bool same_bits(const PaddedField& other) const {
+        const PaddedRows<const Real> mine = rows(), theirs = other.rows();
+        for (int i = 0; i < n_; ++i)
+            if (std::memcmp(mine.row(i), theirs.row(i), static_cast<std::size_t>(n_) * sizeof(Real)) != 0) return false;
+        return true;
+    }
+
+    // Whether every cell is finite and within `bound` of 0, compared as
+    // doubles (as sim::require_finite does; NaN is not within).
+    bool within(double bound) const {
+        const PaddedRows<const Real> cells = rows();
+        bool ok = true;
+        for (int i = 0; i < n_; ++i) {
+            const Real* src = cells.row(i);
+            for (int j = 0; j < n_; ++j) ok &= std::abs(static_cast<double>(src[j])) <= bound;  // no branch
+        }
+        return ok;
     }
 
 private:

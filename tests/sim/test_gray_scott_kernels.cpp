@@ -5,9 +5,12 @@
 #include <cstddef>
 #include <limits>
 #include <numeric>
+#include <string>
+#include <vector>
 
 #include "sim/gray_scott.hpp"
 #include "sim/gray_scott_kernels.hpp"
+#include "sim/parallel_steps.hpp"
 #include "sim/random.hpp"
 
 using sim::GrayScott;
@@ -159,4 +162,118 @@ TEST_CASE("gray-scott float kernel flushes subnormals and leaves the thread's fl
     exact.step(50, 2);
     for (int i = 0; i < 50; ++i) model.step();
     CHECK(exact.b() == model.b());
+}
+
+namespace {
+
+// The float update written out cell by cell, the scalar way, in update_row's
+// order of operations (no FMA: the tests build with -ffp-contract=off too),
+// on a plain torus with subnormals flushed as the kernel flushes them.
+void reference_float_step(const GrayScottParams& p, std::vector<float>& a, std::vector<float>& b) {
+    const int n = p.n;
+    const float ra = float(p.ra), rb = float(p.rb), f = float(p.f), fk = float(p.f + p.k);
+    const float corner = 0.05f, edge = 0.2f;
+    std::vector<float> na(a.size()), nb(b.size());
+    auto at = [n](const std::vector<float>& g, int i, int j) { return g[((i + n) % n) * n + (j + n) % n]; };
+    auto laplacian = [&](const std::vector<float>& g, int i, int j) {
+        const float corners = (at(g, i - 1, j - 1) + at(g, i + 1, j + 1)) + (at(g, i - 1, j + 1) + at(g, i + 1, j - 1));
+        const float edges = (at(g, i - 1, j) + at(g, i + 1, j)) + (at(g, i, j - 1) + at(g, i, j + 1));
+        return corner * corners + edge * edges - at(g, i, j);
+    };
+    const sim::SubnormalsFlushed flushed;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const float ca = laplacian(a, i, j), cb = laplacian(b, i, j), old_a = a[i * n + j], old_b = b[i * n + j];
+            const float reaction = old_a * (old_b * old_b);
+            na[i * n + j] = old_a + ((ra * ca - reaction) + f * (1.0f - old_a));
+            nb[i * n + j] = old_b + ((rb * cb + reaction) - fk * old_b);
+        }
+    a.swap(na);
+    b.swap(nb);
+}
+
+std::vector<float> as_floats(const Grid<double>& g) { return {g.cells().begin(), g.cells().end()}; }
+
+}  // namespace
+
+TEST_CASE("gray-scott float kernel equals a scalar float update bit for bit, in the vector code this CPU runs",
+          "[gs_kernel]") {
+    // n 16 and 64: whole 16-cell AVX-512 blocks; 17 and 100: a block body
+    // and a tail of 1 and 4 cells; 5: tail only.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    // This machine's CPU has AVX-512 (lscpu: avx512f): the kernel must run it.
+    if (__builtin_cpu_supports("avx512f")) CHECK(std::string(sim::float_kernel_vectors()) == "avx512f");
+#endif
+    INFO("rows run on: " << sim::float_kernel_vectors());
+    for (int n : {5, 16, 17, 64, 100}) {
+        GrayScottParams p;
+        p.n = n;
+        const GrayScott s = start(p, static_cast<std::uint64_t>(n));
+        GrayScottKernel<float> fast(p, s.a(), s.b());
+        std::vector<float> a = as_floats(s.a()), b = as_floats(s.b());
+        for (int step = 0; step < 60; ++step) reference_float_step(p, a, b);
+        fast.step(60, 2);
+        INFO("n = " << n);
+        CHECK(as_floats(fast.a()) == a);
+        CHECK(as_floats(fast.b()) == b);
+        CHECK(b != as_floats(s.b()));  // it did move
+    }
+}
+
+TEST_CASE("gray-scott kernel's exact state tests: B at +0, an unchanged step, the health bound", "[gs_kernel]") {
+    GrayScottParams p;
+    p.n = 8;
+    Grid<double> a(8, 8, 1.0), b(8, 8, 0.0);
+    GrayScottKernel<float> rest(p, a, b);
+    CHECK(rest.b_is_zero());
+    CHECK_FALSE(rest.unchanged());  // no step yet: nothing to compare with
+    rest.step(1, 1);
+    CHECK(rest.unchanged());  // A = 1, B = 0 is the trivial steady state, exactly
+    CHECK(rest.within(1.0));
+    CHECK_FALSE(rest.within(0.5));
+
+    b(2, 5) = -0.0;  // -0 is not +0: the B rule must not take it
+    CHECK_FALSE(GrayScottKernel<float>(p, a, b).b_is_zero());
+    b(2, 5) = 1e-30;
+    GrayScottKernel<float> moving(p, a, b);
+    CHECK_FALSE(moving.b_is_zero());
+    moving.step(1, 1);
+    CHECK_FALSE(moving.unchanged());  // B diffuses
+
+    a(7, 7) = 11.0;  // beyond the atlas's health bound of 10
+    GrayScottKernel<double> loud(p, a, b);
+    CHECK_FALSE(loud.within(10.0));
+    CHECK(loud.within(11.0));
+    CHECK(loud.b_as_stored() == b);
+}
+
+TEST_CASE("gray-scott kernel restarted on a new state and rates runs as a new kernel would", "[gs_kernel]") {
+    GrayScottParams p;
+    p.n = 48;
+    const GrayScott first = start(p, 1);
+    GrayScottKernel<float> reused(p, first.a(), first.b());
+    reused.step(70, 1);
+    GrayScottParams q = p;
+    q.f = 0.055;
+    q.k = 0.062;
+    const GrayScott second = start(q, 2);
+    reused.restart(q, second.a(), second.b());
+    CHECK(reused.steps() == 0);
+    CHECK_FALSE(reused.unchanged());  // no step since the restart
+    CHECK(reused.b() == GrayScottKernel<float>(q, second.a(), second.b()).b());
+    GrayScottKernel<float> fresh(q, second.a(), second.b());
+    reused.step(101, 2);  // odd: the other buffer pair holds the state
+    fresh.step(101, 2);
+    CHECK(reused.a() == fresh.a());
+    CHECK(reused.b() == fresh.b());
+    CHECK(reused.params().f == 0.055);
+    GrayScottParams r = p;  // a new size: new buffers
+    r.n = 20;
+    const GrayScott third = start(r, 3);
+    reused.restart(r, third.a(), third.b());
+    reused.step(10, 1);
+    GrayScottKernel<float> small(r, third.a(), third.b());
+    small.step(10, 1);
+    CHECK(reused.b() == small.b());
+    CHECK_THROWS_AS(reused.restart(r, first.a(), third.b()), std::invalid_argument);  // 48 x 48 A for n = 20
 }
