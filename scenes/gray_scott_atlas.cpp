@@ -112,11 +112,31 @@ public:
         out.figure(draw_map(tiles, summaries), {{"params", params_.used()},
                                                 {"style", style_.used()},
                                                 {"early_stop", early_stop},
+                                                {"float_error", float_error(tiles)},
                                                 {"tiles", tile_meta}});
         progress.finish();
     }
 
 private:
+    // The description asks for float32: what that costs, measured. A few
+    // tiles run again in double (sim::float_error), one a thread.
+    nlohmann::json float_error(const std::vector<sim::GrayScottAtlasTile>& tiles) const {
+        const std::vector<int> which = sim::float_error_tiles(atlas_);
+        std::vector<sim::FloatError> errors(which.size());
+#pragma omp parallel for schedule(dynamic)
+        for (std::size_t i = 0; i < which.size(); ++i)
+            errors[i] = sim::float_error(atlas_, d_.seed, tiles[which[i]], which[i]);
+        nlohmann::json rows = nlohmann::json::array();
+        double largest = 0;
+        for (const sim::FloatError& e : errors) {
+            rows.push_back({{"tile", e.tile}, {"f", e.f}, {"k", e.k}, {"max_abs_B", e.max_abs}, {"rms_B", e.rms}});
+            largest = std::max(largest, e.max_abs);
+        }
+        return {{"against", "the same tiles run in double (every step, the double kernel)"},
+                {"max_abs_B", largest},
+                {"tiles", rows}};
+    }
+
     // What the map and the metadata need of a tile's B.
     struct TileSummary {
         render::FieldStyle style;  // its colour range

@@ -15,7 +15,9 @@ namespace sim {
 namespace {
 
 // The centre of tile i of `count` across [low, high].
-double centre(double low, double high, int i, int count) { return low + (high - low) * (i + 0.5) / count; }
+double centre(double low, double high, int i, int count) {
+    return low + (high - low) * (i + 0.5) / count;
+}
 
 // "0.0350": a rate as the messages show it.
 std::string rate(double value) {
@@ -24,13 +26,14 @@ std::string rate(double value) {
     return text;
 }
 
-
 // The health check every 1000 steps and at the end, as the stepping scenes
 // make it at every step: A and B live in [0, 1].
 constexpr int health_every = 1000;
 constexpr double health_bound = 10.0;
 
-bool healthy(const GrayScottKernel<float>& kernel) { return kernel.within(health_bound); }
+bool healthy(const GrayScottKernel<float>& kernel) {
+    return kernel.within(health_bound);
+}
 
 // Throws sim::require_finite's error if the state fails the health check.
 // The test reads the float buffers in place; only a failing state is
@@ -77,11 +80,45 @@ GrayScottAtlasTile run_tile(std::optional<GrayScottKernel<float>>& reused, const
 
 }  // namespace
 
+FloatError float_error(const GrayScottAtlasParams& atlas, std::uint64_t seed, const GrayScottAtlasTile& tile,
+                       int index) {
+    Random rng(seed);
+    const GrayScott start(atlas.base, rng);
+    GrayScottParams params = atlas.base;
+    params.f = tile.f;
+    params.k = tile.k;
+    GrayScottKernel<double> twice(params, start.a(), start.b());
+    twice.step(atlas.steps, 1);
+    const Grid<double> b = twice.b();
+    FloatError e{index, tile.f, tile.k, 0, 0};
+    double squares = 0;
+    for (std::size_t i = 0; i < b.cells().size(); ++i) {
+        const double d = std::abs(double(tile.b.cells()[i]) - b.cells()[i]);
+        e.max_abs = std::max(e.max_abs, d);
+        squares += d * d;
+    }
+    e.rms = std::sqrt(squares / double(b.cells().size()));
+    return e;
+}
+
+std::vector<int> float_error_tiles(const GrayScottAtlasParams& atlas) {
+    std::vector<int> tiles;
+    for (int quarter : {1, 2, 3}) {
+        const int column = quarter * atlas.columns / 4, row = quarter * atlas.rows / 4;
+        const int t = std::min(row, atlas.rows - 1) * atlas.columns + std::min(column, atlas.columns - 1);
+        if (std::find(tiles.begin(), tiles.end(), t) == tiles.end()) tiles.push_back(t);
+    }
+    return tiles;
+}
+
 const char* to_string(TileStop stop) {
     switch (stop) {
-        case TileStop::b_gone: return "b_gone";
-        case TileStop::fixed_point: return "fixed_point";
-        case TileStop::ran: break;
+        case TileStop::b_gone:
+            return "b_gone";
+        case TileStop::fixed_point:
+            return "fixed_point";
+        case TileStop::ran:
+            break;
     }
     return "ran";
 }
@@ -110,7 +147,7 @@ std::vector<GrayScottAtlasTile> run_gray_scott_atlas(const GrayScottAtlasParams&
     // The runs, tile by tile across the threads (each run on one thread: at
     // 128^2 cells a step is too short to split, the barrier would cost more).
     // Each tile depends only on its own (f, k), so the order does not matter.
-    std::exception_ptr failure;  // an exception must not leave an OpenMP region: kept, rethrown after
+    std::exception_ptr failure;         // an exception must not leave an OpenMP region: kept, rethrown after
     std::exception_ptr report_failure;  // tile_done's, written only inside critical(figgen_progress)
 #pragma omp parallel
     {

@@ -35,9 +35,9 @@ enum class TileStop {
 const char* to_string(TileStop stop);  // "ran", "b_gone", "fixed_point"
 
 struct GrayScottAtlasTile {
-    double f = 0, k = 0;           // the run's rates: the centre of its tile
-    Grid<float> b;                 // B after the last step, as the float kernel holds it
-    int stopped_at = 0;            // the step its run stopped: `steps` unless it stopped early
+    double f = 0, k = 0;  // the run's rates: the centre of its tile
+    Grid<float> b;        // B after the last step, as the float kernel holds it
+    int stopped_at = 0;   // the step its run stopped: `steps` unless it stopped early
     TileStop stop = TileStop::ran;
 };
 
@@ -59,5 +59,19 @@ inline constexpr int gray_scott_atlas_stop_check = 100;
 // those of the full run.
 std::vector<GrayScottAtlasTile> run_gray_scott_atlas(const GrayScottAtlasParams& atlas, std::uint64_t seed,
                                                      const std::string& name, const std::function<void()>& tile_done);
+
+// What float32 costs the atlas: tile `index`'s run again in double (the
+// double kernel, which equals sim::GrayScott bit for bit, every step), and
+// B's largest and RMS difference from the float tile's.
+struct FloatError {
+    int tile = 0;
+    double f = 0, k = 0;
+    double max_abs = 0, rms = 0;
+};
+FloatError float_error(const GrayScottAtlasParams& atlas, std::uint64_t seed, const GrayScottAtlasTile& tile,
+                       int index);
+// The tiles the figure measures that on: the map's diagonal at 1/4, 1/2 and
+// 3/4 of the way (fewer on a map of fewer tiles).
+std::vector<int> float_error_tiles(const GrayScottAtlasParams& atlas);
 
 }  // namespace sim

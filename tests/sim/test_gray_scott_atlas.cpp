@@ -1,6 +1,5 @@
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 
 #include "sim/gray_scott.hpp"
@@ -41,7 +40,9 @@ sim::Grid<float> full_run(const GrayScottAtlasParams& atlas, const GrayScottAtla
     return kernel.b_as_stored();
 }
 
-float largest(const sim::Grid<float>& g) { return *std::max_element(g.cells().begin(), g.cells().end()); }
+float largest(const sim::Grid<float>& g) {
+    return *std::max_element(g.cells().begin(), g.cells().end());
+}
 
 }  // namespace
 
@@ -91,4 +92,38 @@ TEST_CASE("gray-scott atlas: B at +0 everywhere stops a tile only where A stays 
     CHECK(tiles[0].stop == TileStop::fixed_point);
     CHECK(tiles[0].stopped_at == sim::gray_scott_atlas_stop_check);
     CHECK(std::string(sim::to_string(TileStop::b_gone)) == "b_gone");
+}
+
+TEST_CASE("the atlas's float error is B's difference from the same run in double", "[gray-scott-atlas]") {
+    const GrayScottAtlasParams atlas = spots_and_death();
+    const auto tiles = sim::run_gray_scott_atlas(atlas, 17, "test atlas", [] {});
+    const sim::FloatError spots = sim::float_error(atlas, 17, tiles[0], 0);
+    // The same run in double, by the model itself (bit for bit the double kernel).
+    sim::Random rng(17);
+    sim::GrayScott model(atlas.base, rng);
+    sim::GrayScottParams params = atlas.base;
+    params.f = tiles[0].f;
+    params.k = tiles[0].k;
+    sim::GrayScott twice(params, model.a(), model.b());
+    for (int s = 0; s < atlas.steps; ++s) twice.step();
+    double largest = 0;
+    for (std::size_t i = 0; i < twice.b().cells().size(); ++i)
+        largest = std::max(largest, std::abs(double(tiles[0].b.cells()[i]) - twice.b().cells()[i]));
+    CHECK(spots.max_abs == largest);
+    CHECK(spots.max_abs > 0);     // float32 does round differently
+    CHECK(spots.max_abs < 1e-3);  // and stays close over 3000 steps
+    CHECK(spots.rms <= spots.max_abs);
+    CHECK(spots.tile == 0);
+    CHECK(spots.k == tiles[0].k);
+}
+
+TEST_CASE("the atlas measures float error on its diagonal at a quarter, half and three quarters",
+          "[gray-scott-atlas]") {
+    GrayScottAtlasParams atlas;
+    CHECK(sim::float_error_tiles(atlas) == std::vector<int>{6 * 24 + 6, 12 * 24 + 12, 18 * 24 + 18});
+    atlas.columns = atlas.rows = 1;
+    CHECK(sim::float_error_tiles(atlas) == std::vector<int>{0});
+    atlas.columns = 3;
+    atlas.rows = 2;  // rows 0, 1, 1 and columns 0, 1, 2
+    CHECK(sim::float_error_tiles(atlas) == std::vector<int>{0, 4, 5});
 }
