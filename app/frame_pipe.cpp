@@ -58,6 +58,7 @@ void FramePipe::run() {
             item = std::move(queue_.front());
             queue_.pop_front();
             busy_ = true;
+            changed_.notify_all();  // room in the queue: a producer waiting in push() goes on now
         }
         try {
             consume_(item.frame, item.step);
