@@ -24,11 +24,13 @@ struct VideoOptions {
     // x264_tunes(); tune "" = none), pinned like the threads: they shape the
     // bytes. mpeg4 ignores both. Chosen by `make bench` (bench/results/encoder.md,
     // this machine, 2 threads): the fastest setting within 0.005 RGB SSIM of
-    // medium's and at most 25% larger on both films. faster + animation:
-    // tc7-2 (351 frames, 480 x 520) 1.22 s against medium's 2.73 s, 381 KB
-    // against 400, SSIM 0.9319 against 0.9335; bd-500 (251 frames, 420 x 640)
-    // 1.05 s against 1.66 s, 294 KB against 289, SSIM 0.9537 against 0.9537.
-    std::string preset = "faster";
+    // medium's and at most 25% larger on both films, measured on a quiet
+    // machine (a busy one had picked faster + animation). veryfast +
+    // animation: tc7-2 (351 frames, 480 x 520) 0.71 s against medium's
+    // 1.34 s, 337 KB against 400, SSIM 0.9309 against 0.9335; bd-500 (251
+    // frames, 420 x 640) 0.48 s against 0.75 s, 293 KB against 289, SSIM
+    // 0.9535 against 0.9537.
+    std::string preset = "veryfast";
     std::string tune = "animation";
 };
 
