@@ -1,8 +1,8 @@
 #include "app/outputs.hpp"
 
 #include <cmath>
-#include <utility>
 #include <cstdio>
+#include <utility>
 
 #include "app/version.hpp"
 #include "render/atomic_file.hpp"
@@ -40,10 +40,13 @@ namespace {
 // tc7-6 --no-video --scale 0.1 (a 90 x 46 canvas): 108.6 MiB on Debian 12's
 // Mesa 22.3 / LLVM 15; 120 MiB leaves room for another Mesa or font set.
 constexpr double program_bytes = 120.0 * 1024 * 1024;
-// A canvas: 4x multisampled colour and depth-stencil (32 bytes a pixel), the
-// resolved colour, the copy read back and the PNG rows (12). What llvmpipe
-// touches of it is less: 23 bytes a pixel measured at 2000^2 to 6000^2.
-constexpr double canvas_bytes_per_pixel = 44.0;
+// A 2-D canvas: 4x multisampled colour (16 bytes a pixel), the resolved
+// colour, the copy read back and the PNG rows or a frame's copy (12). llvmpipe
+// touched 23 bytes a pixel of such a canvas at 2000^2 to 6000^2. A page of
+// field panels on whole pixels has one sample (7 bytes a pixel measured at
+// 6000^2), so counting 44 as before made its estimate 4.3 times its peak;
+// 3-D scenes add their depth buffers themselves (lsystem_3d).
+constexpr double canvas_bytes_per_pixel = 28.0;
 // The film's encoder (x264, preset medium: 40 frames of look-ahead, 3
 // B-frames, 3 references, each frame with its half-pel planes and its
 // quarter-size copy), over the frame canvas. Measured on tc7-1 at
@@ -75,9 +78,11 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
                                  std::to_string(scaled_even(d.animation->height, options.scale));
         all.push_back({"animation frames " + size, canvas_bytes_per_pixel * frame_pixels(d, options)});
         // The frames queued for the encoding thread and the one it is on.
-        all.push_back({"animation frames queued " + size, 4.0 * (FrameSink::frames_queued + 1) * frame_pixels(d, options)});
+        all.push_back(
+            {"animation frames queued " + size, 4.0 * (FrameSink::frames_queued + 1) * frame_pixels(d, options)});
         if (options.video) {
-            const int frames = d.animation->frame_count(), held = frames < encoder_frames_held ? frames : encoder_frames_held;
+            const int frames = d.animation->frame_count(),
+                      held = frames < encoder_frames_held ? frames : encoder_frames_held;
             all.push_back({"the video encoder's frames " + size,
                            encoder_bytes + (encoder_bytes_per_pixel + encoder_bytes_per_pixel_frame * held) *
                                                frame_pixels(d, options)});
@@ -112,9 +117,8 @@ void require_disk(const Description& d, const OutputOptions& options) {
         if (options.frames) bytes += 4.0 * frames, largest = "the PNG sequence";
     }
     if (bytes > static_cast<double>(options.max_disk))
-        throw UsageError(d.id + ": its outputs would take up to about " + format_bytes(bytes) + " (mostly " +
-                         largest + "), more than --max-disk " +
-                         format_bytes(static_cast<double>(options.max_disk)) +
+        throw UsageError(d.id + ": its outputs would take up to about " + format_bytes(bytes) + " (mostly " + largest +
+                         "), more than --max-disk " + format_bytes(static_cast<double>(options.max_disk)) +
                          "; make it smaller, leave out the video or raise --max-disk");
 }
 
@@ -168,7 +172,7 @@ nlohmann::json FrameSink::finish() {
         video_->finish();
         meta["file"] = description_.id + ".mp4";
         meta["codec"] = video_->codec_name();
-        if (video_->codec_name() == "libx264") {  // the mpeg4 fallback has neither
+        if (video_->codec_name() == "libx264") {             // the mpeg4 fallback has neither
             meta["preset"] = options_.video_options.preset;  // with the settings below they shape the bytes
             meta["tune"] = options_.video_options.tune;      // "" = none
         }

@@ -5,14 +5,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include "render/layout.hpp"
+#include "render/text.hpp"
+#include "render/tubes.hpp"
 #include "scenes/field_stats.hpp"
 #include "scenes/model_check.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/step_runner.hpp"
-#include "render/layout.hpp"
-#include "render/text.hpp"
-#include "render/tubes.hpp"
 #include "sim/check.hpp"
 #include "sim/lsystem.hpp"
 #include "sim/turtle.hpp"
@@ -32,10 +32,8 @@ const std::vector<Key> param_keys = {
 };
 
 const std::vector<Key> style_keys = {
-    {"bark_colour", "colour at the trunk"},
-    {"leaf_colour", "colour of the thinnest twigs"},
-    {"views", "azimuths of the panels, degrees"},
-    {"elevation", "camera elevation, degrees"},
+    {"bark_colour", "colour at the trunk"},       {"leaf_colour", "colour of the thinnest twigs"},
+    {"views", "azimuths of the panels, degrees"}, {"elevation", "camera elevation, degrees"},
     {"sides", "facets around each tube"},
 };
 
@@ -67,7 +65,8 @@ sim::LSystem read_system(Settings& params) {
         names.push_back({model_name, single ? "rule" : model_name});
     }
     sim::LSystem system;
-    check_model(params, [&] { system = sim::LSystem::parse(axiom, rules); }, names);
+    check_model(
+        params, [&] { system = sim::LSystem::parse(axiom, rules); }, names);
     return system;
 }
 
@@ -178,7 +177,19 @@ public:
         return {{"plant of depth " + std::to_string(depth_) + ", " + std::to_string(segments_) + " segments",
                  static_cast<double>(segments_) *
                      (sizeof(sim::Segment3) + 8 * sizeof(double) + 2.0 * sizeof(render::Tube))},
-                {"llvmpipe's queue of binned triangles", render::queued_triangles_bytes}};
+                {"llvmpipe's queue of binned triangles", render::queued_triangles_bytes},
+                {"depth samples of the figure and film canvases", depth_bytes()}};
+    }
+
+    // The 3-D canvases' 4x multisampled depth buffers (24-bit depth with its
+    // stencil byte: 16 bytes a pixel), beyond what the estimate counts for a
+    // 2-D canvas.
+    double depth_bytes() const {
+        double pixels = double(scaled_even(d_.width, options_.scale)) * scaled_even(d_.height, options_.scale);
+        if (d_.animation && options_.film)
+            pixels += double(scaled_even(d_.animation->width, options_.scale)) *
+                      scaled_even(d_.animation->height, options_.scale);
+        return 16.0 * pixels;
     }
 
     void render(Output& out) const override {
@@ -238,8 +249,8 @@ private:
         render::Text text;
         for (std::size_t i = 0; i < views_.size(); ++i) {
             render::draw_tubes(canvas, rects[i], plant.tubes,
-                               render::frame_bounds(lo, hi, float(views_[i]), elevation_, rects[i].w / rects[i].h),
-                               {}, sides_);
+                               render::frame_bounds(lo, hi, float(views_[i]), elevation_, rects[i].w / rects[i].h), {},
+                               sides_);
             const std::string title = "azimuth " + format_fixed(views_[i], 0) + "\u00b0";
             text.add(font, title, {rects[i].centre().x, rects[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
                      render::Align::centre, render::Baseline::baseline);
