@@ -56,7 +56,7 @@ render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldP
 }
 
 render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale) {
-    render::Canvas canvas(width, height, field_page_samples(panels, width, height, scale));
+    render::Canvas canvas(width, height);  // four samples: a figure's pixels stay as they were (see field_page_samples)
     return draw_field_panels(canvas, panels, scale);
 }
 

@@ -60,13 +60,15 @@ struct FieldPanel {
     std::vector<FieldLayer> layers;  // drawn first to last
 };
 
-// Samples per pixel a page of field panels needs: one when every panel's
-// frame lies on whole pixels, else four. Fields are quads drawn without
-// multisampling anyway and text carries its own coverage (with a clear
-// border), so only a frame edge between pixels needs the samples; on whole
-// pixels one sample gives the same bytes without clearing, blending into
-// and resolving four a pixel (a film's frame at scale 1: 480 x 520 and
-// 1280 x 720 measured byte-identical).
+// Samples per pixel a film's page of field panels needs: one when every
+// panel's frame lies on whole pixels, else four. Fields are quads drawn
+// without multisampling anyway and text carries its own coverage, so only a
+// frame edge between pixels needs the samples; on whole pixels one sample
+// saves clearing, blending into and resolving four a pixel. Its pixels are
+// the same but for rounding: a glyph's edge pixel may blend one level apart
+// (tc7-5's figure at scale 1: 4 of 405,000 pixels; a Gray-Scott frame at
+// 480 x 520 and 1280 x 720: none), which the film's encoder does not keep.
+// Figures keep four samples, so their pixels do not change at all.
 int field_page_samples(const std::vector<FieldPanel>& panels, int width, int height, double scale);
 
 // A row of panels on a white width x height page (pixels, already scaled).

@@ -72,7 +72,7 @@ TEST_CASE("every catalog figure passes phase 1 as described", "[scenes]") {
     }
 }
 
-TEST_CASE("a page of field panels takes one sample a pixel only where one gives the same bytes as four", "[scenes]") {
+TEST_CASE("a film's page of field panels takes one sample a pixel where its frames lie on whole pixels", "[scenes]") {
     scenes::FieldPanel panel{"step 10", {}};
     std::vector<double> values(36);
     for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::sin(0.7 * double(i));
