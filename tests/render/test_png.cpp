@@ -113,3 +113,26 @@ TEST_CASE("a disk that fills up mid-write leaves no PNG, whole or partial", "[pn
     for (const auto& entry : fs::directory_iterator(target.parent_path()))
         CHECK(entry.path().filename().string().find("full-disk.png.tmp") == std::string::npos);
 }
+
+TEST_CASE("an opaque image is stored as RGB and one with any transparency as RGBA", "[png]") {
+    // The colour type is byte 25 of the file (IHDR's tenth data byte): 2 is
+    // RGB, 6 RGBA. Both read back as the RGBA they were written from.
+    render::Image image(9, 4);
+    for (std::size_t i = 0; i < image.rgba.size(); ++i) image.rgba[i] = static_cast<std::uint8_t>(i % 4 == 3 ? 255 : i);
+    auto colour_type = [](const fs::path& path) {
+        std::ifstream in(path, std::ios::binary);
+        const std::string bytes(std::istreambuf_iterator<char>(in), {});
+        REQUIRE(bytes.size() > 25);
+        return static_cast<int>(static_cast<unsigned char>(bytes[25]));
+    };
+    const fs::path opaque = scratch("opaque.png");
+    render::write_png(opaque, image);
+    CHECK(colour_type(opaque) == 2);
+    CHECK(render::read_png(opaque).image.rgba == image.rgba);
+
+    image.pixel(8, 3)[3] = 254;
+    const fs::path translucent = scratch("translucent.png");
+    render::write_png(translucent, image);
+    CHECK(colour_type(translucent) == 6);
+    CHECK(render::read_png(translucent).image.rgba == image.rgba);
+}
