@@ -6,6 +6,7 @@
 
 #include "app/version.hpp"
 #include "render/atomic_file.hpp"
+#include "render/canvas.hpp"
 #include "render/gl_context.hpp"
 #include "render/png_io.hpp"
 
@@ -39,7 +40,9 @@ namespace {
 // Measured as the peak RSS (wait4's ru_maxrss) of the smallest figure,
 // tc7-6 --no-video --scale 0.1 (a 90 x 46 canvas): 108.6 MiB on Debian 12's
 // Mesa 22.3 / LLVM 15; 120 MiB leaves room for another Mesa or font set.
-constexpr double program_bytes = 120.0 * 1024 * 1024;
+// On top, the canvas an earlier figure in the same process may have left
+// for reuse (render::max_spare_canvas_bytes).
+constexpr double program_bytes = 120.0 * 1024 * 1024 + render::max_spare_canvas_bytes;
 // A 2-D canvas: 4x multisampled colour (16 bytes a pixel), the resolved
 // colour, the copy read back and the PNG rows or a frame's copy (12). llvmpipe
 // touched 23 bytes a pixel of such a canvas at 2000^2 to 6000^2. A page of

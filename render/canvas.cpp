@@ -8,6 +8,32 @@
 #include "render/gl_context.hpp"
 
 namespace render {
+namespace {
+// One canvas's GL objects kept when it is destroyed, for the next canvas of
+// the same size and kind: a new renderbuffer costs llvmpipe an allocation
+// that it zero-fills (page faults and a memset of 20 bytes a pixel). The nine
+// printed tc7 figures in one process, eight of them 900 x 450, took 0.79 s
+// instead of 0.97 s (median of 9 runs each).
+struct Spare {
+    int width = 0, height = 0, samples = 0;
+    bool depth = false;
+    GLuint msaa_fbo = 0, msaa_colour = 0, msaa_depth = 0, resolve_fbo = 0, resolve_colour = 0;
+};
+Spare spare;
+
+void delete_objects(const Spare& s) {
+    if (s.resolve_fbo) glDeleteFramebuffers(1, &s.resolve_fbo);
+    if (s.resolve_colour) glDeleteRenderbuffers(1, &s.resolve_colour);
+    if (s.msaa_fbo) glDeleteFramebuffers(1, &s.msaa_fbo);
+    if (s.msaa_colour) glDeleteRenderbuffers(1, &s.msaa_colour);
+    if (s.msaa_depth) glDeleteRenderbuffers(1, &s.msaa_depth);
+}
+}  // namespace
+
+double spare_canvas_bytes(int width, int height, int samples, bool depth) {
+    return static_cast<double>(width) * height *
+           (4.0 * samples + (depth ? 4.0 * samples : 0.0) + (samples > 1 ? 4.0 : 0.0));
+}
 
 Canvas::Canvas(int width, int height, int samples, bool depth)
     : width_(width), height_(height), samples_(std::min(samples, GlContext::get().max_samples())) {
@@ -18,6 +44,18 @@ Canvas::Canvas(int width, int height, int samples, bool depth)
                                     " is out of range: allowed 1.." + std::to_string(max_size) + " pixels a side");
     // y down: the top edge of the canvas is y = 0.
     projection_ = glm::ortho(0.0f, float(width), float(height), 0.0f, -1.0f, 1.0f);
+
+    if (spare.msaa_fbo && spare.width == width && spare.height == height && spare.samples == samples_ &&
+        spare.depth == depth) {
+        msaa_fbo_ = spare.msaa_fbo, msaa_colour_ = spare.msaa_colour, msaa_depth_ = spare.msaa_depth;
+        resolve_fbo_ = spare.resolve_fbo, resolve_colour_ = spare.resolve_colour;
+        spare = Spare{};
+        clear(glm::vec4(0.0f));  // as new renderbuffers come from llvmpipe
+        check_gl("Canvas");
+        return;
+    }
+    delete_objects(spare);  // before allocating: a kept canvas never adds to the peak
+    spare = Spare{};
 
     // One sample is a plain renderbuffer: asked for 1 sample, Mesa rounds up
     // to the smallest multisampled count it has (4 on llvmpipe).
@@ -61,6 +99,12 @@ void Canvas::make_resolve_target() {
 }
 
 Canvas::~Canvas() {
+    if (spare_canvas_bytes(width_, height_, samples_, msaa_depth_ != 0) <= max_spare_canvas_bytes) {
+        delete_objects(spare);
+        spare = Spare{width_,       height_,     samples_,     msaa_depth_ != 0, msaa_fbo_,
+                      msaa_colour_, msaa_depth_, resolve_fbo_, resolve_colour_};
+        return;
+    }
     if (resolve_fbo_) glDeleteFramebuffers(1, &resolve_fbo_);
     if (resolve_colour_) glDeleteRenderbuffers(1, &resolve_colour_);
     glDeleteFramebuffers(1, &msaa_fbo_);

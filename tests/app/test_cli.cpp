@@ -117,7 +117,7 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-2 --set animation.stride=0", "animation.stride = 0 is not allowed"},
         {render + "tc7-6 --set figure.panels=[20000]", "--set figure.panels=[20000]: figure.panels = [20000] is not allowed: a step below 16384: each automaton at most 16384 rows (the renderer draws one field that large)"},
         // Memory and disk.
-        {render + "tc7-1 --set n=8000 --max-memory 256M", "needs about 3.9 GiB of memory (grids of doubles 8000 x 8000 x 5: 2.4 GiB), more than --max-memory 256.0 MiB"},
+        {render + "tc7-1 --set n=8000 --max-memory 256M", "needs about 4.0 GiB of memory (grids of doubles 8000 x 8000 x 5: 2.4 GiB), more than --max-memory 256.0 MiB"},
         {render + "tc7-1 --set figure.size=[16000,16000]", "needs about 6.8 GiB of memory (figure 16000 x 16000 RGBA: 6.7 GiB), more than --max-memory 4.0 GiB"},
         {render + "pl-ifs-fern --set points=20000000 --max-memory 256M", "(3 x 20000000 points: 915.5 MiB)"},
         {render + "pl-lsys-3d --set depth=40", "--set depth=40: depth = 40 is not allowed: a depth within the turtle's budget (it would draw more than 18,446,744,073,709,551,615 segments, more than the budget of 5,000,000)"},

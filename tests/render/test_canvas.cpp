@@ -60,3 +60,28 @@ TEST_CASE("a one-sample canvas is a plain framebuffer and not the smallest multi
     CHECK(partial(one.read()) == 0);
     CHECK(partial(four.read()) > 20);  // the edge's pixels, about one per row
 }
+
+TEST_CASE("a canvas that takes over a destroyed one's buffers starts as empty as a new one", "[canvas]") {
+    // A canvas of the size and kind of one just destroyed reuses its GL
+    // objects (canvas.cpp); what was drawn there must not show through.
+    auto draw_and_read = [](bool depth) {
+        Canvas canvas(37, 23, 4, depth);
+        const render::Image before = canvas.read();
+        canvas.clear({0.2f, 0.4f, 0.6f, 1});
+        render::Shapes shapes;
+        shapes.rect({3, 3, 20, 10}, {1, 0, 0, 1});
+        shapes.draw(canvas);
+        CHECK(canvas.read().pixel(10, 8)[0] == 255);
+        return before;
+    };
+    for (bool depth : {false, true}) {
+        const render::Image first = draw_and_read(depth), second = draw_and_read(depth);
+        const render::Image blank(37, 23);  // zero: transparent black
+        CHECK(first.rgba == blank.rgba);
+        CHECK(second.rgba == blank.rgba);
+    }
+    // A different size does not take them: it gets its own size.
+    Canvas other(41, 23);
+    CHECK(other.read().width == 41);
+    CHECK(other.read().rgba == render::Image(41, 23).rgba);
+}
