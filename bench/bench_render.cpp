@@ -5,10 +5,10 @@
 #include <cmath>
 #include <filesystem>
 
-#include "scenes/field_panels.hpp"
 #include "render/hex_cells.hpp"
 #include "render/png_io.hpp"
 #include "render/video.hpp"
+#include "scenes/field_panels.hpp"
 #include "sim/diffusion.hpp"
 
 namespace {
@@ -20,7 +20,8 @@ scenes::FieldPanel diffusion_panel(int n) {
     p.block_size = n / 3;
     sim::Diffusion model(p);
     for (int i = 0; i < 10; ++i) model.step();
-    return {"step 10", {{n, n, model.field().cells(), {&render::colormap("Reds"), 0, 1, 0.8f, render::Sampling::nearest}}}};
+    return {"step 10",
+            {{n, n, model.field().cells(), {&render::colormap("Reds"), 0, 1, 0.8f, render::Sampling::nearest}}}};
 }
 
 }  // namespace
@@ -65,6 +66,19 @@ static void draw_smooth_frame(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(scenes::draw_field_panels({panel}, 480, 520, 1.0));
 }
 BENCHMARK(draw_smooth_frame)->Unit(benchmark::kMillisecond);
+
+// The same frame as a film draws it: one sample, both layers in one pass.
+static void draw_smooth_frame_paired(benchmark::State& state) {
+    std::vector<double> values(100 * 100);
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = 0.5 + 0.5 * std::sin(0.37 * double(i));
+    scenes::FieldPanel panel{"step 1000", {}};
+    for (const char* map : {"Reds", "Blues"})
+        panel.layers.push_back({100, 100, values, {&render::colormap(map), 0, 1, 0.7f, render::Sampling::smooth}});
+    render::Canvas canvas(480, 520, 1);
+    for (auto _ : state)
+        benchmark::DoNotOptimize(scenes::draw_field_panels(canvas, {panel}, 1.0, scenes::LayerPasses::paired));
+}
+BENCHMARK(draw_smooth_frame_paired)->Unit(benchmark::kMillisecond);
 
 // An empty 480x520 canvas: creating its framebuffers, clearing, resolving, reading back.
 static void empty_canvas(benchmark::State& state) {

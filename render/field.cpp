@@ -25,14 +25,15 @@ void main() {
 const char* const fragment_shader = R"(#version 330 core
 in vec2 field_position;
 out vec4 out_colour;
-uniform sampler2D field;     // R32F, texel (col, row): (value - vmin) / (vmax - vmin)
-uniform sampler2D colormap;  // N x 1 RGBA32F
-uniform float alpha;
+uniform sampler2D field;     // R32F (one layer) or RG32F (two), texel (col, row): (value - vmin) / (vmax - vmin)
+uniform sampler2D colormap;  // N x layers RGBA32F, a row per layer
+uniform vec2 alpha;          // per layer
+uniform int layers;          // 1 or 2
 uniform int smooth_sampling;
 
-float cell(ivec2 p) {
+vec2 cell(ivec2 p) {
     ivec2 size = textureSize(field, 0);
-    return texelFetch(field, clamp(p, ivec2(0), size - 1), 0).r;  // edge cells repeat, as Agg clamps
+    return texelFetch(field, clamp(p, ivec2(0), size - 1), 0).rg;  // edge cells repeat, as Agg clamps
 }
 
 // Cubic B-spline weights for fractional offset t (Agg's image_filter_bicubic).
@@ -41,7 +42,9 @@ vec4 bspline(vec2 t, int axis) {
     return vec4(s * s * s, 4.0 - 6.0 * u * u + 3.0 * u * u * u, 4.0 - 6.0 * s * s + 3.0 * s * s * s, u * u * u) / 6.0;
 }
 
-float sample_field() {
+// Both layers' values at once: a texel fetch filters every channel alike,
+// so each layer gets the value it would get alone.
+vec2 sample_field() {
     if (smooth_sampling == 0) return cell(ivec2(floor(field_position)));
     // The 4 x 4 B-spline as 4 bilinear fetches (Sigg & Hadwiger, GPU Gems 2,
     // ch. 20): the weights are all positive, so each pair of taps is one
@@ -56,16 +59,24 @@ float sample_field() {
     vec2 h0 = base - 0.5 + vec2(wx.y, wy.y) / g0;  // texel-space points, texel i centred at i + 0.5
     vec2 h1 = base + 1.5 + vec2(wx.w, wy.w) / g1;
     vec2 size = vec2(textureSize(field, 0));
-    return g0.y * (g0.x * texture(field, vec2(h0.x, h0.y) / size).r + g1.x * texture(field, vec2(h1.x, h0.y) / size).r) +
-           g1.y * (g0.x * texture(field, vec2(h0.x, h1.y) / size).r + g1.x * texture(field, vec2(h1.x, h1.y) / size).r);
+    return g0.y * (g0.x * texture(field, vec2(h0.x, h0.y) / size).rg + g1.x * texture(field, vec2(h1.x, h0.y) / size).rg) +
+           g1.y * (g0.x * texture(field, vec2(h0.x, h1.y) / size).rg + g1.x * texture(field, vec2(h1.x, h1.y) / size).rg);
 }
 
 void main() {
-    float t = sample_field();
+    vec2 t = sample_field();
     // matplotlib's lookup: index floor(t * N) clipped to 0..N-1.
     int n = textureSize(colormap, 0).x;
-    int index = clamp(int(floor(t * float(n))), 0, n - 1);
-    out_colour = vec4(texelFetch(colormap, ivec2(index, 0), 0).rgb, alpha);
+    ivec2 index = clamp(ivec2(floor(t * float(n))), ivec2(0), ivec2(n - 1));
+    vec3 first = texelFetch(colormap, ivec2(index.x, 0), 0).rgb;
+    if (layers == 1) {
+        out_colour = vec4(first, alpha.x);
+        return;
+    }
+    // The second layer over the first, premultiplied (blended with ONE,
+    // ONE_MINUS_SRC_ALPHA): what two draws give, but for their rounding.
+    vec3 second = texelFetch(colormap, ivec2(index.y, 1), 0).rgb;
+    out_colour = vec4(second * alpha.y + first * (alpha.x * (1.0 - alpha.y)), alpha.y + alpha.x * (1.0 - alpha.y));
 })";
 
 struct Pipeline {
@@ -76,7 +87,7 @@ struct Pipeline {
     // only what changed: the table when its colours differ, and the cells
     // into the texture already there (no reallocation, no page faults).
     std::vector<glm::vec4> colormap_loaded;
-    int field_rows = 0, field_cols = 0;
+    int field_rows = 0, field_cols = 0, field_layers = 0;
     std::vector<float> texels;  // the upload buffer, kept between draws
     Pipeline() {
         glGenVertexArrays(1, &vao);
@@ -99,58 +110,73 @@ Pipeline& pipeline() {
     return p;
 }
 
-// The colour table as N x 1 RGBA texels, sent only when it differs from the
-// one loaded (compared by colours: a map's address may be reused by another).
-void load_colormap(Pipeline& p, const Colormap& map) {
-    const int n = map.size();
-    std::vector<glm::vec4> rgba(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) rgba[i] = glm::vec4(map.colours[i], 1.0f);
+// The colour tables as N x layers RGBA texels, a row per layer, sent only
+// when they differ from those loaded (compared by colours: a map's address
+// may be reused by another).
+void load_colormaps(Pipeline& p, std::span<const FieldStyle* const> styles) {
+    const int n = styles[0]->colormap->size();
+    std::vector<glm::vec4> rgba;
+    rgba.reserve(static_cast<std::size_t>(n) * styles.size());
+    for (const FieldStyle* style : styles)
+        for (int i = 0; i < n; ++i) rgba.push_back(glm::vec4(style->colormap->colours[i], 1.0f));
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, p.colormap_texture);
     if (rgba == p.colormap_loaded) return;
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, 1, 0, GL_RGBA, GL_FLOAT, rgba.data());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, static_cast<int>(styles.size()), 0, GL_RGBA, GL_FLOAT, rgba.data());
     p.colormap_loaded = std::move(rgba);
 }
 
 // Normalise on the CPU in double precision and upload as floats relative
 // to the colour range: float32 then loses nothing a lookup table can show.
-void load_field(Pipeline& p, int rows, int cols, std::span<const double> values, const FieldStyle& style) {
+// Layers interleave, one channel each.
+void load_field(Pipeline& p, int rows, int cols, std::span<const std::span<const double>> values,
+                std::span<const FieldStyle* const> styles) {
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, p.field_texture);
-    p.texels.resize(values.size());
-    const double span = style.vmax - style.vmin;
-    for (std::size_t i = 0; i < values.size(); ++i) p.texels[i] = static_cast<float>((values[i] - style.vmin) / span);
+    const std::size_t layers = values.size(), cells = values[0].size();
+    p.texels.resize(cells * layers);
+    for (std::size_t l = 0; l < layers; ++l) {
+        const double vmin = styles[l]->vmin, span = styles[l]->vmax - styles[l]->vmin;
+        for (std::size_t i = 0; i < cells; ++i)
+            p.texels[i * layers + l] = static_cast<float>((values[l][i] - vmin) / span);
+    }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    if (rows == p.field_rows && cols == p.field_cols) {
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, cols, rows, GL_RED, GL_FLOAT, p.texels.data());
+    const GLenum format = layers == 1 ? GL_RED : GL_RG;
+    if (rows == p.field_rows && cols == p.field_cols && static_cast<int>(layers) == p.field_layers) {
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, cols, rows, format, GL_FLOAT, p.texels.data());
     } else {
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, cols, rows, 0, GL_RED, GL_FLOAT, p.texels.data());
+        glTexImage2D(GL_TEXTURE_2D, 0, layers == 1 ? GL_R32F : GL_RG32F, cols, rows, 0, format, GL_FLOAT,
+                     p.texels.data());
         p.field_rows = rows;
         p.field_cols = cols;
+        p.field_layers = static_cast<int>(layers);
     }
 }
 
-}  // namespace
-
-void draw_field(const Canvas& canvas, const Rect& where, int rows, int cols, std::span<const double> values,
-                const FieldStyle& style) {
+void check_layer(int rows, int cols, std::span<const double> values, const FieldStyle& style, const char* what) {
     if (rows < 1 || cols < 1 || values.size() != static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols))
-        throw std::invalid_argument("draw_field: " + std::to_string(values.size()) + " values do not fill " +
+        throw std::invalid_argument(std::string(what) + ": " + std::to_string(values.size()) + " values do not fill " +
                                     std::to_string(rows) + "x" + std::to_string(cols) + " cells");
-    if (!style.colormap) throw std::invalid_argument("draw_field: no colormap");
-    if (!(style.vmax > style.vmin)) throw std::invalid_argument("draw_field: vmax must exceed vmin");
+    if (!style.colormap) throw std::invalid_argument(std::string(what) + ": no colormap");
+    if (!(style.vmax > style.vmin)) throw std::invalid_argument(std::string(what) + ": vmax must exceed vmin");
+}
+
+void draw(const Canvas& canvas, const Rect& where, int rows, int cols, std::span<const std::span<const double>> values,
+          std::span<const FieldStyle* const> styles, const char* what) {
     Pipeline& p = pipeline();
     canvas.bind();
 
-    load_colormap(p, *style.colormap);
-    load_field(p, rows, cols, values, style);
+    load_colormaps(p, styles);
+    load_field(p, rows, cols, values, styles);
 
+    const bool two = values.size() == 2;
     p.program.use();
     p.program.set("projection", canvas.projection());
     p.program.set("rect", glm::vec4(where.x, where.y, where.w, where.h));
     p.program.set("cells", glm::vec2(cols, rows));
-    p.program.set("alpha", style.alpha);
-    p.program.set("smooth_sampling", style.sampling == Sampling::smooth ? 1 : 0);
+    p.program.set("alpha", glm::vec2(styles[0]->alpha, two ? styles[1]->alpha : 0.0f));
+    p.program.set("layers", two ? 2 : 1);
+    p.program.set("smooth_sampling", styles[0]->sampling == Sampling::smooth ? 1 : 0);
     p.program.set("field", 0);
     p.program.set("colormap", 1);
     glBindVertexArray(p.vao);
@@ -158,10 +184,32 @@ void draw_field(const Canvas& canvas, const Rect& where, int rows, int cols, std
     // samples, and without them llvmpipe shades each pixel once, not once
     // per sample.
     glDisable(GL_MULTISAMPLE);
+    if (two) glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    glEnable(GL_MULTISAMPLE);
+    canvas.bind();  // the canvas's own blending and multisampling again
     glBindVertexArray(0);
-    check_gl("draw_field");
+    check_gl(what);
+}
+
+}  // namespace
+
+void draw_field(const Canvas& canvas, const Rect& where, int rows, int cols, std::span<const double> values,
+                const FieldStyle& style) {
+    check_layer(rows, cols, values, style, "draw_field");
+    const std::span<const double> layers[] = {values};
+    const FieldStyle* styles[] = {&style};
+    draw(canvas, where, rows, cols, layers, styles, "draw_field");
+}
+
+void draw_field_pair(const Canvas& canvas, const Rect& where, int rows, int cols, std::span<const double> first,
+                     const FieldStyle& first_style, std::span<const double> second, const FieldStyle& second_style) {
+    check_layer(rows, cols, first, first_style, "draw_field_pair");
+    check_layer(rows, cols, second, second_style, "draw_field_pair");
+    if (first_style.sampling != second_style.sampling || first_style.colormap->size() != second_style.colormap->size())
+        throw std::invalid_argument("draw_field_pair: the layers differ in sampling or colour-table size");
+    const std::span<const double> layers[] = {first, second};
+    const FieldStyle* styles[] = {&first_style, &second_style};
+    draw(canvas, where, rows, cols, layers, styles, "draw_field_pair");
 }
 
 }  // namespace render

@@ -20,6 +20,13 @@ bool any_title(const std::vector<FieldPanel>& panels) {
     return false;
 }
 
+// Two layers that one pass can draw: the same grid, sampling and table size.
+bool pairable(const std::vector<FieldLayer>& layers) {
+    return layers.size() == 2 && layers[0].rows == layers[1].rows && layers[0].cols == layers[1].cols &&
+           layers[0].style.sampling == layers[1].style.sampling && layers[0].style.colormap &&
+           layers[1].style.colormap && layers[0].style.colormap->size() == layers[1].style.colormap->size();
+}
+
 bool whole(float v) {
     return v == std::floor(v);
 }
@@ -37,21 +44,29 @@ int field_page_samples(const std::vector<FieldPanel>& panels, int width, int hei
 }
 
 void draw_field_panels(const render::Canvas& canvas, const render::Rect& area, const std::vector<FieldPanel>& panels,
-                       int columns, double scale) {
+                       int columns, double scale, LayerPasses passes) {
     const render::PanelRowStyle style = page_style(panels, scale);
     std::vector<std::string> titles;
     for (const FieldPanel& p : panels) titles.push_back(p.title);
     const auto rects = render::panel_grid(area, static_cast<int>(panels.size()), columns, any_title(panels), style);
-    for (std::size_t i = 0; i < panels.size(); ++i)
-        for (const FieldLayer& layer : panels[i].layers)
+    for (std::size_t i = 0; i < panels.size(); ++i) {
+        const std::vector<FieldLayer>& layers = panels[i].layers;
+        if (passes == LayerPasses::paired && pairable(layers)) {
+            render::draw_field_pair(canvas, rects[i], layers[0].rows, layers[0].cols, layers[0].values, layers[0].style,
+                                    layers[1].values, layers[1].style);
+            continue;
+        }
+        for (const FieldLayer& layer : layers)
             render::draw_field(canvas, rects[i], layer.rows, layer.cols, layer.values, layer.style);
+    }
     render::draw_panel_decorations(canvas, rects, titles, style);
 }
 
-render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale) {
+render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
+                                LayerPasses passes) {
     canvas.clear({1, 1, 1, 1});
     draw_field_panels(canvas, {0, 0, float(canvas.width()), float(canvas.height())}, panels,
-                      static_cast<int>(panels.size()), scale);
+                      static_cast<int>(panels.size()), scale, passes);
     return canvas.read();
 }
 

@@ -74,12 +74,17 @@ int field_page_samples(const std::vector<FieldPanel>& panels, int width, int hei
 // A row of panels on a white width x height page (pixels, already scaled).
 render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale);
 
+// How a panel's two layers are drawn: one draw each, or both in one pass
+// (render::draw_field_pair: faster, the same but for rounding; films).
+enum class LayerPasses { each, paired };
+
 // The same on an existing canvas of the page's size (reused frame after
 // frame, saving its framebuffers' set-up): clears it, draws, reads it back.
-render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale);
+render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
+                                LayerPasses passes = LayerPasses::each);
 
 // The same panels in `columns` columns inside `area` of a canvas being drawn.
 void draw_field_panels(const render::Canvas& canvas, const render::Rect& area, const std::vector<FieldPanel>& panels,
-                       int columns, double scale);
+                       int columns, double scale, LayerPasses passes = LayerPasses::each);
 
 }  // namespace scenes

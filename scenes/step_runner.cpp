@@ -88,7 +88,7 @@ render::Image StepRunner::draw_field_frame(const std::vector<FieldPanel>& panels
     if (!frame_canvas_)
         frame_canvas_ = std::make_unique<render::Canvas>(
             frame_width_, frame_height_, field_page_samples(panels, frame_width_, frame_height_, options_.scale));
-    return draw_field_panels(*frame_canvas_, panels, options_.scale);
+    return draw_field_panels(*frame_canvas_, panels, options_.scale, LayerPasses::paired);
 }
 
 void StepRunner::stepped() {
