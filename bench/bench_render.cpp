@@ -56,24 +56,26 @@ static void write_figure_png(benchmark::State& state) {
 }
 BENCHMARK(write_figure_png)->Unit(benchmark::kMillisecond);
 
-// One Gray-Scott animation frame: two smoothly sampled 100x100 layers, 480x520.
-static void draw_smooth_frame(benchmark::State& state) {
+// A Gray-Scott animation frame's panel: two smoothly sampled 100x100 layers.
+static scenes::FieldPanel smooth_frame_panel() {
     std::vector<double> values(100 * 100);
     for (std::size_t i = 0; i < values.size(); ++i) values[i] = 0.5 + 0.5 * std::sin(0.37 * double(i));
     scenes::FieldPanel panel{"step 1000", {}};
     for (const char* map : {"Reds", "Blues"})
         panel.layers.push_back({100, 100, values, {&render::colormap(map), 0, 1, 0.7f, render::Sampling::smooth}});
+    return panel;
+}
+
+// That frame at 480x520 as a figure draws it: four samples, a pass per layer.
+static void draw_smooth_frame(benchmark::State& state) {
+    const scenes::FieldPanel panel = smooth_frame_panel();
     for (auto _ : state) benchmark::DoNotOptimize(scenes::draw_field_panels({panel}, 480, 520, 1.0));
 }
 BENCHMARK(draw_smooth_frame)->Unit(benchmark::kMillisecond);
 
 // The same frame as a film draws it: one sample, both layers in one pass.
 static void draw_smooth_frame_paired(benchmark::State& state) {
-    std::vector<double> values(100 * 100);
-    for (std::size_t i = 0; i < values.size(); ++i) values[i] = 0.5 + 0.5 * std::sin(0.37 * double(i));
-    scenes::FieldPanel panel{"step 1000", {}};
-    for (const char* map : {"Reds", "Blues"})
-        panel.layers.push_back({100, 100, values, {&render::colormap(map), 0, 1, 0.7f, render::Sampling::smooth}});
+    const scenes::FieldPanel panel = smooth_frame_panel();
     render::Canvas canvas(480, 520, 1);
     for (auto _ : state)
         benchmark::DoNotOptimize(scenes::draw_field_panels(canvas, {panel}, 1.0, scenes::LayerPasses::paired));
