@@ -1,10 +1,10 @@
-#include "sim/check.hpp"
 #include "sim/gray_scott_kernels.hpp"
 
 #include <cstddef>
 #include <optional>
 #include <type_traits>
 
+#include "sim/check.hpp"
 #include "sim/parallel_steps.hpp"
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
@@ -86,89 +86,142 @@ void update_rows(const PaddedRows<Real>& a, const PaddedRows<Real>& b, const Pad
 #pragma GCC push_options
 #pragma GCC target("avx512f")
 
-// Columns j - 1, j and j + 1 of a row, 16 cells each.
-struct Columns {
-    __m512 left, here, right;
+// The AVX-512 operations the rows below need, for float (16 lanes) and
+// double (8 lanes): the same code runs both.
+template <class Real>
+struct Avx512;
+
+template <>
+struct Avx512<float> {
+    using V = __m512;
+    static constexpr int lanes = 16;
+    static V load(const float* p) { return _mm512_load_ps(p); }
+    static V loadu(const float* p) { return _mm512_loadu_ps(p); }
+    static void store(float* p, V v) { _mm512_store_ps(p, v); }
+    static V set1(float x) { return _mm512_set1_ps(x); }
+    static V add(V a, V b) { return _mm512_add_ps(a, b); }
+    static V sub(V a, V b) { return _mm512_sub_ps(a, b); }
+    static V mul(V a, V b) { return _mm512_mul_ps(a, b); }
+    // Lanes: before's last, then here's first 15 (valignd). The masked form
+    // with every lane set is the same instruction; the plain one trips GCC
+    // 12's -Wmaybe-uninitialized in its own header.
+    static V shifted(V here, V before) {
+        const __m512i bits = _mm512_castps_si512(here);
+        return _mm512_castsi512_ps(
+            _mm512_mask_alignr_epi32(bits, __mmask16(0xFFFF), bits, _mm512_castps_si512(before), 15));
+    }
 };
 
-// One row read block by block (j = 0, 16, 32, ...; column j is 64-byte
-// aligned). Why not three unaligned loads, as update_row's AVX-512 clone
-// does: an unaligned 64-byte load always spans two cache lines, costing two
-// of the core's loads; the clone's 12 such loads a block, not its 33 flops,
-// bound it (measured with the rows in L1: 3.1 G cells/s, 5.7 G/s if every
-// load were aligned). Here the left columns are the block before, kept in a
-// register, shifted one lane (valignd); only the right ones load unaligned.
-struct RowStream {
-    const float* row;
-    __m512 before;  // columns j - 16 .. j - 1
+template <>
+struct Avx512<double> {
+    using V = __m512d;
+    static constexpr int lanes = 8;
+    static V load(const double* p) { return _mm512_load_pd(p); }
+    static V loadu(const double* p) { return _mm512_loadu_pd(p); }
+    static void store(double* p, V v) { _mm512_store_pd(p, v); }
+    static V set1(double x) { return _mm512_set1_pd(x); }
+    static V add(V a, V b) { return _mm512_add_pd(a, b); }
+    static V sub(V a, V b) { return _mm512_sub_pd(a, b); }
+    static V mul(V a, V b) { return _mm512_mul_pd(a, b); }
+    static V shifted(V here, V before) {  // valignq
+        const __m512i bits = _mm512_castpd_si512(here);
+        return _mm512_castsi512_pd(
+            _mm512_mask_alignr_epi64(bits, __mmask8(0xFF), bits, _mm512_castpd_si512(before), 7));
+    }
+};
 
-    explicit RowStream(const float* r) : row(r), before(_mm512_load_ps(r - 16)) {}
-    Columns at(std::ptrdiff_t j) {
-        const __m512 here = _mm512_load_ps(row + j);
-        // The masked form with every lane set is the same valignd; the plain
-        // one trips GCC 12's -Wmaybe-uninitialized in its own header.
-        const __m512i here_bits = _mm512_castps_si512(here);
-        const __m512i shifted =
-            _mm512_mask_alignr_epi32(here_bits, __mmask16(0xFFFF), here_bits, _mm512_castps_si512(before), 15);
+// Columns j - 1, j and j + 1 of a row, a vector of cells each.
+template <class Real>
+struct Columns {
+    typename Avx512<Real>::V left, here, right;
+};
+
+// One row read block by block (j = 0, 16, 32, ... for float, 0, 8, ... for
+// double; column j is 64-byte aligned). Why not three unaligned loads, as
+// update_row's AVX-512 clone does: an unaligned 64-byte load always spans
+// two cache lines, costing two of the core's loads; the clone's 12 such
+// loads a block, not its 33 flops, bound it (float, rows in L1: 3.1 G
+// cells/s, 5.7 G/s if every load were aligned). Here the left columns are
+// the block before, kept in a register, shifted one lane; only the right
+// ones load unaligned.
+template <class Real>
+struct RowStream {
+    using A = Avx512<Real>;
+    const Real* row;
+    typename A::V before;  // the lanes columns before j
+
+    explicit RowStream(const Real* r) : row(r), before(A::load(r - A::lanes)) {}
+    Columns<Real> at(std::ptrdiff_t j) {
+        const typename A::V here = A::load(row + j);
+        const typename A::V left = A::shifted(here, before);
         before = here;
-        return {_mm512_castsi512_ps(shifted), here, _mm512_loadu_ps(row + j + 1)};
+        return {left, here, A::loadu(row + j + 1)};
     }
 };
 
 // update_row's laplacian, the same operations in the same order.
-inline __m512 laplacian(const Columns& up, const Columns& mid, const Columns& down) {
-    const __m512 corners = _mm512_add_ps(_mm512_add_ps(up.left, down.right), _mm512_add_ps(up.right, down.left));
-    const __m512 edges = _mm512_add_ps(_mm512_add_ps(up.here, down.here), _mm512_add_ps(mid.left, mid.right));
-    const __m512 weighted = _mm512_add_ps(_mm512_mul_ps(_mm512_set1_ps(0.05f), corners),
-                                          _mm512_mul_ps(_mm512_set1_ps(0.2f), edges));
-    return _mm512_sub_ps(weighted, mid.here);
+template <class Real>
+typename Avx512<Real>::V laplacian(const Columns<Real>& up, const Columns<Real>& mid, const Columns<Real>& down) {
+    using A = Avx512<Real>;
+    const auto corners = A::add(A::add(up.left, down.right), A::add(up.right, down.left));
+    const auto edges = A::add(A::add(up.here, down.here), A::add(mid.left, mid.right));
+    const auto weighted =
+        A::add(A::mul(A::set1(static_cast<Real>(0.05)), corners), A::mul(A::set1(static_cast<Real>(0.2)), edges));
+    return A::sub(weighted, mid.here);
 }
 
+template <class Real>
 struct BlockRates {
-    __m512 ra, rb, f, fk;
-    explicit BlockRates(Rates<float> c)
-        : ra(_mm512_set1_ps(c.ra)), rb(_mm512_set1_ps(c.rb)), f(_mm512_set1_ps(c.f)), fk(_mm512_set1_ps(c.fk)) {}
+    using A = Avx512<Real>;
+    typename A::V ra, rb, f, fk;
+    explicit BlockRates(Rates<Real> c) : ra(A::set1(c.ra)), rb(A::set1(c.rb)), f(A::set1(c.f)), fk(A::set1(c.fk)) {}
 };
 
-// 16 cells of a row from the columns of A and B above, at and below them:
-// update_row's arithmetic, lane by lane, in its order (no FMA), so the same bits.
-inline void update_block(const Columns& au, const Columns& am, const Columns& ad, const Columns& bu,
-                         const Columns& bm, const Columns& bd, const BlockRates& c, float* next_a, float* next_b) {
-    const __m512 ca = laplacian(au, am, ad), cb = laplacian(bu, bm, bd), old_a = am.here, old_b = bm.here;
-    const __m512 reaction = _mm512_mul_ps(old_a, _mm512_mul_ps(old_b, old_b));
-    const __m512 da = _mm512_add_ps(_mm512_sub_ps(_mm512_mul_ps(c.ra, ca), reaction),
-                                    _mm512_mul_ps(c.f, _mm512_sub_ps(_mm512_set1_ps(1.0f), old_a)));
-    const __m512 db = _mm512_sub_ps(_mm512_add_ps(_mm512_mul_ps(c.rb, cb), reaction), _mm512_mul_ps(c.fk, old_b));
-    _mm512_store_ps(next_a, _mm512_add_ps(old_a, da));
-    _mm512_store_ps(next_b, _mm512_add_ps(old_b, db));
+// A vector of cells of a row from the columns of A and B above, at and below
+// them: update_row's arithmetic, lane by lane, in its order (no FMA), so the
+// same bits.
+template <class Real>
+inline void update_block(const Columns<Real>& au, const Columns<Real>& am, const Columns<Real>& ad,
+                         const Columns<Real>& bu, const Columns<Real>& bm, const Columns<Real>& bd,
+                         const BlockRates<Real>& c, Real* next_a, Real* next_b) {
+    using A = Avx512<Real>;
+    const auto ca = laplacian(au, am, ad), cb = laplacian(bu, bm, bd), old_a = am.here, old_b = bm.here;
+    const auto reaction = A::mul(old_a, A::mul(old_b, old_b));
+    const auto da = A::add(A::sub(A::mul(c.ra, ca), reaction), A::mul(c.f, A::sub(A::set1(Real(1)), old_a)));
+    const auto db = A::sub(A::add(A::mul(c.rb, cb), reaction), A::mul(c.fk, old_b));
+    A::store(next_a, A::add(old_a, da));
+    A::store(next_b, A::add(old_b, db));
 }
 
 // Rows i and i + 1 at once, block by block: they share the input rows i and
 // i + 1, so a block reads and shifts 4 rows of each field for its 2 outputs
-// instead of 6 (measured with the rows in L1: 7-14% faster than one row at
-// a time). update_row itself does the last n % 16 cells of each.
-void update_row_pair_avx512(const PaddedRows<float>& a, const PaddedRows<float>& b, const PaddedRows<float>& next_a,
-                            const PaddedRows<float>& next_b, int i, Rates<float> c) {
-    RowStream a0(a.row(i - 1)), a1(a.row(i)), a2(a.row(i + 1)), a3(a.row(i + 2));
-    RowStream b0(b.row(i - 1)), b1(b.row(i)), b2(b.row(i + 1)), b3(b.row(i + 2));
-    float *na0 = next_a.row(i), *na1 = next_a.row(i + 1), *nb0 = next_b.row(i), *nb1 = next_b.row(i + 1);
-    const BlockRates rates(c);
+// instead of 6 (float, rows in L1: 7-14% faster than one row at a time).
+// update_row itself does the last n % lanes cells of each.
+template <class Real>
+void update_row_pair_avx512(const PaddedRows<Real>& a, const PaddedRows<Real>& b, const PaddedRows<Real>& next_a,
+                            const PaddedRows<Real>& next_b, int i, Rates<Real> c) {
+    constexpr int lanes = Avx512<Real>::lanes;
+    RowStream<Real> a0(a.row(i - 1)), a1(a.row(i)), a2(a.row(i + 1)), a3(a.row(i + 2));
+    RowStream<Real> b0(b.row(i - 1)), b1(b.row(i)), b2(b.row(i + 1)), b3(b.row(i + 2));
+    Real *na0 = next_a.row(i), *na1 = next_a.row(i + 1), *nb0 = next_b.row(i), *nb1 = next_b.row(i + 1);
+    const BlockRates<Real> rates(c);
     const std::ptrdiff_t n = a.n;
     std::ptrdiff_t j = 0;
-    for (; j + 16 <= n; j += 16) {
-        const Columns au = a0.at(j), am = a1.at(j), ad = a2.at(j), aw = a3.at(j);
-        const Columns bu = b0.at(j), bm = b1.at(j), bd = b2.at(j), bw = b3.at(j);
+    for (; j + lanes <= n; j += lanes) {
+        const Columns<Real> au = a0.at(j), am = a1.at(j), ad = a2.at(j), aw = a3.at(j);
+        const Columns<Real> bu = b0.at(j), bm = b1.at(j), bd = b2.at(j), bw = b3.at(j);
         update_block(au, am, ad, bu, bm, bd, rates, na0 + j, nb0 + j);
         update_block(am, ad, aw, bm, bd, bw, rates, na1 + j, nb1 + j);
     }
     for (int k = i; j < n && k <= i + 1; ++k)
-        update_row<float>(a.row(k - 1) + j, a.row(k) + j, a.row(k + 1) + j, b.row(k - 1) + j, b.row(k) + j,
-                          b.row(k + 1) + j, next_a.row(k) + j, next_b.row(k) + j, n - j, c);
+        update_row<Real>(a.row(k - 1) + j, a.row(k) + j, a.row(k + 1) + j, b.row(k - 1) + j, b.row(k) + j,
+                         b.row(k + 1) + j, next_a.row(k) + j, next_b.row(k) + j, n - j, c);
 }
 
-// update_rows for float with AVX-512: pairs of rows, an odd last row by update_row.
-void update_rows_avx512(const PaddedRows<float>& a, const PaddedRows<float>& b, const PaddedRows<float>& next_a,
-                        const PaddedRows<float>& next_b, int begin, int end, Rates<float> c) {
+// update_rows with AVX-512: pairs of rows, an odd last row by update_row.
+template <class Real>
+void update_rows_avx512(const PaddedRows<Real>& a, const PaddedRows<Real>& b, const PaddedRows<Real>& next_a,
+                        const PaddedRows<Real>& next_b, int begin, int end, Rates<Real> c) {
     int i = begin;
     for (; i + 1 < end; i += 2) {
         update_row_pair_avx512(a, b, next_a, next_b, i, c);
@@ -183,13 +236,12 @@ void update_rows_avx512(const PaddedRows<float>& a, const PaddedRows<float>& b, 
 #pragma GCC pop_options
 #endif
 
-// The rows update a kernel runs: update_rows_avx512 for float on a CPU (and
-// OS) with AVX-512, update_rows (update_row's target_clones) otherwise.
+// The rows update a kernel runs: update_rows_avx512 on a CPU (and OS) with
+// AVX-512, update_rows (update_row's target_clones) otherwise.
 template <class Real>
 RowsUpdate<Real> rows_update() {
 #ifdef FIGGEN_GS_AVX512
-    if constexpr (std::is_same_v<Real, float>)
-        if (__builtin_cpu_supports("avx512f")) return update_rows_avx512;
+    if (__builtin_cpu_supports("avx512f")) return update_rows_avx512<Real>;
 #endif
     return update_rows<Real>;
 }
