@@ -28,12 +28,12 @@ void delete_objects(const Spare& s) {
     if (s.msaa_colour) glDeleteRenderbuffers(1, &s.msaa_colour);
     if (s.msaa_depth) glDeleteRenderbuffers(1, &s.msaa_depth);
 }
-}  // namespace
-
+// The GL storage a canvas holds: its samples, their depth, the resolved copy.
 double spare_canvas_bytes(int width, int height, int samples, bool depth) {
     return static_cast<double>(width) * height *
            (4.0 * samples + (depth ? 4.0 * samples : 0.0) + (samples > 1 ? 4.0 : 0.0));
 }
+}  // namespace
 
 Canvas::Canvas(int width, int height, int samples, bool depth)
     : width_(width), height_(height), samples_(std::min(samples, GlContext::get().max_samples())) {

@@ -29,7 +29,6 @@ inline constexpr double queued_triangles_bytes = 64.0 * 1024 * 1024;
 // A destroyed canvas of at most this many bytes of GL storage is kept for the
 // next canvas of its size (see canvas.cpp); memory estimates count it.
 inline constexpr double max_spare_canvas_bytes = 32.0 * 1024 * 1024;
-double spare_canvas_bytes(int width, int height, int samples, bool depth);
 
 struct Rect {
     float x = 0, y = 0, w = 0, h = 0;  // top-left corner and size, pixels
