@@ -15,6 +15,7 @@
 #include "app/render_figure.hpp"
 #include "description/catalog.hpp"
 #include "description/description.hpp"
+#include "render/gl_context.hpp"
 #include "sim/check.hpp"
 
 namespace app {
@@ -201,6 +202,9 @@ int RenderCommand::run() {
                             [](const CheckedFigure& f) { return f.description->animation.has_value(); }))
         throw UsageError("--fps: none of the figures named has an animation");
     const render::Folder folder = open_output_folder(options);
+    // Every input is accepted and drawing will follow: open the GL library
+    // while the first model runs.
+    render::preload_gl();
     ProgressBar progress = ProgressBar::for_stderr();
     for (const CheckedFigure& f : figures) render_reporting(*f.description, *f.scene, folder, options, progress);
     return 0;

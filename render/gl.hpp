@@ -1,6 +1,5 @@
 #pragma once
-// The GL headers as OSMesa provides them: core-profile entry points are
-// exported by libOSMesa itself (GL_GLEXT_PROTOTYPES is set by CMake).
-#include <GL/osmesa.h>
-#include <GL/gl.h>
-#include <GL/glext.h>
+// The GL 4.5 core API as glad's generated loader provides it: every gl*
+// call goes through a function pointer that GlContext::get() fills in, so
+// no GL library is linked and nothing may call GL before GlContext::get().
+#include <glad/gl.h>

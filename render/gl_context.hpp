@@ -2,6 +2,9 @@
 // The process's one OpenGL context: OSMesa (llvmpipe), core profile 3.3 or
 // later, no window, no GPU. Created on first use, destroyed at exit.
 // Every drawing class calls GlContext::get() before touching GL.
+//
+// libOSMesa (and LLVM with it) is not linked: it is opened when a command
+// is about to draw, so commands and inputs that draw nothing never pay for it.
 
 #include <string>
 #include <vector>
@@ -9,6 +12,17 @@
 #include "render/gl.hpp"
 
 namespace render {
+
+// The most cells a side of a field the renderer draws as one texture:
+// GL 4.5's least GL_MAX_TEXTURE_SIZE, so a description is checked against
+// it without opening GL. GlContext refuses a context with less.
+constexpr int max_texture_side = 16384;
+
+// Starts opening the GL library on a thread of its own, so that the work
+// before the first drawing overlaps with it. Call it once the command knows
+// it will draw; calling it again, or never, is harmless. GlContext::get()
+// waits for it.
+void preload_gl();
 
 class GlContext {
 public:
@@ -26,7 +40,7 @@ private:
     GlContext();
     ~GlContext();
 
-    OSMesaContext context_ = nullptr;
+    void* context_ = nullptr;            // the OSMesaContext
     std::vector<unsigned char> buffer_;  // tiny default framebuffer: all drawing goes to FBOs
     std::string renderer_;
     std::string version_;

@@ -58,7 +58,7 @@ std::vector<sim::Cell1DParams> read_automata(Settings& s, int rows) {
 // holds it as one texture. Too many rows is the panel step's fault, too many
 // columns the width's (absent: 2 * rows + 1).
 void require_automata_drawable(Settings& params, const Description& d, double rows, double cols) {
-    const int most = render::GlContext::get().max_texture_size();
+    const int most = render::max_texture_side;
     if (rows > most)
         throw SettingError("figure.panels", steps_text(d.panels),
                            "a step below " + std::to_string(most) + ": each automaton at most " +

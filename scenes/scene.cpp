@@ -82,7 +82,7 @@ MemoryNeed grid_need(const std::string& what, double rows, double cols, double c
 
 void require_drawable(Settings& section, const std::string& key, const std::string& what, double rows,
                       double cols) {
-    const double most = render::GlContext::get().max_texture_size();
+    const double most = render::max_texture_side;
     if (rows <= most && cols <= most) return;
     char text[256];
     std::snprintf(text, sizeof text, "%s at most %.0f cells a side (it would be %.0f x %.0f): the renderer draws one field that large",

@@ -11,7 +11,7 @@ set -eu
 
 packages=(
   g++ make cmake pkg-config
-  libosmesa6-dev libglm-dev
+  libosmesa6-dev python3-glad libglm-dev  # OSMesa: its header to build, its library opened at run time
   libpng-dev zlib1g-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libfreetype-dev fonts-dejavu-core

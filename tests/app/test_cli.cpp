@@ -439,6 +439,22 @@ TEST_CASE("figgen --version prints the version", "[cli][options]") {
     CHECK_THAT(run.output, Catch::Matches("[0-9]+\\.[0-9]+\\.[0-9]+\\s*"));
 }
 
+TEST_CASE("only a command that draws opens the GL library", "[cli][gl]") {
+    // glibc's loader names every library it opens under LD_DEBUG=files.
+    auto opens_gl = [](const std::string& args) {
+        const Run run = testkit::figgen_env("LD_DEBUG=files", args);
+        return run.output.find("file=libOSMesa.so") != std::string::npos;
+    };
+    const fs::path out = fresh_dir("gl-loading");
+    CHECK_FALSE(opens_gl("--version"));
+    CHECK_FALSE(opens_gl("list"));
+    CHECK_FALSE(opens_gl("describe tc7-1"));
+    CHECK_FALSE(opens_gl("render tc7-1 --scale 9 --out " + out.string()));     // a refused option
+    CHECK_FALSE(opens_gl("render tc7-1 --set n=-3 --out " + out.string()));    // a refused setting
+    CHECK_FALSE(opens_gl("render tc7-6 --set width=20001 --out " + out.string()));  // a field too large to draw
+    CHECK(opens_gl("render tc7-7 --format png --out " + out.string()));        // and one that draws does
+}
+
 TEST_CASE("cmake --install puts figgen and the descriptions in a prefix, and the installed figgen reads them", "[cli][install]") {
     const fs::path prefix = fresh_dir("install");
     const Run install = testkit::run_command(std::string(FIGGEN_CMAKE) + " --install " + FIGGEN_BUILD_DIR +
