@@ -48,6 +48,8 @@ constexpr double program_bytes = 120.0 * 1024 * 1024 + render::max_spare_canvas_
 // touched 23 bytes a pixel of such a canvas at 2000^2 to 6000^2. A page of
 // field panels on whole pixels has one sample (7 bytes a pixel measured at
 // 6000^2), so counting 44 as before made its estimate 4.3 times its peak;
+// a film's smooth pair adds its resampled values and their texture (16
+// bytes a panel pixel, render/field.cpp), 23 in all, still inside 28.
 // 3-D scenes add their depth buffers themselves (lsystem_3d).
 constexpr double canvas_bytes_per_pixel = 28.0;
 // The film's encoder (x264, preset medium: 40 frames of look-ahead, 3
