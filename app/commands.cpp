@@ -16,6 +16,7 @@
 #include "description/catalog.hpp"
 #include "description/description.hpp"
 #include "render/gl_context.hpp"
+#include "render/media.hpp"
 #include "sim/check.hpp"
 
 namespace app {
@@ -205,6 +206,11 @@ int RenderCommand::run() {
     // Every input is accepted and drawing will follow: open the GL library
     // while the first model runs.
     render::preload_gl();
+    // And FFmpeg's module when a film will be encoded.
+    if (options.video && std::any_of(figures.begin(), figures.end(), [](const CheckedFigure& f) {
+            return f.description->animation.has_value();
+        }))
+        render::media::preload();
     ProgressBar progress = ProgressBar::for_stderr();
     for (const CheckedFigure& f : figures) render_reporting(*f.description, *f.scene, folder, options, progress);
     return 0;

@@ -1,213 +1,33 @@
 #include "render/video.hpp"
 
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <cstdint>
 #include <stdexcept>
 #include <utility>
 
 #include "render/atomic_file.hpp"
+#include "render/media.hpp"
 
-extern "C" {
-#include <libavcodec/avcodec.h>
-#include <libavformat/avformat.h>
-#include <libavutil/dict.h>
-#include <libavutil/error.h>
-#include <libavutil/log.h>
-#include <libavutil/pixdesc.h>
-#include <libswscale/swscale.h>
-}
+// The arguments are checked here; FFmpeg's work is done by the media module
+// (render/media.hpp), opened on first use.
 
 namespace render {
-namespace {
 
-// Owning pointers for the FFmpeg objects, so every exit path frees them.
-struct FreeCodec {
-    void operator()(AVCodecContext* c) const { avcodec_free_context(&c); }
-};
-struct FreeFrame {
-    void operator()(AVFrame* f) const { av_frame_free(&f); }
-};
-struct FreePacket {
-    void operator()(AVPacket* p) const { av_packet_free(&p); }
-};
-struct FreeScaler {
-    void operator()(SwsContext* s) const { sws_freeContext(s); }
-};
-// Our own I/O on the temporary's descriptor (AtomicFile), never a path: a
-// context of this kind is freed with close_file_io, not avio_close.
-struct FileIo {
-    int fd;
-    std::int64_t position = 0;
-};
-
-int read_file_io(void* opaque, std::uint8_t* buffer, int size) {
-    auto* io = static_cast<FileIo*>(opaque);
-    const ssize_t n = ::pread(io->fd, buffer, static_cast<std::size_t>(size), io->position);
-    if (n < 0) return AVERROR(errno);
-    if (n == 0) return AVERROR_EOF;
-    io->position += n;
-    return static_cast<int>(n);
-}
-
-int write_file_io(void* opaque, std::uint8_t* buffer, int size) {
-    auto* io = static_cast<FileIo*>(opaque);
-    for (int written = 0; written < size;) {
-        const ssize_t n = ::pwrite(io->fd, buffer + written, static_cast<std::size_t>(size - written),
-                                   io->position);
-        if (n < 0 && errno == EINTR) continue;
-        if (n < 0) return AVERROR(errno);
-        written += static_cast<int>(n);
-        io->position += n;
-    }
-    return size;
-}
-
-std::int64_t seek_file_io(void* opaque, std::int64_t offset, int whence) {
-    auto* io = static_cast<FileIo*>(opaque);
-    if (whence & AVSEEK_SIZE) {
-        struct stat st {};
-        return ::fstat(io->fd, &st) == 0 ? st.st_size : AVERROR(errno);
-    }
-    switch (whence & ~AVSEEK_FORCE) {
-        case SEEK_SET: io->position = offset; break;
-        case SEEK_CUR: io->position += offset; break;
-        case SEEK_END: {
-            struct stat st {};
-            if (::fstat(io->fd, &st) != 0) return AVERROR(errno);
-            io->position = st.st_size + offset;
-            break;
-        }
-        default: return AVERROR(EINVAL);
-    }
-    return io->position;
-}
-
-AVIOContext* open_file_io(int fd, bool write) {
-    constexpr int size = 1 << 16;
-    auto* buffer = static_cast<unsigned char*>(av_malloc(size));
-    if (!buffer) return nullptr;
-    AVIOContext* context = avio_alloc_context(buffer, size, write ? 1 : 0, new FileIo{fd}, read_file_io,
-                                              write ? write_file_io : nullptr, seek_file_io);
-    if (!context) av_free(buffer);
-    return context;
-}
-
-// Flushes (when writing) and frees; returns the first error seen.
-int close_file_io(AVIOContext** context) {
-    if (!*context) return 0;
-    if ((*context)->write_flag) avio_flush(*context);
-    const int error = (*context)->error;
-    delete static_cast<FileIo*>((*context)->opaque);
-    av_freep(&(*context)->buffer);
-    avio_context_free(context);
-    return error;
-}
-
-// The muxer reopens its own output to move the index to the front
-// (faststart): give it the same file, never the path.
-int reopen_output(AVFormatContext* format, AVIOContext** context, const char* /*url*/, int flags,
-                  AVDictionary** /*options*/) {
-    if (flags & AVIO_FLAG_WRITE) return AVERROR(EPERM);
-    *context = open_file_io(static_cast<FileIo*>(format->pb->opaque)->fd, false);
-    return *context ? 0 : AVERROR(ENOMEM);
-}
-
-int close_reopened(AVFormatContext* /*format*/, AVIOContext* context) { return close_file_io(&context); }
-
-struct CloseOutput {
-    void operator()(AVFormatContext* f) const {
-        close_file_io(&f->pb);
-        avformat_free_context(f);
-    }
-};
-struct CloseInput {
-    void operator()(AVFormatContext* f) const { avformat_close_input(&f); }
-};
-using CodecPtr = std::unique_ptr<AVCodecContext, FreeCodec>;
-using FramePtr = std::unique_ptr<AVFrame, FreeFrame>;
-using PacketPtr = std::unique_ptr<AVPacket, FreePacket>;
-using ScalerPtr = std::unique_ptr<SwsContext, FreeScaler>;
-using OutputPtr = std::unique_ptr<AVFormatContext, CloseOutput>;
-using InputPtr = std::unique_ptr<AVFormatContext, CloseInput>;
-
-// Errors become exceptions carrying av_strerror's text, so FFmpeg's own log
-// would only repeat them (and x264 chats at info level): silence it, once.
-void quiet_ffmpeg() {
-    static const bool quiet = (av_log_set_level(AV_LOG_QUIET), true);
-    (void)quiet;
-}
-
-// One line: "cannot write out/a.mp4: writing a packet: No space left on device".
-[[noreturn]] void fail(const char* verb, const std::filesystem::path& path, const char* step, int err) {
-    char text[AV_ERROR_MAX_STRING_SIZE] = {};
-    av_strerror(err, text, sizeof text);
-    throw std::runtime_error(std::string("cannot ") + verb + " " + path.string() + ": " + step + ": " + text);
-}
-
-// FFmpeg reads "a:b.mp4" as protocol "a"; the explicit protocol keeps any
-// file name a file name.
-std::string file_url(const std::filesystem::path& path) { return "file:" + path.string(); }
-
-// The RGB <-> YUV matrix the writer uses and tags the stream with: BT.709,
-// what players assume for HD and the primaries sRGB shares.
-constexpr int kMatrix = SWS_CS_ITU709;
-
-}  // namespace
-
+// The file, and the module's encoder writing into it.
 struct VideoWriter::Encoder {
     Encoder(const Folder& folder, const std::string& name) : file(folder, name) {}
 
-    // Declared first so it is destroyed last: the file is closed before the
-    // temporary is removed.
+    // Declared first so it is destroyed last: the encoder closes its I/O
+    // before the temporary is removed.
     AtomicFile file;
-    OutputPtr format;
-    CodecPtr codec;
-    AVStream* stream = nullptr;  // owned by `format`
-    ScalerPtr scaler;
-    FramePtr yuv;
-    PacketPtr packet;
+    std::unique_ptr<media::Encoder> media;
     bool finished = false;
-
-    [[noreturn]] void fail_write(const char* step, int err) const { fail("write", file.final_path(), step, err); }
-    int check(int ret, const char* step) const {
-        if (ret < 0) fail_write(step, ret);
-        return ret;
-    }
-
-    // Moves every packet the encoder has ready into the muxer.
-    void drain() {
-        for (;;) {
-            const int ret = avcodec_receive_packet(codec.get(), packet.get());
-            if (ret == AVERROR(EAGAIN) || ret == AVERROR_EOF) return;
-            check(ret, "encoding a frame");
-            // The muxer picks its own time base (e.g. 1/15360) in write_header.
-            av_packet_rescale_ts(packet.get(), codec->time_base, stream->time_base);
-            packet->stream_index = stream->index;
-            check(av_interleaved_write_frame(format.get(), packet.get()), "writing a packet");
-        }
-    }
 };
 
 namespace {
 
-const AVCodec* find_encoder(const std::string& name) {
-    if (name == "auto") {
-        if (const AVCodec* x264 = avcodec_find_encoder_by_name("libx264")) return x264;
-        return avcodec_find_encoder(AV_CODEC_ID_MPEG4);
-    }
-    if (name == "libx264") return avcodec_find_encoder_by_name("libx264");
-    if (name == "mpeg4") return avcodec_find_encoder(AV_CODEC_ID_MPEG4);
-    throw std::invalid_argument("video codec \"" + name + "\" is not allowed: use auto, libx264 or mpeg4");
-}
-
 // Checked here rather than left to libx264, which would refuse an unknown
 // name only as "opening the encoder: Invalid argument".
-void check_name(const char* what, const std::string& name, const std::vector<std::string>& allowed,
-                bool may_be_empty) {
+void check_name(const char* what, const std::string& name, const std::vector<std::string>& allowed, bool may_be_empty) {
     if (may_be_empty && name.empty()) return;
     if (std::find(allowed.begin(), allowed.end(), name) != allowed.end()) return;
     std::string list;
@@ -232,7 +52,7 @@ void validate(int width, int height, const VideoOptions& options) {
 
 // As x264.h's x264_preset_names and x264_tune_names (x264 0.164).
 const std::vector<std::string>& x264_presets() {
-    static const std::vector<std::string> names = {"ultrafast", "superfast", "veryfast", "faster", "fast",
+    static const std::vector<std::string> names = {"ultrafast", "superfast", "veryfast", "faster",   "fast",
                                                    "medium",    "slow",      "slower",   "veryslow", "placebo"};
     return names;
 }
@@ -249,96 +69,15 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
 VideoWriter::VideoWriter(const Folder& folder, const std::string& name, int width, int height,
                          const VideoOptions& options)
     : path_(folder / name), width_(width), height_(height) {
-    quiet_ffmpeg();
     validate(width, height, options);
-    const AVCodec* codec = find_encoder(options.codec);
-    if (!codec)
-        throw std::runtime_error("cannot write " + path_.string() + ": FFmpeg has no " + options.codec +
-                                 " encoder");
-    codec_name_ = codec->name;
-
+    const media::Api& media = media::api();
     auto e = std::make_unique<Encoder>(folder, name);
-
-    // The file is ours (custom I/O), so the muxer is named, not guessed.
-    AVFormatContext* format = nullptr;
-    e->check(avformat_alloc_output_context2(&format, nullptr, "mp4", nullptr), "creating the muxer");
-    e->format.reset(format);
-    format->flags |= AVFMT_FLAG_CUSTOM_IO;
-    format->io_open = reopen_output;
-    format->io_close2 = close_reopened;
-    format->flags |= AVFMT_FLAG_BITEXACT;  // no "Lavf" version string in the file
-    e->stream = avformat_new_stream(format, nullptr);
-    if (!e->stream) e->fail_write("creating the stream", AVERROR(ENOMEM));
-
-    e->codec.reset(avcodec_alloc_context3(codec));
-    if (!e->codec) e->fail_write("creating the encoder", AVERROR(ENOMEM));
-    AVCodecContext& c = *e->codec;
-    c.width = width;
-    c.height = height;
-    c.pix_fmt = AV_PIX_FMT_YUV420P;  // the one format every player decodes
-    c.sample_aspect_ratio = {1, 1};
-    c.time_base = {1, options.fps};  // pts = frame index
-    c.framerate = {options.fps, 1};
-    c.thread_count = options.threads;
-    c.gop_size = 10 * options.fps;  // a keyframe every 10 s for seeking; mpeg4's default of 12 wastes bits
-    c.flags |= AV_CODEC_FLAG_BITEXACT;  // no encoder version string in the stream (mpeg4)
-    if (format->oformat->flags & AVFMT_GLOBALHEADER) c.flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
-    c.color_range = AVCOL_RANGE_MPEG;
-    c.color_primaries = AVCOL_PRI_BT709;
-    c.color_trc = AVCOL_TRC_BT709;
-    c.colorspace = AVCOL_SPC_BT709;
-
-    AVDictionary* codec_options = nullptr;
-    if (codec_name_ == "libx264") {
-        av_dict_set(&codec_options, "crf", std::to_string(options.crf).c_str(), 0);
-        av_dict_set(&codec_options, "preset", options.preset.c_str(), 0);  // pinned like the threads: it shapes the bytes
-        if (!options.tune.empty()) av_dict_set(&codec_options, "tune", options.tune.c_str(), 0);
-    } else {
-        // Fixed quantiser: crf 18 -> qscale 3, about as transparent as x264 at crf 18.
-        const int qscale = std::clamp((options.crf + 3) / 6, 1, 31);
-        c.flags |= AV_CODEC_FLAG_QSCALE;
-        c.global_quality = FF_QP2LAMBDA * qscale;
-    }
-    const int opened = avcodec_open2(&c, codec, &codec_options);
-    av_dict_free(&codec_options);
-    e->check(opened, "opening the encoder");
-
-    e->check(avcodec_parameters_from_context(e->stream->codecpar, &c), "configuring the stream");
-    e->stream->time_base = c.time_base;
-    e->stream->avg_frame_rate = c.framerate;
-
-    format->pb = open_file_io(e->file.fd(), true);
-    if (!format->pb) e->fail_write("opening the file", AVERROR(ENOMEM));
-    AVDictionary* muxer_options = nullptr;
-    // No creation_time is set, so the header carries none: same frames, same bytes.
-    av_dict_set(&muxer_options, "movflags", "+faststart", 0);  // index first: playable while downloading
-    const int header = avformat_write_header(format, &muxer_options);
-    av_dict_free(&muxer_options);
-    e->check(header, "writing the header");
-
-    e->yuv.reset(av_frame_alloc());
-    e->packet.reset(av_packet_alloc());
-    if (!e->yuv || !e->packet) e->fail_write("allocating a frame", AVERROR(ENOMEM));
-    e->yuv->format = c.pix_fmt;
-    e->yuv->width = width;
-    e->yuv->height = height;
-    e->check(av_frame_get_buffer(e->yuv.get(), 0), "allocating a frame");
-
-    // FULL_CHR_H_INP: filter the chroma from every RGB pixel rather than
-    // subsampling first; ACCURATE_RND and BITEXACT: same bytes on every CPU.
-    e->scaler.reset(sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, AV_PIX_FMT_YUV420P,
-                                   SWS_BICUBIC | SWS_FULL_CHR_H_INP | SWS_ACCURATE_RND | SWS_BITEXACT,
-                                   nullptr, nullptr, nullptr));
-    if (!e->scaler) e->fail_write("creating the colour converter", AVERROR(EINVAL));
-    // Full-range RGB in, limited-range BT.709 out, matching the stream's tags.
-    const int* matrix = sws_getCoefficients(kMatrix);
-    if (sws_setColorspaceDetails(e->scaler.get(), matrix, 1, matrix, 0, 0, 1 << 16, 1 << 16) < 0)
-        e->fail_write("configuring the colour converter", AVERROR(EINVAL));
-
+    e->media = media.open_encoder(e->file.fd(), path_, width, height, options);
+    codec_name_ = e->media->codec_name();
     encoder_ = std::move(e);
 }
 
-VideoWriter::~VideoWriter() = default;  // Encoder closes the file, then AtomicFile removes the temporary
+VideoWriter::~VideoWriter() = default;  // the encoder closes its I/O, then AtomicFile removes the temporary
 VideoWriter::VideoWriter(VideoWriter&&) noexcept = default;
 VideoWriter& VideoWriter::operator=(VideoWriter&&) noexcept = default;
 
@@ -347,143 +86,28 @@ void VideoWriter::add(const Image& frame) {
     if (frame.width != width_ || frame.height != height_ ||
         frame.rgba.size() != static_cast<std::size_t>(width_) * height_ * 4)
         throw std::invalid_argument("video frame is " + std::to_string(frame.width) + "x" +
-                                    std::to_string(frame.height) + ", expected " + std::to_string(width_) +
-                                    "x" + std::to_string(height_) + " RGBA");
-    Encoder& e = *encoder_;
-    // The encoder may still hold the previous frame's buffer (mpeg4 does).
-    e.check(av_frame_make_writable(e.yuv.get()), "allocating a frame");
-    const std::uint8_t* const planes[] = {frame.rgba.data()};
-    const int strides[] = {width_ * 4};
-    sws_scale(e.scaler.get(), planes, strides, 0, height_, e.yuv->data, e.yuv->linesize);
-    e.yuv->pts = frames_;
-    e.check(avcodec_send_frame(e.codec.get(), e.yuv.get()), "encoding a frame");
-    e.drain();
+                                    std::to_string(frame.height) + ", expected " + std::to_string(width_) + "x" +
+                                    std::to_string(height_) + " RGBA");
+    encoder_->media->add(frame);
     ++frames_;
 }
 
 void VideoWriter::finish() {
     if (!encoder_ || encoder_->finished) throw std::logic_error("VideoWriter::finish called twice");
     if (frames_ == 0) throw std::logic_error("cannot write " + path_.string() + ": no frames were added");
-    Encoder& e = *encoder_;
-    e.check(avcodec_send_frame(e.codec.get(), nullptr), "flushing the encoder");  // x264 holds frames back
-    e.drain();
-    // The trailer moves the index to the front (faststart) by rewriting the file.
-    e.check(av_write_trailer(e.format.get()), "writing the trailer");
-    e.check(e.format->pb->error, "writing the file");
-    // Closing flushes the last buffer: a full disk may show up only here.
-    e.check(close_file_io(&e.format->pb), "closing the file");
-    e.file.commit();
-    e.finished = true;
+    encoder_->media->finish();
+    encoder_->file.commit();
+    encoder_->finished = true;
 }
 
-// ---- reading back ----------------------------------------------------------
-
-namespace {
-
-// Yields the decoded frames of a file's best video stream in display order.
-class Decoder {
-public:
-    Decoder(const std::filesystem::path& path, int threads) : path_(path) {
-        quiet_ffmpeg();
-        const std::string url = file_url(path);
-        AVFormatContext* format = nullptr;
-        check(avformat_open_input(&format, url.c_str(), nullptr, nullptr), "opening the file");
-        format_.reset(format);
-        check(avformat_find_stream_info(format, nullptr), "reading the stream info");
-        const AVCodec* codec = nullptr;
-        stream_index_ = check(av_find_best_stream(format, AVMEDIA_TYPE_VIDEO, -1, -1, &codec, 0),
-                              "finding a video stream");
-        codec_.reset(avcodec_alloc_context3(codec));
-        frame_.reset(av_frame_alloc());
-        packet_.reset(av_packet_alloc());
-        if (!codec_ || !frame_ || !packet_) check(AVERROR(ENOMEM), "allocating the decoder");
-        check(avcodec_parameters_to_context(codec_.get(), stream()->codecpar), "configuring the decoder");
-        codec_->thread_count = threads;
-        check(avcodec_open2(codec_.get(), codec, nullptr), "opening the decoder");
-    }
-
-    const AVStream* stream() const { return format_->streams[stream_index_]; }
-
-    // The next frame, or nullptr after the last; valid until the next call.
-    const AVFrame* next() {
-        for (;;) {
-            const int ret = avcodec_receive_frame(codec_.get(), frame_.get());
-            if (ret == 0) return frame_.get();
-            if (ret == AVERROR_EOF) return nullptr;
-            if (ret != AVERROR(EAGAIN)) check(ret, "decoding a frame");
-            const int read = av_read_frame(format_.get(), packet_.get());
-            if (read == AVERROR_EOF) {
-                check(avcodec_send_packet(codec_.get(), nullptr), "flushing the decoder");
-                continue;
-            }
-            check(read, "reading a packet");
-            const int sent = packet_->stream_index == stream_index_
-                                 ? avcodec_send_packet(codec_.get(), packet_.get())
-                                 : 0;
-            av_packet_unref(packet_.get());
-            check(sent, "decoding a packet");
-        }
-    }
-
-    int check(int ret, const char* step) const {
-        if (ret < 0) fail("read", path_, step, ret);
-        return ret;
-    }
-
-private:
-    std::filesystem::path path_;
-    InputPtr format_;
-    CodecPtr codec_;
-    FramePtr frame_;
-    PacketPtr packet_;
-    int stream_index_ = -1;
-};
-
-}  // namespace
-
 VideoInfo probe_video(const std::filesystem::path& path) {
-    Decoder decoder(path, 1);  // plenty for tests, and polite under make -j
-    VideoInfo info;
-    while (decoder.next()) ++info.frames;
-    const AVStream& s = *decoder.stream();
-    const AVCodecParameters& p = *s.codecpar;
-    info.width = p.width;
-    info.height = p.height;
-    const char* pixel_format = av_get_pix_fmt_name(static_cast<AVPixelFormat>(p.format));
-    info.pixel_format = pixel_format ? pixel_format : "unknown";
-    info.codec = avcodec_get_name(p.codec_id);
-    if (s.duration != AV_NOPTS_VALUE) info.duration_seconds = s.duration * av_q2d(s.time_base);
-    info.fps = av_q2d(s.avg_frame_rate.num ? s.avg_frame_rate : s.r_frame_rate);
-    return info;
+    return media::api().probe_video(path);
 }
 
 Image decode_frame(const std::filesystem::path& path, int index, int threads) {
     if (index < 0) throw std::out_of_range("video frame index " + std::to_string(index) + " is negative");
     if (threads < 0) throw std::invalid_argument("decoder threads " + std::to_string(threads) + " is negative");
-    Decoder decoder(path, threads);
-    const AVFrame* frame = nullptr;
-    for (int i = 0; i <= index; ++i) {
-        frame = decoder.next();
-        if (!frame)
-            throw std::out_of_range(path.string() + " has " + std::to_string(i) + " frames, no frame " +
-                                    std::to_string(index));
-    }
-    Image image(frame->width, frame->height);
-    // FULL_CHR_H_INT: interpolate the chroma for every output pixel.
-    ScalerPtr scaler(sws_getContext(frame->width, frame->height, static_cast<AVPixelFormat>(frame->format),
-                                    frame->width, frame->height, AV_PIX_FMT_RGBA,
-                                    SWS_BICUBIC | SWS_FULL_CHR_H_INT | SWS_ACCURATE_RND | SWS_BITEXACT,
-                                    nullptr, nullptr, nullptr));
-    if (!scaler) decoder.check(AVERROR(EINVAL), "creating the colour converter");
-    // Undo the matrix the file says it used (unspecified falls back to BT.601).
-    const int* matrix = sws_getCoefficients(frame->colorspace);
-    const int full_range = frame->color_range == AVCOL_RANGE_JPEG;
-    if (sws_setColorspaceDetails(scaler.get(), matrix, full_range, matrix, 1, 0, 1 << 16, 1 << 16) < 0)
-        decoder.check(AVERROR(EINVAL), "configuring the colour converter");
-    std::uint8_t* const planes[] = {image.rgba.data()};
-    const int strides[] = {image.width * 4};
-    sws_scale(scaler.get(), frame->data, frame->linesize, 0, frame->height, planes, strides);
-    return image;
+    return media::api().decode_frame(path, index, threads);
 }
 
 }  // namespace render

@@ -59,7 +59,7 @@ public:
     int frames() const { return frames_; }                         // frames added so far
 
 private:
-    struct Encoder;  // the FFmpeg objects, kept out of this header
+    struct Encoder;  // the file and the media module's encoder, kept out of this header
     std::unique_ptr<Encoder> encoder_;
     std::filesystem::path path_;
     int width_ = 0;

@@ -455,6 +455,24 @@ TEST_CASE("only a command that draws opens the GL library", "[cli][gl]") {
     CHECK(opens_gl("render tc7-7 --format png --out " + out.string()));        // and one that draws does
 }
 
+TEST_CASE("only a command that encodes or decodes a film opens FFmpeg's codec libraries", "[cli][media]") {
+    auto opens_ffmpeg = [](const std::string& args) {
+        const Run run = testkit::figgen_env("LD_DEBUG=files", args);
+        const bool module = run.output.find("file=" FIGGEN_BUILD_DIR "/lib/libfiggen_media.so") != std::string::npos;
+        const bool codecs = run.output.find("file=libavcodec.so") != std::string::npos;
+        CHECK(module == codecs);  // the codecs come only with the module
+        return codecs;
+    };
+    const fs::path out = fresh_dir("media-loading");
+    CHECK_FALSE(opens_ffmpeg("--version"));
+    CHECK_FALSE(opens_ffmpeg("list"));
+    CHECK_FALSE(opens_ffmpeg("render tc7-1 --fps 0 --out " + out.string()));  // refused
+    CHECK_FALSE(opens_ffmpeg("render tc7-1 --format png --out " + out.string()));
+    CHECK_FALSE(opens_ffmpeg("render tc7-1 --format frames --scale 0.3 --out " + out.string()));
+    CHECK(opens_ffmpeg("render tc7-1 --scale 0.3 --out " + out.string()));  // the MP4
+    CHECK(render::probe_video(out / "tc7-1.mp4").frames > 1);
+}
+
 TEST_CASE("cmake --install puts figgen and the descriptions in a prefix, and the installed figgen reads them", "[cli][install]") {
     const fs::path prefix = fresh_dir("install");
     const Run install = testkit::run_command(std::string(FIGGEN_CMAKE) + " --install " + FIGGEN_BUILD_DIR +
@@ -473,8 +491,13 @@ TEST_CASE("cmake --install puts figgen and the descriptions in a prefix, and the
     CHECK(list.status == 0);
     CHECK(list.lines() == 27);
     CHECK_THAT(list.output, !Catch::Contains("tc7-9 "));
-    const Run render = testkit::run_command("env -u FIGGEN_FIGURES_DIR " + installed.string() +
-                                            " render tc7-1 --format png --scale 0.3 --out " + (prefix / "out").string());
+    // With its film: the installed figgen opens the installed video module, not the build tree's.
+    const Run render = testkit::run_command("env -u FIGGEN_FIGURES_DIR LD_DEBUG=files " + installed.string() +
+                                            " render tc7-1 --scale 0.3 --out " + (prefix / "out").string());
     CHECK(render.status == 0);
     CHECK(fs::exists(prefix / "out" / "tc7-1.png"));
+    CHECK(fs::exists(prefix / "out" / "tc7-1.mp4"));
+    CHECK_THAT(render.output, Catch::Contains("file=" + installed.parent_path().string() + "/../lib") &&
+                                  Catch::Contains("/figgen/libfiggen_media.so") &&
+                                  !Catch::Contains(FIGGEN_BUILD_DIR "/lib/libfiggen_media.so"));
 }

@@ -1,0 +1,75 @@
+#include "render/media.hpp"
+
+#include <dlfcn.h>
+
+#include <future>
+#include <mutex>
+#include <stdexcept>
+#include <system_error>
+
+namespace render::media {
+namespace {
+
+// Where the module is: installed beside the program (FIGGEN_MEDIA_RELATIVE,
+// from the folder of the running executable, as `cmake --install` puts
+// it), else where this build made it (FIGGEN_MEDIA_BUILT). Never a path from
+// the environment or a description.
+std::filesystem::path module_path() {
+    std::error_code error;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (!error) {
+        const std::filesystem::path installed = exe.parent_path() / FIGGEN_MEDIA_RELATIVE;
+        if (std::filesystem::is_regular_file(installed, error)) return installed;
+    }
+    return FIGGEN_MEDIA_BUILT;
+}
+
+struct Opened {
+    const Api* api = nullptr;
+    std::string error;  // why not, when api is null
+};
+
+Opened open_module() {
+    const std::filesystem::path path = module_path();
+    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle)
+        return {nullptr, "cannot load figgen's video module (" + std::string(::dlerror()) +
+                             "): build figgen again (make) or install it again; its FFmpeg libraries are Debian's "
+                             "libavcodec59, libavformat59 and libswscale6"};
+    auto* entry = reinterpret_cast<const Api* (*)()>(::dlsym(handle, "figgen_media_api"));
+    if (!entry) return {nullptr, path.string() + " is not figgen's video module: build or install figgen again"};
+    const Api* api = entry();
+    if (!api || api->version != api_version)
+        return {nullptr, path.string() + " is from another build of figgen: build or install figgen again"};
+    return {api, {}};
+}
+
+struct Loader {
+    std::once_flag started;
+    std::shared_future<Opened> opened;
+};
+
+Loader& loader() {
+    static Loader l;  // its future waits for a preload still running at exit
+    return l;
+}
+
+void start() {
+    Loader& l = loader();
+    std::call_once(l.started, [&] { l.opened = std::async(std::launch::async, open_module).share(); });
+}
+
+}  // namespace
+
+const Api& api() {
+    start();
+    const Opened& opened = loader().opened.get();
+    if (!opened.api) throw std::runtime_error(opened.error);
+    return *opened.api;
+}
+
+void preload() {
+    start();
+}
+
+}  // namespace render::media

@@ -1,0 +1,57 @@
+#pragma once
+// FFmpeg's side of figgen (encoding and decoding films, scaling
+// thumbnails), built as a module of its own (render/media/ffmpeg.cpp,
+// libfiggen_media.so) that the program opens when it first needs it: loading
+// libavcodec, libavformat and libswscale with their dozens of codec
+// libraries takes about 55 ms, which a command that writes no film, and
+// every --version, list or refused input, does not pay. video.cpp and
+// thumbnail.cpp check their arguments and call through this interface; the
+// module never touches a path it is not given, and files it writes are the
+// descriptors the program opened (AtomicFile).
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "render/image.hpp"
+#include "render/video.hpp"
+
+namespace render::media {
+
+// Bumped whenever Api or Encoder change: a module of another build is refused.
+constexpr int api_version = 1;
+
+// One film being encoded into a file descriptor.
+class Encoder {
+public:
+    virtual ~Encoder() = default;
+    virtual void add(const Image& frame) = 0;  // width x height RGBA, already checked
+    virtual void finish() = 0;                 // flushes, writes the trailer and closes its I/O
+    virtual std::string codec_name() const = 0;
+};
+
+struct Api {
+    int version;
+    // An MP4 writer on `fd` (open for reading and writing; the muxer reads
+    // back for faststart); `shown` is the path errors name. Throws
+    // std::runtime_error naming `shown` when FFmpeg fails, and
+    // std::invalid_argument for an unknown codec.
+    std::unique_ptr<Encoder> (*open_encoder)(int fd, const std::filesystem::path& shown, int width, int height,
+                                             const VideoOptions& options);
+    VideoInfo (*probe_video)(const std::filesystem::path& path);
+    Image (*decode_frame)(const std::filesystem::path& path, int index, int threads);
+    // `image` scaled to width x height by area averaging (both at least 1).
+    Image (*scale)(const Image& image, int width, int height);
+};
+
+// The module's functions, opening it on the first call (std::runtime_error
+// with one line saying what is missing when it cannot).
+const Api& api();
+
+// Starts opening the module on a thread of its own (see render::preload_gl).
+void preload();
+
+}  // namespace render::media
+
+// The module's one entry point.
+extern "C" const render::media::Api* figgen_media_api();
