@@ -2,9 +2,9 @@
 
 #include <dlfcn.h>
 
-#include <future>
-#include <mutex>
 #include <stdexcept>
+
+#include "render/background.hpp"
 
 // OSMesa's header for its types, constants and prototypes; glad's gl.h,
 // included first, stands in for the <GL/gl.h> it includes (and its GLAPI
@@ -39,24 +39,9 @@ Library open_library() {
     return library;
 }
 
-struct Loader {
-    std::once_flag started;
-    std::shared_future<Library> library;
-};
-
-Loader& loader() {
-    static Loader l;  // its future waits for a preload still running at exit
+Background<Library>& loader() {
+    static Background<Library> l(open_library);
     return l;
-}
-
-void start_loading() {
-    Loader& l = loader();
-    std::call_once(l.started, [&] { l.library = std::async(std::launch::async, open_library).share(); });
-}
-
-const Library& library() {
-    start_loading();
-    return loader().library.get();
 }
 
 template <typename Function>
@@ -78,7 +63,7 @@ struct OsMesa {
 
 const OsMesa& osmesa() {
     static const OsMesa functions = [] {
-        const Library& lib = library();
+        const Library& lib = loader().get();
         if (!lib.handle)
             throw std::runtime_error("cannot load " + std::string(osmesa_library) + " (" + lib.error +
                                      "): install Debian's " + osmesa_package);
@@ -98,7 +83,7 @@ GLADapiproc gl_function(const char* name) {
 }  // namespace
 
 void preload_gl() {
-    start_loading();
+    loader().start();
 }
 
 GlContext& GlContext::get() {

@@ -2,10 +2,10 @@
 
 #include <dlfcn.h>
 
-#include <future>
-#include <mutex>
 #include <stdexcept>
 #include <system_error>
+
+#include "render/background.hpp"
 
 namespace render::media {
 namespace {
@@ -44,32 +44,21 @@ Opened open_module() {
     return {api, {}};
 }
 
-struct Loader {
-    std::once_flag started;
-    std::shared_future<Opened> opened;
-};
-
-Loader& loader() {
-    static Loader l;  // its future waits for a preload still running at exit
+Background<Opened>& loader() {
+    static Background<Opened> l(open_module);
     return l;
-}
-
-void start() {
-    Loader& l = loader();
-    std::call_once(l.started, [&] { l.opened = std::async(std::launch::async, open_module).share(); });
 }
 
 }  // namespace
 
 const Api& api() {
-    start();
-    const Opened& opened = loader().opened.get();
+    const Opened& opened = loader().get();
     if (!opened.api) throw std::runtime_error(opened.error);
     return *opened.api;
 }
 
 void preload() {
-    start();
+    loader().start();
 }
 
 }  // namespace render::media
