@@ -49,7 +49,9 @@ constexpr double program_bytes = 120.0 * 1024 * 1024 + render::max_spare_canvas_
 // field panels on whole pixels has one sample (7 bytes a pixel measured at
 // 6000^2), so counting 44 as before made its estimate 4.3 times its peak;
 // a film's smooth pair adds its resampled values and their texture (16
-// bytes a panel pixel, render/field.cpp), 23 in all, still inside 28.
+// bytes a panel pixel, render/field.cpp), 23 in all, still inside 28, and a
+// pass along the field's rows (8 bytes a field row per panel column): a
+// 4000 x 4000 film of tc7-2 peaked at 754 MiB against an estimate of 2.0 GiB.
 // 3-D scenes add their depth buffers themselves (lsystem_3d).
 constexpr double canvas_bytes_per_pixel = 28.0;
 // The film's encoder (x264, preset medium: 40 frames of look-ahead, 3
