@@ -37,10 +37,13 @@ Opened open_module() {
                              "): build figgen again (make) or install it again; its FFmpeg libraries are Debian's "
                              "libavcodec59, libavformat59 and libswscale6"};
     auto* entry = reinterpret_cast<const Api* (*)()>(::dlsym(handle, "figgen_media_api"));
-    if (!entry) return {nullptr, path.string() + " is not figgen's video module: build or install figgen again"};
-    const Api* api = entry();
-    if (!api || api->version != api_version)
-        return {nullptr, path.string() + " is from another build of figgen: build or install figgen again"};
+    const Api* api = entry ? entry() : nullptr;
+    if (!api || api->version != api_version) {
+        ::dlclose(handle);  // not ours to keep loaded
+        return {nullptr, path.string() +
+                             (entry ? " is from another build of figgen" : " is not figgen's video module") +
+                             ": build or install figgen again"};
+    }
     return {api, {}};
 }
 

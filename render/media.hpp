@@ -39,6 +39,7 @@ struct Api {
     std::unique_ptr<Encoder> (*open_encoder)(int fd, const std::filesystem::path& shown, int width, int height,
                                              const VideoOptions& options);
     VideoInfo (*probe_video)(const std::filesystem::path& path);
+    // Frame `index` (>= 0) decoded with `threads` (>= 0) threads: video.cpp checks both.
     Image (*decode_frame)(const std::filesystem::path& path, int index, int threads);
     // `image` scaled to width x height by area averaging (both at least 1).
     Image (*scale)(const Image& image, int width, int height);

@@ -403,8 +403,6 @@ VideoInfo probe_video(const std::filesystem::path& path) {
 }
 
 Image decode_frame(const std::filesystem::path& path, int index, int threads) {
-    if (index < 0) throw std::out_of_range("video frame index " + std::to_string(index) + " is negative");
-    if (threads < 0) throw std::invalid_argument("decoder threads " + std::to_string(threads) + " is negative");
     Decoder decoder(path, threads);
     const AVFrame* frame = nullptr;
     for (int i = 0; i <= index; ++i) {
