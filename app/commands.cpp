@@ -7,19 +7,30 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <thread>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
+#include "app/cluster.hpp"
 #include "app/describe.hpp"
 #include "app/gallery.hpp"
 #include "app/outputs.hpp"
 #include "app/progress.hpp"
 #include "app/render_figure.hpp"
+#include "app/work.hpp"
 #include "description/catalog.hpp"
 #include "description/description.hpp"
+#include "description/plain_name.hpp"
 #include "render/gl_context.hpp"
 #include "render/media.hpp"
 #include "sim/check.hpp"
 
 namespace app {
+
+void say(const char* kind, const std::string& message) {
+    std::fprintf(stderr, "figgen: %s: %s\n", kind, description::printable(message).c_str());
+}
 
 std::uint64_t parse_size(const std::string& option, const std::string& text) {
     const UsageError refused(option + " " + text +
@@ -100,8 +111,27 @@ int ThumbnailsCommand::run() {
     return 0;
 }
 
-RenderCommand::RenderCommand(CLI::App& parent) {
-    app = parent.add_subcommand("render", "Render figures by id or description file");
+RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
+    if (merge) {
+        app = parent.add_subcommand("merge",
+                                    "Draw figures from the parts of `figgen render --shard` runs (same options as "
+                                    "render, and the same --set and --seed as the shards)");
+        app->add_option("--from", from, "Parts folders (ID.parts), or the --out folders of the shards that hold them")
+            ->required();
+    } else {
+        app = parent.add_subcommand("render", "Render figures by id or description file");
+        app->add_option("--shard", shard,
+                        "Compute only shard K of N of each figure's work items, into OUT/ID.parts, and draw "
+                        "nothing (job arrays; then figgen merge)");
+    }
+    app->add_option("--schedule", schedule,
+                    "Under mpirun: dynamic (the next item to whichever rank is free) or static (item i to rank i "
+                    "mod N); the results are the same")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"dynamic", "static"}));
+    app->add_option("--threads", threads,
+                    "Threads per process for work items, OpenMP and llvmpipe (1..1024; default: the cores, or "
+                    "under mpirun the cores per rank of the node)");
     app->add_option("figures", targets, "Figure ids (see `figgen list`) or .toml description files")->required();
     app->add_option("--out", out_dir, "Output folder, created if missing")->capture_default_str();
     app->add_option("--set", overrides,
@@ -146,7 +176,34 @@ OutputOptions output_options(const RenderCommand& c) {
     options.frames = c.frames || c.format == "frames";
     options.max_memory = parse_size("--max-memory", c.max_memory);
     options.max_disk = parse_size("--max-disk", c.max_disk);
+    if (c.threads && !(*c.threads >= 1 && *c.threads <= 1024))
+        throw UsageError("--threads " + std::to_string(*c.threads) + " is not allowed: use 1..1024");
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    options.work.threads = c.threads.value_or(std::max(1, cores / launcher_local_size()));
+    options.work.schedule = c.schedule == "static" ? Schedule::fixed : Schedule::dynamic;
+    for (const std::string& from : c.from) options.work.merge_from.emplace_back(from);
+    if (!c.shard.empty()) {
+        int k = 0, n = 0;
+        char rest = 0;
+        if (std::sscanf(c.shard.c_str(), "%d/%d%c", &k, &n, &rest) != 2 || n < 1 || n > 1000000 || k < 1 || k > n)
+            throw UsageError("--shard " + c.shard + " is not allowed: use K/N with 1 <= K <= N <= 1000000, e.g. 2/8");
+        options.work.shard = k;
+        options.work.shards = n;
+        if (launched_by_mpi())
+            throw UsageError("--shard " + c.shard + " is not allowed under mpirun: use one or the other");
+    }
+    if (!c.from.empty() && launched_by_mpi())
+        throw UsageError("figgen merge is not allowed under mpirun: run it as one process");
     return options;
+}
+
+// --threads (or the default) for OpenMP and, unless the user set
+// LP_NUM_THREADS, llvmpipe; before any thread or GL library starts.
+void apply_threads(const RenderCommand& c, int threads) {
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#endif
+    if (c.threads || launched_by_mpi()) ::setenv("LP_NUM_THREADS", std::to_string(threads).c_str(), 0);
 }
 
 // The --set assignments, with --size as one more.
@@ -183,10 +240,14 @@ struct CheckedFigure {
     std::unique_ptr<scenes::Scene> scene;
 };
 
+void render_all(const std::vector<CheckedFigure>& figures, const OutputOptions& options);
+int run_shards(const std::vector<CheckedFigure>& figures, const OutputOptions& options);
+std::string distributable_ids();
+
 }  // namespace
 
 int RenderCommand::run() {
-    const OutputOptions options = output_options(*this);
+    OutputOptions options = output_options(*this);
     const std::vector<std::string> assignments = overrides_of(*this);
     // Every figure's phase 1 first, so a mistake in the last one is reported
     // before minutes of rendering the first.
@@ -202,6 +263,41 @@ int RenderCommand::run() {
     if (fps && std::none_of(figures.begin(), figures.end(),
                             [](const CheckedFigure& f) { return f.description->animation.has_value(); }))
         throw UsageError("--fps: none of the figures named has an animation");
+    if (options.work.shard || options.work.merging())
+        for (const CheckedFigure& f : figures)
+            if (!f.scene->work())
+                throw UsageError(std::string(options.work.shard ? "--shard" : "figgen merge") + ": " +
+                                 f.description->id + " has no work items to share; allowed: " + distributable_ids());
+    apply_threads(*this, options.work.threads);
+    if (options.work.shard) return run_shards(figures, options);
+    // Under an MPI launcher, join the job now that every input is accepted:
+    // rank 0 renders as a lone process would, the others run work items.
+    std::unique_ptr<Cluster> cluster;
+    if (launched_by_mpi()) {
+        cluster = Cluster::join();
+        options.work.cluster = cluster.get();
+        if (cluster->rank() != 0) {
+            for (const CheckedFigure& f : figures)
+                if (const scenes::WorkItems* items = f.scene->work()) serve_work(*f.description, *items, options.work);
+            return 0;
+        }
+        try {
+            render_all(figures, options);
+        } catch (const std::exception& e) {
+            // The other ranks may wait for this one: end them all, the error said.
+            const bool usage = dynamic_cast<const UsageError*>(&e) != nullptr;
+            say(dynamic_cast<const InternalError*>(&e) ? "internal error" : "error", e.what());
+            cluster->abort(usage ? exit_usage_error : exit_runtime_error);
+        }
+        return 0;
+    }
+    render_all(figures, options);
+    return 0;
+}
+
+namespace {
+
+void render_all(const std::vector<CheckedFigure>& figures, const OutputOptions& options) {
     const render::Folder folder = open_output_folder(options);
     // Every input is accepted and drawing will follow: open the GL library
     // while the first model runs.
@@ -213,7 +309,31 @@ int RenderCommand::run() {
         render::media::preload();
     ProgressBar progress = ProgressBar::for_stderr();
     for (const CheckedFigure& f : figures) render_reporting(*f.description, *f.scene, folder, options, progress);
+}
+
+int run_shards(const std::vector<CheckedFigure>& figures, const OutputOptions& options) {
+    const render::Folder folder = open_output_folder(options);
+    ProgressBar progress = ProgressBar::for_stderr();
+    for (const CheckedFigure& f : figures) {
+        const int computed = run_shard(*f.description, *f.scene->work(), folder, options.work, progress);
+        std::printf("%s: shard %d/%d: %d items computed into %s\n", f.description->id.c_str(), options.work.shard,
+                    options.work.shards, computed,
+                    description::printable((folder / parts_name(f.description->id)).string()).c_str());
+    }
     return 0;
 }
+
+// The catalog's figures that have work items, for a message.
+std::string distributable_ids() {
+    std::string ids;
+    for (const auto& file : description::catalog_files()) {
+        const Description d = description::load_description(file);
+        const auto scene = scenes::read_scene(d, {});
+        if (scene->work()) ids += (ids.empty() ? "" : ", ") + d.id;
+    }
+    return ids;
+}
+
+}  // namespace
 
 }  // namespace app

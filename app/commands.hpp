@@ -25,6 +25,10 @@ struct InternalError : std::runtime_error {
 // a size from 1 byte to 1 PiB.
 std::uint64_t parse_size(const std::string& option, const std::string& text);
 
+// One line on stderr, "figgen: KIND: MESSAGE", whatever names and values
+// the message quotes.
+void say(const char* kind, const std::string& message);
+
 // A subcommand: registered on the command line, run when given.
 class Command {
 public:
@@ -58,10 +62,14 @@ struct ThumbnailsCommand : Command {
     int width = 240, height = 180;
 };
 
+// figgen render, and figgen merge (the same options and --from): a merge
+// computes nothing, it draws from the parts that shards wrote.
 struct RenderCommand : Command {
-    explicit RenderCommand(CLI::App& parent);
+    explicit RenderCommand(CLI::App& parent, bool merge = false);
     int run() override;
-    std::vector<std::string> targets, overrides;
+    std::vector<std::string> targets, overrides, from;
+    std::string shard, schedule = "dynamic";
+    std::optional<int> threads;
     std::string out_dir = "out", size, cmap, format;
     std::optional<std::uint64_t> seed;
     std::optional<int> fps;

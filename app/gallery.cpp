@@ -181,14 +181,9 @@ bool is_file_in(const render::Folder& folder, const std::string& name) {
 // The metadata folder/name, read without following a symlink; null when it
 // is not there or not JSON.
 nlohmann::json read_metadata(const render::Folder& folder, const std::string& name) {
-    const int fd = ::openat(folder.fd(), name.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
-    if (fd < 0) return nullptr;
-    std::string text;
-    char chunk[1 << 16];
-    for (ssize_t n; (n = ::read(fd, chunk, sizeof chunk)) > 0 && text.size() < (16u << 20);)
-        text.append(chunk, static_cast<std::size_t>(n));
-    ::close(fd);
-    return nlohmann::json::parse(text, nullptr, false);  // discarded (not an exception) when malformed
+    const std::optional<std::string> text = render::read_file_at(folder, name, 16u << 20);
+    if (!text) return nullptr;
+    return nlohmann::json::parse(*text, nullptr, false);  // discarded (not an exception) when malformed
 }
 
 }  // namespace

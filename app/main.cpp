@@ -8,6 +8,7 @@
 #include <string>
 #include <memory>
 
+#include "app/cluster.hpp"
 #include "app/commands.hpp"
 #include "app/version.hpp"
 #include "description/plain_name.hpp"
@@ -21,11 +22,6 @@ bool is_unknown_command(int argc, char** argv, const std::vector<app::Command*>&
     return argc > 1 && argv[1][0] != '-' && std::none_of(commands.begin(), commands.end(), [&](const app::Command* c) {
                return c->app->get_name() == argv[1];
            });
-}
-
-// One line on stderr, whatever names and values the message quotes.
-void say(const char* kind, const std::string& message) {
-    std::fprintf(stderr, "figgen: %s: %s\n", kind, description::printable(message).c_str());
 }
 
 // Instead of abort() (SIGABRT) when an exception escapes a thread or a
@@ -43,7 +39,7 @@ void say(const char* kind, const std::string& message) {
         } catch (...) {
         }
     }
-    say("internal error", what);
+    app::say("internal error", what);
     render::remove_temporaries_now();
     std::_Exit(app::exit_runtime_error);
 }
@@ -63,18 +59,19 @@ int main(int argc, char** argv) {
     app::GalleryCommand gallery(cli);
     app::ThumbnailsCommand thumbnails(cli);
     app::RenderCommand render(cli);
-    const std::vector<app::Command*> commands = {&list, &describe, &gallery, &thumbnails, &render};
+    app::RenderCommand merge(cli, true);
+    const std::vector<app::Command*> commands = {&list, &describe, &gallery, &thumbnails, &render, &merge};
     if (is_unknown_command(argc, argv, commands)) {
         std::string allowed;
         for (const app::Command* c : commands) allowed += (allowed.empty() ? "" : ", ") + c->app->get_name();
-        say("error", std::string("unknown command '") + argv[1] + "'; allowed: " + allowed + "; see figgen --help");
+        app::say("error", std::string("unknown command '") + argv[1] + "'; allowed: " + allowed + "; see figgen --help");
         return app::exit_usage_error;
     }
     try {
         cli.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return cli.exit(e);  // --help, --version
-        say("error", std::string(e.what()) + "; see figgen --help");
+        app::say("error", std::string(e.what()) + "; see figgen --help");
         return app::exit_usage_error;
     }
     try {
@@ -82,16 +79,17 @@ int main(int argc, char** argv) {
             if (c->app->parsed()) return c->run();
         return app::exit_usage_error;
     } catch (const description::UsageError& e) {
-        say("error", e.what());
+        // Under mpirun every rank reads the same inputs: rank 0 says it for all.
+        if (app::launcher_rank() == 0) app::say("error", e.what());
         return app::exit_usage_error;
     } catch (const app::InternalError& e) {
-        say("internal error", e.what());
+        app::say("internal error", e.what());
         return app::exit_runtime_error;
     } catch (const std::exception& e) {
-        say("error", e.what());
+        app::say("error", e.what());
         return app::exit_runtime_error;
     } catch (...) {
-        say("internal error", "an exception of no known type");
+        app::say("internal error", "an exception of no known type");
         return app::exit_runtime_error;
     }
 }

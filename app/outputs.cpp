@@ -115,9 +115,11 @@ MemoryEstimate require_memory(const Description& d, const OutputOptions& options
     return estimate;
 }
 
-void require_disk(const Description& d, const OutputOptions& options) {
+void require_disk(const Description& d, const OutputOptions& options, double parts_bytes) {
     double bytes = 4.0 * figure_width(d, options) * figure_height(d, options);
     std::string largest = "the PNG";
+    if (parts_bytes > bytes) largest = "the parts of its work items";
+    bytes += parts_bytes;
     if (d.animation) {
         const double frames = d.animation->frame_count() * frame_pixels(d, options);
         if (options.video) bytes += 0.15 * frames, largest = "the MP4";

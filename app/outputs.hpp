@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "app/frame_pipe.hpp"
+#include "app/work.hpp"
 #include "description/description.hpp"
 #include "render/atomic_file.hpp"
 #include "render/image.hpp"
@@ -34,6 +35,7 @@ struct OutputOptions {
     // whose estimate exceeds them is refused before anything is allocated.
     std::uint64_t max_memory = 4ull << 30;
     std::uint64_t max_disk = 4ull << 30;
+    WorkOptions work;  // how work items run: threads, MPI, shards, merge
 
     bool animates() const { return video || frames; }
     scenes::SceneOptions scene_options() const { return {scale, animates()}; }
@@ -57,8 +59,9 @@ MemoryEstimate require_memory(const Description& d, const OutputOptions& options
                               const std::vector<scenes::MemoryNeed>& needs);
 // Refuses a figure whose outputs would take more than options.max_disk: the
 // PNG (at most 4 bytes a pixel), the PNG sequence likewise, the MP4 at 0.15
-// bytes a pixel and frame (our films measure 0.002..0.057).
-void require_disk(const Description& d, const OutputOptions& options);
+// bytes a pixel and frame (our films measure 0.002..0.057), and the parts
+// of its work items kept while it runs (`parts_bytes`, the scene's bound).
+void require_disk(const Description& d, const OutputOptions& options, double parts_bytes = 0);
 // "1.5 GiB", "12 MiB", "640 KiB", "100 bytes".
 std::string format_bytes(double bytes);
 
@@ -101,6 +104,9 @@ public:
     std::unique_ptr<scenes::Film> film(int width, int height) override;
     void figure(const render::Image& image, nlohmann::json metadata) override;
     scenes::Progress& progress() override { return progress_; }
+    std::vector<nlohmann::json> results(const scenes::WorkItems& items) override {
+        return run_work(description_, items, folder_, options_.work, progress_);
+    }
 
 private:
     const Description& description_;

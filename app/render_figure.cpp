@@ -15,7 +15,8 @@ namespace app {
 
 std::unique_ptr<scenes::Scene> check_figure(const Description& d, const OutputOptions& options) {
     auto scene = description::at_source(d, [&] { return scenes::read_scene(d, options.scene_options()); });
-    require_disk(d, options);
+    const scenes::WorkItems* items = scene->work();
+    require_disk(d, options, items && !options.work.merging() ? items->item_bytes() * items->item_count() : 0.0);
     require_memory(d, options, scene->memory());
     return scene;
 }
@@ -43,6 +44,9 @@ void render_figure(const Description& d, const scenes::Scene& scene, const rende
     FigureFiles files(d, options, folder, progress, estimate_memory(d, options, scene.memory()));
     scene.render(files);
     outputs.commit();
+    // The figure is in place: the parts of its items are no longer needed
+    // (a merge's came from elsewhere and are left as they are).
+    if (scene.work() && !options.work.merging()) remove_parts(folder, d.id);
 }
 
 void render_figure(const Description& d, const OutputOptions& options, scenes::Progress& progress) {

@@ -330,8 +330,26 @@ int remove_stale_temporaries(const Folder& folder, const std::vector<std::string
     return removed;
 }
 
-void write_file_atomically(const Folder& folder, const std::string& name, const std::string& bytes) {
-    AtomicFile file(folder, name);
+std::optional<std::string> read_file_at(const Folder& folder, const std::string& name, std::size_t max_bytes) {
+    const int fd = ::openat(folder.fd(), name.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) return std::nullopt;
+    struct stat st {};
+    std::optional<std::string> text;
+    if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+        text.emplace();
+        char chunk[1 << 16];
+        ssize_t n = 0;
+        while ((n = ::read(fd, chunk, sizeof chunk)) > 0 && text->size() <= max_bytes)
+            text->append(chunk, static_cast<std::size_t>(n));
+        if (n < 0 || text->size() > max_bytes) text.reset();
+    }
+    ::close(fd);
+    return text;
+}
+
+void write_file_atomically(const Folder& folder, const std::string& name, const std::string& bytes,
+                           AtomicFile::Commit when) {
+    AtomicFile file(folder, name, when);
     for (std::size_t written = 0; written < bytes.size();) {
         const ssize_t n = ::write(file.fd(), bytes.data() + written, bytes.size() - written);
         if (n < 0 && errno == EINTR) continue;

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -148,9 +149,14 @@ int remove_stale_temporaries(const Folder& folder, const std::vector<std::string
 // in it, never following a symlink. Returns false if nothing was there.
 bool remove_at(const Folder& folder, const std::string& name);
 
+// The regular file folder/name, read without following a symlink; none when
+// it is not there, cannot be read or holds more than `max_bytes`.
+std::optional<std::string> read_file_at(const Folder& folder, const std::string& name, std::size_t max_bytes);
+
 // Writes bytes to folder/name atomically; throws std::runtime_error naming
 // the file and the system's reason (e.g. "No space left on device").
-void write_file_atomically(const Folder& folder, const std::string& name, const std::string& bytes);
+void write_file_atomically(const Folder& folder, const std::string& name, const std::string& bytes,
+                           AtomicFile::Commit when = AtomicFile::Commit::with_group);
 void write_file_atomically(const std::filesystem::path& path, const std::string& bytes);
 
 // For a command's main(), before it starts any thread: SIGINT, SIGTERM and

@@ -7,6 +7,8 @@
 // float B (no double copies of 576 fields: on this VM each fresh page costs
 // a fault) and summarises them on all threads.
 #include <algorithm>
+#include <mutex>
+#include <optional>
 #include <cmath>
 #include <stdexcept>
 #include <thread>
@@ -18,6 +20,7 @@
 #include "scenes/model_check.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/work_codec.hpp"
 #include "sim/gray_scott_atlas.hpp"
 
 namespace scenes {
@@ -64,7 +67,16 @@ sim::GrayScottAtlasParams read_params(Settings& s) {
     return atlas;
 }
 
-class GrayScottAtlasScene : public SceneBase {
+// The tile a stop's name gives back (a part's "stop"); `ran` for an unknown one is refused.
+sim::TileStop tile_stop(const std::string& name) {
+    for (sim::TileStop stop : {sim::TileStop::ran, sim::TileStop::b_gone, sim::TileStop::fixed_point})
+        if (name == sim::to_string(stop)) return stop;
+    throw std::runtime_error("a tile's result has an unknown stop '" + name + "'");
+}
+
+// Work items: one a tile, row-major from the top row, then the few tiles
+// the float error is measured on, run again in double.
+class GrayScottAtlasScene : public SceneBase, public WorkItems {
 public:
     GrayScottAtlasScene(const Description& d, const SceneOptions& options)
         : SceneBase(d, options, param_keys, with_plot_style_keys(field_spec_keys())),
@@ -83,14 +95,38 @@ public:
         return {grid_need("grids of doubles", n, n, 8, 2.0),
                 grid_need("tiles' B, kept as floats and drawn", n, n, 4 + field_layer_bytes_per_cell, tiles),
                 grid_need("kernel grids of floats and a B of doubles", n + 2, n + 2, 4 * 4 + 8,
-                          std::max(1u, std::thread::hardware_concurrency()))};
+                          std::max(1u, std::thread::hardware_concurrency())),
+                grid_need("float error runs in double, each its kernel's grids and its B", n + 2, n + 2, 8 * 5,
+                          double(sim::float_error_tiles(atlas_).size()))};
+    }
+
+    const WorkItems* work() const override { return this; }
+    int item_count() const override { return tile_count() + int(sim::float_error_tiles(atlas_).size()); }
+    std::string item_name(int item) const override {
+        if (item < tile_count()) return "tile " + std::to_string(item);
+        return "tile " + std::to_string(sim::float_error_tiles(atlas_)[item - tile_count()]) + " in double";
+    }
+    double item_bytes() const override { return 8.0 * atlas_.base.n * atlas_.base.n + 512; }
+
+    nlohmann::json run_item(int item) const override {
+        const sim::GrayScott& begin = start();
+        if (item < tile_count()) {
+            const sim::GrayScottAtlasTile tile = sim::run_gray_scott_atlas_tile(atlas_, begin, item, "the run");
+            return {{"f", tile.f},
+                    {"k", tile.k},
+                    {"stopped_at", tile.stopped_at},
+                    {"stop", sim::to_string(tile.stop)},
+                    {"b", binary_of<float>(tile.b.cells())}};
+        }
+        const int tile = sim::float_error_tiles(atlas_).at(static_cast<std::size_t>(item - tile_count()));
+        return {{"tile", tile}, {"b", binary_of<double>(sim::gray_scott_atlas_double_b(atlas_, begin, tile).cells())}};
     }
 
     void render(Output& out) const override {
         Progress& progress = out.progress();
-        progress.start(d_.id, static_cast<long long>(atlas_.columns) * atlas_.rows);
-        const std::vector<sim::GrayScottAtlasTile> tiles =
-            sim::run_gray_scott_atlas(atlas_, d_.seed, d_.id, [&] { progress.advance(); });
+        progress.start(d_.id, item_count());
+        std::vector<nlohmann::json> results = out.results(*this);
+        const std::vector<sim::GrayScottAtlasTile> tiles = decode_tiles(results);
         const std::vector<TileSummary> summaries = summarise(tiles);
         nlohmann::json tile_meta = nlohmann::json::array();
         int stopped = 0;
@@ -112,20 +148,50 @@ public:
         out.figure(draw_map(tiles, summaries), {{"params", params_.used()},
                                                 {"style", style_.used()},
                                                 {"early_stop", early_stop},
-                                                {"float_error", float_error(tiles)},
+                                                {"float_error", float_error(tiles, results)},
                                                 {"tiles", tile_meta}});
         progress.finish();
     }
 
 private:
+    int tile_count() const { return atlas_.columns * atlas_.rows; }
+
+    // The start every tile runs from, made once, by whichever thread first needs it.
+    const sim::GrayScott& start() const {
+        std::call_once(start_made_, [&] { start_.emplace(sim::gray_scott_atlas_start(atlas_, d_.seed)); });
+        return *start_;
+    }
+
+    // The tiles from their items' results, each result's B released as it is read.
+    std::vector<sim::GrayScottAtlasTile> decode_tiles(std::vector<nlohmann::json>& results) const {
+        const int n = atlas_.base.n;
+        std::vector<sim::GrayScottAtlasTile> tiles(static_cast<std::size_t>(tile_count()));
+        for (int t = 0; t < tile_count(); ++t) {
+            nlohmann::json& r = results[static_cast<std::size_t>(t)];
+            sim::GrayScottAtlasTile& tile = tiles[static_cast<std::size_t>(t)];
+            tile.f = r.at("f").get<double>();
+            tile.k = r.at("k").get<double>();
+            tile.stopped_at = r.at("stopped_at").get<int>();
+            tile.stop = tile_stop(r.at("stop").get<std::string>());
+            const std::vector<float> b = values_of<float>(r.at("b"), static_cast<std::size_t>(n) * n);
+            tile.b = sim::Grid<float>(n, n);
+            std::copy(b.begin(), b.end(), tile.b.data());
+            r = nullptr;
+        }
+        return tiles;
+    }
+
     // The description asks for float32: what that costs, measured. A few
-    // tiles run again in double (sim::float_error), one a thread.
-    nlohmann::json float_error(const std::vector<sim::GrayScottAtlasTile>& tiles) const {
+    // tiles ran again in double (the last work items).
+    nlohmann::json float_error(const std::vector<sim::GrayScottAtlasTile>& tiles,
+                               const std::vector<nlohmann::json>& results) const {
         const std::vector<int> which = sim::float_error_tiles(atlas_);
-        std::vector<sim::FloatError> errors(which.size());
-#pragma omp parallel for schedule(dynamic)
-        for (std::size_t i = 0; i < which.size(); ++i)
-            errors[i] = sim::float_error(atlas_, d_.seed, tiles[which[i]], which[i]);
+        const std::size_t cells = static_cast<std::size_t>(atlas_.base.n) * atlas_.base.n;
+        std::vector<sim::FloatError> errors;
+        for (std::size_t i = 0; i < which.size(); ++i) {
+            const nlohmann::json& r = results[static_cast<std::size_t>(tile_count()) + i];
+            errors.push_back(sim::float_error(tiles[which[i]], values_of<double>(r.at("b"), cells), which[i]));
+        }
         nlohmann::json rows = nlohmann::json::array();
         double largest = 0;
         for (const sim::FloatError& e : errors) {
@@ -222,6 +288,8 @@ private:
     }
 
     const sim::GrayScottAtlasParams atlas_;
+    mutable std::once_flag start_made_;
+    mutable std::optional<sim::GrayScott> start_;
     const FieldSpec spec_;
     const render::PlotStyle plot_;
 };

@@ -6,8 +6,10 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "render/image.hpp"
+#include "scenes/work.hpp"
 
 namespace scenes {
 
@@ -38,6 +40,10 @@ public:
     // The figure and the scene's metadata (params, panels, statistics, hashes).
     virtual void figure(const render::Image& image, nlohmann::json metadata) = 0;
     virtual Progress& progress() = 0;
+    // Every work item's result, in item order: run here on threads, over
+    // MPI ranks, or read from the parts of earlier runs and shards
+    // (app/work.hpp decides). Advances progress() by one per item.
+    virtual std::vector<nlohmann::json> results(const WorkItems& items) = 0;
 };
 
 }  // namespace scenes

@@ -16,6 +16,7 @@ packages=(
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libfreetype-dev fonts-dejavu-core
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  libopenmpi-dev openmpi-bin  # MPI: its headers and mpirun; figgen opens libmpi only under mpirun
   catch2 libbenchmark-dev
   chromium chromium-driver python3-selenium  # the gallery's browser test
 )

@@ -6,6 +6,7 @@
 #include <exception>
 #include <optional>
 #include <stdexcept>
+#include <tuple>
 
 #include "sim/check.hpp"
 #include "sim/gray_scott_kernels.hpp"
@@ -80,24 +81,47 @@ GrayScottAtlasTile run_tile(std::optional<GrayScottKernel<float>>& reused, const
 
 }  // namespace
 
-FloatError float_error(const GrayScottAtlasParams& atlas, std::uint64_t seed, const GrayScottAtlasTile& tile,
-                       int index) {
+GrayScott gray_scott_atlas_start(const GrayScottAtlasParams& atlas, std::uint64_t seed) {
+    atlas.validate();
     Random rng(seed);
-    const GrayScott start(atlas.base, rng);
+    return GrayScott(atlas.base, rng);
+}
+
+std::pair<double, double> gray_scott_atlas_rates(const GrayScottAtlasParams& atlas, int index) {
+    const int rows = atlas.rows, columns = atlas.columns;
+    return {centre(atlas.f_low, atlas.f_high, rows - 1 - index / columns, rows),  // the top row has the largest f
+            centre(atlas.k_low, atlas.k_high, index % columns, columns)};
+}
+
+GrayScottAtlasTile run_gray_scott_atlas_tile(const GrayScottAtlasParams& atlas, const GrayScott& start, int index,
+                                             const std::string& name) {
+    if (index < 0 || index >= atlas.columns * atlas.rows)
+        throw std::invalid_argument("run_gray_scott_atlas_tile: no tile " + std::to_string(index));
+    // Each thread keeps its kernel's buffers from tile to tile.
+    thread_local std::optional<GrayScottKernel<float>> kernel;
     GrayScottParams params = atlas.base;
-    params.f = tile.f;
-    params.k = tile.k;
+    std::tie(params.f, params.k) = gray_scott_atlas_rates(atlas, index);
+    return run_tile(kernel, params, start, atlas.steps, name);
+}
+
+Grid<double> gray_scott_atlas_double_b(const GrayScottAtlasParams& atlas, const GrayScott& start, int index) {
+    GrayScottParams params = atlas.base;
+    std::tie(params.f, params.k) = gray_scott_atlas_rates(atlas, index);
     GrayScottKernel<double> twice(params, start.a(), start.b());
     twice.step(atlas.steps, 1);
-    const Grid<double> b = twice.b();
+    return twice.b();
+}
+
+FloatError float_error(const GrayScottAtlasTile& tile, std::span<const double> b, int index) {
+    if (b.size() != tile.b.cells().size()) throw std::invalid_argument("float_error: B of another size");
     FloatError e{index, tile.f, tile.k, 0, 0};
     double squares = 0;
-    for (std::size_t i = 0; i < b.cells().size(); ++i) {
-        const double d = std::abs(double(tile.b.cells()[i]) - b.cells()[i]);
+    for (std::size_t i = 0; i < b.size(); ++i) {
+        const double d = std::abs(double(tile.b.cells()[i]) - b[i]);
         e.max_abs = std::max(e.max_abs, d);
         squares += d * d;
     }
-    e.rms = std::sqrt(squares / double(b.cells().size()));
+    e.rms = std::sqrt(squares / double(b.size()));
     return e;
 }
 
@@ -134,44 +158,31 @@ void GrayScottAtlasParams::validate() const {
 
 std::vector<GrayScottAtlasTile> run_gray_scott_atlas(const GrayScottAtlasParams& atlas, std::uint64_t seed,
                                                      const std::string& name, const std::function<void()>& tile_done) {
-    atlas.validate();
     // Every tile starts from the same noise, so the tiles differ only by (f, k).
-    Random rng(seed);
-    const GrayScott start(atlas.base, rng);
-    const int columns = atlas.columns, rows = atlas.rows, count = columns * rows;
+    const GrayScott start = gray_scott_atlas_start(atlas, seed);
+    const int count = atlas.columns * atlas.rows;
     std::vector<GrayScottAtlasTile> tiles(count);
-    for (int t = 0; t < count; ++t) {
-        tiles[t].f = centre(atlas.f_low, atlas.f_high, rows - 1 - t / columns, rows);  // the top row has the largest f
-        tiles[t].k = centre(atlas.k_low, atlas.k_high, t % columns, columns);
-    }
     // The runs, tile by tile across the threads (each run on one thread: at
     // 128^2 cells a step is too short to split, the barrier would cost more).
     // Each tile depends only on its own (f, k), so the order does not matter.
     std::exception_ptr failure;         // an exception must not leave an OpenMP region: kept, rethrown after
     std::exception_ptr report_failure;  // tile_done's, written only inside critical(figgen_progress)
-#pragma omp parallel
-    {
-        std::optional<GrayScottKernel<float>> kernel;  // this thread's, for all its tiles
-#pragma omp for schedule(dynamic)
-        for (int t = 0; t < count; ++t) {
-            try {
-                GrayScottParams params = atlas.base;
-                params.f = tiles[t].f;
-                params.k = tiles[t].k;
-                tiles[t] = run_tile(kernel, params, start, atlas.steps, name);
-            } catch (...) {
+#pragma omp parallel for schedule(dynamic)
+    for (int t = 0; t < count; ++t) {
+        try {
+            tiles[t] = run_gray_scott_atlas_tile(atlas, start, t, name);
+        } catch (...) {
 #pragma omp critical(figgen_atlas_failure)
-                if (!failure) failure = std::current_exception();
-            }
-            // The progress report formats text: a bad_alloc there must leave
-            // neither the critical section nor the region.
+            if (!failure) failure = std::current_exception();
+        }
+        // The progress report formats text: a bad_alloc there must leave
+        // neither the critical section nor the region.
 #pragma omp critical(figgen_progress)
-            {
-                try {
-                    tile_done();
-                } catch (...) {
-                    if (!report_failure) report_failure = std::current_exception();
-                }
+        {
+            try {
+                tile_done();
+            } catch (...) {
+                if (!report_failure) report_failure = std::current_exception();
             }
         }
     }

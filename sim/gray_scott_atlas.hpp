@@ -6,6 +6,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -60,6 +62,15 @@ inline constexpr int gray_scott_atlas_stop_check = 100;
 std::vector<GrayScottAtlasTile> run_gray_scott_atlas(const GrayScottAtlasParams& atlas, std::uint64_t seed,
                                                      const std::string& name, const std::function<void()>& tile_done);
 
+// The tiles one at a time (what run_gray_scott_atlas does on every
+// thread), for a caller that spreads them itself (a figure's work items):
+// the start every tile runs from, tile `index`'s (f, k), and its run on the
+// calling thread (which keeps its kernel's buffers for its next tile).
+GrayScott gray_scott_atlas_start(const GrayScottAtlasParams& atlas, std::uint64_t seed);
+std::pair<double, double> gray_scott_atlas_rates(const GrayScottAtlasParams& atlas, int index);
+GrayScottAtlasTile run_gray_scott_atlas_tile(const GrayScottAtlasParams& atlas, const GrayScott& start, int index,
+                                             const std::string& name);
+
 // What float32 costs the atlas: tile `index`'s run again in double (the
 // double kernel, which equals sim::GrayScott bit for bit, every step), and
 // B's largest and RMS difference from the float tile's.
@@ -68,8 +79,8 @@ struct FloatError {
     double f = 0, k = 0;
     double max_abs = 0, rms = 0;
 };
-FloatError float_error(const GrayScottAtlasParams& atlas, std::uint64_t seed, const GrayScottAtlasTile& tile,
-                       int index);
+Grid<double> gray_scott_atlas_double_b(const GrayScottAtlasParams& atlas, const GrayScott& start, int index);
+FloatError float_error(const GrayScottAtlasTile& tile, std::span<const double> b, int index);
 // The tiles the figure measures that on: the map's diagonal at 1/4, 1/2 and
 // 3/4 of the way (fewer on a map of fewer tiles).
 std::vector<int> float_error_tiles(const GrayScottAtlasParams& atlas);

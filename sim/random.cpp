@@ -21,6 +21,16 @@ Random::Random(std::uint64_t seed) {
     for (auto& word : s_) word = mix.next();  // never all zero: SplitMix64 is a bijection of distinct counters
 }
 
+Random Random::for_item(std::uint64_t seed, std::uint64_t item) {
+    // Two independent-looking words, one from each input, summed: distinct
+    // (seed, item) pairs give distinct counters but with probability ~2^-64.
+    const std::uint64_t counter = SplitMix64(seed).next() + SplitMix64(~item).next();
+    Random r;
+    SplitMix64 mix(counter);
+    for (auto& word : r.s_) word = mix.next();
+    return r;
+}
+
 Random Random::from_state(const std::array<std::uint64_t, 4>& state) {
     if (state[0] == 0 && state[1] == 0 && state[2] == 0 && state[3] == 0)
         throw std::invalid_argument("xoshiro256** state must not be all zero");

@@ -23,6 +23,12 @@ private:
 class Random {
 public:
     explicit Random(std::uint64_t seed);
+    // The stream of work item `item` of a run seeded `seed`: its state is
+    // filled by SplitMix64 from a counter that mixes both (the item's key
+    // through SplitMix64's finaliser, added to the seed's). It depends on
+    // (seed, item) only, never on which thread, rank or shard draws it, so a
+    // figure split into items gives the same bits however it is run.
+    static Random for_item(std::uint64_t seed, std::uint64_t item);
     // A generator resuming from a saved state (not all zero).
     static Random from_state(const std::array<std::uint64_t, 4>& state);
     std::array<std::uint64_t, 4> state() const { return {s_[0], s_[1], s_[2], s_[3]}; }

@@ -24,6 +24,11 @@ struct RecordingOutput : scenes::Output {
     std::unique_ptr<scenes::Film> film(int, int) override { return std::make_unique<RecordingFilm>(&frames); }
     void figure(const render::Image&, nlohmann::json meta) override { metadata = std::move(meta); }
     scenes::Progress& progress() override { return quiet; }
+    std::vector<nlohmann::json> results(const scenes::WorkItems& items) override {
+        std::vector<nlohmann::json> r;
+        for (int i = 0; i < items.item_count(); ++i) r.push_back(items.run_item(i));
+        return r;
+    }
 };
 
 // A description with panels at `panels` and an animation over [first, last] every `stride`.

@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <array>
+#include <cmath>
 #include <set>
 
 #include "sim/random.hpp"
@@ -80,4 +82,22 @@ TEST_CASE("below(n) covers 0..n-1 and nothing else", "[random]") {
 
 TEST_CASE("an all-zero state is refused", "[random]") {
     CHECK_THROWS_AS(sim::Random::from_state({0, 0, 0, 0}), std::invalid_argument);
+}
+
+TEST_CASE("an item's stream depends on seed and item only", "[random]") {
+    // The definition: SplitMix64 words from the counter that mixes both keys.
+    const std::uint64_t seed = 17, item = 42;
+    sim::SplitMix64 mix(sim::SplitMix64(seed).next() + sim::SplitMix64(~item).next());
+    std::array<std::uint64_t, 4> state{};
+    for (auto& word : state) word = mix.next();
+    CHECK(sim::Random::for_item(seed, item).state() == state);
+    CHECK(sim::Random::for_item(seed, item).next() == sim::Random::for_item(seed, item).next());
+    CHECK(sim::Random::for_item(seed, item).next() != sim::Random::for_item(seed, item + 1).next());
+    CHECK(sim::Random::for_item(seed, item).next() != sim::Random::for_item(seed + 1, item).next());
+    // Item 0 of seed s is not the plain stream of s.
+    CHECK(sim::Random::for_item(seed, 0).next() != sim::Random(seed).next());
+    // The first draws of 4000 items are uniform: their mean is 1/2 within 5 standard errors.
+    double sum = 0;
+    for (std::uint64_t i = 0; i < 4000; ++i) sum += sim::Random::for_item(seed, i).uniform();
+    CHECK(std::abs(sum / 4000 - 0.5) < 5 * std::sqrt(1.0 / 12 / 4000));
 }

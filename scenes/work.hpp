@@ -1,0 +1,33 @@
+#pragma once
+// Work items: the independent runs a figure's model splits into (a
+// gs-atlas tile, an L of bd-roughness, a block of pc-threshold samples),
+// so that they can be spread over threads, MPI ranks or job-array shards
+// and kept, each as it finishes, for a run that is resumed.
+//
+// An item's result depends on the description and the item's index only:
+// its random draws come from sim::Random::for_item(seed, item), never from
+// a generator shared between items, so the same item gives the same result
+// on any thread, rank or shard. The scene combines the results in item
+// order (Output::results), so the figure is the same bits however it ran.
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace scenes {
+
+class WorkItems {
+public:
+    virtual ~WorkItems() = default;
+    virtual int item_count() const = 0;
+    // What an error message calls item `item`: "tile 17 (f = 0.0113, k = 0.0419)".
+    virtual std::string item_name(int item) const = 0;
+    // Runs item `item` (0 <= item < item_count()); may be called from any
+    // thread, several at once. Throws std::runtime_error when its model
+    // fails (the message says why; the caller adds the item's name).
+    virtual nlohmann::json run_item(int item) const = 0;
+    // At most how many bytes an item's result takes stored (CBOR), for the
+    // disk estimate of the parts kept for a resume.
+    virtual double item_bytes() const = 0;
+};
+
+}  // namespace scenes
