@@ -3,6 +3,7 @@
 // rules, without and with wrapping, and a gallery of those whose slope is
 // not an integer.
 #include <algorithm>
+#include <thread>
 #include <cmath>
 
 #include "scenes/field_spec.hpp"
@@ -73,7 +74,8 @@ render::Axes survey_plot(const Survey& survey, glm::vec4 zero_colour, glm::vec4 
     return plot;
 }
 
-class Cell1DSurveyScene : public SceneBase {
+// Work items: one a rule, both of its slopes.
+class Cell1DSurveyScene : public SceneBase, public WorkItems {
 public:
     Cell1DSurveyScene(const Description& d, const SceneOptions& options)
         : SceneBase(d, options, param_keys, style_keys()),
@@ -91,15 +93,27 @@ public:
         require_drawable(params_, "gallery_steps", "each gallery panel", rows, 2.0 * rows + 1.0);
     }
 
-    // count_cells' automaton: n rows of 2n + 1 cells, one rule at a time.
+    // count_cells' automaton: n rows of 2n + 1 cells, one rule at a time on each thread.
     std::vector<MemoryNeed> memory() const override {
-        return {grid_need("rows of cells of a byte", n_, 2.0 * n_ + 1.0, 1, 1)};
+        return {grid_need("rows of cells of a byte, one automaton a thread", n_, 2.0 * n_ + 1.0, 1,
+                          std::max(1u, std::thread::hardware_concurrency()))};
+    }
+
+    const WorkItems* work() const override { return this; }
+    int item_count() const override { return 256; }
+    std::string item_name(int item) const override { return "rule " + std::to_string(item); }
+    double item_bytes() const override { return 256; }
+    nlohmann::json run_item(int rule) const override {
+        std::vector<double> steps;
+        for (int i = fit_from_; i < n_; ++i) steps.push_back(i);
+        return {{"slope_zero", slope_of(rule, n_, sim::Boundary::zero, steps, fit_from_)},
+                {"slope_wrap", slope_of(rule, n_, sim::Boundary::wrap, steps, fit_from_)}};
     }
 
     void render(Output& out) const override {
         Progress& progress = out.progress();
-        progress.start(d_.id, 256 * 2 + 1);
-        const Survey survey = survey_rules(progress);
+        progress.start(d_.id, item_count() + 1);
+        const Survey survey = survey_rules(out.results(*this));
         const render::Axes plot = survey_plot(survey, zero_colour_, wrap_colour_);
         const Gallery gallery = gallery_of(survey);
         progress.advance();
@@ -121,20 +135,16 @@ public:
     }
 
 private:
-    // Both slopes of all 256 rules; one unit of progress per slope.
-    Survey survey_rules(Progress& progress) const {
-        std::vector<double> steps;
-        for (int i = fit_from_; i < n_; ++i) steps.push_back(i);
+    // The 256 rules' slopes, from their items' results.
+    Survey survey_rules(const std::vector<nlohmann::json>& results) const {
         Survey survey;
         // A fractal pattern in the plane has 1 < D < 2: a slope at least
         // `tolerance` from both. (Rules that turn the background on give slopes
         // just under 1 from their edges; they are not fractal.)
         auto non_integer = [&](double s) { return s > 1 + tolerance_ && s < 2 - tolerance_; };
         for (int rule = 0; rule < 256; ++rule) {
-            const double zero = slope_of(rule, n_, sim::Boundary::zero, steps, fit_from_);
-            progress.advance();
-            const double wrap = slope_of(rule, n_, sim::Boundary::wrap, steps, fit_from_);
-            progress.advance();
+            const double zero = results[rule].at("slope_zero").get<double>();
+            const double wrap = results[rule].at("slope_wrap").get<double>();
             survey.rules.push_back(rule);
             survey.zero_slopes.push_back(zero);
             survey.wrap_slopes.push_back(wrap);

@@ -3,6 +3,7 @@
 // critical q.
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 
 #include "scenes/field_stats.hpp"
 #include "scenes/percolation_common.hpp"
@@ -65,7 +66,9 @@ struct Walk {
     double mean;
 };
 
-class PercolationPhaseScene : public SceneBase {
+// Work items: one a q value (its trials), then find_critical's walk; each
+// draws from its own stream, sim::Random::for_item(seed, item).
+class PercolationPhaseScene : public SceneBase, public WorkItems {
 public:
     PercolationPhaseScene(const Description& d, const SceneOptions& options)
         : SceneBase(d, options, param_keys, style_keys()),
@@ -87,12 +90,26 @@ public:
         return {grid_need("a run's cells and wet fronts", n_, n_, 2, 1)};
     }
 
+    const WorkItems* work() const override { return this; }
+    int item_count() const override { return static_cast<int>(qs_.size()) + 1; }
+    std::string item_name(int item) const override {
+        return item < walk_item() ? "q = " + format_fixed(qs_[item], 4) : "find_critical's walk";
+    }
+    double item_bytes() const override { return 64 + 9.0 * iterations_; }
+    nlohmann::json run_item(int item) const override {
+        sim::Random rng = sim::Random::for_item(d_.seed, static_cast<std::uint64_t>(item));
+        if (item == walk_item()) return {{"walk", sim::find_critical(n_, walk_start_, walk_step_, iterations_, rng)}};
+        int percolating = 0;
+        for (int t = 0; t < trials_; ++t) percolating += test_perc(n_, qs_[item], rng).percolates;
+        return {{"percolating", percolating}};
+    }
+
     void render(Output& out) const override {
         Progress& progress = out.progress();
-        progress.start(d_.id, static_cast<long long>(qs_.size()) * trials_ + iterations_);
-        sim::Random rng(d_.seed);  // one stream: the trials in order of q, then the walk
-        const Sweep sweep = sweep_q(rng, progress);
-        const Walk walk = find_critical(rng, progress);
+        progress.start(d_.id, item_count());
+        const std::vector<nlohmann::json> results = out.results(*this);
+        const Sweep sweep = sweep_q(results);
+        const Walk walk = walk_of(results[walk_item()].at("walk").get<std::vector<double>>());
         // The plotted numbers: the q values, their fractions percolating, then the walk.
         std::vector<double> plotted(qs_);
         plotted.insert(plotted.end(), sweep.probability.begin(), sweep.probability.end());
@@ -113,25 +130,25 @@ public:
     }
 
 private:
-    Sweep sweep_q(sim::Random& rng, Progress& progress) const {
+    int walk_item() const { return static_cast<int>(qs_.size()); }
+
+    Sweep sweep_q(const std::vector<nlohmann::json>& results) const {
         Sweep sweep;
-        for (double q : qs_) {
-            int percolating = 0;
-            for (int t = 0; t < trials_; ++t) {
-                percolating += test_perc(n_, q, rng).percolates;
-                progress.advance();
-            }
+        for (std::size_t i = 0; i < qs_.size(); ++i) {
+            const int percolating = results[i].at("percolating").get<int>();
             sweep.probability.push_back(double(percolating) / trials_);
-            sweep.table.push_back({{"q", q}, {"probability", sweep.probability.back()}});
+            sweep.table.push_back({{"q", qs_[i]}, {"probability", sweep.probability.back()}});
         }
         return sweep;
     }
 
-    Walk find_critical(sim::Random& rng, Progress& progress) const {
+    Walk walk_of(std::vector<double> q) const {
+        if (q.size() != static_cast<std::size_t>(iterations_) + 1)  // the start, then a q a run
+            throw std::runtime_error("find_critical's result holds " + std::to_string(q.size()) + " of " +
+                                     std::to_string(iterations_ + 1) + " values");
         Walk walk;
-        walk.q = sim::find_critical(n_, walk_start_, walk_step_, iterations_, rng);
+        walk.q = std::move(q);
         for (std::size_t i = 0; i < walk.q.size(); ++i) walk.index.push_back(double(i));
-        progress.advance(iterations_);
         walk.mean = std::accumulate(walk.q.begin(), walk.q.end(), 0.0) / double(walk.q.size());
         return walk;
     }

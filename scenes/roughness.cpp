@@ -12,6 +12,7 @@
 #include "scenes/field_stats.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/work_codec.hpp"
 #include "sim/deposition.hpp"
 #include "sim/fractal.hpp"
 
@@ -108,7 +109,50 @@ struct Measured {
 
 const glm::vec4 fit_colour = {0.85f, 0.33f, 0.1f, 1};
 
-class RoughnessScene : public SceneBase {
+// An L's ensemble as its work item's result, and back: every number
+// exactly (CBOR keeps a double's bits), the runs' W as arrays of doubles.
+nlohmann::json ensemble_json(const sim::RoughnessEnsemble& e) {
+    const sim::WindowComparison& c = e.check;
+    nlohmann::json w = nlohmann::json::array();
+    for (const std::vector<double>& run : e.w) w.push_back(binary_of<double>(run));
+    return {{"width", e.width},
+            {"seeds", e.seeds},
+            {"times", binary_of<double>(e.times)},
+            {"w", w},
+            {"saturated", e.saturated},
+            {"stop_time", e.stop_time},
+            {"agreeing_since", e.agreeing_since},
+            {"check",
+             {c.compared, c.previous_samples, c.last_samples, c.previous_mean, c.previous_sem, c.last_mean,
+              c.last_sem, c.difference, c.difference_sem, c.z, c.agree}},
+            {"saturated_w", e.saturated_w},
+            {"saturated_w_sem", e.saturated_w_sem}};
+}
+
+sim::RoughnessEnsemble ensemble_of(const nlohmann::json& j, int width, int runs) {
+    sim::RoughnessEnsemble e;
+    e.width = j.at("width").get<int>();
+    e.seeds = j.at("seeds").get<std::vector<std::uint64_t>>();
+    const nlohmann::json& times = j.at("times");
+    e.times = values_of<double>(times, times.is_binary() ? times.get_binary().size() / sizeof(double) : 0);
+    for (const nlohmann::json& run : j.at("w")) e.w.push_back(values_of<double>(run, e.times.size()));
+    if (e.width != width || e.w.size() != static_cast<std::size_t>(runs) || e.seeds.size() != e.w.size())
+        throw std::runtime_error("the result for L = " + std::to_string(width) + " holds another ensemble");
+    e.saturated = j.at("saturated").get<bool>();
+    e.stop_time = j.at("stop_time").get<double>();
+    e.agreeing_since = j.at("agreeing_since").get<double>();
+    const nlohmann::json& c = j.at("check");
+    e.check = {c.at(0).get<bool>(),   c.at(1).get<std::size_t>(), c.at(2).get<std::size_t>(),
+               c.at(3).get<double>(), c.at(4).get<double>(),      c.at(5).get<double>(),
+               c.at(6).get<double>(), c.at(7).get<double>(),      c.at(8).get<double>(),
+               c.at(9).get<double>(), c.at(10).get<bool>()};
+    e.saturated_w = j.at("saturated_w").get<double>();
+    e.saturated_w_sem = j.at("saturated_w_sem").get<double>();
+    return e;
+}
+
+// Work items: one an L, its runs side by side (their stop is the ensemble's).
+class RoughnessScene : public SceneBase, public WorkItems {
 public:
     RoughnessScene(const Description& d, const SceneOptions& options)
         : SceneBase(d, options, param_keys, with_plot_style_keys({{"colours", "one colour per L"}})),
@@ -124,22 +168,37 @@ public:
         check_beta_times();
     }
 
+    const WorkItems* work() const override { return this; }
+    int item_count() const override { return static_cast<int>(widths_.size()); }
+    std::string item_name(int item) const override { return "L = " + std::to_string(widths_[item]); }
+    // The runs' W at every sampled time: points_per_decade a decade up to the longest run, as doubles.
+    double item_bytes() const override {
+        const double samples = per_decade_ * (std::log10(run_length(*std::max_element(widths_.begin(), widths_.end()))) + 2);
+        return 9.0 * samples * (seeds_ + 1) + 12.0 * seeds_ + 1024;
+    }
+    // L's runs are seeded from seed + item (the item's index), as before items.
+    nlohmann::json run_item(int item) const override {
+        const int L = widths_[item];
+        const double max_time = run_length(L), min_time = std::min(beta_range_[1], max_time);
+        return ensemble_json(sim::roughness_until_saturated(L, min_time, max_time, per_decade_, seeds_,
+                                                            d_.seed + static_cast<std::uint64_t>(item), rule_));
+    }
+
     void render(Output& out) const override {
         Progress& progress = out.progress();
         progress.start(d_.id, static_cast<long long>(widths_.size()));
+        const std::vector<nlohmann::json> results = out.results(*this);
         render::Axes growth = growth_axes();
         Measured m;
         for (std::size_t i = 0; i < widths_.size(); ++i) {
             const int L = widths_[i];
-            const double max_time = run_length(L), min_time = std::min(beta_range_[1], max_time);
-            const sim::RoughnessEnsemble runs =
-                sim::roughness_until_saturated(L, min_time, max_time, per_decade_, seeds_, d_.seed + i, rule_);
+            const double max_time = run_length(L);
+            const sim::RoughnessEnsemble runs = ensemble_of(results[i], L, seeds_);
             const sim::RoughnessCurve curve = sim::mean_over_runs(runs);
             const glm::vec4 colour = colours_[i % colours_.size()];
             growth.series.push_back(
                 line_series(curve.times, curve.mean_w, "L = " + std::to_string(L), colour, 1.8f, false));
             record(curve, runs, max_time, i + 1 == widths_.size(), m);
-            progress.advance();
         }
         if (m.beta_t.size() < 2) throw std::logic_error(d_.id + ": beta_range holds fewer than two sampled times");
         const sim::LineFit beta = sim::fit_log_log(m.beta_t, m.beta_w);
