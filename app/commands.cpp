@@ -268,6 +268,8 @@ int RenderCommand::run() {
             if (!f.scene->work())
                 throw UsageError(std::string(options.work.shard ? "--shard" : "figgen merge") + ": " +
                                  f.description->id + " has no work items to share; allowed: " + distributable_ids());
+    if (options.work.merging())
+        for (const CheckedFigure& f : figures) check_merge_sources(*f.description, *f.scene->work(), options.work);
     apply_threads(*this, options.work.threads);
     if (options.work.shard) return run_shards(figures, options);
     // Under an MPI launcher, join the job now that every input is accepted:

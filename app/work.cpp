@@ -1,5 +1,7 @@
 #include "app/work.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -116,6 +118,12 @@ public:
         return part["result"];
     }
 
+    // Whether item `item`'s part is here (not yet whether it decodes).
+    bool has(int item) const {
+        struct stat st {};
+        return ::fstatat(folder_.fd(), part_name(item).c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode);
+    }
+
     void store(int item, const json& result) const {
         // Put in place at once, not with the figure's files: a run killed
         // before the figure is written keeps it.
@@ -186,7 +194,7 @@ void run_on_threads(int threads, Next&& next, Done&& done) {
 // Messages between the ranks for one figure's items.
 enum Tag : int {
     tag_result = 1,   // worker -> 0: {"item", "result"}
-    tag_failed = 2,   // worker -> 0: {"item", "error"}
+    tag_failed = 2,   // worker -> 0: {"error"}, naming the item
     tag_request = 3,  // worker -> 0: the next item, please (dynamic)
     tag_assign = 4,   // 0 -> worker: {"item"}: -1 when none is left
     tag_done = 5,     // worker -> 0: it has sent everything
@@ -221,6 +229,24 @@ std::string work_hash(const description::Description& d) {
     return render::sha256_hex(text.data(), text.size());
 }
 
+void check_merge_sources(const description::Description& d, const scenes::WorkItems& items,
+                         const WorkOptions& options) {
+    const int count = items.item_count();
+    std::vector<bool> present(static_cast<std::size_t>(count));
+    for (const std::filesystem::path& from : options.merge_from) {
+        const Parts parts = Parts::given(from, d, items);
+        for (int i = 0; i < count; ++i) present[i] = present[i] || parts.has(i);
+    }
+    std::string missing;
+    int shown = 0, absent = 0;
+    for (int i = 0; i < count; ++i)
+        if (!present[i] && ++absent <= 3) missing += (shown++ ? ", " : "") + items.item_name(i);
+    if (absent > 0)
+        throw UsageError("--from: " + d.id + "'s parts lack " + std::to_string(absent) + " of " +
+                         std::to_string(count) + " items (" + missing + (absent > 3 ? ", ..." : "") +
+                         "); allowed: the parts of every shard (render --shard K/N for each K of N)");
+}
+
 std::vector<json> run_work(const description::Description& d, const scenes::WorkItems& items,
                            const render::Folder& folder, const WorkOptions& options, scenes::Progress& progress) {
     const int count = items.item_count();
@@ -232,16 +258,11 @@ std::vector<json> run_work(const description::Description& d, const scenes::Work
             for (int i = 0; i < count; ++i)
                 if (!results[i]) results[i] = parts.load(i);
         }
-        std::vector<std::string> missing;
-        for (int i = 0; i < count && missing.size() < 5; ++i)
-            if (!results[i]) missing.push_back(items.item_name(i));
-        if (!missing.empty()) {
-            std::string list;
-            for (const std::string& m : missing) list += (list.empty() ? "" : "; ") + m;
-            throw UsageError("--from: " + d.id + "'s parts lack " + list +
-                             (missing.size() == 5 ? " and maybe more" : "") +
-                             "; allowed: the parts of every shard (render --shard K/N for each K)");
-        }
+        for (int i = 0; i < count; ++i)
+            if (!results[i])
+                throw std::runtime_error("--from: " + d.id + "'s part of " + items.item_name(i) +
+                                         " does not decode as this figure's (damaged or changed since it was "
+                                         "written): render that shard again");
         progress.advance(count);
     } else {
         const Parts parts = Parts::in_output(folder, d, items);
@@ -253,6 +274,9 @@ std::vector<json> run_work(const description::Description& d, const scenes::Work
             else
                 missing.push_back(i);
         }
+        if (const std::size_t kept = static_cast<std::size_t>(count) - missing.size(); kept > 0)
+            std::fprintf(stderr, "figgen: %s: resuming: %zu of %d items kept from an earlier run in %s\n", d.id.c_str(),
+                         kept, count, description::printable(parts.folder().path().string()).c_str());
         std::mutex record_lock;
         auto record = [&](int item, json result) {
             parts.store(item, result);
@@ -371,7 +395,6 @@ void serve_work(const description::Description& d, const scenes::WorkItems& item
     const std::vector<int> mine = dynamic ? std::vector<int>() : fixed_share(missing, cluster.rank(), cluster.size());
     std::atomic<std::size_t> cursor{0};
     std::mutex ask_lock;  // one request and its answer at a time
-    int current = -1;
     try {
         run_on_threads(
             options.threads,
@@ -385,12 +408,20 @@ void serve_work(const description::Description& d, const scenes::WorkItems& item
                 return decoded(cluster.wait(0, tag_assign).bytes).at("item").get<int>();
             },
             [&](int item) {
-                current = item;
-                cluster.send(0, tag_result, cbor({{"item", item}, {"result", run_one(d, items, item)}}));
+                json result;
+                try {
+                    result = run_one(d, items, item);
+                } catch (const std::bad_alloc&) {
+                    // Said by rank 0, which cannot know this node's memory: name the item here.
+                    throw std::runtime_error(d.id + ", " + items.item_name(item) +
+                                             ": out of memory on this rank (its node has less free than the "
+                                             "item needs; see figgen's --max-memory estimate)");
+                }
+                cluster.send(0, tag_result, cbor({{"item", item}, {"result", result}}));
             });
     } catch (const std::exception& e) {
         // Rank 0 says it and ends the job; this rank waits for that end.
-        cluster.send(0, tag_failed, cbor({{"item", current}, {"error", e.what()}}));
+        cluster.send(0, tag_failed, cbor({{"error", e.what()}}));
         for (;;) cluster.wait(0, tag_assign);  // never sent again: only the abort ends this
     }
     cluster.send(0, tag_done, {});

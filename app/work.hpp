@@ -47,6 +47,11 @@ std::string parts_name(const std::string& id);
 // seed, the [params] as read, and figgen's version.
 std::string work_hash(const description::Description& d);
 
+// For figgen merge, before anything is created: every --from folder holds
+// parts of this very figure, settings and figgen (its manifest), and
+// together they hold every item. UsageError naming the folder otherwise.
+void check_merge_sources(const description::Description& d, const scenes::WorkItems& items, const WorkOptions& options);
+
 // Every item's result in item order, for rank 0 or a lone process: the parts
 // already in `folder`'s parts folder (or, merging, in the --from folders),
 // the rest computed here and on the other ranks, each kept as a part as it

@@ -1,0 +1,291 @@
+// Work items beyond one process (app/work.hpp): MPI ranks, job-array shards
+// and their merge, a resume after a kill. Each must give the very bytes of a
+// plain single-process run: the PNG, and the JSON with every state hash.
+#include <signal.h>
+#include <sys/wait.h>
+#include <toml++/toml.h>
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "child_process.hpp"
+#include "description/catalog.hpp"
+#include "figgen_run.hpp"
+
+namespace fs = std::filesystem;
+using testkit::figgen;
+using testkit::Run;
+using testkit::run_command;
+using testkit::slurp;
+
+namespace {
+
+// The figures with work items, made small: catalog descriptions with fewer
+// or shorter runs, written into `dir`. Returns their paths, space-separated.
+std::string small_descriptions(const fs::path& dir) {
+    struct Change {
+        std::string id;
+        std::vector<std::pair<std::string, toml::array>> arrays;
+        std::vector<std::pair<std::string, std::int64_t>> integers;
+    };
+    const std::vector<Change> changes = {
+        {"gs-atlas", {{"tiles", toml::array{5, 4}}}, {{"steps", 1000}}},
+        {"bd-roughness", {{"widths", toml::array{100, 200}}}, {{"seeds", 2}}},
+        {"tc7-phase", {{"qs", toml::array{0.55, 0.65, 0.02}}}, {{"trials", 20}, {"walk_iterations", 30}}},
+        {"tc7-ex1", {}, {{"n", 100}, {"gallery_steps", 15}}},
+        {"pc-threshold", {{"sizes", toml::array{8, 16}}}, {{"samples", 400}, {"samples_per_item", 100}}},
+    };
+    std::string paths;
+    for (const Change& c : changes) {
+        const fs::path source = fs::path(FIGGEN_SOURCE_DIR) / "figures" / (c.id + ".toml");
+        if (!fs::exists(source)) continue;  // a figure not in this catalog
+        toml::table t = toml::parse_file(source.string());
+        toml::table& params = *t["params"].as_table();
+        for (const auto& [key, value] : c.arrays) params.insert_or_assign(key, value);
+        for (const auto& [key, value] : c.integers) params.insert_or_assign(key, value);
+        std::ofstream(dir / (c.id + ".toml")) << t << "\n";
+        paths += " " + (dir / (c.id + ".toml")).string();
+    }
+    return paths;
+}
+
+std::vector<std::string> ids_in(const fs::path& dir) {
+    std::vector<std::string> ids;
+    for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.path().extension() == ".toml") ids.push_back(entry.path().stem().string());
+    return ids;
+}
+
+// Every figure of `ids` in `out` has the PNG and JSON bytes of `reference`,
+// and no parts folder was left behind.
+void check_same(const std::vector<std::string>& ids, const fs::path& reference, const fs::path& out) {
+    for (const std::string& id : ids) {
+        INFO(id << " in " << out);
+        REQUIRE(fs::exists(out / (id + ".png")));
+        CHECK(slurp(out / (id + ".png")) == slurp(reference / (id + ".png")));
+        CHECK(slurp(out / (id + ".json")) == slurp(reference / (id + ".json")));
+    }
+}
+
+void check_no_parts(const std::vector<std::string>& ids, const fs::path& out) {
+    for (const std::string& id : ids) CHECK_FALSE(fs::exists(out / (id + ".parts")));
+}
+
+const std::string small = " --no-video --scale 0.3";
+
+#ifdef FIGGEN_TEST_MPI
+// mpirun as root in a container, as CI runs: allowed as root, shared memory
+// without the kernel's cross-memory attach (containers forbid it), and the
+// in-node transports only.
+std::string mpirun(int ranks) {
+    return "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+           "OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_btl=self,vader OMPI_MCA_pml=ob1 "
+           "OMPI_MCA_mtl=^ofi OMPI_MCA_osc=^ucx mpirun --oversubscribe -n " +
+           std::to_string(ranks) + " ";
+}
+#endif
+
+}  // namespace
+
+#ifdef FIGGEN_TEST_MPI
+TEST_CASE("mpirun with 1 to 4 ranks gives the bytes of one process", "[cluster][mpi]") {
+    const fs::path dir = testkit::fresh_dir("cluster-mpi");
+    const std::string files = small_descriptions(dir);
+    const std::vector<std::string> ids = ids_in(dir);
+    const Run plain = figgen("render" + files + small + " --out " + (dir / "plain").string());
+    INFO(plain.output);
+    REQUIRE(plain.status == 0);
+    CHECK(plain.output.empty());  // a plain run says nothing about ranks or parts
+    // Dynamic schedules on 1..4 ranks, and the static one on 3.
+    for (const std::string& variant : {"1", "2", "3", "4", "3 static"}) {
+        const int ranks = variant[0] - '0';
+        const bool fixed = variant.size() > 1;
+        const fs::path out = dir / ("ranks-" + std::to_string(ranks) + (fixed ? "-static" : ""));
+        const Run run = run_command(mpirun(ranks) + FIGGEN_EXE + " render" + files + small +
+                                    (fixed ? " --schedule static" : "") + " --out " + out.string());
+        INFO(variant << ": " << run.output);
+        REQUIRE(run.status == 0);
+        check_same(ids, dir / "plain", out);
+        check_no_parts(ids, out);
+    }
+}
+
+TEST_CASE("a failing rank ends the mpirun with one line naming it and its item", "[cluster][mpi]") {
+    // Rank 1 runs out of memory on the atlas's large tiles (its address space
+    // limited); rank 0 says so and ends the job; the tile rank 0 finished is kept.
+    const fs::path out = testkit::fresh_dir("cluster-failing-rank");
+    const auto start = std::chrono::steady_clock::now();
+    const Run run =
+        run_command(mpirun(2) + "sh -c '[ \"$OMPI_COMM_WORLD_RANK\" = 1 ] && ulimit -v 200000; exec " + FIGGEN_EXE +
+                    " render gs-atlas --no-video --set n=2048 --set tiles=[2,2] --set "
+                    "steps=20 --out " +
+                    out.string() + "'");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    INFO(run.output);
+    CHECK(run.status != 0);
+    CHECK(seconds < 30);
+    int error_lines = 0;
+    std::istringstream lines(run.output);
+    for (std::string line; std::getline(lines, line);)
+        if (line.rfind("figgen: error:", 0) == 0) {
+            ++error_lines;
+            CHECK(line.find("figgen: error: rank 1: gs-atlas, tile ") == 0);
+            CHECK(line.find("out of memory") != std::string::npos);
+        }
+    CHECK(error_lines == 1);
+    CHECK_FALSE(fs::exists(out / "gs-atlas.png"));
+    CHECK(fs::exists(out / "gs-atlas.parts" / "manifest.json"));
+}
+
+TEST_CASE("under mpirun a refused input is said once and nothing joins the job", "[cluster][mpi]") {
+    const fs::path out = testkit::fresh_dir("cluster-refused");
+    const Run run = run_command(mpirun(3) + FIGGEN_EXE + " render gs-atlas --set tiles=[0,5] --out " + out.string());
+    INFO(run.output);
+    CHECK(run.status == 2);
+    std::size_t said = 0;
+    for (std::size_t at = 0; (at = run.output.find("figgen: error:", at)) != std::string::npos; ++at) ++said;
+    CHECK(said == 1);
+    CHECK(run.output.find("tiles = [ 0, 5 ] is not allowed") != std::string::npos);
+    CHECK(fs::is_empty(out));
+}
+#endif
+
+TEST_CASE("only a process an MPI launcher started opens MPI", "[cluster]") {
+    const fs::path out = testkit::fresh_dir("cluster-no-mpi");
+    const Run run =
+        testkit::figgen_env("LD_DEBUG=files", "render tc7-phase --no-video --set trials=2 --out " + out.string());
+    REQUIRE(run.status == 0);
+    CHECK(run.output.find("libmpi") == std::string::npos);
+    CHECK(run.output.find("libfiggen_mpi") == std::string::npos);
+}
+
+TEST_CASE("shards 1/3 2/3 3/3 and their merge give the bytes of one run", "[cluster]") {
+    const fs::path dir = testkit::fresh_dir("cluster-shards");
+    const std::string files = small_descriptions(dir);
+    const std::vector<std::string> ids = ids_in(dir);
+    REQUIRE(figgen("render" + files + small + " --out " + (dir / "plain").string()).status == 0);
+    // Each shard in a folder of its own, as array tasks on separate scratch disks.
+    std::string from;
+    for (int k = 1; k <= 3; ++k) {
+        const fs::path out = dir / ("shard-" + std::to_string(k));
+        const Run shard =
+            figgen("render" + files + small + " --shard " + std::to_string(k) + "/3 --out " + out.string());
+        INFO(shard.output);
+        REQUIRE(shard.status == 0);
+        for (const std::string& id : ids) {
+            CHECK_FALSE(fs::exists(out / (id + ".png")));  // a shard draws nothing
+            CHECK(fs::exists(out / (id + ".parts") / "manifest.json"));
+        }
+        from += " " + out.string();
+    }
+    SECTION("merged from every shard: the same bytes; the shards' parts stay") {
+        const Run merge = figgen("merge" + files + small + " --from" + from + " --out " + (dir / "merged").string());
+        INFO(merge.output);
+        REQUIRE(merge.status == 0);
+        check_same(ids, dir / "plain", dir / "merged");
+        CHECK(fs::exists(dir / "shard-1" / "gs-atlas.parts" / "manifest.json"));
+    }
+    SECTION("a shard missing: refused, naming what is missing") {
+        const Run merge = figgen("merge" + files + small + " --from " + (dir / "shard-1").string() + " " +
+                                 (dir / "shard-3").string() + " --out " + (dir / "merged").string());
+        INFO(merge.output);
+        CHECK(merge.status == 2);
+        CHECK(merge.lines() == 1);
+        CHECK(merge.output.find("parts lack") != std::string::npos);
+        CHECK_FALSE(fs::exists(dir / "merged" / "gs-atlas.png"));
+    }
+    SECTION("parts of other settings or another figgen: refused") {
+        const Run seed =
+            figgen("merge" + files + small + " --seed 5 --from" + from + " --out " + (dir / "merged").string());
+        INFO(seed.output);
+        CHECK(seed.status == 2);
+        CHECK(seed.output.find("its parts are of another description, seed or --set") != std::string::npos);
+        // A manifest from another version of figgen.
+        const fs::path manifest = dir / "shard-2" / "gs-atlas.parts" / "manifest.json";
+        nlohmann::json m = nlohmann::json::parse(slurp(manifest));
+        m["figgen"] = "0.0.1";
+        testkit::spill(manifest, m.dump());
+        const Run version = figgen("merge" + files + small + " --from" + from + " --out " + (dir / "merged").string());
+        INFO(version.output);
+        CHECK(version.status == 2);
+        CHECK(version.output.find("its parts are of another figgen version") != std::string::npos);
+        CHECK_FALSE(fs::exists(dir / "merged" / "gs-atlas.png"));
+    }
+}
+
+TEST_CASE("a killed run started again computes only what is missing and gives the bytes of one run", "[cluster]") {
+    const fs::path dir = testkit::fresh_dir("cluster-resume");
+    const std::string args = "gs-atlas --no-video --scale 0.3 --set tiles=[6,6] --set steps=3000 --threads 1";
+    REQUIRE(figgen("render " + args + " --out " + (dir / "plain").string()).status == 0);
+    const fs::path out = dir / "out", parts = out / "gs-atlas.parts";
+    {
+        std::vector<std::string> argv = {"render"};  // Child runs figgen with these
+        std::istringstream words(args + " --out " + out.string());
+        for (std::string w; words >> w;) argv.push_back(w);
+        testkit::Child child(argv, dir / "killed.log");
+        child.go();
+        // Killed (SIGKILL: no clean-up at all) once 8 tiles are done.
+        auto parts_done = [&] {
+            int n = 0;
+            if (fs::exists(parts))
+                for (const auto& e : fs::directory_iterator(parts)) n += e.path().extension() == ".cbor";
+            return n;
+        };
+        for (int i = 0; i < 3000 && parts_done() < 8; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        REQUIRE(parts_done() >= 8);
+        ::kill(child.pid(), SIGKILL);
+        child.wait();
+    }
+    CHECK_FALSE(fs::exists(out / "gs-atlas.png"));
+    int kept = 0;
+    for (const auto& e : fs::directory_iterator(parts)) kept += e.path().extension() == ".cbor";
+    REQUIRE(kept < 39);  // 36 tiles and 3 in double: killed before the end
+    const Run again = figgen("render " + args + " --out " + out.string());
+    INFO(again.output);
+    REQUIRE(again.status == 0);
+    CHECK(again.output.find("resuming: " + std::to_string(kept) + " of 39 items kept") != std::string::npos);
+    check_same({"gs-atlas"}, dir / "plain", out);
+    check_no_parts({"gs-atlas"}, out);
+}
+
+TEST_CASE("parts of other settings in the output folder are never used", "[cluster]") {
+    const fs::path dir = testkit::fresh_dir("cluster-stale");
+    const std::string args = "tc7-phase --no-video --scale 0.3 --set trials=10 --set walk_iterations=20";
+    REQUIRE(figgen("render " + args + " --out " + (dir / "plain").string()).status == 0);
+    // Half of the items under another seed, left in the folder.
+    REQUIRE(figgen("render " + args + " --seed 9 --shard 1/2 --out " + (dir / "out").string()).status == 0);
+    const Run run = figgen("render " + args + " --out " + (dir / "out").string());
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    CHECK(run.output.find("are of another description or figgen; computing anew") != std::string::npos);
+    CHECK(run.output.find("resuming") == std::string::npos);
+    check_same({"tc7-phase"}, dir / "plain", dir / "out");
+}
+
+TEST_CASE("shard and merge options are checked before anything runs", "[cluster]") {
+    const fs::path out = testkit::fresh_dir("cluster-options");
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"render tc7-phase --shard 4/3", "--shard 4/3 is not allowed: use K/N with 1 <= K <= N"},
+        {"render tc7-phase --shard 0/3", "--shard 0/3 is not allowed"},
+        {"render tc7-phase --shard 1/x", "--shard 1/x is not allowed"},
+        {"render tc7-1 --shard 1/2", "--shard: tc7-1 has no work items to share; allowed: "},
+        {"render tc7-phase --threads 0", "--threads 0 is not allowed: use 1..1024"},
+        {"render tc7-phase --schedule sometimes", "--schedule: sometimes not in {dynamic,static}"},
+        {"merge tc7-phase --from " + (out / "nowhere").string(), "--from " + (out / "nowhere").string() + ": "},
+        {"merge tc7-1 --from " + out.string(), "figgen merge: tc7-1 has no work items to share"},
+    };
+    for (const auto& [args, expected] : cases) {
+        const Run run = figgen(args + " --out " + (out / "o").string());
+        INFO(args << "\n" << run.output);
+        CHECK(run.status == 2);
+        CHECK(run.lines() == 1);
+        CHECK(run.output.find(expected) != std::string::npos);
+        CHECK_FALSE(fs::exists(out / "o"));
+    }
+}
