@@ -14,6 +14,7 @@
 
 #include "app/cluster.hpp"
 #include "app/describe.hpp"
+#include "app/film_segments.hpp"
 #include "app/gallery.hpp"
 #include "app/outputs.hpp"
 #include "app/progress.hpp"
@@ -279,8 +280,15 @@ int RenderCommand::run() {
         cluster = Cluster::join();
         options.work.cluster = cluster.get();
         if (cluster->rank() != 0) {
-            for (const CheckedFigure& f : figures)
-                if (const scenes::WorkItems* items = f.scene->work()) serve_work(*f.description, *items, options.work);
+            for (const CheckedFigure& f : figures) {
+                if (const scenes::WorkItems* items = f.scene->work()) {
+                    serve_work(*f.description, *items, options.work);
+                } else if (films_in_segments(*f.description, *f.scene, options)) {
+                    WorkOptions one_at_a_time = options.work;
+                    one_at_a_time.threads = 1;  // a process draws with one GL context
+                    serve_work(*f.description, FilmSegments(*f.description, *f.scene, options), one_at_a_time);
+                }
+            }
             return 0;
         }
         try {

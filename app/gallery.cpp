@@ -115,7 +115,7 @@ void computed_rows(const nlohmann::json& node, const std::string& path, std::vec
     static const std::vector<std::string> skipped = {
         "id", "title", "source", "scene", "caption", "seed", "description", "figgen_version", "renderer",
         "scale", "params", "style", "image", "state_sha256", "file", "codec", "pixel_format",
-        "encoder_threads", "preset", "tune", "png_sequence", "steps", "memory_estimate"};
+        "encoder_threads", "segment_frames", "preset", "tune", "png_sequence", "steps", "memory_estimate"};
     for (const auto& [key, value] : node.items()) {
         if (rows.size() >= limit) return;
         if (std::find(skipped.begin(), skipped.end(), key) != skipped.end()) continue;

@@ -1,9 +1,12 @@
 #include "app/outputs.hpp"
 
+#include "app/film_segments.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <utility>
 
+#include "app/film_segments.hpp"
 #include "app/version.hpp"
 #include "render/atomic_file.hpp"
 #include "render/canvas.hpp"
@@ -132,14 +135,11 @@ void require_disk(const Description& d, const OutputOptions& options, double par
 }
 
 FrameSink::FrameSink(const Description& d, const OutputOptions& options, const render::Folder& folder, int width,
-                     int height)
-    : description_(d), options_(options), width_(width), height_(height) {
+                     int height, const std::vector<nlohmann::json>* segments)
+    : description_(d), options_(options), width_(width), height_(height), segments_(segments) {
     if (options.video)
-        video_ = std::make_unique<render::VideoWriter>(folder, d.id + ".mp4", width, height, [&] {
-            render::VideoOptions v = options.video_options;
-            v.fps = d.animation->fps;
-            return v;
-        }());
+        video_ = std::make_unique<render::VideoWriter>(folder, d.id + ".mp4", width, height,
+                                                       film_video_options(d, options));
     if (options.frames) {
         frames_ = std::make_unique<render::AtomicDir>(folder, d.id + "-frames");
     }
@@ -168,6 +168,12 @@ void FrameSink::write(const render::Image& frame, int step) {
 
 nlohmann::json FrameSink::finish() {
     pipe_->finish();  // every frame encoded and written, or what failed is thrown here
+    if (segments_)
+        for (const nlohmann::json& segment : *segments_) {
+            const FilmSegment s = film_segment(segment);
+            if (video_) video_->add_segment(s.packets, static_cast<int>(s.steps.size()));
+            for (int step : s.steps) steps_.push_back(step);
+        }
     nlohmann::json meta = {
         {"frames", steps_.size()},
         {"first", description_.animation->first},
@@ -187,6 +193,7 @@ nlohmann::json FrameSink::finish() {
         }
         meta["pixel_format"] = "yuv420p";
         meta["encoder_threads"] = options_.video_options.threads;
+        meta["segment_frames"] = description_.animation->segment_frames;
     }
     if (frames_) {
         frames_->commit();
@@ -197,7 +204,7 @@ nlohmann::json FrameSink::finish() {
 
 std::unique_ptr<scenes::Film> FigureFiles::film(int width, int height) {
     if (!description_.animation || !options_.animates()) return nullptr;
-    return std::make_unique<FrameSink>(description_, options_, folder_, width, height);
+    return std::make_unique<FrameSink>(description_, options_, folder_, width, height, film_segments_);
 }
 
 void FigureFiles::figure(const render::Image& image, nlohmann::json metadata) {

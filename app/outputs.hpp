@@ -73,8 +73,10 @@ class FrameSink : public scenes::Film {
 public:
     static constexpr int frames_queued = 2;
 
+    // `segments`, when given, are the whole film made elsewhere
+    // (app/film_segments.hpp): no frame is added, finish() writes them.
     FrameSink(const Description& d, const OutputOptions& options, const render::Folder& folder, int width,
-              int height);
+              int height, const std::vector<nlohmann::json>* segments = nullptr);
     ~FrameSink() override;
     void add(render::Image frame, int step) override;
     nlohmann::json finish() override;  // completes the MP4; returns the animation's metadata
@@ -88,24 +90,32 @@ private:
     std::unique_ptr<render::AtomicDir> frames_;  // the PNG sequence, in place at finish()
     nlohmann::json steps_ = nlohmann::json::array();
     int width_, height_;
+    const std::vector<nlohmann::json>* segments_;
     std::unique_ptr<FramePipe> pipe_;  // last: its thread stops before the writers it uses go
 };
 
 // A figure's files in the output folder: what a scene writes through.
 class FigureFiles : public scenes::Output {
 public:
+    // `film_segments`: the film's segments, made by other processes; the
+    // scene then draws no frame (film_frames() is empty).
     FigureFiles(const Description& d, const OutputOptions& options, render::Folder folder,
-                scenes::Progress& progress, MemoryEstimate memory)
+                scenes::Progress& progress, MemoryEstimate memory,
+                const std::vector<nlohmann::json>* film_segments = nullptr)
         : description_(d),
           options_(options),
           folder_(std::move(folder)),
           progress_(progress),
-          memory_(std::move(memory)) {}
+          memory_(std::move(memory)),
+          film_segments_(film_segments) {}
     std::unique_ptr<scenes::Film> film(int width, int height) override;
     void figure(const render::Image& image, nlohmann::json metadata) override;
     scenes::Progress& progress() override { return progress_; }
     std::vector<nlohmann::json> results(const scenes::WorkItems& items) override {
         return run_work(description_, items, folder_, options_.work, progress_);
+    }
+    scenes::FrameRange film_frames() const override {
+        return film_segments_ ? scenes::FrameRange{0, 0} : scenes::FrameRange{};
     }
 
 private:
@@ -114,6 +124,7 @@ private:
     render::Folder folder_;
     scenes::Progress& progress_;
     MemoryEstimate memory_;
+    const std::vector<nlohmann::json>* film_segments_;
 };
 
 // Writes <id>.png and <id>.json. `metadata` holds what the scene knows

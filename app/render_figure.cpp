@@ -5,9 +5,11 @@
 
 #include <cerrno>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 
 #include "app/figure_lock.hpp"
+#include "app/film_segments.hpp"
 #include "render/atomic_file.hpp"
 #include "render/text.hpp"
 
@@ -41,12 +43,22 @@ void render_figure(const Description& d, const scenes::Scene& scene, const rende
     render::clear_font_cache();  // same pixels whatever was rendered before in this process
     // The figure's files replace the earlier ones together, once all are written.
     render::CommitGroup outputs;
-    FigureFiles files(d, options, folder, progress, estimate_memory(d, options, scene.memory()));
+    // Under mpirun, the film's segments from every rank first (rank 0 takes
+    // its share), then the figure's own run, which draws no frame.
+    std::optional<std::vector<nlohmann::json>> segments;
+    const bool film_in_segments = films_in_segments(d, scene, options);
+    if (film_in_segments) {
+        WorkOptions one_at_a_time = options.work;
+        one_at_a_time.threads = 1;  // a process draws with one GL context
+        segments = run_work(d, FilmSegments(d, scene, options), folder, one_at_a_time, progress);
+    }
+    FigureFiles files(d, options, folder, progress, estimate_memory(d, options, scene.memory()),
+                      segments ? &*segments : nullptr);
     scene.render(files);
     outputs.commit();
     // The figure is in place: the parts of its items are no longer needed
     // (a merge's came from elsewhere and are left as they are).
-    if (scene.work() && !options.work.merging()) remove_parts(folder, d.id);
+    if ((scene.work() || film_in_segments) && !options.work.merging()) remove_parts(folder, d.id);
 }
 
 void render_figure(const Description& d, const OutputOptions& options, scenes::Progress& progress) {

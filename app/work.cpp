@@ -42,7 +42,7 @@ json manifest_of(const description::Description& d, const scenes::WorkItems& ite
     return {{"format", parts_format},
             {"figgen", version()},
             {"figure", d.id},
-            {"description_sha256", work_hash(d)},
+            {"description_sha256", work_hash(d, items)},
             {"items", names}};
 }
 
@@ -221,11 +221,11 @@ std::string parts_name(const std::string& id) {
     return id + ".parts";
 }
 
-std::string work_hash(const description::Description& d) {
+std::string work_hash(const description::Description& d, const scenes::WorkItems& items) {
     std::ostringstream params;
     params << toml::json_formatter{d.params};
     const std::string text =
-        std::string(version()) + "\n" + d.scene + "\n" + std::to_string(d.seed) + "\n" + params.str();
+        std::string(version()) + "\n" + d.scene + "\n" + std::to_string(d.seed) + "\n" + params.str() + "\n" + items.depends_on();
     return render::sha256_hex(text.data(), text.size());
 }
 

@@ -44,8 +44,8 @@ struct WorkOptions {
 // "gs-atlas.parts"
 std::string parts_name(const std::string& id);
 // The hex SHA-256 of what the items' results depend on: the scene, the
-// seed, the [params] as read, and figgen's version.
-std::string work_hash(const description::Description& d);
+// seed, the [params] as read, figgen's version and items.depends_on().
+std::string work_hash(const description::Description& d, const scenes::WorkItems& items);
 
 // For figgen merge, before anything is created: every --from folder holds
 // parts of this very figure, settings and figgen (its manifest), and

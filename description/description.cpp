@@ -36,6 +36,8 @@ const std::vector<Key> animation_keys = {
     {"steps", "[first, last] steps of the animation"},
     {"stride", "steps between frames, >= 1"},
     {"fps", "frames per second, 1..120"},
+    {"segment_frames", "frames per film segment, each encoded on its own (from a key frame) and joined by stream "
+                       "copy: the unit spread over MPI ranks; 0 = one segment"},
     {"size", "[width, height] in pixels"},
     {"title", "title above each frame; {step} is the step shown"},
 };
@@ -160,6 +162,7 @@ void read_animation(Description& d, const toml::table& root) {
     a.last = static_cast<int>(steps[1]);
     a.stride = anim.count_in("stride", a.stride, 1, 100'000'000);
     a.fps = anim.count_in("fps", a.fps, 1, 120);
+    a.segment_frames = anim.count_in("segment_frames", a.segment_frames, 0, 100'000'000);
     std::tie(a.width, a.height) = size_pair(anim, "size", {a.width, a.height});
     a.title = anim.text("title", a.title);
     d.animation = a;

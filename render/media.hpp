@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
+#include <cstdint>
 
 #include "render/image.hpp"
 #include "render/video.hpp"
@@ -19,14 +21,30 @@
 namespace render::media {
 
 // Bumped whenever Api or Encoder change: a module of another build is refused.
-constexpr int api_version = 1;
+constexpr int api_version = 2;
 
-// One film being encoded into a file descriptor.
+using Packet = VideoPacket;
+
+// One segment of a film, encoded on its own: it starts with a key frame and
+// refers to no frame outside it, so segments encoded anywhere join by
+// stream copy.
+class SegmentEncoder {
+public:
+    virtual ~SegmentEncoder() = default;
+    virtual void add(const Image& frame) = 0;     // width x height RGBA, already checked
+    virtual std::vector<Packet> finish() = 0;     // flushes; the segment's packets in decoding order
+};
+
+// One film being encoded into a file descriptor, segment by segment.
 class Encoder {
 public:
     virtual ~Encoder() = default;
-    virtual void add(const Image& frame) = 0;  // width x height RGBA, already checked
-    virtual void finish() = 0;                 // flushes, writes the trailer and closes its I/O
+    // The next frame (width x height RGBA, already checked), encoded in
+    // segments of VideoOptions::segment_frames.
+    virtual void add(const Image& frame) = 0;
+    // The next segment, encoded elsewhere with the same settings, holding `frames` frames.
+    virtual void add_segment(const std::vector<Packet>& packets, int frames) = 0;
+    virtual void finish() = 0;  // flushes, writes the trailer and closes its I/O
     virtual std::string codec_name() const = 0;
 };
 
@@ -38,6 +56,9 @@ struct Api {
     // std::invalid_argument for an unknown codec.
     std::unique_ptr<Encoder> (*open_encoder)(int fd, const std::filesystem::path& shown, int width, int height,
                                              const VideoOptions& options);
+    // A segment encoder; `shown` is what its errors name.
+    std::unique_ptr<SegmentEncoder> (*open_segment)(const std::filesystem::path& shown, int width, int height,
+                                                    const VideoOptions& options);
     VideoInfo (*probe_video)(const std::filesystem::path& path);
     // Frame `index` (>= 0) decoded with `threads` (>= 0) threads: video.cpp checks both.
     Image (*decode_frame)(const std::filesystem::path& path, int index, int threads);

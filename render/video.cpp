@@ -46,6 +46,15 @@ void validate(int width, int height, const VideoOptions& options) {
     if (options.crf < 0 || options.crf > 51) throw std::invalid_argument("video crf must be in 0..51");
     check_name("video preset", options.preset, x264_presets(), false);
     check_name("video tune", options.tune, x264_tunes(), true);
+    if (options.segment_frames < 0) throw std::invalid_argument("video segment frames must not be negative");
+}
+
+void check_frame(const Image& frame, int width, int height) {
+    if (frame.width != width || frame.height != height ||
+        frame.rgba.size() != static_cast<std::size_t>(width) * height * 4)
+        throw std::invalid_argument("video frame is " + std::to_string(frame.width) + "x" +
+                                    std::to_string(frame.height) + ", expected " + std::to_string(width) + "x" +
+                                    std::to_string(height) + " RGBA");
 }
 
 }  // namespace
@@ -83,13 +92,43 @@ VideoWriter& VideoWriter::operator=(VideoWriter&&) noexcept = default;
 
 void VideoWriter::add(const Image& frame) {
     if (!encoder_ || encoder_->finished) throw std::logic_error("VideoWriter::add after finish()");
-    if (frame.width != width_ || frame.height != height_ ||
-        frame.rgba.size() != static_cast<std::size_t>(width_) * height_ * 4)
-        throw std::invalid_argument("video frame is " + std::to_string(frame.width) + "x" +
-                                    std::to_string(frame.height) + ", expected " + std::to_string(width_) + "x" +
-                                    std::to_string(height_) + " RGBA");
+    check_frame(frame, width_, height_);
     encoder_->media->add(frame);
     ++frames_;
+}
+
+void VideoWriter::add_segment(const std::vector<VideoPacket>& packets, int frames) {
+    if (!encoder_ || encoder_->finished) throw std::logic_error("VideoWriter::add_segment after finish()");
+    if (frames < 0) throw std::invalid_argument("a video segment of " + std::to_string(frames) + " frames");
+    encoder_->media->add_segment(packets, frames);
+    frames_ += frames;
+}
+
+struct VideoSegment::Encoder {
+    std::unique_ptr<media::SegmentEncoder> media;
+};
+
+VideoSegment::VideoSegment(const std::string& shown, int width, int height, const VideoOptions& options)
+    : width_(width), height_(height) {
+    validate(width, height, options);
+    encoder_ = std::make_unique<Encoder>();
+    encoder_->media = media::api().open_segment(shown, width, height, options);
+}
+
+VideoSegment::~VideoSegment() = default;
+
+void VideoSegment::add(const Image& frame) {
+    if (!encoder_->media) throw std::logic_error("VideoSegment::add after finish()");
+    check_frame(frame, width_, height_);
+    encoder_->media->add(frame);
+    ++frames_;
+}
+
+std::vector<VideoPacket> VideoSegment::finish() {
+    if (!encoder_->media) throw std::logic_error("VideoSegment::finish called twice");
+    std::vector<VideoPacket> packets = encoder_->media->finish();
+    encoder_->media.reset();
+    return packets;
 }
 
 void VideoWriter::finish() {

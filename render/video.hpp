@@ -5,6 +5,7 @@
 // The reading side (probe_video, decode_frame) is what the tests check an MP4
 // with: decoded frames, never the file's bytes.
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -32,6 +33,17 @@ struct VideoOptions {
     // 0.9535 against 0.9537.
     std::string preset = "veryfast";
     std::string tune = "animation";
+    // Frames per segment, each encoded by an encoder of its own (a closed
+    // group of pictures from a key frame) and joined by stream copy, so that
+    // segments encoded by other processes give the same film; 0: one segment.
+    int segment_frames = 0;
+};
+
+// One encoded packet of a film segment; times in frames from the segment's start.
+struct VideoPacket {
+    std::vector<std::uint8_t> data;
+    std::int64_t pts = 0, dts = 0;
+    bool key = false;
 };
 
 // The names libx264 accepts, fastest preset first.
@@ -53,6 +65,9 @@ public:
     VideoWriter& operator=(VideoWriter&&) noexcept;
 
     void add(const Image& frame);  // width x height RGBA, rows top-down; else std::invalid_argument
+    // The next segment of `frames` frames, encoded elsewhere (VideoSegment)
+    // with the same size and options: written as it is (stream copy).
+    void add_segment(const std::vector<VideoPacket>& packets, int frames);
     void finish();                 // flushes the encoder, writes the trailer (faststart), renames temp -> final
 
     const std::string& codec_name() const { return codec_name_; }  // "libx264" or "mpeg4"
@@ -68,6 +83,25 @@ private:
     int frames_ = 0;
 };
 
+// One segment of a film encoded in memory, for a process that makes some
+// of a film's segments and sends them to the one that writes it.
+class VideoSegment {
+public:
+    // Throws as VideoWriter for a bad size or options; `shown` is what errors name.
+    VideoSegment(const std::string& shown, int width, int height, const VideoOptions& options = {});
+    ~VideoSegment();
+    VideoSegment(const VideoSegment&) = delete;
+    VideoSegment& operator=(const VideoSegment&) = delete;
+    void add(const Image& frame);          // as VideoWriter::add
+    std::vector<VideoPacket> finish();     // its packets, in decoding order
+    int frames() const { return frames_; }
+
+private:
+    struct Encoder;
+    std::unique_ptr<Encoder> encoder_;
+    int width_ = 0, height_ = 0, frames_ = 0;
+};
+
 struct VideoInfo {
     int frames = 0;                 // frames actually decoded, not the container's claim
     int width = 0;                  // pixels
@@ -76,6 +110,7 @@ struct VideoInfo {
     std::string codec;              // FFmpeg's codec name, e.g. "h264" or "mpeg4"
     double duration_seconds = 0.0;  // the video stream's duration
     double fps = 0.0;               // the stream's average frame rate
+    std::vector<int> key_frames;    // the frames (display order) decoded as key frames
 };
 
 // Opens the file and decodes every frame; throws std::runtime_error naming

@@ -3,6 +3,7 @@
 // its film, the progress of the run. The scene does not know where or how
 // the files are written.
 
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -31,6 +32,16 @@ public:
     virtual nlohmann::json finish() = 0;  // completes it; returns the animation's metadata
 };
 
+// Which of the animation's frames a run draws, by frame index (the n-th
+// frame of the film): [first, end). A whole render draws them all; a run
+// that makes one segment of a film on another process draws that segment's;
+// the run that writes a film whose segments were made elsewhere draws none.
+struct FrameRange {
+    int first = 0, end = std::numeric_limits<int>::max();
+    bool holds(int index) const { return index >= first && index < end; }
+    bool all() const { return first == 0 && end == std::numeric_limits<int>::max(); }
+};
+
 // Where a scene's outputs go.
 class Output {
 public:
@@ -44,6 +55,10 @@ public:
     // MPI ranks, or read from the parts of earlier runs and shards
     // (app/work.hpp decides). Advances progress() by one per item.
     virtual std::vector<nlohmann::json> results(const WorkItems& items) = 0;
+    // The film's frames this run draws (scenes/step_runner.cpp keeps to it).
+    virtual FrameRange film_frames() const { return {}; }
+    // False for a run that only makes film frames: its figure is not drawn.
+    virtual bool wants_figure() const { return true; }
 };
 
 }  // namespace scenes

@@ -9,6 +9,10 @@ StepRunner::StepRunner(const Description& d, const SceneOptions& options, Output
     : description_(d), options_(options), out_(out), progress_(out.progress()) {
     const bool animate = d.animation && options.film;
     last_ = d.last_step(animate);
+    frames_ = out.film_frames();
+    // A run that makes only some of the film's frames stops after its last.
+    if (animate && !out.wants_figure() && frames_.end > 0 && frames_.end < d.animation->frame_count())
+        last_ = std::min(last_, d.animation->first + (frames_.end - 1) * d.animation->stride);
     if (animate) {
         frame_width_ = scaled_even(d.animation->width, options.scale);
         frame_height_ = scaled_even(d.animation->height, options.scale);
@@ -68,10 +72,17 @@ int StepRunner::next_stop(const StepHooks& hooks, int step, int last) const {
     return next;
 }
 
+int StepRunner::frame_index(int step) const {
+    const description::Animation& a = *description_.animation;
+    if (step <= a.first) return 0;
+    return (step - a.first - 1) / a.stride + 1;  // the regular frames at first, first + stride, ... before or at it
+}
+
 // The state no longer changes: it ends the film as its final frame if the
 // animation would have gone on.
 void StepRunner::final_frame(const StepHooks& hooks, int step) {
-    if (film_ && hooks.frame && step <= description_.animation->last) frame(hooks.frame(step), step);
+    if (film_ && hooks.frame && step <= description_.animation->last && frames_.holds(frame_index(step)))
+        frame(hooks.frame(step), step);
 }
 
 void StepRunner::frame(render::Image image, int step) {
@@ -104,6 +115,7 @@ void StepRunner::write_figure(const render::Image& figure, nlohmann::json meta) 
 }
 
 void StepRunner::write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta) {
+    if (!out_.wants_figure()) return write_figure({}, std::move(meta));  // a run for film frames only
     write_figure(draw_field_panels(panels, scaled_even(description_.width, options_.scale),
                                    scaled_even(description_.height, options_.scale), options_.scale),
                  std::move(meta));

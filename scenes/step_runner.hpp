@@ -61,7 +61,14 @@ private:
     void final_frame(const StepHooks& hooks, int step);
     bool is_panel(int step) const;
     int next_stop(const StepHooks& hooks, int step, int last) const;  // the next step an output needs, or last
-    bool wants_frame(int step) const { return film_ && description_.animation->shows(step); }
+    // A frame of the film at `step`, drawn by this run (film_frames()).
+    bool wants_frame(int step) const {
+        return film_ && description_.animation->shows(step) && frames_.holds(frame_index(step));
+    }
+    // The film's frame at `step`: its regular frames are numbered in step
+    // order, and a final frame at a stop between two of them comes after
+    // the earlier one.
+    int frame_index(int step) const;
     void frame(render::Image image, int step);  // hands a drawn frame to the sinks
     void stepped();                             // counts one model step (progress bar and metadata)
 
@@ -72,6 +79,7 @@ private:
     int last_ = 0;
     long long model_steps_ = 0;  // steps the model actually took: the metadata's proof that nothing ran past last_
     int frame_width_ = 0, frame_height_ = 0;
+    FrameRange frames_;  // of the film's frames, those this run draws
     std::unique_ptr<Film> film_;
     std::unique_ptr<render::Canvas> frame_canvas_;
 };

@@ -8,6 +8,9 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdint>
+#include <cstring>
+#include <malloc.h>
+#include <mutex>
 #include <stdexcept>
 #include <utility>
 
@@ -176,110 +179,110 @@ const AVCodec* find_encoder(const std::string& name) {
     throw std::invalid_argument("video codec \"" + name + "\" is not allowed: use auto, libx264 or mpeg4");
 }
 
-class FfmpegEncoder final : public Encoder {
+// An encoder of `codec` with figgen's settings; `global_header` for a
+// muxer that keeps the stream's headers apart (MP4). Errors name `shown`.
+CodecPtr open_codec(const AVCodec* codec, const std::filesystem::path& shown, int width, int height,
+                    const VideoOptions& options, bool global_header) {
+    CodecPtr context(avcodec_alloc_context3(codec));
+    if (!context) fail("write", shown, "creating the encoder", AVERROR(ENOMEM));
+    AVCodecContext& c = *context;
+    c.width = width;
+    c.height = height;
+    c.pix_fmt = AV_PIX_FMT_YUV420P;  // the one format every player decodes
+    c.sample_aspect_ratio = {1, 1};
+    c.time_base = {1, options.fps};  // pts = frame index
+    c.framerate = {options.fps, 1};
+    c.thread_count = options.threads;
+    c.gop_size = 10 * options.fps;      // a keyframe every 10 s for seeking; mpeg4's default of 12 wastes bits
+    c.flags |= AV_CODEC_FLAG_BITEXACT;  // no encoder version string in the stream (mpeg4)
+    if (global_header) c.flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+    c.color_range = AVCOL_RANGE_MPEG;
+    c.color_primaries = AVCOL_PRI_BT709;
+    c.color_trc = AVCOL_TRC_BT709;
+    c.colorspace = AVCOL_SPC_BT709;
+
+    AVDictionary* codec_options = nullptr;
+    if (std::string(codec->name) == "libx264") {
+        av_dict_set(&codec_options, "crf", std::to_string(options.crf).c_str(), 0);
+        // Pinned like the threads: it shapes the bytes.
+        av_dict_set(&codec_options, "preset", options.preset.c_str(), 0);
+        if (!options.tune.empty()) av_dict_set(&codec_options, "tune", options.tune.c_str(), 0);
+    } else {
+        // Fixed quantiser: crf 18 -> qscale 3, about as transparent as x264 at crf 18.
+        const int qscale = std::clamp((options.crf + 3) / 6, 1, 31);
+        c.flags |= AV_CODEC_FLAG_QSCALE;
+        c.global_quality = FF_QP2LAMBDA * qscale;
+    }
+    const int opened = avcodec_open2(&c, codec, &codec_options);
+    av_dict_free(&codec_options);
+    if (opened < 0) fail("write", shown, "opening the encoder", opened);
+    return context;
+}
+
+const AVCodec* chosen_codec(const std::filesystem::path& shown, const VideoOptions& options) {
+    const AVCodec* codec = find_encoder(options.codec);
+    if (!codec) throw std::runtime_error("cannot write " + shown.string() + ": FFmpeg has no " + options.codec + " encoder");
+    return codec;
+}
+
+// libx264 reads memory it allocated but never wrote: in a fresh process
+// that is zero, but after other work it holds whatever was freed there,
+// and a segment's bytes then depend on what its process did before (seen
+// under mpirun, where a rank encodes segments of several films, and found
+// with glibc's MALLOC_PERTURB_, which made the bytes repeat; mpeg4 never
+// differs). While an encoder is opened or fed, glibc fills every fresh
+// allocation with one byte (M_PERTURB), so x264's stray reads see the same
+// bytes in every process. Nested and concurrent encoders share the switch.
+class SameFreshMemory {
 public:
-    FfmpegEncoder(int fd, const std::filesystem::path& shown, int width, int height, const VideoOptions& options)
-        : shown_(shown), width_(width), height_(height) {
-        quiet_ffmpeg();
-        const AVCodec* codec = find_encoder(options.codec);
-        if (!codec)
-            throw std::runtime_error("cannot write " + shown.string() + ": FFmpeg has no " + options.codec +
-                                     " encoder");
-        codec_name_ = codec->name;
-        open(fd, codec, options);
+    SameFreshMemory() {
+        std::lock_guard<std::mutex> hold(lock());
+        if (depth()++ == 0) mallopt(M_PERTURB, fill);
     }
-
-    void add(const Image& frame) override {
-        // The encoder may still hold the previous frame's buffer (mpeg4 does).
-        check(av_frame_make_writable(yuv_.get()), "allocating a frame");
-        const std::uint8_t* const planes[] = {frame.rgba.data()};
-        const int strides[] = {width_ * 4};
-        sws_scale(scaler_.get(), planes, strides, 0, height_, yuv_->data, yuv_->linesize);
-        yuv_->pts = frames_++;
-        check(avcodec_send_frame(codec_.get(), yuv_.get()), "encoding a frame");
-        drain();
+    ~SameFreshMemory() {
+        std::lock_guard<std::mutex> hold(lock());
+        if (--depth() == 0) mallopt(M_PERTURB, 0);
     }
-
-    void finish() override {
-        check(avcodec_send_frame(codec_.get(), nullptr), "flushing the encoder");  // x264 holds frames back
-        drain();
-        // The trailer moves the index to the front (faststart) by rewriting the file.
-        check(av_write_trailer(format_.get()), "writing the trailer");
-        check(format_->pb->error, "writing the file");
-        // Closing flushes the last buffer: a full disk may show up only here.
-        check(close_file_io(&format_->pb), "closing the file");
-    }
-
-    std::string codec_name() const override { return codec_name_; }
+    SameFreshMemory(const SameFreshMemory&) = delete;
+    SameFreshMemory& operator=(const SameFreshMemory&) = delete;
 
 private:
-    void open(int fd, const AVCodec* codec, const VideoOptions& options) {
-        // The file is ours (custom I/O), so the muxer is named, not guessed.
-        AVFormatContext* format = nullptr;
-        check(avformat_alloc_output_context2(&format, nullptr, "mp4", nullptr), "creating the muxer");
-        format_.reset(format);
-        format->flags |= AVFMT_FLAG_CUSTOM_IO;
-        format->io_open = reopen_output;
-        format->io_close2 = close_reopened;
-        format->flags |= AVFMT_FLAG_BITEXACT;  // no "Lavf" version string in the file
-        stream_ = avformat_new_stream(format, nullptr);
-        if (!stream_) fail_write("creating the stream", AVERROR(ENOMEM));
+    static constexpr int fill = 0x55;
+    static std::mutex& lock() {
+        static std::mutex m;
+        return m;
+    }
+    static int& depth() {
+        static int d = 0;
+        return d;
+    }
+};
 
-        codec_.reset(avcodec_alloc_context3(codec));
-        if (!codec_) fail_write("creating the encoder", AVERROR(ENOMEM));
-        AVCodecContext& c = *codec_;
-        c.width = width_;
-        c.height = height_;
-        c.pix_fmt = AV_PIX_FMT_YUV420P;  // the one format every player decodes
-        c.sample_aspect_ratio = {1, 1};
-        c.time_base = {1, options.fps};  // pts = frame index
-        c.framerate = {options.fps, 1};
-        c.thread_count = options.threads;
-        c.gop_size = 10 * options.fps;      // a keyframe every 10 s for seeking; mpeg4's default of 12 wastes bits
-        c.flags |= AV_CODEC_FLAG_BITEXACT;  // no encoder version string in the stream (mpeg4)
-        if (format->oformat->flags & AVFMT_GLOBALHEADER) c.flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
-        c.color_range = AVCOL_RANGE_MPEG;
-        c.color_primaries = AVCOL_PRI_BT709;
-        c.color_trc = AVCOL_TRC_BT709;
-        c.colorspace = AVCOL_SPC_BT709;
+// Zeroes a frame's whole buffers, padding included: the encoder's SIMD
+// loads may reach past the picture into the padded line.
+void clear_buffers(AVFrame& frame) {
+    for (AVBufferRef* buffer : frame.buf)
+        if (buffer) std::memset(buffer->data, 0, buffer->size);
+}
 
-        AVDictionary* codec_options = nullptr;
-        if (codec_name_ == "libx264") {
-            av_dict_set(&codec_options, "crf", std::to_string(options.crf).c_str(), 0);
-            // Pinned like the threads: it shapes the bytes.
-            av_dict_set(&codec_options, "preset", options.preset.c_str(), 0);
-            if (!options.tune.empty()) av_dict_set(&codec_options, "tune", options.tune.c_str(), 0);
-        } else {
-            // Fixed quantiser: crf 18 -> qscale 3, about as transparent as x264 at crf 18.
-            const int qscale = std::clamp((options.crf + 3) / 6, 1, 31);
-            c.flags |= AV_CODEC_FLAG_QSCALE;
-            c.global_quality = FF_QP2LAMBDA * qscale;
-        }
-        const int opened = avcodec_open2(&c, codec, &codec_options);
-        av_dict_free(&codec_options);
-        check(opened, "opening the encoder");
-
-        check(avcodec_parameters_from_context(stream_->codecpar, &c), "configuring the stream");
-        stream_->time_base = c.time_base;
-        stream_->avg_frame_rate = c.framerate;
-
-        format->pb = open_file_io(fd, true);
-        if (!format->pb) fail_write("opening the file", AVERROR(ENOMEM));
-        AVDictionary* muxer_options = nullptr;
-        // No creation_time is set, so the header carries none: same frames, same bytes.
-        av_dict_set(&muxer_options, "movflags", "+faststart", 0);  // index first: playable while downloading
-        const int header = avformat_write_header(format, &muxer_options);
-        av_dict_free(&muxer_options);
-        check(header, "writing the header");
-
+// One segment of a film: a fresh encoder, so the segment starts with a key
+// frame and no frame of it refers to a frame outside it (a closed group of
+// pictures). Its packets join the others' by stream copy.
+class FfmpegSegment final : public SegmentEncoder {
+public:
+    FfmpegSegment(const std::filesystem::path& shown, int width, int height, const VideoOptions& options)
+        : shown_(shown), width_(width), height_(height) {
+        const SameFreshMemory same;
+        quiet_ffmpeg();
+        codec_ = open_codec(chosen_codec(shown, options), shown, width, height, options, true);
         yuv_.reset(av_frame_alloc());
         packet_.reset(av_packet_alloc());
         if (!yuv_ || !packet_) fail_write("allocating a frame", AVERROR(ENOMEM));
-        yuv_->format = c.pix_fmt;
+        yuv_->format = codec_->pix_fmt;
         yuv_->width = width_;
         yuv_->height = height_;
         check(av_frame_get_buffer(yuv_.get(), 0), "allocating a frame");
-
+        clear_buffers(*yuv_);
         // FULL_CHR_H_INP: filter the chroma from every RGB pixel rather than
         // subsampling first; ACCURATE_RND and BITEXACT: same bytes on every CPU.
         scaler_.reset(sws_getContext(width_, height_, AV_PIX_FMT_RGBA, width_, height_, AV_PIX_FMT_YUV420P,
@@ -292,20 +295,148 @@ private:
             fail_write("configuring the colour converter", AVERROR(EINVAL));
     }
 
+    void add(const Image& frame) override {
+        const SameFreshMemory same;
+        // The encoder may still hold the previous frame's buffer (mpeg4 does).
+        const std::uint8_t* before = yuv_->data[0];
+        check(av_frame_make_writable(yuv_.get()), "allocating a frame");
+        if (yuv_->data[0] != before) clear_buffers(*yuv_);  // a new buffer: cleared as the first
+        const std::uint8_t* const planes[] = {frame.rgba.data()};
+        const int strides[] = {width_ * 4};
+        sws_scale(scaler_.get(), planes, strides, 0, height_, yuv_->data, yuv_->linesize);
+        yuv_->pts = frames_++;
+        check(avcodec_send_frame(codec_.get(), yuv_.get()), "encoding a frame");
+        drain();
+    }
+
+    std::vector<Packet> finish() override {
+        const SameFreshMemory same;
+        check(avcodec_send_frame(codec_.get(), nullptr), "flushing the encoder");  // x264 holds frames back
+        drain();
+        return std::move(packets_);
+    }
+
+    int frames() const { return static_cast<int>(frames_); }
+
+private:
+    [[noreturn]] void fail_write(const char* step, int err) const { fail("write", shown_, step, err); }
+    void check(int ret, const char* step) const {
+        if (ret < 0) fail_write(step, ret);
+    }
+    void drain() {
+        for (;;) {
+            const int ret = avcodec_receive_packet(codec_.get(), packet_.get());
+            if (ret == AVERROR(EAGAIN) || ret == AVERROR_EOF) return;
+            check(ret, "encoding a frame");
+            packets_.push_back({std::vector<std::uint8_t>(packet_->data, packet_->data + packet_->size),
+                                packet_->pts, packet_->dts, (packet_->flags & AV_PKT_FLAG_KEY) != 0});
+            av_packet_unref(packet_.get());
+        }
+    }
+
+    std::filesystem::path shown_;
+    int width_, height_;
+    std::int64_t frames_ = 0;
+    CodecPtr codec_;
+    ScalerPtr scaler_;
+    FramePtr yuv_;
+    PacketPtr packet_;
+    std::vector<Packet> packets_;
+};
+
+// A film into an MP4 on a file descriptor: frames are encoded in segments
+// of options.segment_frames (FfmpegSegment), or segments come encoded
+// (add_segment, from other processes); both are written by stream copy.
+class FfmpegEncoder final : public Encoder {
+public:
+    FfmpegEncoder(int fd, const std::filesystem::path& shown, int width, int height, const VideoOptions& options)
+        : shown_(shown), width_(width), height_(height), options_(options) {
+        quiet_ffmpeg();
+        const AVCodec* codec = chosen_codec(shown, options);
+        codec_name_ = codec->name;
+        open(fd, codec);
+    }
+
+    void add(const Image& frame) override {
+        if (!segment_) segment_ = std::make_unique<FfmpegSegment>(shown_, width_, height_, options_);
+        segment_->add(frame);
+        if (options_.segment_frames > 0 && segment_->frames() == options_.segment_frames) end_segment();
+    }
+
+    void add_segment(const std::vector<Packet>& packets, int frames) override {
+        if (segment_) end_segment();
+        write(packets);
+        first_frame_ += frames;
+    }
+
+    void finish() override {
+        if (segment_) end_segment();
+        // The trailer moves the index to the front (faststart) by rewriting the file.
+        check(av_write_trailer(format_.get()), "writing the trailer");
+        check(format_->pb->error, "writing the file");
+        // Closing flushes the last buffer: a full disk may show up only here.
+        check(close_file_io(&format_->pb), "closing the file");
+    }
+
+    std::string codec_name() const override { return codec_name_; }
+
+private:
+    void open(int fd, const AVCodec* codec) {
+        // The file is ours (custom I/O), so the muxer is named, not guessed.
+        AVFormatContext* format = nullptr;
+        check(avformat_alloc_output_context2(&format, nullptr, "mp4", nullptr), "creating the muxer");
+        format_.reset(format);
+        format->flags |= AVFMT_FLAG_CUSTOM_IO;
+        format->io_open = reopen_output;
+        format->io_close2 = close_reopened;
+        format->flags |= AVFMT_FLAG_BITEXACT;  // no "Lavf" version string in the file
+        stream_ = avformat_new_stream(format, nullptr);
+        if (!stream_) fail_write("creating the stream", AVERROR(ENOMEM));
+        // The stream's parameters (its headers) from an encoder of the same
+        // settings: every segment's encoder makes the same ones.
+        const SameFreshMemory same;
+        const CodecPtr c = open_codec(codec, shown_, width_, height_, options_,
+                                      (format->oformat->flags & AVFMT_GLOBALHEADER) != 0);
+        time_base_ = c->time_base;
+        check(avcodec_parameters_from_context(stream_->codecpar, c.get()), "configuring the stream");
+        stream_->time_base = c->time_base;
+        stream_->avg_frame_rate = c->framerate;
+
+        format->pb = open_file_io(fd, true);
+        if (!format->pb) fail_write("opening the file", AVERROR(ENOMEM));
+        AVDictionary* muxer_options = nullptr;
+        // No creation_time is set, so the header carries none: same frames, same bytes.
+        av_dict_set(&muxer_options, "movflags", "+faststart", 0);  // index first: playable while downloading
+        const int header = avformat_write_header(format, &muxer_options);
+        av_dict_free(&muxer_options);
+        check(header, "writing the header");
+        packet_.reset(av_packet_alloc());
+        if (!packet_) fail_write("allocating a packet", AVERROR(ENOMEM));
+    }
+
     [[noreturn]] void fail_write(const char* step, int err) const { fail("write", shown_, step, err); }
     int check(int ret, const char* step) const {
         if (ret < 0) fail_write(step, ret);
         return ret;
     }
 
-    // Moves every packet the encoder has ready into the muxer.
-    void drain() {
-        for (;;) {
-            const int ret = avcodec_receive_packet(codec_.get(), packet_.get());
-            if (ret == AVERROR(EAGAIN) || ret == AVERROR_EOF) return;
-            check(ret, "encoding a frame");
+    void end_segment() {
+        const int frames = segment_->frames();
+        write(segment_->finish());
+        segment_.reset();
+        first_frame_ += frames;
+    }
+
+    // A segment's packets, its times moved to where it starts in the film.
+    void write(const std::vector<Packet>& packets) {
+        for (const Packet& p : packets) {
+            check(av_new_packet(packet_.get(), static_cast<int>(p.data.size())), "writing a packet");
+            std::copy(p.data.begin(), p.data.end(), packet_->data);
+            packet_->pts = p.pts + first_frame_;
+            packet_->dts = p.dts + first_frame_;
+            if (p.key) packet_->flags |= AV_PKT_FLAG_KEY;
             // The muxer picks its own time base (e.g. 1/15360) in write_header.
-            av_packet_rescale_ts(packet_.get(), codec_->time_base, stream_->time_base);
+            av_packet_rescale_ts(packet_.get(), time_base_, stream_->time_base);
             packet_->stream_index = stream_->index;
             check(av_interleaved_write_frame(format_.get(), packet_.get()), "writing a packet");
         }
@@ -313,13 +444,13 @@ private:
 
     std::filesystem::path shown_;
     int width_, height_;
+    VideoOptions options_;
     std::string codec_name_;
-    std::int64_t frames_ = 0;
+    std::int64_t first_frame_ = 0;  // the film's frames before the current segment
+    AVRational time_base_{1, 1};
     OutputPtr format_;
-    CodecPtr codec_;
     AVStream* stream_ = nullptr;  // owned by format_
-    ScalerPtr scaler_;
-    FramePtr yuv_;
+    std::unique_ptr<FfmpegSegment> segment_;
     PacketPtr packet_;
 };
 
@@ -386,10 +517,18 @@ std::unique_ptr<Encoder> open_encoder(int fd, const std::filesystem::path& shown
     return std::make_unique<FfmpegEncoder>(fd, shown, width, height, options);
 }
 
+std::unique_ptr<SegmentEncoder> open_segment(const std::filesystem::path& shown, int width, int height,
+                                             const VideoOptions& options) {
+    return std::make_unique<FfmpegSegment>(shown, width, height, options);
+}
+
 VideoInfo probe_video(const std::filesystem::path& path) {
     Decoder decoder(path, 1);  // plenty for tests, and polite under make -j
     VideoInfo info;
-    while (decoder.next()) ++info.frames;
+    while (const AVFrame* frame = decoder.next()) {
+        if (frame->key_frame) info.key_frames.push_back(info.frames);
+        ++info.frames;
+    }
     const AVStream& s = *decoder.stream();
     const AVCodecParameters& p = *s.codecpar;
     info.width = p.width;
@@ -445,7 +584,7 @@ Image scale(const Image& image, int width, int height) {
     return out;
 }
 
-const Api functions{api_version, open_encoder, probe_video, decode_frame, scale};
+const Api functions{api_version, open_encoder, open_segment, probe_video, decode_frame, scale};
 
 }  // namespace
 }  // namespace render::media

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -278,5 +279,34 @@ TEST_CASE("the chosen x264 preset and tune are the ones the stream was encoded w
         const std::string settings = bytes.substr(sei, bytes.find('\0', sei) - sei);
         INFO(settings);
         for (const std::string& o : c.options) CHECK(settings.find(" " + o + " ") != std::string::npos);
+    }
+}
+
+TEST_CASE("a film from segments encoded apart is the file encoded whole in segments", "[video]") {
+    VideoOptions options;
+    options.segment_frames = 10;
+    const fs::path whole = scratch("whole.mp4"), joined = scratch("joined.mp4");
+    encode_bar(whole, options);
+    {
+        VideoWriter writer(joined, kWidth, kHeight, options);
+        for (int first = 0; first < kFrames; first += options.segment_frames) {
+            // As another process would: its own encoder, its packets sent as bytes.
+            render::VideoSegment segment("segment", kWidth, kHeight, options);
+            for (int i = first; i < std::min(kFrames, first + options.segment_frames); ++i) segment.add(moving_bar(i));
+            const int frames = segment.frames();
+            writer.add_segment(segment.finish(), frames);
+        }
+        CHECK(writer.frames() == kFrames);
+        writer.finish();
+    }
+    CHECK(read_bytes(joined) == read_bytes(whole));
+    const render::VideoInfo info = render::probe_video(joined);
+    CHECK(info.frames == kFrames);
+    // Each segment starts with a key frame: frames 0, 10 and 20.
+    for (int k : {0, 10, 20}) CHECK(std::count(info.key_frames.begin(), info.key_frames.end(), k) == 1);
+    // Decoded, every frame still shows its bar where it was drawn.
+    for (int i : {0, 9, 10, 24}) {
+        const Image frame = render::decode_frame(joined, i);
+        CHECK(mean_luma(frame, 2 * i + 2, 2 * i + kBarWidth - 2) > 200);
     }
 }
