@@ -18,7 +18,7 @@ namespace app {
 std::unique_ptr<scenes::Scene> check_figure(const Description& d, const OutputOptions& options) {
     auto scene = description::at_source(d, [&] { return scenes::read_scene(d, options.scene_options()); });
     const scenes::WorkItems* items = scene->work();
-    require_disk(d, options, items && !options.work.merging() ? items->item_bytes() * items->item_count() : 0.0);
+    require_disk(d, options, items && !options.work.merging() ? items->total_bytes() : 0.0);
     require_memory(d, options, scene->memory());
     return scene;
 }

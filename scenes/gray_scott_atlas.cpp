@@ -57,10 +57,10 @@ sim::GrayScottAtlasParams read_params(Settings& s) {
     std::tie(atlas.f_low, atlas.f_high) = read_range(s, "f_range", {0.01, 0.07});
     std::tie(atlas.k_low, atlas.k_high) = read_range(s, "k_range", {0.04, 0.07});
     const std::vector<long long> tiles = s.integers("tiles", {24, 24});
-    const char* tiles_allowed = "[columns, rows], each an integer from 1 to 64";
+    const char* tiles_allowed = "[columns, rows], each an integer from 1 to 256";
     if (tiles.size() != 2) s.refuse("tiles", tiles_allowed);
     for (long long t : tiles)
-        if (t < 1 || t > 64) s.refuse("tiles", tiles_allowed);
+        if (t < 1 || t > 256) s.refuse("tiles", tiles_allowed);
     atlas.columns = int(tiles[0]);
     atlas.rows = int(tiles[1]);
     check_model(s, [&] { atlas.validate(); }, {{"columns", "tiles"}, {"rows", "tiles"}});
@@ -106,7 +106,12 @@ public:
         if (item < tile_count()) return "tile " + std::to_string(item);
         return "tile " + std::to_string(sim::float_error_tiles(atlas_)[item - tile_count()]) + " in double";
     }
+    // A tile's B as floats, a tile in double's as doubles, and their keys.
     double item_bytes() const override { return 8.0 * atlas_.base.n * atlas_.base.n + 512; }
+    double total_bytes() const override {
+        const double cells = double(atlas_.base.n) * atlas_.base.n;
+        return tile_count() * (4 * cells + 512) + double(sim::float_error_tiles(atlas_).size()) * item_bytes();
+    }
 
     nlohmann::json run_item(int item) const override {
         const sim::GrayScott& begin = start();

@@ -28,6 +28,8 @@ public:
     // At most how many bytes an item's result takes stored (CBOR), for the
     // disk estimate of the parts kept for a resume.
     virtual double item_bytes() const = 0;
+    // At most how many bytes all the results take stored (the parts folder).
+    virtual double total_bytes() const { return item_bytes() * item_count(); }
     // What the results depend on beyond the scene, the seed and [params]
     // (which every parts manifest hashes): e.g. a film's size and encoding.
     virtual std::string depends_on() const { return {}; }

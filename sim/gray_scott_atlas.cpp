@@ -150,8 +150,8 @@ const char* to_string(TileStop stop) {
 void GrayScottAtlasParams::validate() const {
     base.validate();
     require_integer("steps", steps, 0, 10'000'000);
-    require_integer("columns", columns, 1, 64);
-    require_integer("rows", rows, 1, 64);
+    require_integer("columns", columns, 1, 256);
+    require_integer("rows", rows, 1, 256);
     for (double f : {f_low, f_high}) require_number("f_range", f, 0.0, 0.2);
     for (double k : {k_low, k_high}) require_number("k_range", k, 0.0, 0.2);
 }

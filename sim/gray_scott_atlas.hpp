@@ -21,7 +21,7 @@ struct GrayScottAtlasParams {
     int steps = 10000;                   // steps of each run, 0..10,000,000
     double f_low = 0.01, f_high = 0.07;  // f_range: the feed rate at the map's bottom and top edges, 0..0.2
     double k_low = 0.04, k_high = 0.07;  // k_range: the kill rate at its left and right edges, 0..0.2
-    int columns = 24, rows = 24;         // tiles of the map, 1..64 each
+    int columns = 24, rows = 24;         // tiles of the map, 1..256 each (a cluster runs 96 x 96)
 
     void validate() const;  // throws ParameterError naming the bad parameter
 };

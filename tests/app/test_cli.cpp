@@ -138,7 +138,7 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-3 --set n=0", "--set n=0: n = 0 is not allowed: an integer from 3 to 4096"},
         {render + "tc7-4 --set island=[1,2,3]", "--set island=[1,2,3]: island = [ 1, 2, 3 ] is not allowed: expected a number"},
         {render + "tc7-3 --set rb=\\\"fast\\\"", "--set rb=\"fast\": rb = 'fast' is not allowed: expected a number"},
-        {render + "gs-atlas --set tiles=[0,5]", "--set tiles=[0,5]: tiles = [ 0, 5 ] is not allowed: [columns, rows], each an integer from 1 to 64"},
+        {render + "gs-atlas --set tiles=[0,5]", "--set tiles=[0,5]: tiles = [ 0, 5 ] is not allowed: [columns, rows], each an integer from 1 to 256"},
         {render + "gs-atlas --set steps=-1", "--set steps=-1: steps = -1 is not allowed: an integer from 0 to 10000000"},
         // percolation, its sizes, scaling and phase
         {render + "tc7-5 --set q=1.5", "--set q=1.5: q = 1.5 is not allowed: a number from 0 to 1"},
