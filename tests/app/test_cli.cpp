@@ -484,12 +484,12 @@ TEST_CASE("cmake --install puts figgen and the descriptions in a prefix, and the
     std::size_t descriptions = 0;
     for (const auto& entry : fs::directory_iterator(prefix / "share" / "figgen" / "figures"))
         descriptions += entry.path().extension() == ".toml";
-    CHECK(descriptions == 28);
+    CHECK(descriptions == 29);
     // It reads the installed folder, not the source tree: take one away.
     fs::remove(prefix / "share" / "figgen" / "figures" / "tc7-9.toml");
     const Run list = testkit::run_command("env -u FIGGEN_FIGURES_DIR " + installed.string() + " list");
     CHECK(list.status == 0);
-    CHECK(list.lines() == 27);
+    CHECK(list.lines() == 28);
     CHECK_THAT(list.output, !Catch::Contains("tc7-9 "));
     // With its film: the installed figgen opens the installed video module, not the build tree's.
     const Run render = testkit::run_command("env -u FIGGEN_FIGURES_DIR LD_DEBUG=files " + installed.string() +
