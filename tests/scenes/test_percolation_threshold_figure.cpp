@@ -1,10 +1,8 @@
 // pc-threshold, the Newman-Ziff percolation threshold: its work items are
-// blocks of samples drawn from their own streams, and the figure is the
-// same bits however they run (threads, shards and a merge, MPI ranks); its
-// estimate lands near Newman & Ziff's.
+// blocks of samples drawn from their own streams, the figure is the same
+// bits on one thread or two, and its estimate lands near Newman & Ziff's.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -78,60 +76,24 @@ TEST_CASE("pc-threshold work items hold the wrapping points of their own for_ite
     CHECK(double(nlohmann::json::to_cbor(all.run_item(last)).size()) <= all.item_bytes());
 }
 
-TEST_CASE("pc-threshold is the same bits on one thread or two and from three shards merged", "[pc-threshold]") {
-    const fs::path dir = testkit::fresh_dir("pc-threshold-split");
-    std::string sets;
-    for (const std::string& s :
-         {std::string("sizes=[8,16,32]"), std::string("samples=200"), std::string("samples_per_item=30")})
-        sets += " --set " + s;
-    const std::string common = "pc-threshold --no-video --scale 0.4" + sets;
-    // `after` follows the figure: merge's --from takes every word up to the next option.
-    auto render = [&](const std::string& how, const fs::path& out, const std::string& after = "") {
-        const testkit::Run run = testkit::figgen(how + " " + common + " --out " + out.string() + after);
+// Items run side by side on two threads: the L's samples are still its
+// blocks' in item order. (MPI ranks and shards with a merge are checked for
+// every figure with work items in tests/app/test_cluster.cpp.)
+TEST_CASE("pc-threshold is the same bits on one thread or two", "[pc-threshold]") {
+    const fs::path dir = testkit::fresh_dir("pc-threshold-threads");
+    const std::string args =
+        " pc-threshold --no-video --scale 0.4 --set sizes=[8,16,32] --set samples=200 "
+        "--set samples_per_item=30 --out ";
+    for (const char* threads : {"1", "2"}) {
+        const testkit::Run run =
+            testkit::figgen(std::string("render --threads ") + threads + args + (dir / threads).string());
         INFO(run.output);
         REQUIRE(run.status == 0);
-    };
-    render("render --threads 1", dir / "one");
-    render("render --threads 2", dir / "two");
-    std::string from;
-    for (int k = 1; k <= 3; ++k) {
-        render("render --shard " + std::to_string(k) + "/3", dir / ("shard" + std::to_string(k)));
-        from += " --from " + (dir / ("shard" + std::to_string(k))).string();
     }
-    render("merge", dir / "merged", from);
-    const Rendered one = read_rendered(dir / "one");
+    const Rendered one = read_rendered(dir / "1"), two = read_rendered(dir / "2");
     CHECK(one.meta["work_items"]["count"] == 21);
-    for (const char* other : {"two", "merged"}) {
-        INFO(other);
-        const Rendered r = read_rendered(dir / other);
-        CHECK(r.image.rgba == one.image.rgba);
-        CHECK(r.meta == one.meta);
-    }
-    fs::remove_all(dir);
-}
-
-// Under mpirun when Open MPI is installed (figgen opens its MPI module only
-// there): three ranks give the one-thread figure's bits.
-TEST_CASE("pc-threshold over three MPI ranks is the same bits as on one thread", "[pc-threshold][mpi]") {
-    if (testkit::run_command("command -v mpirun").status != 0) {
-        WARN("no mpirun: not checked");
-        return;
-    }
-    const fs::path dir = testkit::fresh_dir("pc-threshold-mpi");
-    const std::string args = std::string(
-        " pc-threshold --no-video --scale 0.4 --set sizes=[8,16] --set samples=120 "
-        "--set samples_per_item=25 --out ");
-    const testkit::Run alone = testkit::figgen("render --threads 1" + args + (dir / "alone").string());
-    REQUIRE(alone.status == 0);
-    const testkit::Run ranks = testkit::run_command(
-        "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none "
-        "mpirun --oversubscribe -n 3 " FIGGEN_EXE " render --threads 1" +
-        args + (dir / "ranks").string());
-    INFO(ranks.output);
-    REQUIRE(ranks.status == 0);
-    const Rendered a = read_rendered(dir / "alone"), b = read_rendered(dir / "ranks");
-    CHECK(b.image.rgba == a.image.rgba);
-    CHECK(b.meta == a.meta);
+    CHECK(two.image.rgba == one.image.rgba);
+    CHECK(two.meta == one.meta);
     fs::remove_all(dir);
 }
 
