@@ -221,6 +221,8 @@ nlohmann::json pipeline_times(const Paths& paths, const nlohmann::json& peer) {
                                  {"in_process", frames_in_process()}};
     // The largest model of the catalog: 576 Gray-Scott runs.
     out["gs_atlas"] = {{"seconds", render("gs-atlas", "")}};
+    // The Newman-Ziff threshold's 96 work items of samples on every core.
+    out["pc_threshold"] = {{"seconds", render("pc-threshold", "")}};
     std::filesystem::remove_all(dir);
 
     // `make figures` from clean: no outputs, the program already built.

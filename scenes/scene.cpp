@@ -20,6 +20,7 @@ const std::vector<SceneInfo>& all_scenes() {
         {"cell_counts", read_cell_counts},
         {"percolation_scaling", read_percolation_scaling},
         {"percolation_phase", read_percolation_phase},
+        {"percolation_threshold", read_percolation_threshold},
         {"forest_fire", read_forest_fire, {"colormap"}},
         {"cell1d_survey", read_cell1d_survey, {"colormap"}},
         {"snowflake", read_snowflake},

@@ -115,6 +115,7 @@ std::unique_ptr<Scene> read_cell1d(const Description& d, const SceneOptions& opt
 std::unique_ptr<Scene> read_cell_counts(const Description& d, const SceneOptions& options);
 std::unique_ptr<Scene> read_percolation_scaling(const Description& d, const SceneOptions& options);
 std::unique_ptr<Scene> read_percolation_phase(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_percolation_threshold(const Description& d, const SceneOptions& options);
 std::unique_ptr<Scene> read_forest_fire(const Description& d, const SceneOptions& options);
 std::unique_ptr<Scene> read_cell1d_survey(const Description& d, const SceneOptions& options);
 std::unique_ptr<Scene> read_snowflake(const Description& d, const SceneOptions& options);

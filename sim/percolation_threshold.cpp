@@ -300,6 +300,87 @@ double wrapping_probability(const std::vector<WrappingPoints>& points, int size,
     return Convolution(points, size, criterion).at(p);
 }
 
+std::vector<double> wrapping_probability(const std::vector<WrappingPoints>& points, int size, WrapCriterion criterion,
+                                         std::span<const double> ps) {
+    require_integer("size", size, 1, max_size);
+    for (const double p : ps) require_number("p", p, 0.0, 1.0);
+    if (points.empty()) throw std::invalid_argument("points is empty: at least one sample is needed");
+    const Convolution r(points, size, criterion);
+    std::vector<double> values;
+    values.reserve(ps.size());
+    for (const double p : ps) values.push_back(r.at(p));
+    return values;
+}
+
+std::optional<double> wrapping_crossing(const std::vector<WrappingPoints>& a, int size_a,
+                                        const std::vector<WrappingPoints>& b, int size_b, WrapCriterion criterion,
+                                        double low, double high, int steps) {
+    require_integer("size_a", size_a, 1, max_size);
+    require_integer("size_b", size_b, 1, max_size);
+    require_number("low", low, 0.0, 1.0);
+    require_number("high", high, low, 1.0);
+    require_integer("steps", steps, 1, 1'000'000);
+    if (a.empty() || b.empty()) throw std::invalid_argument("points is empty: at least one sample is needed");
+    const Convolution ra(a, size_a, criterion), rb(b, size_b, criterion);
+    auto difference = [&](double p) { return rb.at(p) - ra.at(p); };
+    std::vector<double> p(static_cast<std::size_t>(steps) + 1), d(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        p[i] = low + (high - low) * static_cast<double>(i) / steps;
+        d[i] = difference(p[i]);
+    }
+    const std::ptrdiff_t lowest = std::min_element(d.begin(), d.end()) - d.begin();
+    const std::ptrdiff_t highest = std::max_element(d.begin(), d.end()) - d.begin();
+    if (!(d[lowest] < 0 && d[highest] > 0)) return std::nullopt;
+    // From the most negative towards the most positive, either way along p.
+    const std::ptrdiff_t step = lowest < highest ? 1 : -1;
+    std::ptrdiff_t i = lowest;
+    while (d[i + step] < 0) i += step;
+    double below = p[i], above = p[i + step];  // difference < 0 at `below`, >= 0 at `above`
+    while (std::abs(above - below) > 1e-12) {
+        const double mid = 0.5 * (below + above);
+        (difference(mid) < 0 ? below : above) = mid;
+    }
+    return 0.5 * (below + above);
+}
+
+ThresholdExtrapolation extrapolate_threshold(std::span<const ThresholdEstimate> estimates) {
+    if (estimates.size() < 2)
+        throw std::invalid_argument("estimates = " + std::to_string(estimates.size()) +
+                                    " is not allowed: two lattice sizes at least, to fit a line");
+    double s = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (const ThresholdEstimate& e : estimates) {
+        if (!(std::isfinite(e.standard_error) && e.standard_error > 0))
+            throw std::invalid_argument("standard_error = " + shown(e.standard_error) +
+                                        " is not allowed: a finite number above 0 (at L = " + std::to_string(e.size) +
+                                        ")");
+        for (const ThresholdEstimate& other : estimates)
+            if (&other != &e && other.size == e.size)
+                throw std::invalid_argument("size = " + std::to_string(e.size) +
+                                            " is not allowed: each lattice size once");
+        const double x = std::pow(static_cast<double>(e.size), -threshold_correction_exponent);
+        const double w = 1.0 / (e.standard_error * e.standard_error);
+        s += w;
+        sx += w * x;
+        sy += w * e.p_c;
+        sxx += w * x * x;
+        sxy += w * x * e.p_c;
+    }
+    // The normal equations of y = a + b x; their inverse gives the variances.
+    const double det = s * sxx - sx * sx;
+    ThresholdExtrapolation fit{};
+    fit.p_c = (sxx * sy - sx * sxy) / det;
+    fit.slope = (s * sxy - sx * sy) / det;
+    fit.standard_error = std::sqrt(sxx / det);
+    fit.slope_error = std::sqrt(s / det);
+    for (const ThresholdEstimate& e : estimates) {
+        const double x = std::pow(static_cast<double>(e.size), -threshold_correction_exponent);
+        const double residual = (e.p_c - fit.p_c - fit.slope * x) / e.standard_error;
+        fit.chi_squared += residual * residual;
+    }
+    fit.degrees_of_freedom = static_cast<int>(estimates.size()) - 2;
+    return fit;
+}
+
 ThresholdEstimate threshold_from_wrapping(const std::vector<WrappingPoints>& points, int size,
                                           WrapCriterion criterion) {
     require_integer("size", size, 1, max_size);

@@ -19,6 +19,7 @@
 // of the mean wrapping point n_c / N.
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -80,5 +81,40 @@ std::vector<std::uint32_t> wrapping_occupation(int size, int samples, Random& rn
 // R_L(p) for the given criterion by the binomial convolution (for tests and plots).
 double wrapping_probability(const std::vector<WrappingPoints>& points, int size, WrapCriterion criterion,
                             double p);
+
+// R_L(p) at each p of `ps`, the convolution's tables built once: O(N)
+// logarithms, then O(sqrt N) a p, where the one-p call pays the O(N) each
+// time. What a plotted curve needs; each value is the one-p call's, bit for bit.
+std::vector<double> wrapping_probability(const std::vector<WrappingPoints>& points, int size, WrapCriterion criterion,
+                                         std::span<const double> ps);
+
+// Where the R(p) curves of two sample sets (of lattice sizes size_a and
+// size_b) cross inside [low, high]: the difference is sampled at `steps` + 1
+// evenly spaced p, and the crossing taken is the first change of sign between
+// its most negative and its most positive samples (the finite-size curves
+// cross once near p_c; sample noise can add wiggles in the tails, where both
+// are near 0 or 1), then bisected to 1e-12. Empty when the difference does
+// not go from one sign to the other there.
+std::optional<double> wrapping_crossing(const std::vector<WrappingPoints>& a, int size_a,
+                                        const std::vector<WrappingPoints>& b, int size_b, WrapCriterion criterion,
+                                        double low, double high, int steps = 200);
+
+// The finite-size extrapolation: p_c(L) = p_c + slope * L^(-11/4), the
+// correction of the estimates at R_L(p) = R_infinity(p_c) (Newman & Ziff
+// 2000: 2 + 1/nu with nu = 4/3), fitted by weighted least squares, each
+// estimate weighted by 1 / standard_error^2. p_c is the intercept.
+struct ThresholdExtrapolation {
+    double p_c;              // the intercept: p_c at L = infinity
+    double standard_error;   // of the intercept, from the estimates' standard errors
+    double slope;            // of p_c(L) against L^(-11/4)
+    double slope_error;      // its standard error
+    double chi_squared;      // of the estimates about the line
+    int degrees_of_freedom;  // estimates - 2
+};
+inline constexpr double threshold_correction_exponent = 11.0 / 4.0;
+
+// Throws std::invalid_argument for fewer than two estimates, two of the same
+// size, or a standard error that is not finite and above 0.
+ThresholdExtrapolation extrapolate_threshold(std::span<const ThresholdEstimate> estimates);
 
 }  // namespace sim

@@ -149,6 +149,10 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-phase --set trials=0", "--set trials=0: trials = 0 is not allowed: an integer from 1 to 100000"},
         {render + "tc7-phase --set qs=[0.5,1.5]", "--set qs=[0.5,1.5]: qs = [ 0.5, 1.5 ] is not allowed: [first, last, step] with 0 <= first <= last <= 1 and 0 < step <= 1, at most 10000 values"},
         {render + "tc7-phase --set walk_step=-1", "--set walk_step=-1: walk_step = -1 is not allowed: a number from 1e-06 to 0.5"},
+        {render + "pc-threshold --set sizes=[64,32]", "--set sizes=[64,32]: sizes = [ 64, 32 ] is not allowed: 2 to 16 lattice sizes (two at least, to extrapolate), ascending, each an integer from 2 to 4096"},
+        {render + "pc-threshold --set samples=1", "--set samples=1: samples = 1 is not allowed: an integer from 2 to 100000000"},
+        {render + "pc-threshold --set criterion=\\\"sideways\\\"", "--set criterion=\"sideways\": criterion = 'sideways' is not allowed: \"one_direction\", \"either_direction\" or \"both_directions\""},
+        {render + "pc-threshold --set samples=100000000 --set samples_per_item=1", "samples_per_item = 1 is not allowed: an integer from 1 to 1000000 giving at most 1000000 work items (4 sizes x samples / samples_per_item; it would give 400000000)"},
         // cellular automata
         {render + "tc7-6 --set rules=[256]", "--set rules=[256]: rules = 256 is not allowed: an integer from 0 to 255"},
         {render + "tc7-6 --set width=200001", "--set width=200001: width = 200001 is not allowed: each automaton at most 16384 cells a side (it would be 32 x 200001): the renderer draws one field that large"},
@@ -484,12 +488,12 @@ TEST_CASE("cmake --install puts figgen and the descriptions in a prefix, and the
     std::size_t descriptions = 0;
     for (const auto& entry : fs::directory_iterator(prefix / "share" / "figgen" / "figures"))
         descriptions += entry.path().extension() == ".toml";
-    CHECK(descriptions == 28);
+    CHECK(descriptions == 29);
     // It reads the installed folder, not the source tree: take one away.
     fs::remove(prefix / "share" / "figgen" / "figures" / "tc7-9.toml");
     const Run list = testkit::run_command("env -u FIGGEN_FIGURES_DIR " + installed.string() + " list");
     CHECK(list.status == 0);
-    CHECK(list.lines() == 27);
+    CHECK(list.lines() == 28);
     CHECK_THAT(list.output, !Catch::Contains("tc7-9 "));
     // With its film: the installed figgen opens the installed video module, not the build tree's.
     const Run render = testkit::run_command("env -u FIGGEN_FIGURES_DIR LD_DEBUG=files " + installed.string() +

@@ -151,6 +151,7 @@ TEST_CASE("memory estimates hold: peak RSS <= estimate <= 3 x peak, and --max-me
         {"tc7-5", "n 1000", "--no-video --set n=1000"},
         {"tc7-ex2", "n 800, panels 1..3", "--no-video --set n=800 --set figure.panels=[1,2,3]"},
         {"gs-atlas", "12 x 12 tiles, 20 steps", "--no-video --scale 0.5 --set steps=20 --set tiles=[12,12]"},
+        {"pc-threshold", "L 64 and 256, 200 samples", "--no-video --scale 0.5 --set sizes=[64,256] --set samples=200 --set samples_per_item=50"},
         {"bd-500", "1M particles", "--no-video --scale 0.5 --set particles=1000000"},
         {"pl-lsys-lycopodium", "depth +3", "--no-video --set depth=6"},
         {"pl-lsys-3d", "depth +2", "--no-video --scale 0.5 --set depth=9"},
@@ -209,6 +210,8 @@ TEST_CASE("memory estimates hold over the catalog and its scaled variants", "[.m
         {"bd-500", "particles x4 (1M)", "--no-video --set particles=1000000"},
         {"bd-500", "3M particles", "--no-video --set particles=3000000"},
         {"bd-500", "width x4 (2000), 2M", "--no-video --set width=2000 --set particles=2000000"},
+        {"pc-threshold", "L 1024 and 2048, 4 samples", "--no-video --set sizes=[1024,2048] --set samples=4 --set samples_per_item=1"},
+        {"pc-threshold", "2M samples of L 8 and 16", "--no-video --set sizes=[8,16] --set samples=2000000 --set samples_per_item=100000"},
         {"bd-roughness", "widths to 8000", "--no-video --set widths=[100,200,500,1000,2000,4000,8000] --set saturation_factor=0.3"},
         // Plants: depth +1 and +2, the largest served, beyond the budget.
         {"pl-lsys-gallery", "depth +1 (6)", "--no-video --set depth=6"},

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <deque>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -235,4 +236,73 @@ TEST_CASE("threshold rejects bad sizes sample counts and orders with messages na
           "points is empty: at least one sample is needed");
     CHECK(message_of([&] { sim::wrapping_probability({{5, 6}}, 4, WrapCriterion::one_direction, 1.5); }) ==
           "p = 1.5 is not allowed: a number from 0 to 1");
+}
+
+TEST_CASE("wrapping probability at many p gives the one-p call's bits at each", "[threshold]") {
+    sim::Random rng(5);
+    const std::vector<WrappingPoints> points = sim::wrapping_points(24, 200, rng);
+    const std::vector<double> ps{0.0, 0.3, 0.55, 0.5927, 0.61, 0.9, 1.0};
+    for (WrapCriterion c :
+         {WrapCriterion::one_direction, WrapCriterion::either_direction, WrapCriterion::both_directions}) {
+        const std::vector<double> curve = sim::wrapping_probability(points, 24, c, ps);
+        REQUIRE(curve.size() == ps.size());
+        for (std::size_t i = 0; i < ps.size(); ++i) CHECK(curve[i] == sim::wrapping_probability(points, 24, c, ps[i]));
+    }
+    CHECK(sim::wrapping_probability(points, 24, WrapCriterion::one_direction, std::vector<double>{}).empty());
+    CHECK_THROWS_WITH(sim::wrapping_probability(points, 24, WrapCriterion::one_direction, std::vector<double>{0.5, -1}),
+                      "p = -1 is not allowed: a number from 0 to 1");
+}
+
+TEST_CASE("two sizes' wrapping curves cross where they are equal and nowhere outside their range", "[threshold]") {
+    sim::Random a(8), b(9);
+    const std::vector<WrappingPoints> small = sim::wrapping_points(16, 2000, a);
+    const std::vector<WrappingPoints> large = sim::wrapping_points(32, 2000, b);
+    const WrapCriterion c = WrapCriterion::one_direction;
+    const std::optional<double> p = sim::wrapping_crossing(small, 16, large, 32, c, 0.5, 0.7);
+    REQUIRE(p.has_value());
+    INFO("crossing at " << *p);
+    CHECK(std::abs(*p - exact_p_c) < 0.01);
+    CHECK(sim::wrapping_probability(large, 32, c, *p) ==
+          Approx(sim::wrapping_probability(small, 16, c, *p)).margin(1e-9));
+    // The larger lattice's curve is the steeper: below the crossing it is under the smaller's.
+    CHECK(sim::wrapping_probability(large, 32, c, *p - 0.02) < sim::wrapping_probability(small, 16, c, *p - 0.02));
+    CHECK(sim::wrapping_probability(large, 32, c, *p + 0.02) > sim::wrapping_probability(small, 16, c, *p + 0.02));
+    // Either order of the two sets finds the same crossing.
+    const std::optional<double> swapped = sim::wrapping_crossing(large, 32, small, 16, c, 0.5, 0.7);
+    REQUIRE(swapped.has_value());
+    CHECK(*swapped == Approx(*p).margin(1e-10));
+    // Far below p_c both curves are 0 to rounding and far above both 1: no change of sign there.
+    CHECK_FALSE(sim::wrapping_crossing(small, 16, large, 32, c, 0.05, 0.1).has_value());
+    CHECK_FALSE(sim::wrapping_crossing(small, 16, small, 16, c, 0.5, 0.7).has_value());
+}
+
+TEST_CASE("the extrapolation in L^(-11/4) recovers an exact line and weighs by the error bars", "[threshold]") {
+    auto x = [](int size) { return std::pow(static_cast<double>(size), -11.0 / 4.0); };
+    std::vector<sim::ThresholdEstimate> line;
+    for (int size : {16, 32, 64, 128}) line.push_back({0.5927 + 3.0 * x(size), 1e-4 * size / 16.0, 1000, size});
+    const sim::ThresholdExtrapolation fit = sim::extrapolate_threshold(line);
+    CHECK(fit.p_c == Approx(0.5927).epsilon(1e-12));
+    CHECK(fit.slope == Approx(3.0).epsilon(1e-6));
+    CHECK(fit.chi_squared == Approx(0.0).margin(1e-12));
+    CHECK(fit.degrees_of_freedom == 2);
+    // Two points: the line through them, with the errors of the two-point formulas.
+    const std::vector<sim::ThresholdEstimate> two{{0.60, 0.002, 100, 2}, {0.59, 0.001, 100, 4}};
+    const sim::ThresholdExtrapolation through = sim::extrapolate_threshold(two);
+    const double x1 = x(2), x2 = x(4);
+    const double slope = (0.60 - 0.59) / (x1 - x2), intercept = 0.59 - slope * x2;
+    CHECK(through.p_c == Approx(intercept).epsilon(1e-12));
+    CHECK(through.slope == Approx(slope).epsilon(1e-12));
+    // The intercept's variance: each estimate's weight in it, squared, times its variance.
+    const double w1 = -x2 / (x1 - x2), w2 = x1 / (x1 - x2);
+    CHECK(through.standard_error == Approx(std::sqrt(w1 * w1 * 0.002 * 0.002 + w2 * w2 * 0.001 * 0.001)).epsilon(1e-9));
+    CHECK(through.degrees_of_freedom == 0);
+    // Bad input is refused with a message naming it.
+    CHECK_THROWS_WITH(sim::extrapolate_threshold(std::vector<sim::ThresholdEstimate>{two[0]}),
+                      "estimates = 1 is not allowed: two lattice sizes at least, to fit a line");
+    CHECK_THROWS_WITH(sim::extrapolate_threshold(std::vector<sim::ThresholdEstimate>{two[0], two[0]}),
+                      "size = 2 is not allowed: each lattice size once");
+    std::vector<sim::ThresholdEstimate> flat = two;
+    flat[1].standard_error = 0;
+    CHECK_THROWS_WITH(sim::extrapolate_threshold(flat),
+                      "standard_error = 0 is not allowed: a finite number above 0 (at L = 4)");
 }
