@@ -1,5 +1,7 @@
 #include "app/commands.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -159,6 +161,18 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
 
 namespace {
 
+// Threads for a process by default: the cores it may run on (its affinity
+// mask: mpirun binds a rank to a core, or to the cores --map-by gives it),
+// shared with the other ranks on its node when it is not bound.
+int default_threads() {
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    cpu_set_t mask;
+    CPU_ZERO(&mask);
+    const int allowed = ::sched_getaffinity(0, sizeof mask, &mask) == 0 ? CPU_COUNT(&mask) : cores;
+    if (allowed < cores) return std::max(1, allowed);  // bound: it has these to itself
+    return std::max(1, cores / launcher_local_size());
+}
+
 // The options of `figgen render` as output options; UsageError for a value out of range.
 OutputOptions output_options(const RenderCommand& c) {
     if (!(c.scale >= 0.1 && c.scale <= 8.0))  // also false for NaN
@@ -179,8 +193,7 @@ OutputOptions output_options(const RenderCommand& c) {
     options.max_disk = parse_size("--max-disk", c.max_disk);
     if (c.threads && !(*c.threads >= 1 && *c.threads <= 1024))
         throw UsageError("--threads " + std::to_string(*c.threads) + " is not allowed: use 1..1024");
-    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    options.work.threads = c.threads.value_or(std::max(1, cores / launcher_local_size()));
+    options.work.threads = c.threads.value_or(default_threads());
     options.work.schedule = c.schedule == "static" ? Schedule::fixed : Schedule::dynamic;
     for (const std::string& from : c.from) options.work.merge_from.emplace_back(from);
     if (!c.shard.empty()) {

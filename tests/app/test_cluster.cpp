@@ -112,7 +112,7 @@ TEST_CASE("mpirun with 1 to 4 ranks gives the bytes of one process", "[cluster][
     REQUIRE(plain.status == 0);
     CHECK(plain.output.empty());  // a plain run says nothing about ranks or parts
     // Dynamic schedules on 1..4 ranks, and the static one on 3.
-    for (const std::string& variant : {"1", "2", "3", "4", "3 static"}) {
+    for (const std::string variant : {"1", "2", "3", "4", "3 static"}) {
         const int ranks = variant[0] - '0';
         const bool fixed = variant.size() > 1;
         const fs::path out = dir / ("ranks-" + std::to_string(ranks) + (fixed ? "-static" : ""));
