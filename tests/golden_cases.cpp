@@ -135,6 +135,9 @@ std::vector<std::string> golden_overrides(const std::string& id) {
     // Roughness without L = 2000 and with 2 runs a width: about a tenth of
     // the particles (the full one takes ~12 s), the same two panels and fits.
     if (id == "bd-roughness") return {"widths=[100,200,500,1000]", "seeds=2"};
+    // The threshold from 1,500 samples per L in blocks of 250 (the full one
+    // draws 6,000): the same panels, fits and notes.
+    if (id == "pc-threshold") return {"samples=1500"};
     return {};
 }
 
