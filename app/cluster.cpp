@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "app/mpi/api.hpp"
+#include "render/module.hpp"
 
 namespace app {
 namespace {
@@ -21,19 +22,6 @@ int environment_int(const char* name, int fallback) {
     char* end = nullptr;
     const long value = std::strtol(text, &end, 10);
     return (*end == '\0' && value >= 0 && value <= INT_MAX) ? static_cast<int>(value) : fallback;
-}
-
-// Where the module is: installed beside the program (FIGGEN_MPI_RELATIVE,
-// from the running executable's folder), else where this build made it
-// (FIGGEN_MPI_BUILT). Never a path from the environment or a description.
-std::filesystem::path module_path() {
-    std::error_code error;
-    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
-    if (!error) {
-        const std::filesystem::path installed = exe.parent_path() / FIGGEN_MPI_RELATIVE;
-        if (std::filesystem::is_regular_file(installed, error)) return installed;
-    }
-    return FIGGEN_MPI_BUILT;
 }
 
 }  // namespace
@@ -58,7 +46,7 @@ std::unique_ptr<Cluster> Cluster::join() {
         "started by an MPI launcher, but this figgen was built without MPI: install libopenmpi-dev "
         "(scripts/deps.sh) and build again");
 #else
-    const std::filesystem::path path = module_path();
+    const std::filesystem::path path = render::module_path(FIGGEN_MPI_RELATIVE, FIGGEN_MPI_BUILT);
     // RTLD_GLOBAL: Open MPI opens its own components, which need libmpi's symbols.
     void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL);
     if (!handle)

@@ -6,23 +6,10 @@
 #include <system_error>
 
 #include "render/background.hpp"
+#include "render/module.hpp"
 
 namespace render::media {
 namespace {
-
-// Where the module is: installed beside the program (FIGGEN_MEDIA_RELATIVE,
-// from the folder of the running executable, as `cmake --install` puts
-// it), else where this build made it (FIGGEN_MEDIA_BUILT). Never a path from
-// the environment or a description.
-std::filesystem::path module_path() {
-    std::error_code error;
-    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
-    if (!error) {
-        const std::filesystem::path installed = exe.parent_path() / FIGGEN_MEDIA_RELATIVE;
-        if (std::filesystem::is_regular_file(installed, error)) return installed;
-    }
-    return FIGGEN_MEDIA_BUILT;
-}
 
 struct Opened {
     const Api* api = nullptr;
@@ -30,7 +17,7 @@ struct Opened {
 };
 
 Opened open_module() {
-    const std::filesystem::path path = module_path();
+    const std::filesystem::path path = module_path(FIGGEN_MEDIA_RELATIVE, FIGGEN_MEDIA_BUILT);
     void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle)
         return {nullptr, "cannot load figgen's video module (" + std::string(::dlerror()) +

@@ -504,4 +504,14 @@ TEST_CASE("cmake --install puts figgen and the descriptions in a prefix, and the
     CHECK_THAT(render.output, Catch::Contains("file=" + installed.parent_path().string() + "/../lib") &&
                                   Catch::Contains("/figgen/libfiggen_media.so") &&
                                   !Catch::Contains(FIGGEN_BUILD_DIR "/lib/libfiggen_media.so"));
+#ifdef FIGGEN_TEST_MPI
+    // And under mpirun the installed MPI module, likewise.
+    const Run ranks = testkit::run_command(
+        "env -u FIGGEN_FIGURES_DIR LD_DEBUG=files OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+        "OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_btl=self,vader mpirun --oversubscribe -n 2 " +
+        installed.string() + " render tc7-phase --set trials=2 --out " + (prefix / "out").string());
+    CHECK(ranks.status == 0);
+    CHECK_THAT(ranks.output, Catch::Contains("/figgen/libfiggen_mpi.so") &&
+                                 !Catch::Contains(FIGGEN_BUILD_DIR "/lib/libfiggen_mpi.so"));
+#endif
 }
