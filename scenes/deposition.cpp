@@ -148,6 +148,7 @@ public:
                          film.drop_one(deposit);
                      return true;
                  }});
+        if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         const std::int64_t top = max_height(deposit);
         const auto field = deposit_field(deposit, int(top) + 2, band_size_);
         run.write_figure(

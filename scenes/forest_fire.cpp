@@ -141,6 +141,7 @@ public:
         StepRunner run(d_, options_, out);
         sim::ForestFire model(p_, d_.seed);
         const ForestHistory history = run_forest(run, model);
+        if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         const ForestDimension dim{sim::box_count(model.cells(), sim::ForestFire::tree),
                                   sim::central_box_mass(model.cells(), sim::ForestFire::tree)};
         const render::Image figure = draw_figure(history, dim, double(model.cells().size()));

@@ -214,6 +214,7 @@ public:
                  .frame = [&](int step) { return turntable_frame(run.frame_canvas(true), plant, step); },
                  .advance = [] { return true; }});
 
+        if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         nlohmann::json panel_meta = nlohmann::json::array();
         const render::Image figure = draw_views(plant, row, font, panel_meta);
         const glm::vec3 lo = plant.lo, hi = plant.hi;

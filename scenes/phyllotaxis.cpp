@@ -127,6 +127,7 @@ public:
                  .panel = {},
                  .frame = [&](int step) { return draw_frame(run.frame_canvas(), spirals[0], step); },
                  .advance = [] { return true; }});
+        if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         nlohmann::json panel_meta = nlohmann::json::array();
         const render::Image figure = draw_figure(spirals, panel_meta);
         run.write_figure(figure, {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});

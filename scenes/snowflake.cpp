@@ -131,6 +131,7 @@ public:
                 },
         });
 
+        if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
         render::Canvas canvas(width, height);
         canvas.clear({1, 1, 1, 1});

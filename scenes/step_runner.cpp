@@ -114,8 +114,13 @@ void StepRunner::write_figure(const render::Image& figure, nlohmann::json meta) 
     progress_.finish();
 }
 
+void StepRunner::finish_film() {
+    if (film_) film_->finish();
+    progress_.finish();
+}
+
 void StepRunner::write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta) {
-    if (!out_.wants_figure()) return write_figure({}, std::move(meta));  // a run for film frames only
+    if (film_only()) return finish_film();
     write_figure(draw_field_panels(panels, scaled_even(description_.width, options_.scale),
                                    scaled_even(description_.height, options_.scale), options_.scale),
                  std::move(meta));

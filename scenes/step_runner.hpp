@@ -50,6 +50,10 @@ public:
     // of a figure; the film takes the frames of the runs given a frame hook.
     int run_to_stop(const StepHooks& hooks);
 
+    // A run that makes only some of the film's frames (a segment, on
+    // another MPI rank): its figure is not drawn; end it with finish_film().
+    bool film_only() const { return !out_.wants_figure(); }
+    void finish_film();
     // Completes the animation, adds its metadata to `meta`, writes the
     // figure's PNG and JSON and completes the progress bar.
     void write_figure(const render::Image& figure, nlohmann::json meta);
