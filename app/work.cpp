@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <mutex>
@@ -302,13 +303,19 @@ std::vector<json> run_work(const description::Description& d, const scenes::Work
             cluster->broadcast(header);
             std::atomic<std::size_t> cursor{0};
             const std::vector<int> mine = dynamic ? missing : fixed_share(missing, 0, cluster->size());
-            std::atomic<bool> stop{false};
-            std::string rank_failure;  // the first failure another rank sent
+            std::atomic<bool> stop{false};     // hand out no more items
+            std::atomic<bool> abandon{false};  // rank 0 failed: the server stops too, the job is aborted
+            std::string rank_failure;          // the first failure another rank sent
             std::exception_ptr serve_failure;
             std::thread server([&] {
                 try {
-                    for (int working = cluster->size() - 1; working > 0;) {
-                        Cluster::Message m = cluster->wait();
+                    for (int working = cluster->size() - 1; working > 0 && !abandon;) {
+                        std::optional<Cluster::Message> next = cluster->poll();
+                        if (!next) {
+                            std::this_thread::sleep_for(std::chrono::microseconds(200));
+                            continue;
+                        }
+                        Cluster::Message& m = *next;
                         if (m.tag == tag_done) {
                             --working;
                         } else if (m.tag == tag_request) {
@@ -342,8 +349,8 @@ std::vector<json> run_work(const description::Description& d, const scenes::Work
                     },
                     [&](int item) { record(item, run_one(d, items, item)); });
             } catch (const std::exception& e) {
-                stop = true;
-                server.detach();  // the job is aborted once this is said; the thread may be waiting
+                stop = abandon = true;
+                server.join();  // it stops at its next poll; the caller aborts the job once this is said
                 throw std::runtime_error("rank 0: " + std::string(e.what()));
             }
             server.join();
