@@ -225,8 +225,8 @@ std::string parts_name(const std::string& id) {
 std::string work_hash(const description::Description& d, const scenes::WorkItems& items) {
     std::ostringstream params;
     params << toml::json_formatter{d.params};
-    const std::string text =
-        std::string(version()) + "\n" + d.scene + "\n" + std::to_string(d.seed) + "\n" + params.str() + "\n" + items.depends_on();
+    const std::string text = std::string(version()) + "\n" + d.scene + "\n" + std::to_string(d.seed) + "\n" +
+                             params.str() + "\n" + items.depends_on();
     return render::sha256_hex(text.data(), text.size());
 }
 
