@@ -127,7 +127,7 @@ double encode(const std::vector<render::Image>& frames, const std::filesystem::p
     render::VideoOptions options;
     options.codec = "libx264";
     options.fps = fps;
-    options.threads = 2;  // as figgen pins it
+    options.threads = render::VideoOptions{}.threads;  // as figgen pins it
     options.crf = 18;
     options.preset = s.preset;
     options.tune = s.tune;
@@ -210,7 +210,7 @@ std::string fixed(double x, int decimals) {
 // bench/results/encoder.md: one table per film, then the choice.
 std::string markdown(const nlohmann::json& out) {
     std::string md =
-        "# x264 settings on figgen's own frames (crf 18, 2 threads)\n\n"
+        "# x264 settings on figgen's own frames (crf 18, " + std::to_string(render::VideoOptions{}.threads) + " encoder thread)\n\n"
         "Encoding time only (frames already in memory, best of 2); SSIM from FFmpeg's ssim filter, "
         "decoded film against the drawn PNGs: RGB (the bound) and luma. Bounds: SSIM drop <= 0.005, "
         "size <= 1.25 x medium's.\n";

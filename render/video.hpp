@@ -18,7 +18,12 @@ namespace render {
 
 struct VideoOptions {
     int fps = 30;                // frames per second, >= 1
-    int threads = 2;             // encoder threads, pinned: the output bytes depend on it
+    // Encoder threads, pinned to 1: x264's frame threads let its rate
+    // control see how far the other frames got, so with 2 the same frames
+    // gave other bytes 8 times in 20 on a loaded machine (the test "the same
+    // frames with the same options give the same bytes", run 20 times while
+    // a build ran; with 1, never). One thread costs speed, not bytes.
+    int threads = 1;
     int crf = 18;                // x264 quality 0..51 (lower is better); mpeg4 maps it to a fixed qscale
     std::string codec = "auto";  // "auto" (libx264, else mpeg4), "libx264" or "mpeg4"
     // x264's speed/size trade-off and content tuning (x264_presets() and

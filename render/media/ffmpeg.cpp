@@ -227,10 +227,12 @@ const AVCodec* chosen_codec(const std::filesystem::path& shown, const VideoOptio
 
 // libx264 reads memory it allocated but never wrote: in a fresh process
 // that is zero, but after other work it holds whatever was freed there,
-// and a segment's bytes then depend on what its process did before (seen
-// under mpirun, where a rank encodes segments of several films, and found
-// with glibc's MALLOC_PERTURB_, which made the bytes repeat; mpeg4 never
-// differs). While an encoder is opened or fed, glibc fills every fresh
+// and a film's bytes then depend on what its process did before (seen
+// under mpirun, where a rank encodes segments of several films, and in one
+// process encoding the same frames twice under load; found with glibc's
+// MALLOC_PERTURB_, which made the bytes repeat; mpeg4 never differs). While
+// an encoder exists, from its opening to its end (x264's own threads
+// allocate in between, not only inside our calls), glibc fills every fresh
 // allocation with one byte (M_PERTURB), so x264's stray reads see the same
 // bytes in every process. Nested and concurrent encoders share the switch.
 class SameFreshMemory {
@@ -272,7 +274,6 @@ class FfmpegSegment final : public SegmentEncoder {
 public:
     FfmpegSegment(const std::filesystem::path& shown, int width, int height, const VideoOptions& options)
         : shown_(shown), width_(width), height_(height) {
-        const SameFreshMemory same;
         quiet_ffmpeg();
         codec_ = open_codec(chosen_codec(shown, options), shown, width, height, options, true);
         yuv_.reset(av_frame_alloc());
@@ -296,7 +297,6 @@ public:
     }
 
     void add(const Image& frame) override {
-        const SameFreshMemory same;
         // The encoder may still hold the previous frame's buffer (mpeg4 does).
         const std::uint8_t* before = yuv_->data[0];
         check(av_frame_make_writable(yuv_.get()), "allocating a frame");
@@ -310,7 +310,6 @@ public:
     }
 
     std::vector<Packet> finish() override {
-        const SameFreshMemory same;
         check(avcodec_send_frame(codec_.get(), nullptr), "flushing the encoder");  // x264 holds frames back
         drain();
         return std::move(packets_);
@@ -334,6 +333,7 @@ private:
         }
     }
 
+    SameFreshMemory same_;  // first: on before the encoder opens, off after it is freed
     std::filesystem::path shown_;
     int width_, height_;
     std::int64_t frames_ = 0;
@@ -394,7 +394,6 @@ private:
         if (!stream_) fail_write("creating the stream", AVERROR(ENOMEM));
         // The stream's parameters (its headers) from an encoder of the same
         // settings: every segment's encoder makes the same ones.
-        const SameFreshMemory same;
         const CodecPtr c = open_codec(codec, shown_, width_, height_, options_,
                                       (format->oformat->flags & AVFMT_GLOBALHEADER) != 0);
         time_base_ = c->time_base;
@@ -442,6 +441,7 @@ private:
         }
     }
 
+    SameFreshMemory same_;  // first: on before the stream's encoder opens, off after the muxer is freed
     std::filesystem::path shown_;
     int width_, height_;
     VideoOptions options_;
