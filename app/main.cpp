@@ -14,6 +14,7 @@
 #include "description/plain_name.hpp"
 #include "description/settings.hpp"
 #include "render/atomic_file.hpp"
+#include "render/background.hpp"
 
 namespace {
 
@@ -46,7 +47,20 @@ bool is_unknown_command(int argc, char** argv, const std::vector<app::Command*>&
 
 }  // namespace
 
+namespace {
+int run_command(int argc, char** argv);
+}  // namespace
+
 int main(int argc, char** argv) {
+    const int status = run_command(argc, argv);
+    // No library may still be loading on another thread while exit() runs.
+    render::wait_for_background();
+    return status;
+}
+
+namespace {
+
+int run_command(int argc, char** argv) {
     // First, before any thread starts: an interrupted render removes its
     // unfinished files and exits with 130 (SIGINT) or 143 (SIGTERM).
     render::remove_temporaries_on_signals();
@@ -93,3 +107,5 @@ int main(int argc, char** argv) {
         return app::exit_runtime_error;
     }
 }
+
+}  // namespace
