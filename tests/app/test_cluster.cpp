@@ -89,11 +89,20 @@ void check_no_parts(const std::vector<std::string>& ids, const fs::path& out) {
 const std::string small = " --scale 0.3";
 
 #ifdef FIGGEN_TEST_MPI
+#if defined(__SANITIZE_ADDRESS__)
+constexpr const char* sanitizer_options = "ASAN_OPTIONS=detect_leaks=0:intercept_tls_get_addr=0 ";
+#else
+constexpr const char* sanitizer_options = "";
+#endif
 // mpirun as root in a container, as CI runs: allowed as root, shared memory
 // without the kernel's cross-memory attach (containers forbid it), and the
 // in-node transports only.
+// Under ASan (make test-sanitize) the ranks skip LeakSanitizer: Open MPI
+// keeps what its components allocate past MPI_Finalize, and it has closed
+// those components by then, so no suppression can name them; every other
+// test keeps it.
 std::string mpirun(int ranks) {
-    return "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+    return std::string(sanitizer_options) + "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
            "OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_btl=self,vader OMPI_MCA_pml=ob1 "
            "OMPI_MCA_mtl=^ofi OMPI_MCA_osc=^ucx mpirun --oversubscribe -n " +
            std::to_string(ranks) + " ";
