@@ -6,10 +6,12 @@
 //   <id>.json           metadata of all of them: parameters, seed, per-panel
 //                       step, statistics and state hash, frame list
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <thread>
 
 #include "app/frame_pipe.hpp"
 #include "app/work.hpp"
@@ -38,7 +40,13 @@ struct OutputOptions {
     WorkOptions work;  // how work items run: threads, MPI, shards, merge
 
     bool animates() const { return video || frames; }
-    scenes::SceneOptions scene_options() const { return {scale, animates()}; }
+    // Threads for the scenes' memory estimates: --threads, but never fewer
+    // than the machine's cores, so that the estimate (kept in the JSON) is
+    // the same for every run on this machine that uses no more threads than
+    // cores, whatever its --threads or rank count.
+    scenes::SceneOptions scene_options() const {
+        return {scale, animates(), std::max(work.threads, static_cast<int>(std::thread::hardware_concurrency()))};
+    }
 };
 
 // The figure's size in pixels at the output scale.

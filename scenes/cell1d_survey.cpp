@@ -96,7 +96,7 @@ public:
     // count_cells' automaton: n rows of 2n + 1 cells, one rule at a time on each thread.
     std::vector<MemoryNeed> memory() const override {
         return {grid_need("rows of cells of a byte, one automaton a thread", n_, 2.0 * n_ + 1.0, 1,
-                          std::max(1u, std::thread::hardware_concurrency()))};
+                          double(options_.threads))};
     }
 
     const WorkItems* work() const override { return this; }

@@ -95,7 +95,7 @@ public:
         return {grid_need("grids of doubles", n, n, 8, 2.0),
                 grid_need("tiles' B, kept as floats and drawn", n, n, 4 + field_layer_bytes_per_cell, tiles),
                 grid_need("kernel grids of floats and a B of doubles", n + 2, n + 2, 4 * 4 + 8,
-                          std::max(1u, std::thread::hardware_concurrency())),
+                          double(options_.threads)),
                 grid_need("float error runs in double, each its kernel's grids and its B", n + 2, n + 2, 8 * 5,
                           double(sim::float_error_tiles(atlas_).size()))};
     }

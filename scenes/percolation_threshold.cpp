@@ -66,37 +66,36 @@ std::vector<int> read_sizes(Settings& s) {
     return {sizes.begin(), sizes.end()};
 }
 
+// Each criterion: its name in the description, and what the left panel's title says it counts.
+struct CriterionInfo {
+    sim::WrapCriterion criterion;
+    const char* name;
+    const char* words;
+};
+constexpr CriterionInfo criteria[] = {
+    {sim::WrapCriterion::one_direction, "one_direction", "a cluster wraps one given way"},
+    {sim::WrapCriterion::either_direction, "either_direction", "a cluster wraps either way"},
+    {sim::WrapCriterion::both_directions, "both_directions", "a cluster wraps both ways"},
+};
+
+const CriterionInfo& info_of(sim::WrapCriterion c) {
+    for (const CriterionInfo& i : criteria)
+        if (i.criterion == c) return i;
+    return criteria[0];  // every enumerator is in the table
+}
+
 sim::WrapCriterion read_criterion(Settings& s) {
     const std::string name = s.text("criterion", "one_direction");
-    if (name == "one_direction") return sim::WrapCriterion::one_direction;
-    if (name == "either_direction") return sim::WrapCriterion::either_direction;
-    if (name == "both_directions") return sim::WrapCriterion::both_directions;
+    for (const CriterionInfo& i : criteria)
+        if (name == i.name) return i.criterion;
     s.refuse("criterion", "\"one_direction\", \"either_direction\" or \"both_directions\"");
 }
 
 const char* criterion_name(sim::WrapCriterion c) {
-    switch (c) {
-        case sim::WrapCriterion::one_direction:
-            return "one_direction";
-        case sim::WrapCriterion::either_direction:
-            return "either_direction";
-        case sim::WrapCriterion::both_directions:
-            return "both_directions";
-    }
-    return "?";
+    return info_of(c).name;
 }
-
-// What the left panel's title says each criterion counts.
 const char* criterion_words(sim::WrapCriterion c) {
-    switch (c) {
-        case sim::WrapCriterion::one_direction:
-            return "a cluster wraps one given way";
-        case sim::WrapCriterion::either_direction:
-            return "a cluster wraps either way";
-        case sim::WrapCriterion::both_directions:
-            return "a cluster wraps both ways";
-    }
-    return "?";
+    return info_of(c).words;
 }
 
 // A probability drawn as a line: strictly inside (0, 1).
@@ -167,7 +166,7 @@ public:
     // of the largest L, two at once (a crossing), 16 bytes a site each.
     std::vector<MemoryNeed> memory() const override {
         const double largest = sizes_.back();
-        const double threads = std::max(1u, std::thread::hardware_concurrency());
+        const double threads = options_.threads;
         return {grid_need("a lattice of the largest L per thread", largest, largest, 20, threads),
                 {"a block's points per thread, four copies", 4.0 * 8 * per_item_ * threads},
                 {"the wrapping points of every sample, as results and decoded",

@@ -24,6 +24,7 @@ namespace scenes {
 struct SceneOptions {
     double scale = 1.0;  // multiplies every size in pixels
     bool film = true;    // the animation is wanted (MP4 or PNG sequence)
+    int threads = 1;     // work items that may run at once (for memory estimates: each holds its own buffers)
 };
 
 // One big allocation of a model, for the command's memory estimate.
