@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <memory>
@@ -135,6 +136,14 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
     app->add_option("--threads", threads,
                     "Threads per process for work items, OpenMP and llvmpipe (1..1024; default: the cores, or "
                     "under mpirun the cores per rank of the node)");
+    app->add_option("--gl", gl,
+                    "Where GL comes from: auto (EGL's surfaceless platform on llvmpipe, else OSMesa), osmesa, egl "
+                    "(EGL surfaceless: llvmpipe, or the GPU Mesa finds) or egl-device (EGL's device platform: a "
+                    "headless GPU; see --gl-device); default: FIGGEN_GL, else auto")
+        ->capture_default_str();
+    app->add_option("--gl-device", gl_device, "With --gl egl-device: which device (0.., in EGL's order)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1023));
     app->add_option("figures", targets, "Figure ids (see `figgen list`) or .toml description files")->required();
     app->add_option("--out", out_dir, "Output folder, created if missing")->capture_default_str();
     app->add_option("--set", overrides,
@@ -284,6 +293,20 @@ int RenderCommand::run() {
                                  f.description->id + " has no work items to share; allowed: " + distributable_ids());
     if (options.work.merging())
         for (const CheckedFigure& f : figures) check_merge_sources(*f.description, *f.scene->work(), options.work);
+    // --gl, else FIGGEN_GL, else auto.
+    std::string gl_from = "--gl " + gl;
+    if (app->get_option("--gl")->count() == 0)
+        if (const char* env = std::getenv("FIGGEN_GL"); env && *env) gl = env, gl_from = "FIGGEN_GL=" + gl;
+    if (!render::gl_platform_of(gl))
+        throw UsageError(gl_from + " is not allowed: use auto, osmesa, egl or egl-device");
+    if (gl_device != 0 && gl != "egl-device")
+        throw UsageError("--gl-device " + std::to_string(gl_device) + " is not allowed with " + gl_from +
+                         ": use it with --gl egl-device");
+    const render::GlChoice gl_choice{*render::gl_platform_of(gl), gl_device};
+    if (!options.work.shard) {
+        if (const std::optional<std::string> refused = render::check_gl_choice(gl_choice)) throw UsageError(*refused);
+        render::choose_gl(gl_choice);
+    }
     apply_threads(*this, options.work.threads);
     if (options.work.shard) return run_shards(figures, options);
     // Under an MPI launcher, join the job now that every input is accepted:

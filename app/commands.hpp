@@ -70,6 +70,8 @@ struct RenderCommand : Command {
     std::vector<std::string> targets, overrides, from;
     std::string shard, schedule = "dynamic";
     std::optional<int> threads;
+    std::string gl = "auto";  // --gl, FIGGEN_GL
+    int gl_device = 0;
     std::string out_dir = "out", size, cmap, format;
     std::optional<std::uint64_t> seed;
     std::optional<int> fps;

@@ -215,6 +215,22 @@ std::vector<std::string> output_names(const std::string& id) {
     return {id + ".png", id + ".json", id + ".mp4", id + "-frames"};
 }
 
+namespace {
+
+// The GL the figure was drawn with: its renderer and version, the platform
+// it came through (--gl), the device for egl-device, and the samples a
+// pixel of every multisampled canvas.
+nlohmann::json renderer_metadata(const render::GlContext& gl) {
+    nlohmann::json r = {{"gl_renderer", gl.renderer()},
+                        {"gl_version", gl.version()},
+                        {"platform", gl.platform()},
+                        {"samples", render::canvas_samples}};
+    if (!gl.device().empty()) r["device"] = gl.device();
+    return r;
+}
+
+}  // namespace
+
 void write_figure(const Description& d, const OutputOptions& options, const render::Folder& folder,
                   const MemoryEstimate& memory, const render::Image& image, nlohmann::json metadata) {
     const auto& gl = render::GlContext::get();
@@ -227,7 +243,7 @@ void write_figure(const Description& d, const OutputOptions& options, const rend
         {"seed", d.seed},
         {"description", d.file.filename().string()},
         {"figgen_version", app::version()},
-        {"renderer", {{"gl_renderer", gl.renderer()}, {"gl_version", gl.version()}}},
+        {"renderer", renderer_metadata(gl)},
         {"scale", options.scale},
         {"memory_estimate", {{"bytes", std::llround(memory.bytes)}, {"largest", memory.largest.what}}},
     };

@@ -36,7 +36,13 @@ double spare_canvas_bytes(int width, int height, int samples, bool depth) {
 }  // namespace
 
 Canvas::Canvas(int width, int height, int samples, bool depth)
-    : width_(width), height_(height), samples_(std::min(samples, GlContext::get().max_samples())) {
+    : width_(width), height_(height), samples_(samples) {
+    // Exactly canvas_samples, never the most the GL has: the pixels must
+    // not change with the machine.
+    if (samples != 1 && samples != canvas_samples)
+        throw std::invalid_argument("canvas samples " + std::to_string(samples) + ": allowed 1 or " +
+                                    std::to_string(canvas_samples));
+    GlContext::get();
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
     if (width < 1 || height < 1 || width > max_size || height > max_size)
@@ -64,6 +70,12 @@ Canvas::Canvas(int width, int height, int samples, bool depth)
             glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples_, format, width, height);
         else
             glRenderbufferStorage(GL_RENDERBUFFER, format, width, height);
+        // The GL may give more samples than asked for (the spec allows it).
+        GLint given = 0;
+        glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &given);
+        if (std::max(given, 1) != samples_)
+            throw std::runtime_error("the GL gave a canvas " + std::to_string(given) + " samples a pixel for the " +
+                                     std::to_string(samples_) + " asked for");
     };
     glGenRenderbuffers(1, &msaa_colour_);
     glBindRenderbuffer(GL_RENDERBUFFER, msaa_colour_);

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "render/gl.hpp"
+#include "render/gl_context.hpp"
 #include "render/image.hpp"
 
 namespace render {
@@ -39,7 +40,7 @@ struct Rect {
 
 class Canvas {
 public:
-    Canvas(int width, int height, int samples = 4, bool depth = false);
+    Canvas(int width, int height, int samples = canvas_samples, bool depth = false);
     ~Canvas();
     Canvas(const Canvas&) = delete;
     Canvas& operator=(const Canvas&) = delete;

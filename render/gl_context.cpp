@@ -1,86 +1,114 @@
 #include "render/gl_context.hpp"
 
-#include <dlfcn.h>
-
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
 #include <stdexcept>
 
 #include "render/background.hpp"
-
-// OSMesa's header for its types, constants and prototypes; glad's gl.h,
-// included first, stands in for the <GL/gl.h> it includes (and its GLAPI
-// macros). No OSMesa function is called by name: they come from dlsym.
-#ifndef GLAPI
-#define GLAPI extern
-#endif
-#ifndef GLAPIENTRY
-#define GLAPIENTRY
-#endif
-#include <GL/osmesa.h>
+#include "render/gl_library.hpp"
 
 namespace render {
 namespace {
 
-// Debian 12's libosmesa6 (Mesa's llvmpipe); its soname since Mesa 10.
-constexpr const char* osmesa_library = "libOSMesa.so.8";
-constexpr const char* osmesa_package = "libosmesa6";
-
-// The library, opened once; `error` says why not when it is null.
-struct Library {
-    void* handle = nullptr;
-    std::string error;
+struct Chosen {
+    std::mutex lock;
+    std::optional<GlChoice> choice;  // set by choose_gl() or, on first use, from FIGGEN_GL
 };
 
-Library open_library() {
-    Library library;
-    // RTLD_NOW: every symbol bound here, on the preloading thread, not on
-    // the first call of each later.
-    library.handle = ::dlopen(osmesa_library, RTLD_NOW | RTLD_LOCAL);
-    if (!library.handle) library.error = ::dlerror();
-    return library;
+Chosen& chosen() {
+    static Chosen c;
+    return c;
 }
 
-Background<Library>& loader() {
-    static Background<Library> l(open_library);
+GlChoice the_choice() {
+    Chosen& c = chosen();
+    std::lock_guard<std::mutex> hold(c.lock);
+    if (!c.choice) {
+        GlChoice choice;
+        if (const char* name = std::getenv("FIGGEN_GL"); name && *name) {
+            const std::optional<GlPlatform> platform = gl_platform_of(name);
+            if (!platform)
+                throw std::runtime_error("FIGGEN_GL=" + std::string(name) +
+                                         " is not allowed: use auto, osmesa, egl or egl-device");
+            choice.platform = *platform;
+        }
+        c.choice = choice;
+    }
+    return *c.choice;
+}
+
+// What the loading thread opened: the library of the chosen platform (for
+// auto, EGL's surfaceless platform, else OSMesa), or why none.
+struct Opened {
+    mutable std::unique_ptr<detail::GlLibrary> library;  // taken by GlContext
+    std::string why;          // when there is no library
+    std::string passed_over;  // auto: why EGL was not opened
+};
+
+Opened open_chosen() {
+    Opened opened;
+    GlChoice choice;
+    try {
+        choice = the_choice();
+    } catch (const std::runtime_error& e) {
+        opened.why = e.what();
+        return opened;
+    }
+    switch (choice.platform) {
+    case GlPlatform::osmesa:
+        opened.library = detail::open_osmesa(opened.why);
+        break;
+    case GlPlatform::egl:
+        opened.library = detail::open_egl(-1, opened.why);
+        break;
+    case GlPlatform::egl_device:
+        opened.library = detail::open_egl(choice.device, opened.why);
+        break;
+    case GlPlatform::automatic:
+        opened.library = detail::open_egl(-1, opened.passed_over);
+        if (!opened.library) opened.library = detail::open_osmesa(opened.why);
+        break;
+    }
+    return opened;
+}
+
+Background<Opened>& loader() {
+    static Background<Opened> l(open_chosen);
     return l;
 }
 
-template <typename Function>
-Function* symbol(const Library& lib, const char* name) {
-    void* address = ::dlsym(lib.handle, name);
-    if (!address)
-        throw std::runtime_error(std::string(osmesa_library) + " has no " + name + ": reinstall Debian's " +
-                                 osmesa_package);
-    return reinterpret_cast<Function*>(address);
-}
-
-struct OsMesa {
-    decltype(OSMesaCreateContextAttribs)* create_context_attribs;
-    decltype(OSMesaMakeCurrent)* make_current;
-    decltype(OSMesaDestroyContext)* destroy_context;
-    decltype(OSMesaPixelStore)* pixel_store;
-    decltype(OSMesaGetProcAddress)* get_proc_address;
-};
-
-const OsMesa& osmesa() {
-    static const OsMesa functions = [] {
-        const Library& lib = loader().get();
-        if (!lib.handle)
-            throw std::runtime_error("cannot load " + std::string(osmesa_library) + " (" + lib.error +
-                                     "): install Debian's " + osmesa_package);
-        return OsMesa{symbol<decltype(OSMesaCreateContextAttribs)>(lib, "OSMesaCreateContextAttribs"),
-                      symbol<decltype(OSMesaMakeCurrent)>(lib, "OSMesaMakeCurrent"),
-                      symbol<decltype(OSMesaDestroyContext)>(lib, "OSMesaDestroyContext"),
-                      symbol<decltype(OSMesaPixelStore)>(lib, "OSMesaPixelStore"),
-                      symbol<decltype(OSMesaGetProcAddress)>(lib, "OSMesaGetProcAddress")};
-    }();
-    return functions;
-}
-
-GLADapiproc gl_function(const char* name) {
-    return reinterpret_cast<GLADapiproc>(osmesa().get_proc_address(name));
-}
-
 }  // namespace
+
+const std::vector<std::string>& gl_platform_names() {
+    static const std::vector<std::string> names = {"auto", "osmesa", "egl", "egl-device"};
+    return names;
+}
+
+std::optional<GlPlatform> gl_platform_of(const std::string& name) {
+    const std::vector<std::string>& names = gl_platform_names();
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (names[i] == name) return static_cast<GlPlatform>(i);
+    return std::nullopt;
+}
+
+void choose_gl(GlChoice choice) {
+    Chosen& c = chosen();
+    std::lock_guard<std::mutex> hold(c.lock);
+    c.choice = choice;
+}
+
+std::optional<std::string> check_gl_choice(GlChoice choice) {
+    if (choice.platform != GlPlatform::egl_device) return std::nullopt;
+    std::string why;
+    const int devices = detail::count_egl_devices(why);
+    if (devices < 0) return "--gl egl-device: " + why;
+    if (choice.device >= devices)
+        return "--gl-device " + std::to_string(choice.device) + " is not allowed: EGL's device platform has " +
+               std::to_string(devices) + " device" + (devices == 1 ? "" : "s") + " here (0.." +
+               std::to_string(devices - 1) + ")";
+    return std::nullopt;
+}
 
 void preload_gl() {
     loader().start();
@@ -91,49 +119,76 @@ GlContext& GlContext::get() {
     return context;
 }
 
-GlContext::GlContext() : buffer_(4 * 4 * 4) {
-    const OsMesa& os = osmesa();
-    const int attribs[] = {
-        OSMESA_FORMAT,                OSMESA_RGBA,
-        OSMESA_DEPTH_BITS,            0,
-        OSMESA_STENCIL_BITS,          0,
-        OSMESA_ACCUM_BITS,            0,
-        OSMESA_PROFILE,               OSMESA_CORE_PROFILE,
-        OSMESA_CONTEXT_MAJOR_VERSION, 3,
-        OSMESA_CONTEXT_MINOR_VERSION, 3,
-        0,
-    };
-    OSMesaContext context = os.create_context_attribs(attribs, nullptr);
-    if (!context) throw std::runtime_error("OSMesa: cannot create a core-profile 3.3 context");
-    if (!os.make_current(context, buffer_.data(), GL_UNSIGNED_BYTE, 4, 4)) {
-        os.destroy_context(context);
-        throw std::runtime_error("OSMesa: cannot make the context current");
-    }
-    context_ = context;
-    // The entry points of the version the context has, through OSMesa.
-    if (gladLoadGL(gl_function) == 0) {
-        os.destroy_context(context);
-        context_ = nullptr;
-        throw std::runtime_error("OSMesa: cannot resolve the OpenGL core functions");
-    }
-    // Rows top to bottom, as images are stored everywhere else.
-    os.pixel_store(OSMESA_Y_UP, 0);
-    renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    version_ = reinterpret_cast<const char*>(glGetString(GL_VERSION));
-    glGetIntegerv(GL_MAX_SAMPLES, &max_samples_);
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture_size_);
-    if (max_texture_size_ < max_texture_side) {
-        os.destroy_context(context);
-        context_ = nullptr;
-        throw std::runtime_error("OpenGL " + version_ + " (" + renderer_ + ") draws textures of at most " +
-                                 std::to_string(max_texture_size_) + " texels a side; figgen needs " +
-                                 std::to_string(max_texture_side));
+GlContext::GlContext() {
+    // A failure is final: the library it took is gone, so a later get()
+    // says the first reason again.
+    static std::string failed;
+    if (!failed.empty()) throw std::runtime_error(failed);
+    try {
+        make();
+    } catch (const std::runtime_error& e) {
+        failed = e.what();
+        library_.reset();
+        throw;
     }
 }
 
-GlContext::~GlContext() {
-    if (context_) osmesa().destroy_context(static_cast<OSMesaContext>(context_));
+void GlContext::make() {
+    const Opened& opened = loader().get();
+    const bool automatic = the_choice().platform == GlPlatform::automatic;
+    if (!opened.library)
+        throw std::runtime_error(automatic ? "no GL: EGL: " + opened.passed_over + "; OSMesa: " + opened.why
+                                           : opened.why);
+    std::unique_ptr<detail::GlLibrary> library = std::move(opened.library);
+    fallback_ = opened.passed_over;
+    if (!automatic || library->platform() == "osmesa") {
+        use(std::move(library), false);
+    } else {
+        try {
+            use(std::move(library), true);
+        } catch (const std::runtime_error& e) {
+            library_.reset();  // EGL's context released before OSMesa's is made
+            fallback_ = e.what();
+            std::string why;
+            std::unique_ptr<detail::GlLibrary> osmesa = detail::open_osmesa(why);
+            if (!osmesa) throw std::runtime_error("no GL: EGL: " + fallback_ + "; OSMesa: " + why);
+            use(std::move(osmesa), false);
+        }
+    }
+    if (!fallback_.empty()) std::fprintf(stderr, "figgen: note: drawing with OSMesa: %s\n", fallback_.c_str());
 }
+
+// Makes `library`'s context current and resolves GL through it; with
+// `want_llvmpipe`, refuses any other renderer.
+void GlContext::use(std::unique_ptr<detail::GlLibrary> library, bool want_llvmpipe) {
+    library_ = std::move(library);
+    library_->make_current();
+    const auto resolve = [](void* lib, const char* name) {
+        return static_cast<detail::GlLibrary*>(lib)->function(name);
+    };
+    // The entry points of the version the context has.
+    if (gladLoadGLUserPtr(resolve, library_.get()) == 0)
+        throw std::runtime_error(library_->platform() + ": cannot resolve the OpenGL core functions");
+    renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    version_ = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    platform_ = library_->platform();
+    device_ = library_->device();
+    if (want_llvmpipe && !is_llvmpipe())
+        throw std::runtime_error("EGL's surfaceless platform draws with " + renderer_ +
+                                 ", not llvmpipe, and --gl auto takes a software renderer (--gl egl takes it, "
+                                 "LIBGL_ALWAYS_SOFTWARE=1 makes EGL take llvmpipe)");
+    glGetIntegerv(GL_MAX_SAMPLES, &max_samples_);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture_size_);
+    const std::string gl = "OpenGL " + version_ + " (" + renderer_ + ", " + platform_ + ")";
+    if (max_texture_size_ < max_texture_side)
+        throw std::runtime_error(gl + " draws textures of at most " + std::to_string(max_texture_size_) +
+                                 " texels a side; figgen needs " + std::to_string(max_texture_side));
+    if (max_samples_ < canvas_samples)
+        throw std::runtime_error(gl + " draws at most " + std::to_string(max_samples_) +
+                                 " samples a pixel; figgen needs " + std::to_string(canvas_samples));
+}
+
+GlContext::~GlContext() = default;
 
 void check_gl(const char* what) {
     const GLenum error = glGetError();

@@ -1,11 +1,15 @@
 #pragma once
-// The process's one OpenGL context: OSMesa (llvmpipe), core profile 3.3 or
-// later, no window, no GPU. Created on first use, destroyed at exit.
-// Every drawing class calls GlContext::get() before touching GL.
+// The process's one OpenGL context: core profile 3.3 or later, no window,
+// from OSMesa or EGL (surfaceless, or a device such as a headless GPU).
+// Created on first use, destroyed at exit. Every drawing class calls
+// GlContext::get() before touching GL.
 //
-// libOSMesa (and LLVM with it) is not linked: it is opened when a command
-// is about to draw, so commands and inputs that draw nothing never pay for it.
+// No GL library (nor LLVM behind Mesa's) is linked: the one chosen is
+// opened when a command is about to draw, so commands and inputs that draw
+// nothing never pay for it.
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,10 +17,40 @@
 
 namespace render {
 
+namespace detail {
+class GlLibrary;
+}
+
 // The most cells a side of a field the renderer draws as one texture:
 // GL 4.5's least GL_MAX_TEXTURE_SIZE, so a description is checked against
 // it without opening GL. GlContext refuses a context with less.
 constexpr int max_texture_side = 16384;
+
+// Samples per pixel of every multisampled canvas: always 4, whatever more
+// the GL offers (Mesa 25.3's llvmpipe offers 8), so the pixels do not change
+// with the machine. GlContext refuses a context with fewer.
+constexpr int canvas_samples = 4;
+
+// Where the context comes from (--gl, FIGGEN_GL).
+enum class GlPlatform {
+    automatic,   // "auto": EGL surfaceless on llvmpipe, else OSMesa, saying why on stderr
+    osmesa,      // "osmesa": libOSMesa
+    egl,         // "egl": EGL's surfaceless platform (Mesa), llvmpipe or the GPU Mesa finds
+    egl_device,  // "egl-device": EGL's device platform, device GlChoice::device
+};
+struct GlChoice {
+    GlPlatform platform = GlPlatform::automatic;
+    int device = 0;  // egl-device: which device, in EGL_EXT_device_enumeration's order
+};
+// The names --gl accepts, in GlPlatform's order.
+const std::vector<std::string>& gl_platform_names();
+std::optional<GlPlatform> gl_platform_of(const std::string& name);
+// Chooses the platform: before preload_gl() or GlContext::get(), which
+// otherwise take FIGGEN_GL from the environment (or auto).
+void choose_gl(GlChoice choice);
+// For egl-device: the device asked for exists. Opens EGL (not its driver)
+// to count them; the reason in one line when not. Nothing for the others.
+std::optional<std::string> check_gl_choice(GlChoice choice);
 
 // Starts opening the GL library on a thread of its own, so that the work
 // before the first drawing overlaps with it. Call it once the command knows
@@ -33,6 +67,11 @@ public:
 
     const std::string& renderer() const { return renderer_; }  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
     const std::string& version() const { return version_; }    // GL_VERSION
+    const std::string& platform() const { return platform_; }  // "osmesa", "egl" or "egl-device"
+    const std::string& device() const { return device_; }      // egl-device: its DRM node or "software"
+    // Why auto passed over EGL for OSMesa; empty when it did not.
+    const std::string& fallback() const { return fallback_; }
+    bool is_llvmpipe() const { return renderer_.rfind("llvmpipe", 0) == 0; }
     int max_samples() const { return max_samples_; }           // GL_MAX_SAMPLES
     int max_texture_size() const { return max_texture_size_; } // GL_MAX_TEXTURE_SIZE: a field's most cells a side
 
@@ -40,10 +79,15 @@ private:
     GlContext();
     ~GlContext();
 
-    void* context_ = nullptr;            // the OSMesaContext
-    std::vector<unsigned char> buffer_;  // tiny default framebuffer: all drawing goes to FBOs
+    void make();
+    void use(std::unique_ptr<detail::GlLibrary> library, bool want_llvmpipe);
+
+    std::unique_ptr<detail::GlLibrary> library_;  // the one whose context is current
     std::string renderer_;
     std::string version_;
+    std::string platform_;
+    std::string device_;
+    std::string fallback_;
     int max_samples_ = 0;
     int max_texture_size_ = 0;
 };

@@ -3,6 +3,10 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <filesystem>
 
 #include "description/catalog.hpp"
@@ -141,12 +145,53 @@ std::vector<std::string> golden_overrides(const std::string& id) {
     return {};
 }
 
+nlohmann::json comparable_metadata(nlohmann::json meta) {
+    for (const char* key : {"renderer", "figgen_version", "memory_estimate"}) meta.erase(key);
+    return meta;
+}
+
+Rendered render_through_command(const std::string& id, double scale, const std::vector<std::string>& overrides,
+                                const std::string& figgen_args) {
+    const std::filesystem::path out =
+        std::filesystem::temp_directory_path() / ("figgen-golden-" + id + "-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(out);
+    std::ostringstream command;
+    command << FIGGEN_EXE << " render " << id << " --no-video --scale " << scale << " --out '" << out.string()
+            << "' " << figgen_args;
+    for (const std::string& o : overrides) command << " --set '" << o << "'";
+    command << " 2>&1";
+    std::string output;
+    std::FILE* pipe = ::popen(command.str().c_str(), "r");
+    if (!pipe) throw std::runtime_error("cannot run " + command.str());
+    char buffer[4096];
+    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
+    const int status = ::pclose(pipe);
+    if (status != 0) {
+        std::filesystem::remove_all(out);
+        throw std::runtime_error(command.str() + " failed (status " + std::to_string(status) + "): " + output);
+    }
+    Rendered r;
+    r.image = render::read_png(out / (id + ".png")).image;
+    std::ifstream in(out / (id + ".json"));
+    r.meta = nlohmann::json::parse(in);
+    std::filesystem::remove_all(out);
+    return r;
+}
+
 std::vector<GoldenCase> golden_cases() {
-    std::vector<GoldenCase> cases = {{"test-pattern", test_pattern}, {"plot-pattern", plot_pattern},
-                                       {"tubes-pattern", tubes_pattern}};
+    const auto pattern = [](render::Image (*draw)()) {
+        return [draw](const std::string&) { return Rendered{draw(), nullptr}; };
+    };
+    std::vector<GoldenCase> cases = {{"test-pattern", pattern(test_pattern)},
+                                     {"plot-pattern", pattern(plot_pattern)},
+                                     {"tubes-pattern", pattern(tubes_pattern)}};
     for (const auto& file : description::catalog_files()) {
         const std::string id = file.stem().string();
-        cases.push_back({id, [id] { return render_catalog_figure(id, golden_scale, golden_overrides(id)); }});
+        cases.push_back({id,
+                         [id](const std::string& args) {
+                             return render_through_command(id, golden_scale, golden_overrides(id), args);
+                         },
+                         true});
     }
     return cases;
 }

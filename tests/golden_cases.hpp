@@ -1,19 +1,41 @@
 #pragma once
-// The images that have goldens: a test pattern exercising every drawing
-// primitive, and every figure description of the catalog rendered small.
+// The images that have goldens: three patterns exercising every drawing
+// primitive, drawn in this process, and every figure description of the
+// catalog rendered small through the figgen command.
 
 #include <functional>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "render/image.hpp"
 
 namespace testkit {
 
-struct GoldenCase {
-    std::string name;                     // golden file stem
-    std::function<render::Image()> make;  // renders it
+struct Rendered {
+    render::Image image;
+    nlohmann::json meta;  // a figure's metadata (its JSON file); null for a pattern
 };
+
+struct GoldenCase {
+    std::string name;  // golden file stem
+    // Renders it; a figure through `figgen render` with `figgen_args`
+    // added (e.g. "--gl egl --threads 2"), a pattern in this process.
+    std::function<Rendered(const std::string& figgen_args)> make;
+    bool figure = false;
+};
+
+// A figure's metadata with what rightly differs between machines and runs
+// of the same bits removed: the GL it was drawn with (renderer), figgen's
+// version, and the memory estimate (it counts the machine's cores).
+nlohmann::json comparable_metadata(nlohmann::json meta);
+
+// Renders figure `id` through the figgen command (FIGGEN_EXE) at `scale`
+// without video, with `overrides` as --set and `figgen_args` added, into a
+// private temporary folder; std::runtime_error with its output if it fails.
+Rendered render_through_command(const std::string& id, double scale, const std::vector<std::string>& overrides,
+                                const std::string& figgen_args);
 
 // Shapes, both field samplings, two colormaps, text: 160 x 96 pixels.
 render::Image test_pattern();

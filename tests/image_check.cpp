@@ -5,7 +5,6 @@
 #include <sstream>
 
 #include "render/digest.hpp"
-#include "render/gl_context.hpp"
 #include "render/png_io.hpp"
 
 namespace testkit {
@@ -38,14 +37,16 @@ std::string pixel_hash(const render::Image& image) {
     return render::sha256_hex(image.rgba.data(), image.rgba.size());
 }
 
-GoldenCheck check_golden(const std::string& name, const render::Image& actual) {
+GoldenCheck check_golden(const std::string& name, const render::Image& actual, const std::string& renderer) {
     GoldenCheck result;
-    std::string expected_hash, recorded_renderer;
+    std::string expected_hash, recorded_renderer, recorded_version;
     {
         std::ifstream in(golden_dir / (name + ".sha256"));
         std::getline(in, expected_hash);
         std::getline(in, recorded_renderer);
+        std::getline(in, recorded_version);
     }
+    result.recorded_renderer = recorded_renderer + "\n" + recorded_version;
     const std::string hash = pixel_hash(actual);
     if (!expected_hash.empty() && hash == expected_hash) {
         result.hash_matched = result.within_tolerance = true;
@@ -80,19 +81,19 @@ GoldenCheck check_golden(const std::string& name, const render::Image& actual) {
     render::write_png(artifact_dir / (name + "-diff.png"), diff_image(golden, actual));
     std::ostringstream m;
     m << name << ": hash differs (golden made with " << recorded_renderer << ", this is "
-      << render::GlContext::get().renderer() << "); " << result.differing_pixels << " pixels differ by more than "
+      << renderer << "); " << result.differing_pixels << " pixels differ by more than "
       << max_delta << " (allowed " << allowed << "), largest delta " << result.largest_delta << "; see "
       << (artifact_dir / (name + "-diff.png")).string();
     result.message = m.str();
     return result;
 }
 
-void write_golden(const std::filesystem::path& dir, const std::string& name, const render::Image& image) {
+void write_golden(const std::filesystem::path& dir, const std::string& name, const render::Image& image,
+                  const std::string& renderer, const std::string& version) {
     std::filesystem::create_directories(dir);
     render::write_png(dir / (name + ".png"), image);
-    const auto& gl = render::GlContext::get();
     std::ofstream out(dir / (name + ".sha256"));
-    out << pixel_hash(image) << "\n" << gl.renderer() << "\n" << gl.version() << "\n";
+    out << pixel_hash(image) << "\n" << renderer << "\n" << version << "\n";
     if (!out) throw std::runtime_error("cannot write " + (dir / (name + ".sha256")).string());
 }
 

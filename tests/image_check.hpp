@@ -22,14 +22,18 @@ struct GoldenCheck {
     long differing_pixels = 0;     // pixels with a channel delta > max_delta
     int largest_delta = 0;         // over all channels and pixels
     std::string message;           // one line for the test log
+    std::string recorded_renderer; // the golden's GL_RENDERER, a newline, its GL_VERSION
 };
 
 inline constexpr int max_delta = 3;
 inline constexpr double max_differing_fraction = 0.001;
 
-GoldenCheck check_golden(const std::string& name, const render::Image& actual);
+// `renderer` is the GL_RENDERER that drew `actual`, for the message.
+GoldenCheck check_golden(const std::string& name, const render::Image& actual, const std::string& renderer);
 
-// Writes <dir>/<name>.png and <name>.sha256 (hash, renderer, version).
-void write_golden(const std::filesystem::path& dir, const std::string& name, const render::Image& image);
+// Writes <dir>/<name>.png and <name>.sha256 (hash, `renderer` and
+// `version`, the GL_RENDERER and GL_VERSION that drew it).
+void write_golden(const std::filesystem::path& dir, const std::string& name, const render::Image& image,
+                  const std::string& renderer, const std::string& version);
 
 }  // namespace testkit

@@ -445,9 +445,18 @@ TEST_CASE("figgen --version prints the version", "[cli][options]") {
 
 TEST_CASE("only a command that draws opens the GL library", "[cli][gl]") {
     // glibc's loader names every library it opens under LD_DEBUG=files.
-    auto opens_gl = [](const std::string& args) {
+    struct Opened {
+        bool osmesa, egl, llvm;
+    };
+    auto opened = [](const std::string& args) {
         const Run run = testkit::figgen_env("LD_DEBUG=files", args);
-        return run.output.find("file=libOSMesa.so") != std::string::npos;
+        return Opened{run.output.find("file=libOSMesa.so") != std::string::npos,
+                      run.output.find("file=libEGL.so") != std::string::npos,
+                      run.output.find("file=libLLVM") != std::string::npos};
+    };
+    auto opens_gl = [&](const std::string& args) {
+        const Opened o = opened(args);
+        return o.osmesa || o.egl || o.llvm;
     };
     const fs::path out = fresh_dir("gl-loading");
     CHECK_FALSE(opens_gl("--version"));
@@ -456,7 +465,16 @@ TEST_CASE("only a command that draws opens the GL library", "[cli][gl]") {
     CHECK_FALSE(opens_gl("render tc7-1 --scale 9 --out " + out.string()));     // a refused option
     CHECK_FALSE(opens_gl("render tc7-1 --set n=-3 --out " + out.string()));    // a refused setting
     CHECK_FALSE(opens_gl("render tc7-6 --set width=20001 --out " + out.string()));  // a field too large to draw
-    CHECK(opens_gl("render tc7-7 --format png --out " + out.string()));        // and one that draws does
+    CHECK_FALSE(opens_gl("render tc7-1 --gl egl --gl-device 1 --out " + out.string()));  // a refused --gl
+    // One that draws opens the library its --gl names, and only that one
+    // (auto: EGL, which works here, so OSMesa is never opened).
+    const Opened automatic = opened("render tc7-7 --format png --out " + out.string());
+    CHECK(automatic.egl);
+    CHECK_FALSE(automatic.osmesa);
+    CHECK(automatic.llvm);
+    const Opened osmesa = opened("render tc7-7 --format png --gl osmesa --out " + out.string());
+    CHECK(osmesa.osmesa);
+    CHECK_FALSE(osmesa.egl);
 }
 
 TEST_CASE("only a command that encodes or decodes a film opens FFmpeg's codec libraries", "[cli][media]") {

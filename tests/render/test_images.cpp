@@ -2,26 +2,105 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "description/catalog.hpp"
+#include "render/gl_context.hpp"
 #include "golden_cases.hpp"
 #include "image_check.hpp"
 
+#include <nlohmann/json.hpp>
+
+namespace {
+
+// Every "state_sha256" in a figure's metadata, as "where = hash", in
+// document order: what tells a changed model from a changed drawing.
+void collect_hashes(const nlohmann::json& j, const std::string& where, std::vector<std::string>& hashes) {
+    if (j.is_object()) {
+        for (const auto& [key, value] : j.items()) {
+            if (key == "state_sha256")
+                hashes.push_back(where + "/" + key + " = " + value.get<std::string>());
+            else
+                collect_hashes(value, where + "/" + key, hashes);
+        }
+    } else if (j.is_array()) {
+        for (std::size_t i = 0; i < j.size(); ++i) collect_hashes(j[i], where + "/" + std::to_string(i), hashes);
+    }
+}
+
+std::vector<std::string> hashes_of(const nlohmann::json& meta) {
+    std::vector<std::string> hashes;
+    collect_hashes(meta, "", hashes);
+    return hashes;
+}
+
+bool is_llvmpipe(const std::string& renderer) { return renderer.rfind("llvmpipe", 0) == 0; }
+
+}  // namespace
+
 // Hidden from test discovery: tests/CMakeLists.txt registers one ctest per
-// golden case ("golden image ID", run with -c ID), so `ctest -j` checks them
-// side by side and a failure names its figure.
+// golden case and platform ("golden image ID (osmesa)", run with -c ID and
+// FIGGEN_GL=osmesa, and the same with egl), so `ctest -j` checks them side
+// by side and a failure names its figure and platform.
+//
+// A figure is rendered through the command with --gl as FIGGEN_GL says, on
+// one thread under osmesa and two under egl. On the Mesa the goldens were
+// made with, its pixels must be the golden's exactly, so OSMesa and EGL give
+// identical pixels; and its state hashes and metadata must be those
+// recorded beside the golden (tests/golden/ID.json). The golden was made by
+// another process, so every figure also gives the same bits run after run
+// and on one thread or two (these were the determinism tests). Goldens are
+// llvmpipe's: a GPU's pixels are not checked against them.
 TEST_CASE("every golden image renders as recorded", "[.golden]") {
-    // One section per case; tests/CMakeLists.txt runs each with -c NAME. A
-    // name matching no case would enter no section and pass empty (Catch2
-    // v2's --warn NoAssertions does not catch that), so that fails here.
+    // One section per case; with -c naming no case the test would enter no
+    // section and pass empty (Catch2 v2's --warn NoAssertions does not
+    // catch that), so that fails here.
     bool entered = false;
+    const char* asked = std::getenv("FIGGEN_GL");
+    const std::string platform = asked && *asked ? asked : "auto";
     for (const auto& c : testkit::golden_cases()) {
         SECTION(c.name) {
             entered = true;
-            const auto check = testkit::check_golden(c.name, c.make());
+            std::string renderer, version, drawn_with;
+            testkit::Rendered r;
+            if (c.figure) {
+                r = c.make("--gl " + platform + " --threads " + (platform == "osmesa" ? "1" : "2"));
+                renderer = r.meta["renderer"]["gl_renderer"];
+                version = r.meta["renderer"]["gl_version"];
+                drawn_with = r.meta["renderer"]["platform"];
+            } else {
+                const render::GlContext& gl = render::GlContext::get();
+                r = c.make("");
+                renderer = gl.renderer(), version = gl.version(), drawn_with = gl.platform();
+            }
+            if (platform != "auto") {
+                INFO("FIGGEN_GL=" << platform << " drew through " << drawn_with);
+                REQUIRE(drawn_with == platform);
+            }
+            if (!is_llvmpipe(renderer)) {
+                SUCCEED("goldens are llvmpipe's; this renderer is " << renderer << ": not checked");
+                return;
+            }
+            const auto check = testkit::check_golden(c.name, r.image, renderer);
             INFO(check.message);
             CHECK(check.within_tolerance);
+            if (check.recorded_renderer == renderer + "\n" + version) CHECK(check.hash_matched);
+            if (c.figure) {
+                INFO(c.name << " has no state_sha256 in its metadata");
+                REQUIRE_FALSE(hashes_of(r.meta).empty());
+                std::ifstream in(std::filesystem::path(FIGGEN_TEST_GOLDEN_DIR) / (c.name + ".json"));
+                REQUIRE(in);
+                const nlohmann::json recorded = nlohmann::json::parse(in);
+                CHECK(hashes_of(r.meta) == hashes_of(recorded));
+                // The whole metadata: it holds no timing, path or thread
+                // count, so nothing in it may differ between runs.
+                const nlohmann::json patch = nlohmann::json::diff(recorded, testkit::comparable_metadata(r.meta));
+                INFO("metadata differences (JSON patch from the recorded one): " << patch.dump());
+                CHECK(patch.empty());
+            }
         }
     }
     INFO("no section ran: -c names no golden case");
@@ -47,7 +126,7 @@ TEST_CASE("the tolerant comparison catches a real change", "[golden]") {
         std::uint8_t* p = image.pixel(i % image.width, i / image.width);
         p[0] = static_cast<std::uint8_t>(p[0] ^ 0x80);
     }
-    const auto check = testkit::check_golden("test-pattern", image);
+    const auto check = testkit::check_golden("test-pattern", image, "this test");
     CHECK_FALSE(check.hash_matched);
     CHECK_FALSE(check.within_tolerance);
     CHECK(check.differing_pixels == changed);
@@ -56,7 +135,7 @@ TEST_CASE("the tolerant comparison catches a real change", "[golden]") {
 TEST_CASE("the tolerant comparison accepts a small rendering difference", "[golden]") {
     render::Image image = testkit::test_pattern();
     image.pixel(10, 10)[1] = static_cast<std::uint8_t>(image.pixel(10, 10)[1] ^ 1);  // off by one in one channel
-    const auto check = testkit::check_golden("test-pattern", image);
+    const auto check = testkit::check_golden("test-pattern", image, "this test");
     CHECK_FALSE(check.hash_matched);
     CHECK(check.within_tolerance);
     CHECK(check.largest_delta == 1);
