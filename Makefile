@@ -5,7 +5,7 @@ JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 MAKEFLAGS  += --no-print-directory
 
-.PHONY: all deps build figures gallery-check readme-thumbnails test test-sanitize fuzz bench goldens install clean
+.PHONY: all deps build figures gallery-check readme-thumbnails test test-without-osmesa test-sanitize fuzz bench goldens install clean
 
 all: build
 
@@ -36,6 +36,13 @@ readme-thumbnails: figures
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+# figgen where OSMesa is gone (Mesa 25.1 removed it): REMOVES Debian's
+# libosmesa6 from this machine, then checks that --gl osmesa is refused,
+# renders every catalog figure through EGL and runs the golden tests under
+# EGL. For a throwaway machine: ../shared/tools/fresh-debian-check test-without-osmesa
+test-without-osmesa: build
+	scripts/test-without-osmesa.sh $(BUILD) $(JOBS)
 
 # The whole suite built with AddressSanitizer and UndefinedBehaviorSanitizer
 # (RelWithDebInfo, into build-sanitize/). Leaks inside Mesa's OSMesa are

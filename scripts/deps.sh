@@ -11,7 +11,10 @@ set -eu
 
 packages=(
   g++ make cmake pkg-config
-  libosmesa6-dev python3-glad libglm-dev  # OSMesa: its header to build, its library opened at run time
+  python3-glad libglm-dev  # glad generates the GL loader
+  # GL: the headers of OSMesa and EGL to build; at run time figgen opens one
+  # (--gl): EGL (libglvnd's libEGL, Mesa's EGL and its llvmpipe driver) or OSMesa
+  libosmesa6-dev libegl-dev libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri
   libpng-dev zlib1g-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libfreetype-dev fonts-dejavu-core
