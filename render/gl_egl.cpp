@@ -61,7 +61,6 @@ struct Egl {
     PFNEGLQUERYSTRINGPROC query_string = nullptr;
     PFNEGLGETPLATFORMDISPLAYPROC get_platform_display = nullptr;
     PFNEGLINITIALIZEPROC initialize = nullptr;
-    PFNEGLTERMINATEPROC terminate = nullptr;
     PFNEGLBINDAPIPROC bind_api = nullptr;
     PFNEGLCHOOSECONFIGPROC choose_config = nullptr;
     PFNEGLCREATECONTEXTPROC create_context = nullptr;
@@ -93,7 +92,6 @@ struct Egl {
         resolve(query_string, "eglQueryString");
         resolve(get_platform_display, "eglGetPlatformDisplay");
         resolve(initialize, "eglInitialize");
-        resolve(terminate, "eglTerminate");
         resolve(bind_api, "eglBindAPI");
         resolve(choose_config, "eglChooseConfig");
         resolve(create_context, "eglCreateContext");
@@ -148,12 +146,15 @@ public:
     EglLibrary(const Egl& egl, EGLDisplay display, std::string platform, std::string device)
         : egl_(egl), display_(display), platform_(std::move(platform)), device_(std::move(device)) {}
 
+    // The context is released and destroyed; the display is left
+    // initialized, as the library stays loaded: eglTerminate would unload
+    // Mesa's driver (dlclose) while what it allocated for the process is
+    // still held, and the process ends soon after anyway.
     ~EglLibrary() override {
         if (context_ != EGL_NO_CONTEXT) {
             egl_.make_current(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
             egl_.destroy_context(display_, context_);
         }
-        egl_.terminate(display_);
         egl_.release_thread();
     }
 

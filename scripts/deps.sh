@@ -38,11 +38,8 @@ for p in "${packages[@]}"; do
 done
 [ ${#missing[@]} -eq 0 ] && exit 0
 
-if [ "$(id -u)" -eq 0 ]; then
-  sudo=()
-elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
-  sudo=(sudo -n)
-else
+source "$(dirname "$0")/as-root.sh"
+if ! as_root_prefix; then
   echo "figgen: missing Debian package ${missing[0]} (all missing: ${missing[*]}); install with: sudo apt-get install -y ${missing[*]}" >&2
   exit 1
 fi

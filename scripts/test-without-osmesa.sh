@@ -9,11 +9,8 @@
 set -eu
 build=${1:-build}
 jobs=${2:-2}
-if [ "$(id -u)" -eq 0 ]; then
-  sudo=()
-elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
-  sudo=(sudo -n)
-else
+source "$(dirname "$0")/as-root.sh"
+if ! as_root_prefix; then
   echo "test-without-osmesa: needs root (or sudo) to remove libosmesa6" >&2
   exit 1
 fi
