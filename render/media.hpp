@@ -21,7 +21,7 @@
 namespace render::media {
 
 // Bumped whenever Api or Encoder change: a module of another build is refused.
-constexpr int api_version = 2;
+constexpr int api_version = 3;
 
 using Packet = VideoPacket;
 
@@ -64,6 +64,13 @@ struct Api {
     Image (*decode_frame)(const std::filesystem::path& path, int index, int threads);
     // `image` scaled to width x height by area averaging (both at least 1).
     Image (*scale)(const Image& image, int width, int height);
+    // The preview of the film of `film_frames` frames at `film_fps` in the
+    // MP4 on `film_fd` (read from its start), written to `fd`; `shown` is
+    // what errors name.
+    PreviewInfo (*write_preview)(int fd, const std::filesystem::path& shown, int film_fd, int film_frames,
+                                 int film_fps, const PreviewOptions& options);
+    PreviewInfo (*probe_preview)(const std::filesystem::path& path);
+    Image (*decode_preview_frame)(const std::filesystem::path& path, int index);
 };
 
 // The module's functions, opening it on the first call (std::runtime_error

@@ -77,7 +77,7 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
 
 VideoWriter::VideoWriter(const Folder& folder, const std::string& name, int width, int height,
                          const VideoOptions& options)
-    : path_(folder / name), width_(width), height_(height) {
+    : path_(folder / name), width_(width), height_(height), fps_(options.fps) {
     validate(width, height, options);
     const media::Api& media = media::api();
     auto e = std::make_unique<Encoder>(folder, name);
@@ -137,6 +137,31 @@ void VideoWriter::finish() {
     encoder_->media->finish();
     encoder_->file.commit();
     encoder_->finished = true;
+}
+
+PreviewInfo VideoWriter::finish(const Folder& folder, const std::string& name, const PreviewOptions& options) {
+    if (!encoder_ || encoder_->finished) throw std::logic_error("VideoWriter::finish called twice");
+    if (frames_ == 0) throw std::logic_error("cannot write " + path_.string() + ": no frames were added");
+    if (options.max_width < 1 || options.max_height < 1 || options.max_frames < 1 || !(options.max_seconds > 0) ||
+        !(options.quality >= 0 && options.quality <= 100) || options.max_bytes < 1)
+        throw std::invalid_argument("preview options out of range");
+    encoder_->media->finish();
+    AtomicFile preview(folder, name);
+    const PreviewInfo info =
+        media::api().write_preview(preview.fd(), folder / name, encoder_->file.fd(), frames_, fps_, options);
+    encoder_->file.commit();
+    preview.commit();
+    encoder_->finished = true;
+    return info;
+}
+
+PreviewInfo probe_preview(const std::filesystem::path& path) {
+    return media::api().probe_preview(path);
+}
+
+Image decode_preview_frame(const std::filesystem::path& path, int index) {
+    if (index < 0) throw std::out_of_range("preview frame index " + std::to_string(index) + " is negative");
+    return media::api().decode_preview_frame(path, index);
 }
 
 VideoInfo probe_video(const std::filesystem::path& path) {

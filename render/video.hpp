@@ -55,6 +55,29 @@ struct VideoPacket {
 const std::vector<std::string>& x264_presets();
 const std::vector<std::string>& x264_tunes();
 
+// A film's short looping preview: an animated WebP (libwebp) of at most
+// max_frames frames spread evenly over the film, first and last included,
+// lasting what the film lasts but at most max_seconds, scaled down by area
+// averaging to fit max_width x max_height. For a page to show in place of a
+// still poster. Kept under max_bytes by lowering the quality, then the
+// frames, when a film's frames are too busy.
+struct PreviewOptions {
+    int max_width = 360, max_height = 360;
+    int max_frames = 48;
+    double max_seconds = 4.0;
+    float quality = 70;                       // libwebp's lossy quality, 0..100
+    std::uint64_t max_bytes = 2u << 20;       // 2 MiB
+};
+
+struct PreviewInfo {
+    int frames = 0;                 // frames in the animation
+    int width = 0, height = 0;      // pixels
+    int loop_count = -1;            // 0: loops for ever
+    int duration_ms = 0;            // one loop
+    std::uint64_t bytes = 0;        // the file's size
+    float quality = 0;              // the quality it was written at
+};
+
 class VideoWriter {
 public:
     // Throws std::invalid_argument for an odd or non-positive size or bad
@@ -74,6 +97,10 @@ public:
     // with the same size and options: written as it is (stream copy).
     void add_segment(const std::vector<VideoPacket>& packets, int frames);
     void finish();                 // flushes the encoder, writes the trailer (faststart), renames temp -> final
+    // finish(), and also writes folder/name, the film's preview
+    // (PreviewOptions), decoded back from the film just written; both
+    // files are committed together.
+    PreviewInfo finish(const Folder& folder, const std::string& name, const PreviewOptions& options = {});
 
     const std::string& codec_name() const { return codec_name_; }  // "libx264" or "mpeg4"
     int frames() const { return frames_; }                         // frames added so far
@@ -84,6 +111,7 @@ private:
     std::filesystem::path path_;
     int width_ = 0;
     int height_ = 0;
+    int fps_ = 0;
     std::string codec_name_;
     int frames_ = 0;
 };
@@ -121,6 +149,12 @@ struct VideoInfo {
 // Opens the file and decodes every frame; throws std::runtime_error naming
 // the path when it cannot.
 VideoInfo probe_video(const std::filesystem::path& path);
+
+// Reads an animated WebP's size, frames, loop count and duration, and
+// decodes its frame `index` (display order) to RGBA; both throw
+// std::runtime_error naming the path when they cannot.
+PreviewInfo probe_preview(const std::filesystem::path& path);
+Image decode_preview_frame(const std::filesystem::path& path, int index);
 
 // Decodes frame `index` (0-based, display order) back to RGBA on `threads`
 // decoder threads (0: as many as FFmpeg sees cores; the pixels do not depend

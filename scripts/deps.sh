@@ -17,6 +17,7 @@ packages=(
   libosmesa6-dev libegl-dev libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri
   libpng-dev zlib1g-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
+  libwebp-dev  # films' animated previews
   libfreetype-dev fonts-dejavu-core
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libopenmpi-dev openmpi-bin  # MPI: its headers and mpirun; figgen opens libmpi only under mpirun

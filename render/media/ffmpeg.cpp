@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <malloc.h>
@@ -15,6 +16,7 @@
 #include <utility>
 
 #include "render/media.hpp"
+#include "render/media/webp.hpp"
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -463,18 +465,38 @@ public:
         AVFormatContext* format = nullptr;
         check(avformat_open_input(&format, url.c_str(), nullptr, nullptr), "opening the file");
         format_.reset(format);
-        check(avformat_find_stream_info(format, nullptr), "reading the stream info");
-        const AVCodec* codec = nullptr;
-        stream_index_ =
-            check(av_find_best_stream(format, AVMEDIA_TYPE_VIDEO, -1, -1, &codec, 0), "finding a video stream");
-        codec_.reset(avcodec_alloc_context3(codec));
-        frame_.reset(av_frame_alloc());
-        packet_.reset(av_packet_alloc());
-        if (!codec_ || !frame_ || !packet_) check(AVERROR(ENOMEM), "allocating the decoder");
-        check(avcodec_parameters_to_context(codec_.get(), stream()->codecpar), "configuring the decoder");
-        codec_->thread_count = threads;
-        check(avcodec_open2(codec_.get(), codec, nullptr), "opening the decoder");
+        open_stream(threads);
     }
+
+    // The file on `fd` (read from its start, never closed here); `shown` is what errors name.
+    Decoder(int fd, const std::filesystem::path& shown, int threads) : path_(shown) {
+        quiet_ffmpeg();
+        AVFormatContext* format = avformat_alloc_context();
+        if (!format) check(AVERROR(ENOMEM), "opening the file");
+        format->pb = open_file_io(fd, false);
+        if (!format->pb) {
+            avformat_free_context(format);
+            check(AVERROR(ENOMEM), "opening the file");
+        }
+        format->flags |= AVFMT_FLAG_CUSTOM_IO;
+        own_io_ = format->pb;
+        // On failure avformat_open_input frees the context, not our I/O.
+        const int opened = avformat_open_input(&format, nullptr, nullptr, nullptr);
+        if (opened < 0) {
+            close_file_io(&own_io_);
+            check(opened, "opening the file");
+        }
+        format_.reset(format);
+        open_stream(threads);
+    }
+
+    ~Decoder() {
+        format_.reset();  // before the I/O it reads through
+        close_file_io(&own_io_);
+    }
+
+    Decoder(const Decoder&) = delete;
+    Decoder& operator=(const Decoder&) = delete;
 
     const AVStream* stream() const { return format_->streams[stream_index_]; }
 
@@ -504,7 +526,23 @@ public:
     }
 
 private:
+    void open_stream(int threads) {
+        AVFormatContext* format = format_.get();
+        check(avformat_find_stream_info(format, nullptr), "reading the stream info");
+        const AVCodec* codec = nullptr;
+        stream_index_ =
+            check(av_find_best_stream(format, AVMEDIA_TYPE_VIDEO, -1, -1, &codec, 0), "finding a video stream");
+        codec_.reset(avcodec_alloc_context3(codec));
+        frame_.reset(av_frame_alloc());
+        packet_.reset(av_packet_alloc());
+        if (!codec_ || !frame_ || !packet_) check(AVERROR(ENOMEM), "allocating the decoder");
+        check(avcodec_parameters_to_context(codec_.get(), stream()->codecpar), "configuring the decoder");
+        codec_->thread_count = threads;
+        check(avcodec_open2(codec_.get(), codec, nullptr), "opening the decoder");
+    }
+
     std::filesystem::path path_;
+    AVIOContext* own_io_ = nullptr;  // the custom I/O on a descriptor, if any
     InputPtr format_;
     CodecPtr codec_;
     FramePtr frame_;
@@ -541,15 +579,8 @@ VideoInfo probe_video(const std::filesystem::path& path) {
     return info;
 }
 
-Image decode_frame(const std::filesystem::path& path, int index, int threads) {
-    Decoder decoder(path, threads);
-    const AVFrame* frame = nullptr;
-    for (int i = 0; i <= index; ++i) {
-        frame = decoder.next();
-        if (!frame)
-            throw std::out_of_range(path.string() + " has " + std::to_string(i) + " frames, no frame " +
-                                    std::to_string(index));
-    }
+// A decoded frame as RGBA.
+Image to_rgba(const Decoder& decoder, const AVFrame* frame) {
     Image image(frame->width, frame->height);
     // FULL_CHR_H_INT: interpolate the chroma for every output pixel.
     ScalerPtr scaler(sws_getContext(frame->width, frame->height, static_cast<AVPixelFormat>(frame->format),
@@ -568,6 +599,18 @@ Image decode_frame(const std::filesystem::path& path, int index, int threads) {
     return image;
 }
 
+Image decode_frame(const std::filesystem::path& path, int index, int threads) {
+    Decoder decoder(path, threads);
+    const AVFrame* frame = nullptr;
+    for (int i = 0; i <= index; ++i) {
+        frame = decoder.next();
+        if (!frame)
+            throw std::out_of_range(path.string() + " has " + std::to_string(i) + " frames, no frame " +
+                                    std::to_string(index));
+    }
+    return to_rgba(decoder, frame);
+}
+
 Image scale(const Image& image, int width, int height) {
     std::unique_ptr<SwsContext, void (*)(SwsContext*)> scaler(
         sws_getContext(image.width, image.height, AV_PIX_FMT_RGBA, width, height, AV_PIX_FMT_RGBA,
@@ -584,7 +627,38 @@ Image scale(const Image& image, int width, int height) {
     return out;
 }
 
-const Api functions{api_version, open_encoder, open_segment, probe_video, decode_frame, scale};
+PreviewInfo write_preview(int fd, const std::filesystem::path& shown, int film_fd, int film_frames, int film_fps,
+                          const PreviewOptions& options) {
+    if (film_frames < 1 || film_fps < 1) throw std::invalid_argument("a preview needs a film of one frame or more");
+    // The frames to keep, evenly spread, the first and the last among them.
+    const int kept = std::min(options.max_frames, film_frames);
+    std::vector<int> wanted;
+    for (int k = 0; k < kept; ++k)
+        wanted.push_back(kept == 1 ? film_frames - 1
+                                   : static_cast<int>(std::lround(double(k) * (film_frames - 1) / (kept - 1))));
+    std::vector<Image> frames;
+    Decoder decoder(film_fd, shown, 1);
+    int index = 0;
+    for (std::size_t next = 0; next < wanted.size(); ++index) {
+        const AVFrame* frame = decoder.next();
+        if (!frame) break;
+        if (index != wanted[next]) continue;
+        const Image rgba = to_rgba(decoder, frame);
+        // Fit max_width x max_height, never enlarged, at least a pixel a side.
+        const double fit = std::min({1.0, double(options.max_width) / rgba.width,
+                                     double(options.max_height) / rgba.height});
+        const int width = std::max(1, static_cast<int>(std::lround(rgba.width * fit)));
+        const int height = std::max(1, static_cast<int>(std::lround(rgba.height * fit)));
+        frames.push_back(width == rgba.width && height == rgba.height ? rgba : scale(rgba, width, height));
+        while (next < wanted.size() && wanted[next] == index) ++next;  // a short film repeats no frame
+    }
+    if (frames.empty()) throw std::runtime_error("cannot write " + shown.string() + ": its film has no frames");
+    const double seconds = std::min(options.max_seconds, double(film_frames) / film_fps);
+    return write_webp(fd, shown, frames, seconds, options);
+}
+
+const Api functions{api_version, open_encoder,  open_segment,  probe_video,         decode_frame,
+                    scale,       write_preview, probe_webp,    decode_webp_frame};
 
 }  // namespace
 }  // namespace render::media

@@ -7,6 +7,7 @@
 #include <iterator>
 #include <string>
 
+#include "render/atomic_file.hpp"
 #include "render/video.hpp"
 
 namespace fs = std::filesystem;
@@ -309,4 +310,84 @@ TEST_CASE("a film from segments encoded apart is the file encoded whole in segme
         const Image frame = render::decode_frame(joined, i);
         CHECK(mean_luma(frame, 2 * i + 2, 2 * i + kBarWidth - 2) > 200);
     }
+}
+
+TEST_CASE("a film's preview loops over evenly spread frames of the film scaled to fit", "[video][preview]") {
+    const fs::path film = scratch("preview-bar.mp4");
+    const fs::path preview = scratch("preview-bar.webp");
+    VideoWriter writer(film, kWidth, kHeight);
+    for (int i = 0; i < kFrames; ++i) writer.add(moving_bar(i));
+    render::PreviewOptions options;
+    options.max_width = 32;  // half the film's width: 32 x 24
+    options.max_frames = 5;  // frames 0, 6, 12, 18 and 24 of 25
+    const render::PreviewInfo written = writer.finish(render::Folder::of(preview), preview.filename().string(), options);
+    REQUIRE(fs::exists(film));
+    CHECK(render::probe_video(film).frames == kFrames);  // the film is whole
+
+    const render::PreviewInfo read = render::probe_preview(preview);
+    CHECK(read.frames == 5);
+    CHECK(read.width == 32);
+    CHECK(read.height == 24);
+    CHECK(read.loop_count == 0);  // for ever
+    // As long as the film, 25 frames at 30 fps, in five equal frames: 5 x 167 ms.
+    CHECK(read.duration_ms == 5 * 167);
+    CHECK(read.bytes == fs::file_size(preview));
+    CHECK(written.frames == read.frames);
+    CHECK(written.bytes == read.bytes);
+    CHECK(written.duration_ms == read.duration_ms);
+    // Frame k shows the film's frame 6k: its bar, at x = 2 * 6k in the film,
+    // is at x = 6k at half size, 4 pixels wide.
+    for (int k = 0; k < 5; ++k) {
+        INFO("preview frame " << k);
+        const Image frame = render::decode_preview_frame(preview, k);
+        REQUIRE(frame.width == 32);
+        const int bar = 6 * k;
+        CHECK(mean_luma(frame, bar + 1, bar + 3) > 200);                       // the bar, white
+        const int away = bar < 16 ? 26 : 2;
+        CHECK(mean_luma(frame, away, away + 3) < 120);                        // the background, blue
+        CHECK(mean_channel(frame, away, away + 3, 2) > 150);
+    }
+    CHECK_THROWS_AS(render::decode_preview_frame(preview, 5), std::out_of_range);
+    CHECK(files_named_like(preview) == 1);
+}
+
+TEST_CASE("a preview too big for its budget is made smaller until it fits", "[video][preview]") {
+    // Noise barely compresses: 48 frames of 96 x 96 at quality 70 take far
+    // more than the 20 KB allowed here.
+    const fs::path film = scratch("preview-noise.mp4");
+    const fs::path preview = scratch("preview-noise.webp");
+    VideoWriter writer(film, 96, 96);
+    std::uint32_t state = 12345;
+    for (int i = 0; i < 48; ++i) {
+        Image frame(96, 96);
+        for (std::size_t p = 0; p < frame.rgba.size(); ++p) {
+            state = state * 1664525u + 1013904223u;  // a fixed LCG: the test's own noise
+            frame.rgba[p] = (p % 4 == 3) ? 255 : static_cast<std::uint8_t>(state >> 24);
+        }
+        writer.add(frame);
+    }
+    render::PreviewOptions options;
+    options.max_bytes = 20000;
+    const render::PreviewInfo written = writer.finish(render::Folder::of(preview), preview.filename().string(), options);
+    CHECK(fs::file_size(preview) <= options.max_bytes);
+    CHECK(written.bytes == fs::file_size(preview));
+    CHECK(written.quality < options.quality);
+    CHECK(render::probe_preview(preview).frames == written.frames);
+}
+
+TEST_CASE("a film with a preview leaves neither file when the preview cannot be written", "[video][preview]") {
+    const fs::path film = scratch("preview-refused.mp4");
+    const fs::path preview = scratch("preview-refused.webp");
+    {
+        VideoWriter writer(film, kWidth, kHeight);
+        for (int i = 0; i < kFrames; ++i) writer.add(moving_bar(i));
+        render::PreviewOptions options;
+        options.max_bytes = 10;  // no WebP is this small
+        CHECK_THROWS_WITH(writer.finish(render::Folder::of(preview), preview.filename().string(), options),
+                          Catch::Contains("cannot write") && Catch::Contains("preview-refused.webp"));
+        CHECK_FALSE(fs::exists(film));
+    }  // the writer gone, its temporary is too
+    CHECK_FALSE(fs::exists(preview));
+    CHECK(files_named_like(film) == 0);
+    CHECK(files_named_like(preview) == 0);
 }

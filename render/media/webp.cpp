@@ -1,0 +1,193 @@
+#include "render/media/webp.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include <webp/demux.h>
+#include <webp/encode.h>
+#include <webp/mux.h>
+
+namespace render::media {
+namespace {
+
+struct FreeEncoder {
+    void operator()(WebPAnimEncoder* e) const { WebPAnimEncoderDelete(e); }
+};
+struct FreeDecoder {
+    void operator()(WebPAnimDecoder* d) const { WebPAnimDecoderDelete(d); }
+};
+struct FreeData {
+    void operator()(WebPData* d) const { WebPDataClear(d); }
+};
+
+[[noreturn]] void fail(const std::filesystem::path& shown, const std::string& what) {
+    throw std::runtime_error("cannot write " + shown.string() + ": " + what);
+}
+
+// The animation of `frames` at `quality`, each shown `frame_ms`.
+std::vector<std::uint8_t> encode(const std::filesystem::path& shown, const std::vector<const Image*>& frames,
+                                 int frame_ms, float quality) {
+    const int width = frames.front()->width, height = frames.front()->height;
+    WebPAnimEncoderOptions encoder_options;
+    if (!WebPAnimEncoderOptionsInit(&encoder_options)) fail(shown, "libwebp's version does not match its headers");
+    encoder_options.anim_params.loop_count = 0;  // for ever
+    encoder_options.anim_params.bgcolor = 0xffffffff;
+    std::unique_ptr<WebPAnimEncoder, FreeEncoder> encoder(WebPAnimEncoderNew(width, height, &encoder_options));
+    if (!encoder) fail(shown, "creating the WebP encoder");
+    WebPConfig config;
+    if (!WebPConfigInit(&config)) fail(shown, "libwebp's version does not match its headers");
+    config.quality = quality;
+    config.method = 4;        // libwebp's default speed/size trade-off
+    config.thread_level = 0;  // one thread: the same bytes everywhere
+    int timestamp = 0;
+    for (const Image* frame : frames) {
+        WebPPicture picture;
+        if (!WebPPictureInit(&picture)) fail(shown, "libwebp's version does not match its headers");
+        picture.use_argb = 1;
+        picture.width = width;
+        picture.height = height;
+        const bool imported = WebPPictureImportRGBA(&picture, frame->rgba.data(), width * 4);
+        const bool added = imported && WebPAnimEncoderAdd(encoder.get(), &picture, timestamp, &config);
+        WebPPictureFree(&picture);
+        if (!added) fail(shown, std::string("encoding a frame: ") + WebPAnimEncoderGetError(encoder.get()));
+        timestamp += frame_ms;
+    }
+    if (!WebPAnimEncoderAdd(encoder.get(), nullptr, timestamp, nullptr))  // the last frame's end
+        fail(shown, std::string("ending the animation: ") + WebPAnimEncoderGetError(encoder.get()));
+    WebPData data;
+    WebPDataInit(&data);
+    std::unique_ptr<WebPData, FreeData> hold(&data);
+    if (!WebPAnimEncoderAssemble(encoder.get(), &data))
+        fail(shown, std::string("assembling the animation: ") + WebPAnimEncoderGetError(encoder.get()));
+    return {data.bytes, data.bytes + data.size};
+}
+
+void write_all(int fd, const std::filesystem::path& shown, const std::vector<std::uint8_t>& bytes) {
+    for (std::size_t done = 0; done < bytes.size();) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) fail(shown, std::strerror(errno));
+        done += static_cast<std::size_t>(n);
+    }
+}
+
+std::vector<std::uint8_t> read_all(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot read " + path.string() + ": no such file");
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// libwebp's animation decoder over the file's bytes, in RGBA.
+class Animation {
+public:
+    explicit Animation(const std::filesystem::path& path) : path_(path), bytes_(read_all(path)) {
+        WebPAnimDecoderOptions options;
+        if (!WebPAnimDecoderOptionsInit(&options)) fail_read("libwebp's version does not match its headers");
+        options.color_mode = MODE_RGBA;
+        options.use_threads = 0;
+        const WebPData data{bytes_.data(), bytes_.size()};
+        decoder_.reset(WebPAnimDecoderNew(&data, &options));
+        if (!decoder_) fail_read("not an animated WebP libwebp can decode");
+        if (!WebPAnimDecoderGetInfo(decoder_.get(), &info_)) fail_read("reading its header");
+    }
+
+    const WebPAnimInfo& info() const { return info_; }
+    std::size_t size() const { return bytes_.size(); }
+
+    // The next frame's pixels (width x height RGBA) and end time, or null after the last.
+    const std::uint8_t* next(int& end_ms) {
+        if (!WebPAnimDecoderHasMoreFrames(decoder_.get())) return nullptr;
+        std::uint8_t* pixels = nullptr;
+        if (!WebPAnimDecoderGetNext(decoder_.get(), &pixels, &end_ms)) fail_read("decoding a frame");
+        return pixels;
+    }
+
+private:
+    [[noreturn]] void fail_read(const std::string& what) const {
+        throw std::runtime_error("cannot read " + path_.string() + ": " + what);
+    }
+
+    std::filesystem::path path_;
+    std::vector<std::uint8_t> bytes_;  // the decoder refers to them
+    std::unique_ptr<WebPAnimDecoder, FreeDecoder> decoder_;
+    WebPAnimInfo info_{};
+};
+
+}  // namespace
+
+PreviewInfo write_webp(int fd, const std::filesystem::path& shown, const std::vector<Image>& frames, double seconds,
+                       const PreviewOptions& options) {
+    if (frames.empty()) fail(shown, "a preview needs a frame");
+    std::vector<const Image*> kept;
+    for (const Image& f : frames) kept.push_back(&f);
+    float quality = options.quality;
+    std::vector<std::uint8_t> bytes;
+    for (;;) {
+        // Each frame shows for an equal share of the loop, at least 20 ms
+        // (what browsers show at the least).
+        const int frame_ms = std::max(20, static_cast<int>(std::lround(1000.0 * seconds / kept.size())));
+        bytes = encode(shown, kept, frame_ms, quality);
+        if (bytes.size() <= options.max_bytes) break;
+        if (quality > 20) {
+            quality = std::max(20.0f, quality - 20);
+        } else if (kept.size() > 2) {
+            std::vector<const Image*> half;  // every other frame, the last kept
+            for (std::size_t i = 0; i < kept.size(); i += 2) half.push_back(kept[i]);
+            if (half.back() != kept.back()) half.push_back(kept.back());
+            kept = std::move(half);
+        } else {
+            fail(shown, "its frames do not fit " + std::to_string(options.max_bytes) + " bytes");
+        }
+    }
+    write_all(fd, shown, bytes);
+    PreviewInfo info;
+    info.frames = static_cast<int>(kept.size());
+    info.width = frames.front().width;
+    info.height = frames.front().height;
+    info.loop_count = 0;
+    info.duration_ms = info.frames * std::max(20, static_cast<int>(std::lround(1000.0 * seconds / kept.size())));
+    info.bytes = bytes.size();
+    info.quality = quality;
+    return info;
+}
+
+PreviewInfo probe_webp(const std::filesystem::path& path) {
+    Animation animation(path);
+    PreviewInfo info;
+    info.width = static_cast<int>(animation.info().canvas_width);
+    info.height = static_cast<int>(animation.info().canvas_height);
+    info.loop_count = static_cast<int>(animation.info().loop_count);
+    info.bytes = animation.size();
+    int end_ms = 0;
+    while (animation.next(end_ms)) ++info.frames;  // decoded, not the header's claim
+    info.duration_ms = end_ms;
+    return info;
+}
+
+Image decode_webp_frame(const std::filesystem::path& path, int index) {
+    Animation animation(path);
+    int end_ms = 0;
+    for (int i = 0;; ++i) {
+        const std::uint8_t* pixels = animation.next(end_ms);
+        if (!pixels)
+            throw std::out_of_range(path.string() + " has " + std::to_string(i) + " frames, no frame " +
+                                    std::to_string(index));
+        if (i == index) {
+            Image image(static_cast<int>(animation.info().canvas_width),
+                        static_cast<int>(animation.info().canvas_height));
+            std::memcpy(image.rgba.data(), pixels, image.rgba.size());
+            return image;
+        }
+    }
+}
+
+}  // namespace render::media
