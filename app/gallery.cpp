@@ -209,10 +209,12 @@ int write_thumbnails(const std::filesystem::path& from, const std::filesystem::p
 namespace {
 
 // The card's <video>, where the figure's film ID.mp4 is in the folder (its
-// name is never taken from the metadata); writes its poster, the film's last
-// frame decoded from the MP4: what the film grows into, where the first
-// frame (what a browser shows by itself) is often nearly empty. Returns the
-// film's file name, or "" for none.
+// name is never taken from the metadata). Its poster is the film's looping
+// preview ID.webp, which plays until the film does; without one (a folder
+// rendered by an older figgen), the film's last frame decoded from the MP4,
+// written as posters/ID.png: what the film grows into, where the first frame
+// (what a browser shows by itself) is often nearly empty. Returns the film's
+// file name, or "" for none.
 std::string film_html(const Folders& folders, const std::string& id, const std::string& title,
                       const nlohmann::json& meta, std::ostringstream& card) {
     const std::string movie = id + ".mp4";
@@ -222,11 +224,22 @@ std::string film_html(const Folders& folders, const std::string& id, const std::
     const int height = size.is_array() && size.size() == 2 ? count_of(size[1]) : 0;
     const int frames = count_of(member(film, "frames")), fps = count_of(member(film, "fps"));
     if (!is_file_in(folders.figures, movie) || !width || !height || !frames || !fps) return "";
-    render::write_png(folders.posters, id + ".png", render::decode_frame(folders.figures / movie, frames - 1, 0),
-                      {{"Title", title + " (last frame of " + movie + ")"}});
-    card << "<video controls preload=\"metadata\" src=\"" << escape(movie) << "\" poster=\"posters/" << escape(id)
-         << ".png\" width=\"" << width << "\" height=\"" << height << "\" data-width=\"" << width
+    const std::string preview = id + ".webp";
+    std::string poster = preview;
+    int poster_width = 0, poster_height = 0;
+    if (is_file_in(folders.figures, preview)) {
+        const render::PreviewInfo info = render::probe_preview(folders.figures / preview);
+        poster_width = info.width, poster_height = info.height;
+    } else {
+        poster = "posters/" + id + ".png";
+        render::write_png(folders.posters, id + ".png", render::decode_frame(folders.figures / movie, frames - 1, 0),
+                          {{"Title", title + " (last frame of " + movie + ")"}});
+        poster_width = width, poster_height = height;
+    }
+    card << "<video controls preload=\"metadata\" src=\"" << escape(movie) << "\" poster=\"" << escape(poster)
+         << "\" width=\"" << width << "\" height=\"" << height << "\" data-width=\"" << width
          << "\" data-height=\"" << height << "\" data-frames=\"" << frames << "\" data-fps=\"" << fps
+         << "\" data-poster-width=\"" << poster_width << "\" data-poster-height=\"" << poster_height
          << "\"></video>\n";
     return movie;
 }

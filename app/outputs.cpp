@@ -125,7 +125,8 @@ void require_disk(const Description& d, const OutputOptions& options, double par
     bytes += parts_bytes;
     if (d.animation) {
         const double frames = d.animation->frame_count() * frame_pixels(d, options);
-        if (options.video) bytes += 0.15 * frames, largest = "the MP4";
+        // The preview: at most its budget, 2 MiB.
+        if (options.video) bytes += 0.15 * frames + render::PreviewOptions{}.max_bytes, largest = "the MP4";
         if (options.frames) bytes += 4.0 * frames, largest = "the PNG sequence";
     }
     if (bytes > static_cast<double>(options.max_disk))
@@ -136,7 +137,7 @@ void require_disk(const Description& d, const OutputOptions& options, double par
 
 FrameSink::FrameSink(const Description& d, const OutputOptions& options, const render::Folder& folder, int width,
                      int height, const std::vector<nlohmann::json>* segments)
-    : description_(d), options_(options), width_(width), height_(height), segments_(segments) {
+    : description_(d), options_(options), folder_(folder), width_(width), height_(height), segments_(segments) {
     if (options.video)
         video_ = std::make_unique<render::VideoWriter>(folder, d.id + ".mp4", width, height,
                                                        film_video_options(d, options));
@@ -184,8 +185,13 @@ nlohmann::json FrameSink::finish() {
         {"size", {width_, height_}},
     };
     if (video_) {
-        video_->finish();
+        const render::PreviewInfo preview = video_->finish(folder_, description_.id + ".webp");
         meta["file"] = description_.id + ".mp4";
+        meta["preview"] = {{"file", description_.id + ".webp"},
+                           {"frames", preview.frames},
+                           {"size", {preview.width, preview.height}},
+                           {"duration_ms", preview.duration_ms},
+                           {"quality", preview.quality}};
         meta["codec"] = video_->codec_name();
         if (video_->codec_name() == "libx264") {             // the mpeg4 fallback has neither
             meta["preset"] = options_.video_options.preset;  // with the settings below they shape the bytes
@@ -212,7 +218,7 @@ void FigureFiles::figure(const render::Image& image, nlohmann::json metadata) {
 }
 
 std::vector<std::string> output_names(const std::string& id) {
-    return {id + ".png", id + ".json", id + ".mp4", id + "-frames"};
+    return {id + ".png", id + ".json", id + ".mp4", id + ".webp", id + "-frames"};
 }
 
 namespace {

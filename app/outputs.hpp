@@ -2,6 +2,7 @@
 // What a figure writes into the output folder, all through temporary names:
 //   <id>.png            the panels, with id, seed and parameters in tEXt chunks
 //   <id>.mp4            the animation, streamed frame by frame
+//   <id>.webp           its short looping preview (animated WebP), with the MP4
 //   <id>-frames/NNNNN.png  the same frames as a PNG sequence (--frames)
 //   <id>.json           metadata of all of them: parameters, seed, per-panel
 //                       step, statistics and state hash, frame list
@@ -94,6 +95,7 @@ private:
 
     const Description& description_;
     const OutputOptions& options_;
+    render::Folder folder_;
     std::unique_ptr<render::VideoWriter> video_;
     std::unique_ptr<render::AtomicDir> frames_;  // the PNG sequence, in place at finish()
     nlohmann::json steps_ = nlohmann::json::array();

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -121,8 +122,8 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-1 --set figure.size=[16000,16000]", "needs about 6.8 GiB of memory (figure 16000 x 16000 RGBA: 6.7 GiB), more than --max-memory 4.0 GiB"},
         {render + "pl-ifs-fern --set points=20000000 --max-memory 256M", "(3 x 20000000 points: 915.5 MiB)"},
         {render + "pl-lsys-3d --set depth=40", "--set depth=40: depth = 40 is not allowed: a depth within the turtle's budget (it would draw more than 18,446,744,073,709,551,615 segments, more than the budget of 5,000,000)"},
-        {"render --frames --out " + out.string() + " tc7-2 --max-disk 10M", // 351 frames of 480 x 520 at 4 bytes, the MP4 at 0.15 and the 900 x 450 PNG: 348.3 MiB
-         "its outputs would take up to about 348.3 MiB (mostly the PNG sequence), more than --max-disk 10.0 MiB"},
+        {"render --frames --out " + out.string() + " tc7-2 --max-disk 10M", // 351 frames of 480 x 520 at 4 bytes, the MP4 at 0.15, its preview at most 2 MiB and the 900 x 450 PNG: 350.3 MiB
+         "its outputs would take up to about 350.3 MiB (mostly the PNG sequence), more than --max-disk 10.0 MiB"},
         // diffusion
         {render + "tc7-1 --set r=0.5", "--set r=0.5: r = 0.5 is not allowed: a number from 0 to 0.25 (the explicit 5-point update's stability bound; beyond it the checkerboard grows)"},
         {render + "tc7-1 --set r=nan", "--set r=nan: r = nan is not allowed: expected a finite number"},
@@ -323,6 +324,41 @@ TEST_CASE("render writes an MP4 that decodes to every animation step", "[cli]") 
     CHECK(int(centre[2]) == Approx(61).margin(8));
 }
 
+TEST_CASE("a film comes with a looping WebP preview that its JSON describes, the same bytes every run", "[cli][preview]") {
+    const fs::path out = fresh_dir("preview"), again = fresh_dir("preview-again");
+    REQUIRE(figgen("render tc7-1 --scale 0.5 --out " + out.string()).status == 0);
+    const render::PreviewInfo preview = render::probe_preview(out / "tc7-1.webp");
+    std::ifstream in(out / "tc7-1.json");
+    const nlohmann::json meta = nlohmann::json::parse(in)["animation"]["preview"];
+    CHECK(meta["file"] == "tc7-1.webp");
+    // 61 frames of 240 x 260: 48 of them, fitted into 360 x 360 (not enlarged),
+    // over the film's 6.1 s capped at 4 s: 48 x 83 ms.
+    CHECK(preview.frames == 48);
+    CHECK(preview.width == 240);
+    CHECK(preview.height == 260);
+    CHECK(preview.loop_count == 0);
+    CHECK(preview.duration_ms == 48 * 83);
+    CHECK(meta["frames"] == preview.frames);
+    CHECK(meta["size"] == nlohmann::json::array({preview.width, preview.height}));
+    CHECK(meta["duration_ms"] == preview.duration_ms);
+    CHECK(preview.bytes <= render::PreviewOptions{}.max_bytes);
+    // Its last frame is the film's: the same colours but for lossy coding.
+    const render::Image last = render::decode_preview_frame(out / "tc7-1.webp", 47);
+    // Mean difference a channel: lossy WebP after H.264 leaves about 5;
+    // the film's first frame, against which it is checked too, more than twice that.
+    const auto mean_difference = [&](const render::Image& film) {
+        double differ = 0;
+        for (std::size_t i = 0; i < last.rgba.size(); ++i) differ += std::abs(int(last.rgba[i]) - int(film.rgba[i]));
+        return differ / double(last.rgba.size());
+    };
+    const double to_last = mean_difference(render::decode_frame(out / "tc7-1.mp4", 60));
+    const double to_first = mean_difference(render::decode_frame(out / "tc7-1.mp4", 0));
+    CHECK(to_last < 8.0);
+    CHECK(to_first > 2 * to_last);
+    REQUIRE(figgen("render tc7-1 --scale 0.5 --out " + again.string()).status == 0);
+    CHECK(testkit::slurp(again / "tc7-1.webp") == testkit::slurp(out / "tc7-1.webp"));
+}
+
 TEST_CASE("a run that goes unstable stops at the step it went bad and writes nothing", "[cli]") {
     const fs::path out = fresh_dir("unstable");
     // Strong feed, fast diffusion of both, a saturated start: A leaves [0, 1] at once.
@@ -426,7 +462,7 @@ TEST_CASE("render --cmap recolours a field figure with matplotlib's colormap", "
 TEST_CASE("render --format png, mp4 or frames chooses what is written besides the PNG", "[cli][options]") {
     const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
         {"png", {"tc7-1.json", "tc7-1.png"}},
-        {"mp4", {"tc7-1.json", "tc7-1.mp4", "tc7-1.png"}},
+        {"mp4", {"tc7-1.json", "tc7-1.mp4", "tc7-1.png", "tc7-1.webp"}},  // the film and its preview
         {"frames", {"tc7-1-frames", "tc7-1.json", "tc7-1.png"}},
     };
     for (const auto& [format, expected] : cases) {

@@ -90,12 +90,23 @@ TEST_CASE("figgen gallery shows every rendered figure with thumbnail, film, para
                                      "\" height=\"" + std::to_string(thumb.height) + "\""));
     // The film, with the frame count and size of its metadata; tc7-9 has none.
     const auto& film = meta["animation"];
-    CHECK_THAT(page, Catch::Contains("<video controls preload=\"metadata\" src=\"tc7-1.mp4\" poster=\"posters/tc7-1.png\" width=\"" +
+    // Its poster: the film's looping preview, at the size its metadata gives.
+    CHECK_THAT(page, Catch::Contains("<video controls preload=\"metadata\" src=\"tc7-1.mp4\" poster=\"tc7-1.webp\" width=\"" +
                                      std::to_string(film["size"][0].get<int>()) + "\""));
     CHECK_THAT(page, Catch::Contains("data-frames=\"" + std::to_string(film["frames"].get<int>()) + "\""));
+    CHECK_THAT(page, Catch::Contains("data-poster-width=\"" + std::to_string(film["preview"]["size"][0].get<int>()) +
+                                     "\" data-poster-height=\"" +
+                                     std::to_string(film["preview"]["size"][1].get<int>()) + "\""));
     CHECK(count(page, "<video ") == 1);
-    // Its poster: the film's last frame, as the same render's PNG sequence
-    // has it (within H.264's loss), not its first.
+    CHECK_FALSE(fs::exists(out / "posters" / "tc7-1.png"));
+    // Without a preview (a folder of an older figgen), the poster is the
+    // film's last frame, as the same render's PNG sequence has it (within
+    // H.264's loss), not its first.
+    fs::remove(out / "tc7-1.webp");
+    REQUIRE(testkit::figgen("gallery --out " + out.string()).status == 0);
+    CHECK_THAT(slurp(out / "index.html"),
+               Catch::Contains("src=\"tc7-1.mp4\" poster=\"posters/tc7-1.png\" width=\"" +
+                               std::to_string(film["size"][0].get<int>()) + "\""));
     const fs::path frames = testkit::fresh_dir("gallery-frames");
     REQUIRE(testkit::figgen("render tc7-1 --scale 0.5 --seed 4 --format frames --out " + frames.string()).status == 0);
     const auto poster = render::read_png(out / "posters" / "tc7-1.png").image;

@@ -188,23 +188,26 @@ def main():
                                 % (src, duration, film["frames"], film["fps"], expected))
             if [width, height] != film["size"]:
                 failures.append("video %s is %dx%d, its metadata says %s" % (src, width, height, film["size"]))
-        # Every video's poster (its last frame) decoded, at the film's size.
+        # Every video's poster decoded, at the size its tag gives: the film's
+        # looping preview, or its last frame where there is no preview.
         driver.set_script_timeout(30)
         posters = driver.execute_async_script(
             "const done = arguments[arguments.length - 1];"
             "Promise.all([...document.querySelectorAll('video')].map(v => new Promise(ready => {"
             " const image = new Image();"
+            " const tagged = [Number(v.dataset.posterWidth), Number(v.dataset.posterHeight)];"
             " image.onload = () => ready([v.getAttribute('src'), v.getAttribute('poster'), image.naturalWidth,"
-            " image.naturalHeight]);"
-            " image.onerror = () => ready([v.getAttribute('src'), v.getAttribute('poster'), 0, 0]);"
+            " image.naturalHeight, tagged]);"
+            " image.onerror = () => ready([v.getAttribute('src'), v.getAttribute('poster'), 0, 0, tagged]);"
             " image.src = v.poster; }))).then(done);")
-        for src, poster, width, height in posters:
+        for src, poster, width, height, tagged in posters:
             film = films.get(src, {"size": None})
+            expected = film.get("preview", {}).get("size") if poster.endswith(".webp") else film["size"]
             if not poster or width <= 0:
                 failures.append("video %s: its poster %s did not load" % (src, poster))
-            elif [width, height] != film["size"]:
-                failures.append("video %s: its poster %s is %dx%d, the film %s" % (src, poster, width, height,
-                                                                                 film["size"]))
+            elif [width, height] != expected or [width, height] != tagged:
+                failures.append("video %s: its poster %s is %dx%d, its tag says %s, its metadata %s"
+                                % (src, poster, width, height, tagged, expected))
         # The whole page in one picture: a window as tall as the page, every
         # card's parameters, numbers and notes open, every video showing its
         # poster (the film's last frame) as a visitor first sees it.
