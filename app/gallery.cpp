@@ -201,6 +201,17 @@ int write_thumbnails(const std::filesystem::path& from, const std::filesystem::p
             if (key == "Title") title = value;
         render::write_png(target, id + ".png", render::thumbnail(png.image, max_width, max_height),
                           {{"Title", title}});
+        // A film's preview as an animated thumbnail too, for pages that
+        // show the animated figures moving (the README's grid): half the
+        // preview's frames, within 400 KB.
+        if (is_file_in(source, id + ".webp")) {
+            render::PreviewOptions small;
+            small.max_width = max_width;
+            small.max_height = max_height;
+            small.max_frames = 24;
+            small.max_bytes = 400u << 10;
+            render::write_preview_thumbnail(source / (id + ".webp"), target, id + ".webp", small);
+        }
         ++written;
     }
     return written;

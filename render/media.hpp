@@ -71,6 +71,11 @@ struct Api {
                                  int film_fps, const PreviewOptions& options);
     PreviewInfo (*probe_preview)(const std::filesystem::path& path);
     Image (*decode_preview_frame)(const std::filesystem::path& path, int index);
+    // A smaller copy of the preview at `path`, on `fd`: its frames (at most
+    // options.max_frames of them, evenly spread) scaled to fit
+    // options.max_width x max_height, over the same duration.
+    PreviewInfo (*write_preview_thumbnail)(int fd, const std::filesystem::path& shown, const std::filesystem::path& path,
+                                           const PreviewOptions& options);
 };
 
 // The module's functions, opening it on the first call (std::runtime_error

@@ -164,6 +164,17 @@ Image decode_preview_frame(const std::filesystem::path& path, int index) {
     return media::api().decode_preview_frame(path, index);
 }
 
+PreviewInfo write_preview_thumbnail(const std::filesystem::path& path, const Folder& folder, const std::string& name,
+                                    const PreviewOptions& options) {
+    if (options.max_width < 1 || options.max_height < 1 || options.max_frames < 1 ||
+        !(options.quality >= 0 && options.quality <= 100) || options.max_bytes < 1)
+        throw std::invalid_argument("preview options out of range");
+    AtomicFile file(folder, name);
+    const PreviewInfo info = media::api().write_preview_thumbnail(file.fd(), folder / name, path, options);
+    file.commit();
+    return info;
+}
+
 VideoInfo probe_video(const std::filesystem::path& path) {
     return media::api().probe_video(path);
 }

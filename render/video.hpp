@@ -155,6 +155,11 @@ VideoInfo probe_video(const std::filesystem::path& path);
 // std::runtime_error naming the path when they cannot.
 PreviewInfo probe_preview(const std::filesystem::path& path);
 Image decode_preview_frame(const std::filesystem::path& path, int index);
+// folder/name, a smaller copy of the preview at `path` (a thumbnail for a
+// page such as the README): at most options.max_frames of its frames,
+// scaled to fit options.max_width x max_height, over the same duration.
+PreviewInfo write_preview_thumbnail(const std::filesystem::path& path, const Folder& folder, const std::string& name,
+                                    const PreviewOptions& options);
 
 // Decodes frame `index` (0-based, display order) back to RGBA on `threads`
 // decoder threads (0: as many as FFmpeg sees cores; the pixels do not depend

@@ -627,6 +627,15 @@ Image scale(const Image& image, int width, int height) {
     return out;
 }
 
+// `frame` scaled to fit max_width x max_height (never enlarged), at least a pixel a side.
+Image fitted(const Image& frame, const PreviewOptions& options) {
+    const double fit =
+        std::min({1.0, double(options.max_width) / frame.width, double(options.max_height) / frame.height});
+    const int width = std::max(1, static_cast<int>(std::lround(frame.width * fit)));
+    const int height = std::max(1, static_cast<int>(std::lround(frame.height * fit)));
+    return width == frame.width && height == frame.height ? frame : scale(frame, width, height);
+}
+
 PreviewInfo write_preview(int fd, const std::filesystem::path& shown, int film_fd, int film_frames, int film_fps,
                           const PreviewOptions& options) {
     if (film_frames < 1 || film_fps < 1) throw std::invalid_argument("a preview needs a film of one frame or more");
@@ -643,13 +652,7 @@ PreviewInfo write_preview(int fd, const std::filesystem::path& shown, int film_f
         const AVFrame* frame = decoder.next();
         if (!frame) break;
         if (index != wanted[next]) continue;
-        const Image rgba = to_rgba(decoder, frame);
-        // Fit max_width x max_height, never enlarged, at least a pixel a side.
-        const double fit = std::min({1.0, double(options.max_width) / rgba.width,
-                                     double(options.max_height) / rgba.height});
-        const int width = std::max(1, static_cast<int>(std::lround(rgba.width * fit)));
-        const int height = std::max(1, static_cast<int>(std::lround(rgba.height * fit)));
-        frames.push_back(width == rgba.width && height == rgba.height ? rgba : scale(rgba, width, height));
+        frames.push_back(fitted(to_rgba(decoder, frame), options));
         while (next < wanted.size() && wanted[next] == index) ++next;  // a short film repeats no frame
     }
     if (frames.empty()) throw std::runtime_error("cannot write " + shown.string() + ": its film has no frames");
@@ -657,8 +660,25 @@ PreviewInfo write_preview(int fd, const std::filesystem::path& shown, int film_f
     return write_webp(fd, shown, frames, seconds, options);
 }
 
-const Api functions{api_version, open_encoder,  open_segment,  probe_video,         decode_frame,
-                    scale,       write_preview, probe_webp,    decode_webp_frame};
+PreviewInfo write_preview_thumbnail(int fd, const std::filesystem::path& shown, const std::filesystem::path& path,
+                                    const PreviewOptions& options) {
+    int duration_ms = 0;
+    const std::vector<Image> all = decode_webp(path, duration_ms);
+    if (all.empty()) throw std::runtime_error("cannot read " + path.string() + ": it has no frames");
+    const int total = static_cast<int>(all.size());
+    const int kept = std::min(options.max_frames, total);
+    std::vector<Image> frames;
+    for (int k = 0; k < kept; ++k) {
+        const int index =
+            kept == 1 ? total - 1 : static_cast<int>(std::lround(double(k) * (total - 1) / (kept - 1)));
+        frames.push_back(fitted(all[static_cast<std::size_t>(index)], options));
+    }
+    return write_webp(fd, shown, frames, duration_ms / 1000.0, options);
+}
+
+const Api functions{api_version,   open_encoder,      open_segment, probe_video,
+                    decode_frame,  scale,             write_preview, probe_webp,
+                    decode_webp_frame, write_preview_thumbnail};
 
 }  // namespace
 }  // namespace render::media

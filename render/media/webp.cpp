@@ -176,6 +176,19 @@ PreviewInfo probe_webp(const std::filesystem::path& path) {
     return info;
 }
 
+std::vector<Image> decode_webp(const std::filesystem::path& path, int& duration_ms) {
+    Animation animation(path);
+    std::vector<Image> frames;
+    const int width = static_cast<int>(animation.info().canvas_width);
+    const int height = static_cast<int>(animation.info().canvas_height);
+    while (const std::uint8_t* pixels = animation.next(duration_ms)) {
+        Image image(width, height);
+        std::memcpy(image.rgba.data(), pixels, image.rgba.size());
+        frames.push_back(std::move(image));
+    }
+    return frames;
+}
+
 Image decode_webp_frame(const std::filesystem::path& path, int index) {
     Animation animation(path);
     int end_ms = 0;

@@ -17,6 +17,8 @@ namespace render::media {
 PreviewInfo write_webp(int fd, const std::filesystem::path& shown, const std::vector<Image>& frames, double seconds,
                        const PreviewOptions& options);
 PreviewInfo probe_webp(const std::filesystem::path& path);
+// Every frame of the animated WebP at `path`, and how long one loop lasts.
+std::vector<Image> decode_webp(const std::filesystem::path& path, int& duration_ms);
 Image decode_webp_frame(const std::filesystem::path& path, int index);
 
 }  // namespace render::media

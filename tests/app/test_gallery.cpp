@@ -10,6 +10,7 @@
 
 #include "figgen_run.hpp"
 #include "render/png_io.hpp"
+#include "render/video.hpp"
 #include "render/thumbnail.hpp"
 
 namespace fs = std::filesystem;
@@ -132,4 +133,33 @@ TEST_CASE("figgen gallery shows every rendered figure with thumbnail, film, para
     const testkit::Run bad = testkit::figgen("gallery --out " + (out / "nope").string());
     CHECK(bad.status == 2);
     CHECK_THAT(bad.output, Catch::Contains("is not a folder of rendered figures"));
+}
+
+TEST_CASE("figgen thumbnails makes a film's preview an animated thumbnail of the same duration", "[gallery][cli][preview]") {
+    const fs::path out = testkit::fresh_dir("animated-thumbs"), thumbs = testkit::fresh_dir("animated-thumbs-to");
+    REQUIRE(testkit::figgen("render tc7-1 tc7-9 --scale 0.5 --out " + out.string()).status == 0);
+    const testkit::Run run =
+        testkit::figgen("thumbnails --from " + out.string() + " --to " + thumbs.string() + " --width 120 --height 90");
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    const render::PreviewInfo preview = render::probe_preview(out / "tc7-1.webp");
+    const render::PreviewInfo thumb = render::probe_preview(thumbs / "tc7-1.webp");
+    // The preview's 240 x 260 fitted into 120 x 90: 83 x 90; 24 of its 48 frames.
+    CHECK(thumb.width == 83);
+    CHECK(thumb.height == 90);
+    CHECK(thumb.frames == 24);
+    CHECK(thumb.loop_count == 0);
+    CHECK(thumb.duration_ms == preview.duration_ms);
+    CHECK(thumb.bytes <= 400u << 10);
+    // Its last frame is the preview's, scaled: the same mean colour.
+    const render::Image last = render::decode_preview_frame(thumbs / "tc7-1.webp", 23);
+    const render::Image big = render::decode_preview_frame(out / "tc7-1.webp", 47);
+    for (int c = 0; c < 3; ++c) {
+        double small_mean = 0, big_mean = 0;
+        for (std::size_t i = c; i < last.rgba.size(); i += 4) small_mean += last.rgba[i];
+        for (std::size_t i = c; i < big.rgba.size(); i += 4) big_mean += big.rgba[i];
+        CHECK(small_mean / (last.rgba.size() / 4) == Approx(big_mean / (big.rgba.size() / 4)).margin(3));
+    }
+    CHECK(fs::exists(thumbs / "tc7-9.png"));
+    CHECK_FALSE(fs::exists(thumbs / "tc7-9.webp"));  // no film, no animated thumbnail
 }
