@@ -134,7 +134,7 @@ PreviewInfo write_webp(int fd, const std::filesystem::path& shown, const std::ve
     for (;;) {
         // Each frame shows for an equal share of the loop, at least 20 ms
         // (what browsers show at the least).
-        const int frame_ms = std::max(20, static_cast<int>(std::lround(1000.0 * seconds / kept.size())));
+        const int frame_ms = std::max(20, static_cast<int>(std::floor(1000.0 * seconds / kept.size())));
         bytes = encode(shown, kept, frame_ms, quality);
         if (bytes.size() <= options.max_bytes) break;
         if (quality > 10) {
@@ -157,7 +157,7 @@ PreviewInfo write_webp(int fd, const std::filesystem::path& shown, const std::ve
     info.width = frames.front().width;
     info.height = frames.front().height;
     info.loop_count = 0;
-    info.duration_ms = info.frames * std::max(20, static_cast<int>(std::lround(1000.0 * seconds / kept.size())));
+    info.duration_ms = info.frames * std::max(20, static_cast<int>(std::floor(1000.0 * seconds / kept.size())));
     info.bytes = bytes.size();
     info.quality = quality;
     return info;

@@ -7,7 +7,9 @@
 
 #include "figgen_run.hpp"
 #include "description/catalog.hpp"
+#include "description/description.hpp"
 #include "render/png_io.hpp"
+#include "render/video.hpp"
 
 namespace fs = std::filesystem;
 
@@ -24,21 +26,34 @@ std::string readme() {
 
 }  // namespace
 
-TEST_CASE("the README's grid shows a committed thumbnail of every catalog figure", "[readme]") {
+TEST_CASE("the README's grid shows a committed thumbnail of every catalog figure, moving where it has a film", "[readme]") {
     const std::string text = readme();
-    int shown = 0;
+    int shown = 0, moving = 0;
     for (const auto& file : description::catalog_files()) {
         const std::string id = file.stem().string();
         INFO(id);
-        CHECK_THAT(text, Catch::Contains("](docs/thumbs/" + id + ".png)](figures/" + id + ".toml)"));
-        const fs::path thumb = project / "docs" / "thumbs" / (id + ".png");
+        const bool film = description::load_description(file, {}).animation.has_value();
+        // A figure with a film shows its preview's animated thumbnail.
+        const std::string name = id + (film ? ".webp" : ".png");
+        CHECK_THAT(text, Catch::Contains("](docs/thumbs/" + name + ")](figures/" + id + ".toml)"));
+        const fs::path thumb = project / "docs" / "thumbs" / name;
         REQUIRE(fs::exists(thumb));
-        const auto png = render::read_png(thumb).image;
-        CHECK(png.width <= 240);
-        CHECK(png.height <= 180);
+        if (film) {
+            const render::PreviewInfo preview = render::probe_preview(thumb);
+            CHECK(preview.width <= 240);
+            CHECK(preview.height <= 180);
+            CHECK(preview.frames > 1);
+            CHECK(preview.loop_count == 0);
+            ++moving;
+        } else {
+            const auto png = render::read_png(thumb).image;
+            CHECK(png.width <= 240);
+            CHECK(png.height <= 180);
+        }
         ++shown;
     }
     CHECK(shown == 29);
+    CHECK(moving == 14);
 }
 
 TEST_CASE("the README's example description renders", "[readme][cli]") {

@@ -329,8 +329,8 @@ TEST_CASE("a film's preview loops over evenly spread frames of the film scaled t
     CHECK(read.width == 32);
     CHECK(read.height == 24);
     CHECK(read.loop_count == 0);  // for ever
-    // As long as the film, 25 frames at 30 fps, in five equal frames: 5 x 167 ms.
-    CHECK(read.duration_ms == 5 * 167);
+    // As long as the film, 25 frames at 30 fps, in five equal frames: 5 x 166 ms.
+    CHECK(read.duration_ms == 5 * 166);
     CHECK(read.bytes == fs::file_size(preview));
     CHECK(written.frames == read.frames);
     CHECK(written.bytes == read.bytes);
