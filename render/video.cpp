@@ -57,6 +57,12 @@ void check_frame(const Image& frame, int width, int height) {
                                     std::to_string(height) + " RGBA");
 }
 
+void check_preview(const PreviewOptions& options) {
+    if (options.max_width < 1 || options.max_height < 1 || options.max_frames < 1 || !(options.max_seconds > 0) ||
+        !(options.quality >= 0 && options.quality <= 100) || options.max_bytes < 1)
+        throw std::invalid_argument("preview options out of range");
+}
+
 }  // namespace
 
 // As x264.h's x264_preset_names and x264_tune_names (x264 0.164).
@@ -142,9 +148,7 @@ void VideoWriter::finish() {
 PreviewInfo VideoWriter::finish(const Folder& folder, const std::string& name, const PreviewOptions& options) {
     if (!encoder_ || encoder_->finished) throw std::logic_error("VideoWriter::finish called twice");
     if (frames_ == 0) throw std::logic_error("cannot write " + path_.string() + ": no frames were added");
-    if (options.max_width < 1 || options.max_height < 1 || options.max_frames < 1 || !(options.max_seconds > 0) ||
-        !(options.quality >= 0 && options.quality <= 100) || options.max_bytes < 1)
-        throw std::invalid_argument("preview options out of range");
+    check_preview(options);
     encoder_->media->finish();
     AtomicFile preview(folder, name);
     const PreviewInfo info =
@@ -166,9 +170,7 @@ Image decode_preview_frame(const std::filesystem::path& path, int index) {
 
 PreviewInfo write_preview_thumbnail(const std::filesystem::path& path, const Folder& folder, const std::string& name,
                                     const PreviewOptions& options) {
-    if (options.max_width < 1 || options.max_height < 1 || options.max_frames < 1 ||
-        !(options.quality >= 0 && options.quality <= 100) || options.max_bytes < 1)
-        throw std::invalid_argument("preview options out of range");
+    check_preview(options);
     AtomicFile file(folder, name);
     const PreviewInfo info = media::api().write_preview_thumbnail(file.fd(), folder / name, path, options);
     file.commit();
