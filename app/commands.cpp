@@ -298,7 +298,7 @@ int RenderCommand::run() {
     if (app->get_option("--gl")->count() == 0)
         if (const char* env = std::getenv("FIGGEN_GL"); env && *env) gl = env, gl_from = "FIGGEN_GL=" + gl;
     if (!render::gl_platform_of(gl))
-        throw UsageError(gl_from + " is not allowed: use auto, osmesa, egl or egl-device");
+        throw UsageError(gl_from + " is not allowed: use " + render::gl_platforms_allowed());
     if (gl_device != 0 && gl != "egl-device")
         throw UsageError("--gl-device " + std::to_string(gl_device) + " is not allowed with " + gl_from +
                          ": use it with --gl egl-device");

@@ -29,8 +29,8 @@ GlChoice the_choice() {
         if (const char* name = std::getenv("FIGGEN_GL"); name && *name) {
             const std::optional<GlPlatform> platform = gl_platform_of(name);
             if (!platform)
-                throw std::runtime_error("FIGGEN_GL=" + std::string(name) +
-                                         " is not allowed: use auto, osmesa, egl or egl-device");
+                throw std::runtime_error("FIGGEN_GL=" + std::string(name) + " is not allowed: use " +
+                                         gl_platforms_allowed());
             choice.platform = *platform;
         }
         c.choice = choice;
@@ -90,6 +90,14 @@ std::optional<GlPlatform> gl_platform_of(const std::string& name) {
     for (std::size_t i = 0; i < names.size(); ++i)
         if (names[i] == name) return static_cast<GlPlatform>(i);
     return std::nullopt;
+}
+
+std::string gl_platforms_allowed() {
+    const std::vector<std::string>& names = gl_platform_names();
+    std::string allowed;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        allowed += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    return allowed;
 }
 
 void choose_gl(GlChoice choice) {
@@ -173,7 +181,7 @@ void GlContext::use(std::unique_ptr<detail::GlLibrary> library, bool want_llvmpi
     version_ = reinterpret_cast<const char*>(glGetString(GL_VERSION));
     platform_ = library_->platform();
     device_ = library_->device();
-    if (want_llvmpipe && !is_llvmpipe())
+    if (want_llvmpipe && !is_llvmpipe(renderer_))
         throw std::runtime_error("EGL's surfaceless platform draws with " + renderer_ +
                                  ", not llvmpipe, and --gl auto takes a software renderer (--gl egl takes it, "
                                  "LIBGL_ALWAYS_SOFTWARE=1 makes EGL take llvmpipe)");

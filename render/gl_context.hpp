@@ -45,6 +45,10 @@ struct GlChoice {
 // The names --gl accepts, in GlPlatform's order.
 const std::vector<std::string>& gl_platform_names();
 std::optional<GlPlatform> gl_platform_of(const std::string& name);
+// "auto, osmesa, egl or egl-device": what a refusal of a name says is allowed.
+std::string gl_platforms_allowed();
+// Whether a GL_RENDERER is Mesa's llvmpipe, the renderer the goldens are made with.
+inline bool is_llvmpipe(const std::string& renderer) { return renderer.rfind("llvmpipe", 0) == 0; }
 // Chooses the platform: before preload_gl() or GlContext::get(), which
 // otherwise take FIGGEN_GL from the environment (or auto).
 void choose_gl(GlChoice choice);
@@ -71,7 +75,6 @@ public:
     const std::string& device() const { return device_; }      // egl-device: its DRM node or "software"
     // Why auto passed over EGL for OSMesa; empty when it did not.
     const std::string& fallback() const { return fallback_; }
-    bool is_llvmpipe() const { return renderer_.rfind("llvmpipe", 0) == 0; }
     int max_samples() const { return max_samples_; }           // GL_MAX_SAMPLES
     int max_texture_size() const { return max_texture_size_; } // GL_MAX_TEXTURE_SIZE: a field's most cells a side
 

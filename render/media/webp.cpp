@@ -131,10 +131,11 @@ PreviewInfo write_webp(int fd, const std::filesystem::path& shown, const std::ve
     for (const Image& f : frames) kept.push_back(&f);
     float quality = options.quality;
     std::vector<std::uint8_t> bytes;
+    int frame_ms = 0;
     for (;;) {
         // Each frame shows for an equal share of the loop, at least 20 ms
         // (what browsers show at the least).
-        const int frame_ms = std::max(20, static_cast<int>(std::floor(1000.0 * seconds / kept.size())));
+        frame_ms = std::max(20, static_cast<int>(std::floor(1000.0 * seconds / kept.size())));
         bytes = encode(shown, kept, frame_ms, quality);
         if (bytes.size() <= options.max_bytes) break;
         if (quality > 10) {
@@ -157,7 +158,7 @@ PreviewInfo write_webp(int fd, const std::filesystem::path& shown, const std::ve
     info.width = frames.front().width;
     info.height = frames.front().height;
     info.loop_count = 0;
-    info.duration_ms = info.frames * std::max(20, static_cast<int>(std::floor(1000.0 * seconds / kept.size())));
+    info.duration_ms = info.frames * frame_ms;
     info.bytes = bytes.size();
     info.quality = quality;
     return info;

@@ -37,8 +37,6 @@ std::vector<std::string> hashes_of(const nlohmann::json& meta) {
     return hashes;
 }
 
-bool is_llvmpipe(const std::string& renderer) { return renderer.rfind("llvmpipe", 0) == 0; }
-
 }  // namespace
 
 // Hidden from test discovery: tests/CMakeLists.txt registers one ctest per
@@ -80,7 +78,7 @@ TEST_CASE("every golden image renders as recorded", "[.golden]") {
                 INFO("FIGGEN_GL=" << platform << " drew through " << drawn_with);
                 REQUIRE(drawn_with == platform);
             }
-            if (!is_llvmpipe(renderer)) {
+            if (!render::is_llvmpipe(renderer)) {
                 SUCCEED("goldens are llvmpipe's; this renderer is " << renderer << ": not checked");
                 return;
             }
