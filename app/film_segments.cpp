@@ -22,7 +22,7 @@ public:
     std::unique_ptr<scenes::Film> film(int width, int height) override {
         return std::make_unique<SegmentFilm>(*this, width, height);
     }
-    void figure(const render::Image&, nlohmann::json) override {}
+    void figure(const scenes::FigureDrawing&, nlohmann::json) override {}
     scenes::Progress& progress() override { return quiet_; }
     std::vector<nlohmann::json> results(const scenes::WorkItems&) override {
         throw std::logic_error(d_.id + ": a scene with work items has no film segments");

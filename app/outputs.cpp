@@ -213,7 +213,13 @@ std::unique_ptr<scenes::Film> FigureFiles::film(int width, int height) {
     return std::make_unique<FrameSink>(description_, options_, folder_, width, height, film_segments_);
 }
 
-void FigureFiles::figure(const render::Image& image, nlohmann::json metadata) {
+void FigureFiles::figure(const scenes::FigureDrawing& drawing, nlohmann::json metadata) {
+    render::Image image;
+    {
+        render::Canvas canvas(drawing.width, drawing.height, render::canvas_samples, drawing.depth);
+        drawing.draw(canvas);
+        image = canvas.read();
+    }  // the canvas's GL storage goes before the PNG is encoded
     write_figure(description_, options_, folder_, memory_, image, std::move(metadata));
 }
 

@@ -119,7 +119,7 @@ public:
           memory_(std::move(memory)),
           film_segments_(film_segments) {}
     std::unique_ptr<scenes::Film> film(int width, int height) override;
-    void figure(const render::Image& image, nlohmann::json metadata) override;
+    void figure(const scenes::FigureDrawing& drawing, nlohmann::json metadata) override;
     scenes::Progress& progress() override { return progress_; }
     std::vector<nlohmann::json> results(const scenes::WorkItems& items) override {
         return run_work(description_, items, folder_, options_.work, progress_);

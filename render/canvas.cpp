@@ -1,11 +1,14 @@
 #include "render/canvas.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "render/gl_backend.hpp"
 #include "render/gl_context.hpp"
+#include "render/shapes.hpp"
 
 namespace render {
 namespace {
@@ -111,6 +114,7 @@ void Canvas::make_resolve_target() {
 }
 
 Canvas::~Canvas() {
+    if (stencil_) glDeleteRenderbuffers(1, &stencil_);
     if (spare_canvas_bytes(width_, height_, samples_, msaa_depth_ != 0) <= max_spare_canvas_bytes) {
         delete_objects(spare);
         spare = Spare{width_,       height_,     samples_,     msaa_depth_ != 0, msaa_fbo_,
@@ -166,7 +170,86 @@ Image Canvas::read() const {
     }
     check_gl("Canvas::read");
     bind();
+    if (transparent_) {
+        // Premultiplied in the framebuffer (see set_transparent), straight in the image.
+        for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
+            const unsigned a = image.rgba[i + 3];
+            if (a == 0 || a == 255) continue;
+            for (std::size_t c = 0; c < 3; ++c)
+                image.rgba[i + c] = static_cast<std::uint8_t>(std::min(255u, (image.rgba[i + c] * 255u + a / 2) / a));
+        }
+    }
     return image;
 }
+
+PixelBox clip_box(const Rect& box) {
+    const int x0 = int(std::lround(box.x)), y0 = int(std::lround(box.y));
+    const int x1 = int(std::lround(box.right())), y1 = int(std::lround(box.bottom()));
+    return {x0, y0, std::max(x0, x1), std::max(y0, y1)};
+}
+
+void Canvas::background(const glm::vec4& colour) { clear(transparent_ ? glm::vec4(0.0f) : colour); }
+
+void Canvas::shapes(const Shapes& shapes, Coverage coverage) {
+    if (coverage == Coverage::each) return gl_backend::shapes(*this, shapes);
+    // Once: a stencil buffer, lent to the multisampled framebuffer for the
+    // draw, passes each sample's first fragment only. Without one (an
+    // incomplete framebuffer) the shapes are drawn plainly.
+    bind();
+    if (!stencil_) {
+        glGenRenderbuffers(1, &stencil_);
+        glBindRenderbuffer(GL_RENDERBUFFER, stencil_);
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples_, GL_STENCIL_INDEX8, width_, height_);
+    }
+    glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, stencil_);
+    const bool attached = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    if (attached) {
+        glClearStencil(0);
+        glClear(GL_STENCIL_BUFFER_BIT);
+        glEnable(GL_STENCIL_TEST);
+        glStencilFunc(GL_EQUAL, 0, 0xFF);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    } else {
+        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, 0);
+    }
+    gl_backend::shapes(*this, shapes);
+    glDisable(GL_STENCIL_TEST);
+    if (attached) glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, 0);
+    check_gl("Canvas::shapes");
+}
+
+void Canvas::text(const Text& text) { gl_backend::text(*this, text); }
+
+void Canvas::field(const Rect& where, int rows, int cols, std::span<const double> values, const FieldStyle& style) {
+    const std::span<const double> layers[] = {values};
+    const FieldStyle* styles[] = {&style};
+    gl_backend::field(*this, where, rows, cols, layers, styles);
+}
+
+void Canvas::field_pair(const Rect& where, int rows, int cols, std::span<const double> first,
+                        const FieldStyle& first_style, std::span<const double> second,
+                        const FieldStyle& second_style) {
+    const std::span<const double> layers[] = {first, second};
+    const FieldStyle* styles[] = {&first_style, &second_style};
+    gl_backend::field(*this, where, rows, cols, layers, styles);
+}
+
+void Canvas::hex_cells(const HexView& view, std::span<const glm::ivec2> cells, const glm::vec4& colour) {
+    gl_backend::hex_cells(*this, view, cells, colour);
+}
+
+void Canvas::tubes(const Rect& viewport, const std::vector<Tube>& tubes, const Camera& camera, const Light& light,
+                   int sides) {
+    gl_backend::tubes(*this, viewport, tubes, camera, light, sides);
+}
+
+void Canvas::clip(const Rect& box) {
+    const PixelBox p = clip_box(box);
+    bind();
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(p.x0, height_ - p.y1, p.x1 - p.x0, p.y1 - p.y0);  // GL counts rows from the bottom
+}
+
+void Canvas::unclip() { glDisable(GL_SCISSOR_TEST); }
 
 }  // namespace render

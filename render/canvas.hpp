@@ -10,6 +10,7 @@
 #include "render/gl.hpp"
 #include "render/gl_context.hpp"
 #include "render/image.hpp"
+#include "render/surface.hpp"
 
 namespace render {
 
@@ -31,22 +32,16 @@ inline constexpr double queued_triangles_bytes = 64.0 * 1024 * 1024;
 // next canvas of its size (see canvas.cpp); memory estimates count it.
 inline constexpr double max_spare_canvas_bytes = 32.0 * 1024 * 1024;
 
-struct Rect {
-    float x = 0, y = 0, w = 0, h = 0;  // top-left corner and size, pixels
-    float right() const { return x + w; }
-    float bottom() const { return y + h; }
-    glm::vec2 centre() const { return {x + w / 2, y + h / 2}; }
-};
-
-class Canvas {
+// The GL backend of render/surface.hpp.
+class Canvas : public Surface {
 public:
     Canvas(int width, int height, int samples = canvas_samples, bool depth = false);
-    ~Canvas();
+    ~Canvas() override;
     Canvas(const Canvas&) = delete;
     Canvas& operator=(const Canvas&) = delete;
 
-    int width() const { return width_; }
-    int height() const { return height_; }
+    int width() const override { return width_; }
+    int height() const override { return height_; }
     int samples() const { return samples_; }
     bool has_depth() const { return msaa_depth_ != 0; }
     // Pixel coordinates (top-left origin, y down) to clip space.
@@ -54,16 +49,41 @@ public:
 
     void bind() const;                    // makes this canvas the draw target
     void clear(const glm::vec4& colour);  // also binds; resets depth to far when there is a depth buffer
-    Image read() const;                   // resolves the samples and reads RGBA
+    // Resolves the samples and reads RGBA; on a transparent canvas, straight
+    // (not premultiplied) colour, as PNG stores it.
+    Image read() const;
+
+    // A transparent canvas's background() clears to alpha 0. Blending keeps
+    // premultiplied colour in the framebuffer then (the alpha channel blends
+    // with ONE, ONE_MINUS_SRC_ALPHA); read() divides it out.
+    void set_transparent(bool transparent) { transparent_ = transparent; }
+    bool transparent() const { return transparent_; }
+
+    void background(const glm::vec4& colour) override;
+    void shapes(const Shapes& shapes, Coverage coverage) override;
+    void text(const Text& text) override;
+    void field(const Rect& where, int rows, int cols, std::span<const double> values,
+               const FieldStyle& style) override;
+    void field_pair(const Rect& where, int rows, int cols, std::span<const double> first,
+                    const FieldStyle& first_style, std::span<const double> second,
+                    const FieldStyle& second_style) override;
+    void hex_cells(const HexView& view, std::span<const glm::ivec2> cells, const glm::vec4& colour) override;
+    void tubes(const Rect& viewport, const std::vector<Tube>& tubes, const Camera& camera, const Light& light,
+               int sides) override;
+    void clip(const Rect& box) override;
+    void unclip() override;
 
 private:
     void make_resolve_target();
+
+    bool transparent_ = false;
 
     int width_, height_, samples_;
     glm::mat4 projection_;
     GLuint msaa_fbo_ = 0, msaa_colour_ = 0;
     GLuint msaa_depth_ = 0;                        // 0 when made without depth
     GLuint resolve_fbo_ = 0, resolve_colour_ = 0;  // 0 with one sample: read straight from the canvas
+    GLuint stencil_ = 0;  // for Coverage::once, made on first use; not kept with a spare canvas
 };
 
 }  // namespace render

@@ -1,5 +1,7 @@
 #include "render/field.hpp"
 
+#include "render/gl_backend.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -248,8 +250,10 @@ void check_layer(int rows, int cols, std::span<const double> values, const Field
     if (!(style.vmax > style.vmin)) throw std::invalid_argument(std::string(what) + ": vmax must exceed vmin");
 }
 
-void draw(const Canvas& canvas, const Rect& where, int rows, int cols, std::span<const std::span<const double>> values,
-          std::span<const FieldStyle* const> styles, const char* what) {
+}  // namespace
+
+void gl_backend::field(const Canvas& canvas, const Rect& where, int rows, int cols,
+                       std::span<const std::span<const double>> values, std::span<const FieldStyle* const> styles) {
     Pipeline& p = pipeline();
     canvas.bind();
 
@@ -288,28 +292,22 @@ void draw(const Canvas& canvas, const Rect& where, int rows, int cols, std::span
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     canvas.bind();  // the canvas's own blending and multisampling again
     glBindVertexArray(0);
-    check_gl(what);
+    check_gl(values.size() == 2 ? "draw_field_pair" : "draw_field");
 }
 
-}  // namespace
-
-void draw_field(const Canvas& canvas, const Rect& where, int rows, int cols, std::span<const double> values,
+void draw_field(Surface& surface, const Rect& where, int rows, int cols, std::span<const double> values,
                 const FieldStyle& style) {
     check_layer(rows, cols, values, style, "draw_field");
-    const std::span<const double> layers[] = {values};
-    const FieldStyle* styles[] = {&style};
-    draw(canvas, where, rows, cols, layers, styles, "draw_field");
+    surface.field(where, rows, cols, values, style);
 }
 
-void draw_field_pair(const Canvas& canvas, const Rect& where, int rows, int cols, std::span<const double> first,
+void draw_field_pair(Surface& surface, const Rect& where, int rows, int cols, std::span<const double> first,
                      const FieldStyle& first_style, std::span<const double> second, const FieldStyle& second_style) {
     check_layer(rows, cols, first, first_style, "draw_field_pair");
     check_layer(rows, cols, second, second_style, "draw_field_pair");
     if (first_style.sampling != second_style.sampling || first_style.colormap->size() != second_style.colormap->size())
         throw std::invalid_argument("draw_field_pair: the layers differ in sampling or colour-table size");
-    const std::span<const double> layers[] = {first, second};
-    const FieldStyle* styles[] = {&first_style, &second_style};
-    draw(canvas, where, rows, cols, layers, styles, "draw_field_pair");
+    surface.field_pair(where, rows, cols, first, first_style, second, second_style);
 }
 
 }  // namespace render

@@ -26,7 +26,7 @@ struct FieldStyle {
 };
 
 // Draws a rows x cols field (row-major, row 0 at the top) to fill `where`.
-void draw_field(const Canvas& canvas, const Rect& where, int rows, int cols, std::span<const double> values,
+void draw_field(Surface& surface, const Rect& where, int rows, int cols, std::span<const double> values,
                 const FieldStyle& style);
 
 // Two layers of one grid, the second over the first, in one pass: both
@@ -42,7 +42,7 @@ void draw_field(const Canvas& canvas, const Rect& where, int rows, int cols, std
 // (tests/render/test_field.cpp); films draw this way, figures with
 // draw_field, so their pixels stay as recorded. The layers must share their
 // sampling and colour-table size.
-void draw_field_pair(const Canvas& canvas, const Rect& where, int rows, int cols, std::span<const double> first,
+void draw_field_pair(Surface& surface, const Rect& where, int rows, int cols, std::span<const double> first,
                      const FieldStyle& first_style, std::span<const double> second, const FieldStyle& second_style);
 
 }  // namespace render

@@ -1,5 +1,7 @@
 #include "render/hex_cells.hpp"
 
+#include "render/gl_backend.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -51,9 +53,13 @@ glm::vec2 hex_centre(const HexView& view, glm::ivec2 cell) {
     return view.centre + view.size * glm::vec2(1.5f * float(cell.x), -sqrt3 * (float(cell.y) + 0.5f * float(cell.x)));
 }
 
-void draw_hex_cells(const Canvas& canvas, const HexView& view, const std::vector<glm::ivec2>& cells,
+void draw_hex_cells(Surface& surface, const HexView& view, const std::vector<glm::ivec2>& cells,
                     const glm::vec4& colour) {
-    if (cells.empty()) return;
+    if (!cells.empty()) surface.hex_cells(view, cells, colour);
+}
+
+void gl_backend::hex_cells(const Canvas& canvas, const HexView& view, std::span<const glm::ivec2> cells,
+                           const glm::vec4& colour) {
     static StreamPipeline p{vertex_shader, fragment_shader};
     canvas.bind();
     p.program.use();

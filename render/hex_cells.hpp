@@ -29,7 +29,7 @@ HexView fit_hex_view(const Rect& area, int radius);
 glm::vec2 hex_centre(const HexView& view, glm::ivec2 cell);
 
 // Fills each cell's hexagon with `colour`.
-void draw_hex_cells(const Canvas& canvas, const HexView& view, const std::vector<glm::ivec2>& cells,
+void draw_hex_cells(Surface& surface, const HexView& view, const std::vector<glm::ivec2>& cells,
                     const glm::vec4& colour);
 
 // The outline of one cell's hexagon, for schematics.

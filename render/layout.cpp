@@ -53,12 +53,12 @@ std::vector<Rect> panel_grid(const Rect& area, int count, int columns, bool titl
     return panels;
 }
 
-void draw_panel_decorations(const Canvas& canvas, const std::vector<Rect>& panels,
+void draw_panel_decorations(Surface& surface, const std::vector<Rect>& panels,
                             const std::vector<std::string>& titles, const PanelRowStyle& style) {
     const glm::vec4 black{0, 0, 0, 1};
     Shapes frames;
     for (const Rect& r : panels) frames.frame(r, style.frame_width * style.scale, black);
-    frames.draw(canvas);
+    frames.draw(surface);
     Text text;
     Font& font = font_of_size(std::round(style.title_size * style.scale));
     for (std::size_t i = 0; i < panels.size() && i < titles.size(); ++i) {
@@ -66,7 +66,7 @@ void draw_panel_decorations(const Canvas& canvas, const std::vector<Rect>& panel
         text.add(font, titles[i], {r.x + r.w / 2, r.y - style.title_pad * style.scale}, black, Align::centre,
                  Baseline::baseline);
     }
-    text.draw(canvas);
+    text.draw(surface);
 }
 
 }  // namespace render

@@ -28,7 +28,7 @@ std::vector<Rect> panel_row(int width, int height, int count, bool titled, const
 std::vector<Rect> panel_grid(const Rect& area, int count, int columns, bool titled, const PanelRowStyle& style);
 
 // The frames and titles of the panels, drawn over their contents.
-void draw_panel_decorations(const Canvas& canvas, const std::vector<Rect>& panels,
+void draw_panel_decorations(Surface& surface, const std::vector<Rect>& panels,
                             const std::vector<std::string>& titles, const PanelRowStyle& style);
 
 }  // namespace render

@@ -197,74 +197,19 @@ void add_marker(Shapes& shapes, glm::vec2 at, float radius, float rim, const glm
     shapes.ring(at, radius - rim / 2, radius + rim / 2, colour);
 }
 
-// A stencil buffer lent to the canvas's multisampled framebuffer while a
-// plot's data is drawn, so that each line touches every sample once: where a
-// translucent line overlaps itself (joints of short segments, crossings) it
-// keeps one shade, as matplotlib fills a whole stroke in one pass. Without
-// one (an incomplete framebuffer) lines are drawn plainly.
-class StencilScope {
-public:
-    explicit StencilScope(const Canvas& canvas) {
-        canvas.bind();
-        GLint fbo = 0;
-        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
-        if (fbo == 0) return;
-        glGenRenderbuffers(1, &buffer_);
-        glBindRenderbuffer(GL_RENDERBUFFER, buffer_);
-        glRenderbufferStorageMultisample(GL_RENDERBUFFER, canvas.samples(), GL_STENCIL_INDEX8, canvas.width(),
-                                         canvas.height());
-        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, buffer_);
-        attached_ = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-        if (!attached_) release();  // the canvas must stay drawable
-    }
-    ~StencilScope() {
-        glDisable(GL_STENCIL_TEST);
-        release();
-    }
-    StencilScope(const StencilScope&) = delete;
-    StencilScope& operator=(const StencilScope&) = delete;
-
-    // Draws `shapes` so that overlapping triangles blend only once.
-    void draw_once(const Canvas& canvas, const Shapes& shapes) const {
-        if (shapes.empty()) return;
-        if (attached_) {
-            canvas.bind();
-            glClearStencil(0);
-            glClear(GL_STENCIL_BUFFER_BIT);
-            glEnable(GL_STENCIL_TEST);
-            glStencilFunc(GL_EQUAL, 0, 0xFF);
-            glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-        }
-        shapes.draw(canvas);
-        glDisable(GL_STENCIL_TEST);
-    }
-
-private:
-    void release() {
-        if (buffer_ == 0) return;
-        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, 0);
-        glDeleteRenderbuffers(1, &buffer_);
-        buffer_ = 0;
-    }
-
-    GLuint buffer_ = 0;
-    bool attached_ = false;
-};
-
 // Lines and markers of the data and the reference lines. The frame cuts
-// them with a scissor rectangle: that is matplotlib's clip box exactly, pixel
-// for pixel, and it cuts thick lines, dash ends and markers at the spine with
-// no geometry to work out. Segments are also clipped in double precision to
+// them with a clip to whole pixels: that is matplotlib's clip box exactly,
+// pixel for pixel, and it cuts thick lines, dash ends and markers at the
+// spine with no geometry to work out. Each line is drawn with
+// Coverage::once: where a translucent line overlaps itself (joints of short
+// segments, crossings) it keeps one shade, as matplotlib fills a whole
+// stroke in one pass. Segments are also clipped in double precision to
 // a box a little larger than the frame, so that far-off data never reaches
 // the rasteriser as huge coordinates and dashes are only made where seen.
-void draw_data(const Canvas& canvas, const Rect& frame, const Axes& axes, const AxisMap& mx, const AxisMap& my,
+void draw_data(Surface& surface, const Rect& frame, const Axes& axes, const AxisMap& mx, const AxisMap& my,
                const PlotStyle& style) {
     const float scale = style.scale, rim = style.marker_edge * scale;
-    const StencilScope stencil(canvas);
-    const int x0 = int(std::lround(frame.x)), y0 = int(std::lround(frame.y));
-    const int x1 = int(std::lround(frame.right())), y1 = int(std::lround(frame.bottom()));
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(x0, canvas.height() - y1, std::max(0, x1 - x0), std::max(0, y1 - y0));  // GL counts rows from the bottom
+    surface.clip(frame);
     const float slack = 16 * scale;
     for (const ReferenceLine& r : axes.reference_lines) {
         const float width = r.line_width * scale;
@@ -278,7 +223,7 @@ void draw_data(const Canvas& canvas, const Rect& frame, const Axes& axes, const 
                        : std::vector<glm::dvec2>{{v, frame.bottom()}, {v, frame.y}};
         Shapes line;
         add_line(line, ends, box, r.colour, width, scaled(r.dash, scale));
-        stencil.draw_once(canvas, line);
+        if (!line.empty()) surface.shapes(line, Coverage::once);
     }
     for (const Series& s : axes.series) {
         const float width = s.line_width * scale, radius = s.marker_size * scale / 2;
@@ -296,14 +241,14 @@ void draw_data(const Canvas& canvas, const Rect& frame, const Axes& axes, const 
             for (const glm::dvec2& p : points)
                 if (p.x >= box.x && p.x <= box.right() && p.y >= box.y && p.y <= box.bottom())
                     add_marker(markers, glm::vec2(p), radius, rim, s.colour);
-        stencil.draw_once(canvas, line);
-        markers.draw(canvas);
+        if (!line.empty()) surface.shapes(line, Coverage::once);
+        markers.draw(surface);
     }
-    glDisable(GL_SCISSOR_TEST);
+    surface.unclip();
 }
 
 // Spines, ticks, tick labels, axis labels, title and notes.
-void draw_decorations(const Canvas& canvas, const Rect& frame, const Axes& axes, const AxisMap& mx,
+void draw_decorations(Surface& surface, const Rect& frame, const Axes& axes, const AxisMap& mx,
                       const AxisMap& my, const PlotStyle& st) {
     const float s = st.scale;
     Font& tick_font = font_of_size(st.font_size * s);
@@ -371,8 +316,8 @@ void draw_decorations(const Canvas& canvas, const Rect& frame, const Axes& axes,
                  st.ink, Align::centre);
     for (const Note& n : axes.notes)
         text.add(tick_font, n.text, {frame.x + n.at.x * frame.w, frame.bottom() - n.at.y * frame.h}, n.colour, n.align);
-    shapes.draw(canvas);
-    text.draw(canvas);
+    shapes.draw(surface);
+    text.draw(surface);
 }
 
 // The outline of a rectangle with rounded corners, clockwise from the middle of its top edge.
@@ -394,7 +339,7 @@ std::vector<glm::vec2> rounded_rect(const Rect& r, float radius) {
 
 // matplotlib's legend: white at 0.8 alpha in a 0.8 grey rounded frame, half
 // an em from the axes' corner; rows of a 2 em line sample and the label.
-void draw_legend(const Canvas& canvas, const Rect& frame, const Axes& axes, const PlotStyle& st) {
+void draw_legend(Surface& surface, const Rect& frame, const Axes& axes, const PlotStyle& st) {
     std::vector<const Series*> entries;
     for (const Series& s : axes.series)
         if (!s.label.empty()) entries.push_back(&s);
@@ -428,21 +373,21 @@ void draw_legend(const Canvas& canvas, const Rect& frame, const Axes& axes, cons
             add_marker(shapes, {(x0 + x1) / 2, y}, s.marker_size * st.scale / 2, st.marker_edge * st.scale, s.colour);
         text.add(font, s.label, {x1 + 0.8f * f, baseline}, st.ink);
     }
-    shapes.draw(canvas);
-    text.draw(canvas);
+    shapes.draw(surface);
+    text.draw(surface);
 }
 
 }  // namespace
 
-void draw_axes(const Canvas& canvas, const Rect& frame, const Axes& axes, const PlotStyle& style) {
+void draw_axes(Surface& surface, const Rect& frame, const Axes& axes, const PlotStyle& style) {
     if (!(frame.w > 0 && frame.h > 0)) return;
     const auto [x_lo, x_hi] = view_range(axes, true);
     const auto [y_lo, y_hi] = view_range(axes, false);
     const AxisMap mx{axes.x_scale, x_lo, x_hi, frame.x, frame.right()};
     const AxisMap my{axes.y_scale, y_lo, y_hi, frame.bottom(), frame.y};  // y up on the page
-    draw_data(canvas, frame, axes, mx, my, style);
-    draw_decorations(canvas, frame, axes, mx, my, style);
-    draw_legend(canvas, frame, axes, style);
+    draw_data(surface, frame, axes, mx, my, style);
+    draw_decorations(surface, frame, axes, mx, my, style);
+    draw_legend(surface, frame, axes, style);
 }
 
 std::vector<Rect> plot_row(int width, int height, int count, const PlotStyle& style) {

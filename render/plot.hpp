@@ -86,7 +86,7 @@ struct PlotStyle {
 // edges; tick labels and axis labels go outside it, so the caller leaves
 // room). Throws std::invalid_argument for a given range that is not finite,
 // or not positive on a log axis.
-void draw_axes(const Canvas& canvas, const Rect& frame, const Axes& axes, const PlotStyle& style);
+void draw_axes(Surface& surface, const Rect& frame, const Axes& axes, const PlotStyle& style);
 
 // Frames for `count` plots side by side on a width x height page, like
 // matplotlib's subplots(1, count) with its default margins (style's left

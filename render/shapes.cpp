@@ -6,7 +6,9 @@
 #include <numbers>
 
 #include "render/gl_context.hpp"
+#include "render/gl_backend.hpp"
 #include "render/program.hpp"
+#include "render/surface.hpp"
 
 namespace render {
 namespace {
@@ -34,47 +36,130 @@ StreamPipeline& pipeline() {
 
 }  // namespace
 
-void Shapes::triangle(glm::vec2 a, glm::vec2 b, glm::vec2 c, const glm::vec4& colour) {
-    vertices_.push_back({a, colour});
-    vertices_.push_back({b, colour});
-    vertices_.push_back({c, colour});
+Shapes::Op& Shapes::add(Kind kind, const glm::vec4& colour, std::initializer_list<glm::vec2> points) {
+    Op& op = ops_.emplace_back();
+    op.kind = kind;
+    op.cap = LineCap::butt;
+    op.colour = colour;
+    op.first = static_cast<std::uint32_t>(points_.size());
+    op.count = static_cast<std::uint32_t>(points.size());
+    points_.insert(points_.end(), points);
+    return op;
 }
 
-void Shapes::rect(const Rect& r, const glm::vec4& colour) {
-    const glm::vec2 tl{r.x, r.y}, tr{r.right(), r.y}, bl{r.x, r.bottom()}, br{r.right(), r.bottom()};
-    triangle(tl, tr, br, colour);
-    triangle(tl, br, bl, colour);
+void Shapes::triangle(glm::vec2 a, glm::vec2 b, glm::vec2 c, const glm::vec4& colour) {
+    add(Kind::triangle, colour, {a, b, c});
 }
+
+void Shapes::rect(const Rect& r, const glm::vec4& colour) { add(Kind::rect, colour, {{r.x, r.y}, {r.w, r.h}}); }
 
 void Shapes::frame(const Rect& r, float width, const glm::vec4& colour) {
-    rect({r.x, r.y, r.w, width}, colour);                             // top
-    rect({r.x, r.bottom() - width, r.w, width}, colour);              // bottom
-    rect({r.x, r.y + width, width, r.h - 2 * width}, colour);         // left
-    rect({r.right() - width, r.y + width, width, r.h - 2 * width}, colour);  // right
+    add(Kind::frame, colour, {{r.x, r.y}, {r.w, r.h}}).width = width;
 }
 
 void Shapes::line(glm::vec2 a, glm::vec2 b, float width, const glm::vec4& colour) {
-    const glm::vec2 d = b - a;
-    const float length = glm::length(d);
-    if (length == 0.0f) return;
-    const glm::vec2 n = glm::vec2(-d.y, d.x) * (0.5f * width / length);
-    triangle(a + n, b + n, b - n, colour);
-    triangle(a + n, b - n, a - n, colour);
+    if (glm::length(b - a) == 0.0f) return;
+    add(Kind::line, colour, {a, b}).width = width;
 }
 
-namespace {
-
-// Chords of about two pixels: finer than the 4x multisampling can show.
-int disc_chords(float radius) { return std::clamp(int(std::ceil(std::numbers::pi_v<float> * radius)), 12, 96); }
-
-}  // namespace
-
-std::size_t Shapes::disc_vertices(float radius) {
-    return radius > 0 ? 3 * static_cast<std::size_t>(disc_chords(radius)) : 0;
+void Shapes::round_segment(glm::vec2 a, glm::vec2 b, float width, const glm::vec4& colour) {
+    if (!(width > 0)) return;
+    add(Kind::round_segment, colour, {a, b}).width = width;
 }
 
 void Shapes::disc(glm::vec2 centre, float radius, const glm::vec4& colour) {
     if (!(radius > 0)) return;
+    add(Kind::disc, colour, {centre}).a = radius;
+}
+
+void Shapes::ring(glm::vec2 centre, float inner_radius, float outer_radius, const glm::vec4& colour) {
+    inner_radius = std::max(0.0f, inner_radius);
+    if (!(outer_radius > inner_radius)) return;
+    Op& op = add(Kind::ring, colour, {centre});
+    op.a = inner_radius;
+    op.b = outer_radius;
+}
+
+void Shapes::convex_polygon(std::span<const glm::vec2> points, const glm::vec4& colour) {
+    if (points.size() < 3) return;
+    Op& op = add(Kind::polygon, colour, {});
+    op.count = static_cast<std::uint32_t>(points.size());
+    points_.insert(points_.end(), points.begin(), points.end());
+}
+
+void Shapes::polyline(std::span<const glm::vec2> points, float width, const glm::vec4& colour,
+                      std::span<const float> dash, float dash_offset, LineCap cap) {
+    if (!(width > 0) || points.size() < 2) return;
+    Op& op = add(Kind::polyline, colour, {});
+    op.count = static_cast<std::uint32_t>(points.size());
+    op.width = width;
+    op.cap = cap;
+    op.b = dash_offset;
+    op.dash_first = static_cast<std::uint32_t>(dashes_.size());
+    op.dash_count = static_cast<std::uint32_t>(dash.size());
+    points_.insert(points_.end(), points.begin(), points.end());
+    dashes_.insert(dashes_.end(), dash.begin(), dash.end());
+}
+
+void Shapes::draw(Surface& surface) const {
+    if (!ops_.empty()) surface.shapes(*this, Coverage::each);
+}
+
+// Triangulation, for the GL backend: each primitive into triangles, three
+// vertices each.
+namespace {
+
+class Triangles {
+public:
+    explicit Triangles(std::vector<Shapes::Vertex>& out) : out_(out) {}
+
+    void triangle(glm::vec2 a, glm::vec2 b, glm::vec2 c, const glm::vec4& colour) {
+        out_.push_back({a, colour});
+        out_.push_back({b, colour});
+        out_.push_back({c, colour});
+    }
+
+    void rect(const Rect& r, const glm::vec4& colour) {
+        const glm::vec2 tl{r.x, r.y}, tr{r.right(), r.y}, bl{r.x, r.bottom()}, br{r.right(), r.bottom()};
+        triangle(tl, tr, br, colour);
+        triangle(tl, br, bl, colour);
+    }
+
+    void frame(const Rect& r, float width, const glm::vec4& colour) {
+        rect({r.x, r.y, r.w, width}, colour);                             // top
+        rect({r.x, r.bottom() - width, r.w, width}, colour);              // bottom
+        rect({r.x, r.y + width, width, r.h - 2 * width}, colour);         // left
+        rect({r.right() - width, r.y + width, width, r.h - 2 * width}, colour);  // right
+    }
+
+    void line(glm::vec2 a, glm::vec2 b, float width, const glm::vec4& colour) {
+        const glm::vec2 d = b - a;
+        const float length = glm::length(d);
+        const glm::vec2 n = glm::vec2(-d.y, d.x) * (0.5f * width / length);
+        triangle(a + n, b + n, b - n, colour);
+        triangle(a + n, b - n, a - n, colour);
+    }
+
+    void disc(glm::vec2 centre, float radius, const glm::vec4& colour);
+    void ring(glm::vec2 centre, float inner_radius, float outer_radius, const glm::vec4& colour);
+
+    void convex_polygon(std::span<const glm::vec2> points, const glm::vec4& colour) {
+        for (std::size_t i = 2; i < points.size(); ++i) triangle(points[0], points[i - 1], points[i], colour);
+    }
+
+    void polyline(std::span<const glm::vec2> points, float width, const glm::vec4& colour, std::span<const float> dash,
+                  float dash_offset, LineCap cap);
+
+private:
+    void solid_polyline(std::span<const glm::vec2> points, float width, const glm::vec4& colour, LineCap cap);
+
+    std::vector<Shapes::Vertex>& out_;
+};
+
+// Chords of about two pixels: finer than the 4x multisampling can show.
+int disc_chords(float radius) { return std::clamp(int(std::ceil(std::numbers::pi_v<float> * radius)), 12, 96); }
+
+void Triangles::disc(glm::vec2 centre, float radius, const glm::vec4& colour) {
     const int n = disc_chords(radius);
     glm::vec2 previous = centre + glm::vec2(radius, 0);
     for (int i = 1; i <= n; ++i) {
@@ -85,9 +170,7 @@ void Shapes::disc(glm::vec2 centre, float radius, const glm::vec4& colour) {
     }
 }
 
-void Shapes::ring(glm::vec2 centre, float inner_radius, float outer_radius, const glm::vec4& colour) {
-    inner_radius = std::max(0.0f, inner_radius);
-    if (!(outer_radius > inner_radius)) return;
+void Triangles::ring(glm::vec2 centre, float inner_radius, float outer_radius, const glm::vec4& colour) {
     const int n = std::clamp(int(std::ceil(std::numbers::pi_v<float> * outer_radius)), 12, 96);
     for (int i = 0; i < n; ++i) {
         const float a0 = 2 * std::numbers::pi_v<float> * float(i) / float(n);
@@ -98,12 +181,8 @@ void Shapes::ring(glm::vec2 centre, float inner_radius, float outer_radius, cons
     }
 }
 
-void Shapes::convex_polygon(std::span<const glm::vec2> points, const glm::vec4& colour) {
-    for (std::size_t i = 2; i < points.size(); ++i) triangle(points[0], points[i - 1], points[i], colour);
-}
-
-void Shapes::polyline(std::span<const glm::vec2> points, float width, const glm::vec4& colour,
-                      std::span<const float> dash, float dash_offset, LineCap cap) {
+void Triangles::polyline(std::span<const glm::vec2> points, float width, const glm::vec4& colour,
+                         std::span<const float> dash, float dash_offset, LineCap cap) {
     if (!(width > 0) || points.size() < 2) return;
     std::vector<float> pattern(dash.begin(), dash.end());
     if (pattern.size() % 2 == 1) pattern.insert(pattern.end(), dash.begin(), dash.end());
@@ -142,7 +221,8 @@ void Shapes::polyline(std::span<const glm::vec2> points, float width, const glm:
     if (k % 2 == 0) solid_polyline(piece, width, colour, cap);
 }
 
-void Shapes::solid_polyline(std::span<const glm::vec2> input, float width, const glm::vec4& colour, LineCap cap) {
+void Triangles::solid_polyline(std::span<const glm::vec2> input, float width, const glm::vec4& colour,
+                               LineCap cap) {
     std::vector<glm::vec2> p;  // without repeated points, which have no direction
     for (glm::vec2 q : input)
         if (p.empty() || glm::length(q - p.back()) > 1e-4f) p.push_back(q);
@@ -199,29 +279,72 @@ void Shapes::solid_polyline(std::span<const glm::vec2> input, float width, const
     quad(left, right, end + normal[n - 2] * h, end - normal[n - 2] * h);
 }
 
-void Shapes::draw(const Canvas& canvas) const {
-    if (vertices_.empty()) return;
+}  // namespace
+
+std::size_t Shapes::disc_vertices(float radius) {
+    return radius > 0 ? 3 * static_cast<std::size_t>(disc_chords(radius)) : 0;
+}
+
+void Shapes::tessellate(std::size_t first, std::size_t end, std::vector<Vertex>& out) const {
+    Triangles t(out);
+    for (std::size_t i = first; i < end; ++i) {
+        const Op& op = ops_[i];
+        const auto p = op.points(*this);
+        switch (op.kind) {
+            case Kind::triangle: t.triangle(p[0], p[1], p[2], op.colour); break;
+            case Kind::rect: t.rect({p[0].x, p[0].y, p[1].x, p[1].y}, op.colour); break;
+            case Kind::frame: t.frame({p[0].x, p[0].y, p[1].x, p[1].y}, op.width, op.colour); break;
+            case Kind::line: t.line(p[0], p[1], op.width, op.colour); break;
+            case Kind::round_segment:
+                if (glm::length(p[1] - p[0]) != 0.0f) t.line(p[0], p[1], op.width, op.colour);
+                t.disc(p[0], op.width / 2, op.colour);
+                t.disc(p[1], op.width / 2, op.colour);
+                break;
+            case Kind::disc: t.disc(p[0], op.a, op.colour); break;
+            case Kind::ring: t.ring(p[0], op.a, op.b, op.colour); break;
+            case Kind::polygon: t.convex_polygon(p, op.colour); break;
+            case Kind::polyline: t.polyline(p, op.width, op.colour, op.dash(*this), op.b, op.cap); break;
+        }
+    }
+}
+
+namespace gl_backend {
+
+// Triangulates the primitives into batches of about triangles_per_finish
+// triangles, uploading and drawing each and finishing it before the next:
+// what the GL holds at once is one batch, whatever the number of shapes.
+void shapes(const Canvas& canvas, const Shapes& shapes) {
     StreamPipeline& p = pipeline();
     canvas.bind();
     p.program.use();
     p.program.set("projection", canvas.projection());
     glBindVertexArray(p.vao);
     glBindBuffer(GL_ARRAY_BUFFER, p.vbo);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices_.size() * sizeof(Vertex)), vertices_.data(),
-                 GL_STREAM_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex),
-                          reinterpret_cast<const void*>(offsetof(Vertex, position)));
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex),
-                          reinterpret_cast<const void*>(offsetof(Vertex, colour)));
-    const long long total = static_cast<long long>(vertices_.size()), batch = 3 * triangles_per_finish;
-    for (long long first = 0; first < total; first += batch) {
-        if (first > 0) glFinish();  // see triangles_per_finish
-        glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(std::min(batch, total - first)));
+    std::vector<Shapes::Vertex> batch;
+    const std::size_t batch_vertices = 3 * static_cast<std::size_t>(triangles_per_finish);
+    const std::size_t count = shapes.ops().size();
+    bool drawn = false;
+    for (std::size_t first = 0; first < count;) {
+        batch.clear();
+        std::size_t end = first;
+        while (end < count && batch.size() < batch_vertices) shapes.tessellate(end, end + 1, batch), ++end;
+        first = end;
+        if (batch.empty()) continue;
+        if (drawn) glFinish();  // see triangles_per_finish
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(batch.size() * sizeof(Shapes::Vertex)), batch.data(),
+                     GL_STREAM_DRAW);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(Shapes::Vertex),
+                              reinterpret_cast<const void*>(offsetof(Shapes::Vertex, position)));
+        glEnableVertexAttribArray(1);
+        glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(Shapes::Vertex),
+                              reinterpret_cast<const void*>(offsetof(Shapes::Vertex, colour)));
+        glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(batch.size()));
+        drawn = true;
     }
     glBindVertexArray(0);
     check_gl("Shapes::draw");
 }
 
+}  // namespace gl_backend
 }  // namespace render

@@ -263,6 +263,8 @@ void Text::add(Font& font, std::string_view utf8, glm::vec2 position, const glm:
     auto batch = std::find_if(batches_.begin(), batches_.end(), [&](const Batch& b) { return b.font == &font; });
     if (batch == batches_.end()) batch = batches_.insert(batches_.end(), Batch{&font, {}});
     std::vector<Vertex>& out = batch->vertices;
+    Line& line = lines_.emplace_back(Line{&font, origin, rotation_degrees, colour, {}});
+    line.glyphs.reserve(codepoints.size());
 
     float pen = 0;
     const Font::Glyph* previous = nullptr;
@@ -270,6 +272,7 @@ void Text::add(Font& font, std::string_view utf8, glm::vec2 position, const glm:
         const Font::Glyph& g = font.glyph(c);
         if (previous) pen += font.kerning(*previous, g);
         previous = &g;
+        line.glyphs.push_back({g.index, pen});
         if (g.width > 0 && g.height > 0) {
             // One texel of the zero border on each side, so the edge fades out under filtering.
             const glm::vec2 q0{pen + static_cast<float>(g.left - 1), static_cast<float>(-g.top - 1)};
@@ -285,8 +288,11 @@ void Text::add(Font& font, std::string_view utf8, glm::vec2 position, const glm:
     }
 }
 
-void Text::draw(const Canvas& canvas) const {
-    if (batches_.empty()) return;
+void Text::draw(Surface& surface) const {
+    if (!lines_.empty()) surface.text(*this);
+}
+
+void gl_backend::text(const Canvas& canvas, const Text& text) {
     StreamPipeline& p = pipeline();
     canvas.bind();
     p.program.use();
@@ -295,6 +301,7 @@ void Text::draw(const Canvas& canvas) const {
     glBindVertexArray(p.vao);
     glBindBuffer(GL_ARRAY_BUFFER, p.vbo);
     glEnableVertexAttribArray(0);
+    using Vertex = Text::Vertex;
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex),
                           reinterpret_cast<const void*>(offsetof(Vertex, position)));
     glEnableVertexAttribArray(1);
@@ -303,7 +310,7 @@ void Text::draw(const Canvas& canvas) const {
     glEnableVertexAttribArray(2);
     glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex),
                           reinterpret_cast<const void*>(offsetof(Vertex, colour)));
-    for (const Batch& batch : batches_) {
+    for (const Text::Batch& batch : text.batches_) {
         if (batch.vertices.empty()) continue;
         batch.font->bind_atlas();
         glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(batch.vertices.size() * sizeof(Vertex)),

@@ -13,6 +13,7 @@
 
 #include "render/canvas.hpp"
 #include "render/gl.hpp"
+#include "render/gl_backend.hpp"
 
 // FreeType's handle types, declared here so that its headers stay in text.cpp.
 struct FT_LibraryRec_;
@@ -45,6 +46,7 @@ public:
 
 private:
     friend class Text;
+    friend void gl_backend::text(const Canvas& canvas, const Text& text);
 
     struct Glyph {
         unsigned index = 0;      // FreeType glyph index: 0 is the font's .notdef box
@@ -92,11 +94,33 @@ public:
     void add(Font& font, std::string_view utf8, glm::vec2 position, const glm::vec4& colour,
              Align align = Align::left, Baseline baseline = Baseline::baseline, float rotation_degrees = 0);
 
-    bool empty() const { return batches_.empty(); }
-    void clear() { batches_.clear(); }
-    void draw(const Canvas& canvas) const;
+    bool empty() const { return lines_.empty(); }
+    void clear() {
+        batches_.clear();
+        lines_.clear();
+    }
+    // Draws every line on `surface` (render/surface.hpp).
+    void draw(Surface& surface) const;
+
+    // Each line as laid out, for backends that draw glyphs from the font
+    // itself (the vector page): the same glyphs at the same pen positions
+    // as the GL quads.
+    struct PlacedGlyph {
+        unsigned index;  // FreeType glyph index in the font's face
+        float pen;       // along the baseline from the origin, pixels
+    };
+    struct Line {
+        const Font* font;
+        glm::vec2 origin;        // the pen's start on the baseline, pixels
+        float rotation_degrees;  // counter-clockwise on screen about the origin
+        glm::vec4 colour;
+        std::vector<PlacedGlyph> glyphs;
+    };
+    const std::vector<Line>& lines() const { return lines_; }
 
 private:
+    friend void gl_backend::text(const Canvas& canvas, const Text& text);
+
     struct Vertex {
         glm::vec2 position;  // pixels
         glm::vec2 texel;     // atlas texels, normalised in the shader since the atlas may grow
@@ -107,6 +131,7 @@ private:
         std::vector<Vertex> vertices;
     };
     std::vector<Batch> batches_;
+    std::vector<Line> lines_;
 };
 
 // DejaVu Sans at `pixels`, made once per size and kept for the process: a

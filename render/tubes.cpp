@@ -1,5 +1,7 @@
 #include "render/tubes.hpp"
 
+#include "render/gl_backend.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -258,15 +260,21 @@ glm::vec2 project(const Camera& camera, const Rect& viewport, glm::vec3 point) {
     return {float(p.x) + (ndc.x + 1) / 2 * float(p.w), float(p.y) + (1 - ndc.y) / 2 * float(p.h)};
 }
 
-void draw_tubes(const Canvas& canvas, const Rect& viewport, const std::vector<Tube>& tubes, const Camera& camera,
+void draw_tubes(Surface& surface, const Rect& viewport, const std::vector<Tube>& tubes, const Camera& camera,
                 const Light& light, int sides) {
-    if (!canvas.has_depth())
-        throw std::logic_error("draw_tubes: the canvas has no depth buffer (make it with depth = true)");
     if (sides < 3 || sides > 256) throw std::invalid_argument("draw_tubes: sides must be 3..256");
     for (const Tube& t : tubes)
         if (!(t.radius_a >= 0 && t.radius_b >= 0 && std::isfinite(t.radius_a) && std::isfinite(t.radius_b) &&
               finite(t.a) && finite(t.b)))
             throw std::invalid_argument("draw_tubes: a tube has a negative or non-finite radius or end point");
+    whole_pixels(viewport);  // refuses an empty one
+    surface.tubes(viewport, tubes, camera, light, sides);
+}
+
+void gl_backend::tubes(const Canvas& canvas, const Rect& viewport, const std::vector<Tube>& tubes,
+                       const Camera& camera, const Light& light, int sides) {
+    if (!canvas.has_depth())
+        throw std::logic_error("draw_tubes: the canvas has no depth buffer (make it with depth = true)");
     const PixelRect p = whole_pixels(viewport);
     static TubePipeline pipeline;
     canvas.bind();

@@ -63,7 +63,7 @@ struct Light {
 // std::invalid_argument for a negative or non-finite radius, sides outside
 // 3..256 or an empty viewport. Leaves depth test, culling and scissor off
 // and the viewport on the whole canvas, as 2-D drawing expects.
-void draw_tubes(const Canvas& canvas, const Rect& viewport, const std::vector<Tube>& tubes, const Camera& camera,
+void draw_tubes(Surface& surface, const Rect& viewport, const std::vector<Tube>& tubes, const Camera& camera,
                 const Light& light = {}, int sides = 12);
 
 }  // namespace render

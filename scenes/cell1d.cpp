@@ -101,7 +101,7 @@ public:
             progress.advance();
         }
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
-        out.figure(draw_field_panels(panels, width, height, options_.scale),
+        out.figure(field_figure(panels, width, height, options_.scale),
                    {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
         progress.finish();
     }

@@ -182,16 +182,17 @@ private:
     }
 
     // The survey's plot above, the gallery below.
-    render::Image draw_figure(const render::Axes& plot, const Gallery& gallery) const {
+    FigureDrawing draw_figure(const render::Axes& plot, const Gallery& gallery) const {
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
-        render::Canvas canvas(width, height);
-        canvas.clear({1, 1, 1, 1});
-        const float plot_height = std::round(height * 0.45f);
-        draw_plot_row(canvas, {0, 0, float(width), plot_height}, {plot}, plot_);
-        if (!gallery.panels.empty())
-            draw_field_panels(canvas, {0, plot_height, float(width), float(height) - plot_height}, gallery.panels,
-                              columns_, options_.scale);
-        return canvas.read();
+        return {width, height, false, [this, &plot, &gallery](render::Surface& surface) {
+                    const float width = float(surface.width()), height = float(surface.height());
+                    surface.background({1, 1, 1, 1});
+                    const float plot_height = std::round(height * 0.45f);
+                    draw_plot_row(surface, {0, 0, width, plot_height}, {plot}, plot_);
+                    if (!gallery.panels.empty())
+                        draw_field_panels(surface, {0, plot_height, width, height - plot_height}, gallery.panels,
+                                          columns_, options_.scale);
+                }};
     }
 
     const int n_, fit_from_;

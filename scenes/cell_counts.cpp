@@ -86,7 +86,7 @@ public:
             progress.advance();
         }
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
-        out.figure(draw_plot_row(panels, width, height, plot_),
+        out.figure(plot_figure(panels, width, height, plot_),
                    {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
         progress.finish();
     }

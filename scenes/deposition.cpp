@@ -151,10 +151,10 @@ public:
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         const std::int64_t top = max_height(deposit);
         const auto field = deposit_field(deposit, int(top) + 2, band_size_);
-        run.write_figure(
-            draw_field_panels({{d_.panel_title, {field_layer(field, spec_)}}}, scaled_even(d_.width, options_.scale),
-                              scaled_even(d_.height, options_.scale), options_.scale),
-            metadata(deposit, top));
+        const std::vector<FieldPanel> panels = {{d_.panel_title, {field_layer(field, spec_)}}};
+        run.write_figure(field_figure(panels, scaled_even(d_.width, options_.scale),
+                                      scaled_even(d_.height, options_.scale), options_.scale),
+                         metadata(deposit, top));
     }
 
 private:

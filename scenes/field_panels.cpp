@@ -43,7 +43,7 @@ int field_page_samples(const std::vector<FieldPanel>& panels, int width, int hei
     return 1;
 }
 
-void draw_field_panels(const render::Canvas& canvas, const render::Rect& area, const std::vector<FieldPanel>& panels,
+void draw_field_panels(render::Surface& surface, const render::Rect& area, const std::vector<FieldPanel>& panels,
                        int columns, double scale, LayerPasses passes) {
     const render::PanelRowStyle style = page_style(panels, scale);
     std::vector<std::string> titles;
@@ -52,14 +52,14 @@ void draw_field_panels(const render::Canvas& canvas, const render::Rect& area, c
     for (std::size_t i = 0; i < panels.size(); ++i) {
         const std::vector<FieldLayer>& layers = panels[i].layers;
         if (passes == LayerPasses::paired && pairable(layers)) {
-            render::draw_field_pair(canvas, rects[i], layers[0].rows, layers[0].cols, layers[0].values, layers[0].style,
+            render::draw_field_pair(surface, rects[i], layers[0].rows, layers[0].cols, layers[0].values, layers[0].style,
                                     layers[1].values, layers[1].style);
             continue;
         }
         for (const FieldLayer& layer : layers)
-            render::draw_field(canvas, rects[i], layer.rows, layer.cols, layer.values, layer.style);
+            render::draw_field(surface, rects[i], layer.rows, layer.cols, layer.values, layer.style);
     }
-    render::draw_panel_decorations(canvas, rects, titles, style);
+    render::draw_panel_decorations(surface, rects, titles, style);
 }
 
 render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
@@ -70,9 +70,12 @@ render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldP
     return canvas.read();
 }
 
-render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale) {
-    render::Canvas canvas(width, height);  // four samples: a figure's pixels stay as they were (see field_page_samples)
-    return draw_field_panels(canvas, panels, scale);
+FigureDrawing field_figure(const std::vector<FieldPanel>& panels, int width, int height, double scale) {
+    return {width, height, false, [&panels, scale](render::Surface& surface) {
+                surface.background({1, 1, 1, 1});
+                draw_field_panels(surface, {0, 0, float(surface.width()), float(surface.height())}, panels,
+                                  static_cast<int>(panels.size()), scale);
+            }};
 }
 
 }  // namespace scenes

@@ -10,6 +10,7 @@
 #include "render/canvas.hpp"
 #include "render/field.hpp"
 #include "render/image.hpp"
+#include "scenes/output.hpp"
 #include "render/layout.hpp"
 #include "scenes/description_names.hpp"
 
@@ -71,8 +72,9 @@ struct FieldPanel {
 // Figures keep four samples, so their pixels do not change at all.
 int field_page_samples(const std::vector<FieldPanel>& panels, int width, int height, double scale);
 
-// A row of panels on a white width x height page (pixels, already scaled).
-render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale);
+// A row of panels on a white width x height page (pixels, already scaled):
+// the figure, drawing `panels`, which must outlive it.
+FigureDrawing field_figure(const std::vector<FieldPanel>& panels, int width, int height, double scale);
 
 // How a panel's two layers are drawn: one draw each, or both in one pass
 // (render::draw_field_pair: faster, the same but for rounding; films).
@@ -83,8 +85,8 @@ enum class LayerPasses { each, paired };
 render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
                                 LayerPasses passes = LayerPasses::each);
 
-// The same panels in `columns` columns inside `area` of a canvas being drawn.
-void draw_field_panels(const render::Canvas& canvas, const render::Rect& area, const std::vector<FieldPanel>& panels,
+// The same panels in `columns` columns inside `area` of a surface being drawn.
+void draw_field_panels(render::Surface& surface, const render::Rect& area, const std::vector<FieldPanel>& panels,
                        int columns, double scale, LayerPasses passes = LayerPasses::each);
 
 }  // namespace scenes

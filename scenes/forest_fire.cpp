@@ -144,8 +144,9 @@ public:
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         const ForestDimension dim{sim::box_count(model.cells(), sim::ForestFire::tree),
                                   sim::central_box_mass(model.cells(), sim::ForestFire::tree)};
-        const render::Image figure = draw_figure(history, dim, double(model.cells().size()));
-        run.write_figure(figure, metadata(history, dim));
+        const render::Axes counts = counts_plot(history, trees_colour_, fires_colour_);
+        const render::Axes dimension = dimension_plot(dim, double(model.cells().size()), trees_colour_);
+        run.write_figure(draw_figure(history, counts, dimension), metadata(history, dim));
     }
 
 private:
@@ -175,17 +176,17 @@ private:
     }
 
     // The forest's panels above, the counts and the dimension plots below.
-    render::Image draw_figure(const ForestHistory& history, const ForestDimension& dim, double cells) const {
-        const render::Axes counts = counts_plot(history, trees_colour_, fires_colour_);
-        const render::Axes dimension = dimension_plot(dim, cells, trees_colour_);
+    FigureDrawing draw_figure(const ForestHistory& history, const render::Axes& counts,
+                              const render::Axes& dimension) const {
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
-        render::Canvas canvas(width, height);
-        canvas.clear({1, 1, 1, 1});
-        const float top = std::round(height * 0.52f);
-        draw_field_panels(canvas, {0, 0, float(width), top}, history.panels, static_cast<int>(history.panels.size()),
-                          options_.scale);
-        draw_plot_row(canvas, {0, top, float(width), float(height) - top}, {counts, dimension}, plot_);
-        return canvas.read();
+        return {width, height, false, [this, &history, &counts, &dimension](render::Surface& surface) {
+                    const float width = float(surface.width()), height = float(surface.height());
+                    surface.background({1, 1, 1, 1});
+                    const float top = std::round(height * 0.52f);
+                    draw_field_panels(surface, {0, 0, width, top}, history.panels,
+                                      static_cast<int>(history.panels.size()), options_.scale);
+                    draw_plot_row(surface, {0, top, width, height - top}, {counts, dimension}, plot_);
+                }};
     }
 
     nlohmann::json metadata(const ForestHistory& history, const ForestDimension& dim) const {

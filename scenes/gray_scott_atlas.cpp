@@ -260,12 +260,18 @@ private:
     }
 
     // The tiles in a square plot frame, k along x and f up y, with the axes drawn over them.
-    render::Image draw_map(const std::vector<sim::GrayScottAtlasTile>& tiles,
+    FigureDrawing draw_map(const std::vector<sim::GrayScottAtlasTile>& tiles,
                            const std::vector<TileSummary>& summaries) const {
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        return {width, height, false,
+                [this, &tiles, &summaries](render::Surface& surface) { draw_map(surface, tiles, summaries); }};
+    }
+
+    void draw_map(render::Surface& canvas, const std::vector<sim::GrayScottAtlasTile>& tiles,
+                  const std::vector<TileSummary>& summaries) const {
+        const int width = canvas.width(), height = canvas.height();
         const int columns = atlas_.columns, rows = atlas_.rows;
-        render::Canvas canvas(width, height);
-        canvas.clear({1, 1, 1, 1});
+        canvas.background({1, 1, 1, 1});
         // The plot frame, made square, holds the tiles; then the axes are drawn over it.
         render::Rect frame = render::plot_row(width, height, 1, plot_)[0];
         const float side = std::min(frame.w, frame.h);
@@ -289,7 +295,6 @@ private:
         axes.title = "Gray-Scott B after " + std::to_string(atlas_.steps) + " steps, " +
                      std::to_string(atlas_.base.n) + "\u00b2 cells each";
         render::draw_axes(canvas, frame, axes, plot_);
-        return canvas.read();
     }
 
     const sim::GrayScottAtlasParams atlas_;

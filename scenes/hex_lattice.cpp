@@ -36,24 +36,24 @@ std::vector<std::string> read_captions(Settings& style) {
     return captions;
 }
 
-// What both panels draw into: shapes and text gathered, drawn at the end.
+// What both panels draw into: cells, shapes and text gathered, drawn at the end.
 struct Drawing {
-    Drawing(const render::Canvas& canvas_, float scale)
-        : canvas(canvas_),
-          s(scale),
-          width(canvas_.width()),
-          height(canvas_.height()),
+    Drawing(int width_, int height_, float scale)
+        : s(scale),
+          width(width_),
+          height(height_),
           caption_band(40 * s),
           half(float(width) / 2),
           label_font(std::round(16 * s)),
           caption_font(std::round(17 * s)) {}
 
-    const render::Canvas& canvas;
     const float s;  // the output scale
     const int width, height;
     const float caption_band, half;
     render::Font label_font, caption_font;
     render::Text text;
+    render::HexView view;
+    std::vector<glm::ivec2> cells;  // filled with the scene's fill colour, under the rest
     render::Shapes fills, outlines;
 };
 
@@ -74,15 +74,17 @@ public:
         progress.start(d_.id, 1);
         const float s = static_cast<float>(options_.scale);
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
-        render::Canvas canvas(width, height);
-        canvas.clear({1, 1, 1, 1});
-        Drawing draw(canvas, s);
+        Drawing draw(width, height, s);
         const std::vector<double> row_state = draw_row(draw);
         const std::vector<double> patch_state = draw_patch(draw);
-        draw.fills.draw(canvas);
-        draw.outlines.draw(canvas);
-        draw.text.draw(canvas);
-        out.figure(canvas.read(),
+        const FigureDrawing figure{width, height, false, [this, &draw](render::Surface& surface) {
+                                       surface.background({1, 1, 1, 1});
+                                       render::draw_hex_cells(surface, draw.view, draw.cells, fill_);
+                                       draw.fills.draw(surface);
+                                       draw.outlines.draw(surface);
+                                       draw.text.draw(surface);
+                                   }};
+        out.figure(figure,
                    {{"params", params_.used()},
                     {"style", style_.used()},
                     {"panels",
@@ -129,7 +131,8 @@ private:
         // Neighbour k at 30 + 60 (k - 1) degrees, counter-clockwise from the right.
         const glm::ivec2 numbered[7] = {{0, 0}, {1, 0}, {0, 1}, {-1, 1}, {-1, 0}, {0, -1}, {1, -1}};
         std::vector<glm::ivec2> filled(std::begin(numbered), std::end(numbered));
-        render::draw_hex_cells(draw.canvas, view, filled, fill_);
+        draw.view = view;
+        draw.cells = filled;
         std::vector<double> patch_state;
         for (int q = -radius_; q <= radius_; ++q)
             for (int r = -radius_; r <= radius_; ++r)

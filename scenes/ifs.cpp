@@ -186,7 +186,9 @@ public:
             lo = {bounds_[0], bounds_[2]};
             hi = {bounds_[1], bounds_[3]};
         }
-        const render::Image figure = draw(clouds, lo, hi);
+        const Page page = draw(clouds, lo, hi);
+        const FigureDrawing figure = field_figure(page.panels, scaled_even(d_.width, options_.scale),
+                                                  scaled_even(d_.height, options_.scale), options_.scale);
         out.figure(figure, {{"params", params_.used()}, {"style", style_.used()}, {"panels", clouds.meta}});
         progress.finish();
     }
@@ -221,15 +223,19 @@ private:
 
     // Each panel bins its points into as many cells as the panel has pixels;
     // every panel shows the box lo..hi, noted in its metadata.
-    render::Image draw(Clouds& clouds, glm::dvec2 lo, glm::dvec2 hi) const {
+    struct Page {
+        std::vector<FieldSpec> specs;  // one per panel: a field layer points at its colormap
+        std::vector<FieldPanel> panels;
+    };
+    Page draw(Clouds& clouds, glm::dvec2 lo, glm::dvec2 hi) const {
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
         render::PanelRowStyle row;
         row.scale = float(options_.scale);
         row.aspect = float((hi.x - lo.x) / (hi.y - lo.y));
         const auto rects = render::panel_row(width, height, int(clouds.points.size()), true, row);
-        std::vector<FieldPanel> panels;
-        // One spec per panel, alive until drawn: a field layer points at its colormap.
-        std::vector<FieldSpec> specs(clouds.points.size(), spec_);
+        Page page{std::vector<FieldSpec>(clouds.points.size(), spec_), {}};
+        std::vector<FieldSpec>& specs = page.specs;
+        std::vector<FieldPanel>& panels = page.panels;
         for (std::size_t i = 0; i < clouds.points.size(); ++i) {
             const int cols = std::max(1, int(rects[i].w)), rows = std::max(1, int(rects[i].h));
             const sim::Grid<double> field = binned(clouds.points[i], cols, rows, lo, hi, points_mode_);
@@ -238,7 +244,7 @@ private:
             panels.push_back({variants_[i].title, {field_layer(field, specs[i])}});
             clouds.meta[i]["drawn_bounds"] = {lo.x, hi.x, lo.y, hi.y};
         }
-        return draw_field_panels(panels, width, height, options_.scale);
+        return page;
     }
 
     const sim::ChaosGameParams game_;

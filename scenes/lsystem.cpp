@@ -189,18 +189,11 @@ void add_plant(render::Shapes& shapes, const render::Rect& panel, const std::vec
         return panel.centre() + glm::vec2(float((p.x - mid.x) * scale), float(-(p.y - mid.y) * scale));
     };
     // One allocation for the whole plant: a doubling vector would peak at up
-    // to three times its vertices while it copies.
-    std::size_t vertices = 0;
-    for (const auto& s : segments)
-        vertices += render::Shapes::line_vertices +
-                    2 * render::Shapes::disc_vertices(std::max(min_width, float(s.width * scale)) / 2);
-    shapes.reserve(vertices);
+    // to three times its primitives while it copies.
+    shapes.reserve(segments.size(), 2 * segments.size());
     for (const auto& s : segments) {
         const float w = std::max(min_width, float(s.width * scale));
-        const glm::vec2 a = at(s.a), b = at(s.b);
-        shapes.line(a, b, w, colour);
-        shapes.disc(a, w / 2, colour);
-        shapes.disc(b, w / 2, colour);
+        shapes.round_segment(at(s.a), at(s.b), w, colour);
     }
 }
 
@@ -254,8 +247,6 @@ public:
         Progress& progress = out.progress();
         progress.start(d_.id, static_cast<long long>(plants_.size()));
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
-        render::Canvas canvas(width, height);
-        canvas.clear({1, 1, 1, 1});
         render::PanelRowStyle row;
         row.scale = float(options_.scale);
         const Drawings drawings = draw_turtles(progress);
@@ -264,9 +255,12 @@ public:
                                               std::max(1, columns_), true, row);
         render::Shapes shapes;
         const nlohmann::json panel_meta = add_plants(shapes, rects, drawings);
-        shapes.draw(canvas);
-        draw_titles(canvas, rects, row);
-        out.figure(canvas.read(), {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
+        const FigureDrawing figure{width, height, false, [&](render::Surface& surface) {
+                                       surface.background({1, 1, 1, 1});
+                                       shapes.draw(surface);
+                                       draw_titles(surface, rects, row);
+                                   }};
+        out.figure(figure, {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
         progress.finish();
     }
 
@@ -301,7 +295,7 @@ private:
         return panel_meta;
     }
 
-    void draw_titles(const render::Canvas& canvas, const std::vector<render::Rect>& rects,
+    void draw_titles(render::Surface& canvas, const std::vector<render::Rect>& rects,
                      const render::PanelRowStyle& row) const {
         render::Text text;
         render::Font& font = render::font_of_size(std::round(row.title_size * row.scale));

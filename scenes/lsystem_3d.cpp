@@ -216,7 +216,10 @@ public:
 
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         nlohmann::json panel_meta = nlohmann::json::array();
-        const render::Image figure = draw_views(plant, row, font, panel_meta);
+        for (double azimuth : views_)
+            panel_meta.push_back({{"azimuth_degrees", azimuth}, {"elevation_degrees", elevation_}});
+        const FigureDrawing figure{scaled_even(d_.width, options_.scale), scaled_even(d_.height, options_.scale), true,
+                                   [&](render::Surface& surface) { draw_views(surface, plant, row, font); }};
         const glm::vec3 lo = plant.lo, hi = plant.hi;
         run.write_figure(figure, {{"params", params_.used()},
                                   {"style", style_.used()},
@@ -238,12 +241,10 @@ private:
         return canvas.read();
     }
 
-    // The figure: one panel per azimuth, titled; each panel's view goes to `panel_meta`.
-    render::Image draw_views(const Plant& plant, render::PanelRowStyle row, render::Font& font,
-                             nlohmann::json& panel_meta) const {
-        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
-        render::Canvas canvas(width, height, 4, true);
-        canvas.clear({1, 1, 1, 1});
+    // The figure: one panel per azimuth, titled.
+    void draw_views(render::Surface& canvas, const Plant& plant, render::PanelRowStyle row, render::Font& font) const {
+        const int width = canvas.width(), height = canvas.height();
+        canvas.background({1, 1, 1, 1});
         const glm::vec3 lo = plant.lo, hi = plant.hi;
         row.aspect = float(std::clamp((hi.x - lo.x) / std::max(1e-6f, hi.y - lo.y), min_aspect, max_aspect));
         const auto rects = render::panel_row(width, height, int(views_.size()), true, row);
@@ -255,10 +256,8 @@ private:
             const std::string title = "azimuth " + format_fixed(views_[i], 0) + "\u00b0";
             text.add(font, title, {rects[i].centre().x, rects[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
                      render::Align::centre, render::Baseline::baseline);
-            panel_meta.push_back({{"azimuth_degrees", views_[i]}, {"elevation_degrees", elevation_}});
         }
         text.draw(canvas);
-        return canvas.read();
     }
 
     const sim::LSystem system_;

@@ -3,6 +3,7 @@
 // its film, the progress of the run. The scene does not know where or how
 // the files are written.
 
+#include <functional>
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "render/image.hpp"
+#include "render/surface.hpp"
 #include "scenes/work.hpp"
 
 namespace scenes {
@@ -42,6 +44,17 @@ struct FrameRange {
     bool all() const { return first == 0 && end == std::numeric_limits<int>::max(); }
 };
 
+// The figure as the scene describes it: `draw` draws it on a surface of
+// width x height pixels, whichever backend that is (render/surface.hpp: the
+// GL canvas for the PNG, a vector page for PDF and SVG). The command calls
+// it once per format, so it must draw the same every time and change
+// nothing else; what the figure's metadata needs is worked out before.
+struct FigureDrawing {
+    int width = 0, height = 0;
+    bool depth = false;  // it draws 3-D tubes (a GL canvas with a depth buffer)
+    std::function<void(render::Surface&)> draw;
+};
+
 // Where a scene's outputs go.
 class Output {
 public:
@@ -49,7 +62,7 @@ public:
     // The film of width x height frames; null when no animation is written.
     virtual std::unique_ptr<Film> film(int width, int height) = 0;
     // The figure and the scene's metadata (params, panels, statistics, hashes).
-    virtual void figure(const render::Image& image, nlohmann::json metadata) = 0;
+    virtual void figure(const FigureDrawing& drawing, nlohmann::json metadata) = 0;
     virtual Progress& progress() = 0;
     // Every work item's result, in item order: run here on threads, over
     // MPI ranks, or read from the parts of earlier runs and shards

@@ -123,7 +123,7 @@ public:
             {"p_c", p_c_},
             {"state_sha256", state_hash(plotted)},
         };
-        out.figure(draw_plot_row({phase_axes(sweep), walk_axes(walk)}, scaled_even(d_.width, options_.scale),
+        out.figure(plot_figure({phase_axes(sweep), walk_axes(walk)}, scaled_even(d_.width, options_.scale),
                                  scaled_even(d_.height, options_.scale), plot_style_),
                    meta);
         progress.finish();

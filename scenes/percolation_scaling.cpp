@@ -85,7 +85,7 @@ public:
             {"r", fit.r},
             {"state_sha256", state_hash(plotted)},
         };
-        out.figure(draw_plot_row({axes(c)}, scaled_even(d_.width, options_.scale),
+        out.figure(plot_figure({axes(c)}, scaled_even(d_.width, options_.scale),
                                  scaled_even(d_.height, options_.scale), plot_style_),
                    meta);
         progress.finish();

@@ -214,7 +214,7 @@ public:
         const std::vector<Crossing> crossings = cross(sizes);
         const sim::ThresholdExtrapolation fit = extrapolate(sizes);
         out.figure(
-            draw_plot_row({curves_axes(sizes, ps), extrapolation_axes(sizes, crossings, fit)},
+            plot_figure({curves_axes(sizes, ps), extrapolation_axes(sizes, crossings, fit)},
                           scaled_even(d_.width, options_.scale), scaled_even(d_.height, options_.scale), plot_style_),
             metadata(sizes, ps, crossings, fit));
         progress.finish();

@@ -129,7 +129,14 @@ public:
                  .advance = [] { return true; }});
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         nlohmann::json panel_meta = nlohmann::json::array();
-        const render::Image figure = draw_figure(spirals, panel_meta);
+        Page page;
+        add_figure(page, spirals, panel_meta);
+        const FigureDrawing figure{scaled_even(d_.width, options_.scale), scaled_even(d_.height, options_.scale), false,
+                                   [&page](render::Surface& surface) {
+                                       surface.background({1, 1, 1, 1});
+                                       page.shapes.draw(surface);
+                                       page.text.draw(surface);
+                                   }};
         run.write_figure(figure, {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
     }
 
@@ -182,13 +189,16 @@ private:
         return canvas.read();
     }
 
-    // Every flower whole, a panel each; their metadata into `panel_meta`.
-    render::Image draw_figure(const std::vector<std::vector<sim::Seed>>& spirals, nlohmann::json& panel_meta) const {
-        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
-        render::Canvas canvas(width, height);
-        canvas.clear({1, 1, 1, 1});
-        const auto rects = render::panel_row(width, height, int(flowers_.size()), true, row_);
+    struct Page {
         render::Shapes shapes;
+        render::Text text;
+    };
+
+    // Every flower whole, a panel each, into `page`; their metadata into `panel_meta`.
+    void add_figure(Page& page, const std::vector<std::vector<sim::Seed>>& spirals, nlohmann::json& panel_meta) const {
+        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        const auto rects = render::panel_row(width, height, int(flowers_.size()), true, row_);
+        render::Shapes& shapes = page.shapes;
         std::vector<std::string> titles;
         for (std::size_t i = 0; i < flowers_.size(); ++i) {
             const sim::PhyllotaxisParams& f = flowers_[i];
@@ -200,12 +210,8 @@ private:
                                   {"outer_radius", f.spacing * std::sqrt(double(f.seeds - 1))},
                                   {"state_sha256", seeds_hash(spirals[i])}});
         }
-        shapes.draw(canvas);
         // Titles only: the flowers have no frames.
-        render::Text text;
-        for (std::size_t i = 0; i < rects.size(); ++i) add_title(text, rects[i], titles[i]);
-        text.draw(canvas);
-        return canvas.read();
+        for (std::size_t i = 0; i < rects.size(); ++i) add_title(page.text, rects[i], titles[i]);
     }
 
     const std::vector<sim::PhyllotaxisParams> flowers_;

@@ -25,7 +25,7 @@ render::PlotStyle read_plot_style(Settings& style, double output_scale) {
     return plot;
 }
 
-void draw_plot_row(const render::Canvas& canvas, const render::Rect& area, const std::vector<render::Axes>& axes,
+void draw_plot_row(render::Surface& surface, const render::Rect& area, const std::vector<render::Axes>& axes,
                    const render::PlotStyle& style) {
     const auto frames =
         render::plot_row(static_cast<int>(area.w), static_cast<int>(area.h), static_cast<int>(axes.size()), style);
@@ -33,16 +33,15 @@ void draw_plot_row(const render::Canvas& canvas, const render::Rect& area, const
         render::Rect frame = frames[i];
         frame.x += area.x;
         frame.y += area.y;
-        render::draw_axes(canvas, frame, axes[i], style);
+        render::draw_axes(surface, frame, axes[i], style);
     }
 }
 
-render::Image draw_plot_row(const std::vector<render::Axes>& axes, int width, int height,
-                            const render::PlotStyle& style) {
-    render::Canvas canvas(width, height);
-    canvas.clear({1, 1, 1, 1});
-    draw_plot_row(canvas, {0, 0, float(width), float(height)}, axes, style);
-    return canvas.read();
+FigureDrawing plot_figure(std::vector<render::Axes> axes, int width, int height, const render::PlotStyle& style) {
+    return {width, height, false, [axes = std::move(axes), style](render::Surface& surface) {
+                surface.background({1, 1, 1, 1});
+                draw_plot_row(surface, {0, 0, float(surface.width()), float(surface.height())}, axes, style);
+            }};
 }
 
 glm::vec4 style_colour(Settings& style, const std::string& key, const std::string& fallback) {

@@ -10,6 +10,7 @@
 #include "description/settings.hpp"
 #include "render/canvas.hpp"
 #include "render/image.hpp"
+#include "scenes/output.hpp"
 #include "render/plot.hpp"
 
 namespace scenes {
@@ -23,12 +24,11 @@ std::vector<Key> with_plot_style_keys(std::vector<Key> keys);
 // tick and line; `font_size`, `label_size` and `bottom` override the defaults.
 render::PlotStyle read_plot_style(Settings& style, double output_scale);
 
-// A row of plots on a white width x height page (pixels, already scaled).
-render::Image draw_plot_row(const std::vector<render::Axes>& axes, int width, int height,
-                            const render::PlotStyle& style);
+// A row of plots on a white width x height page (pixels, already scaled): the figure.
+FigureDrawing plot_figure(std::vector<render::Axes> axes, int width, int height, const render::PlotStyle& style);
 
-// The same into `area` of a canvas being drawn.
-void draw_plot_row(const render::Canvas& canvas, const render::Rect& area, const std::vector<render::Axes>& axes,
+// The same into `area` of a surface being drawn.
+void draw_plot_row(render::Surface& surface, const render::Rect& area, const std::vector<render::Axes>& axes,
                    const render::PlotStyle& style);
 
 // A colour from [style] ("#rrggbb" or a name), opaque.

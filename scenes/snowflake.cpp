@@ -42,7 +42,7 @@ SnowflakePanel panel_of(const sim::Snowflake& crystal, const sim::SnowflakeParam
 }
 
 // A row of crystals in `area`, captions beneath.
-void draw_snowflakes(const render::Canvas& canvas, const render::Rect& area, const std::vector<SnowflakePanel>& panels,
+void draw_snowflakes(render::Surface& canvas, const render::Rect& area, const std::vector<SnowflakePanel>& panels,
                      const SnowflakeColours& colours, double scale) {
     render::PanelRowStyle style;
     style.scale = static_cast<float>(scale);
@@ -133,17 +133,19 @@ public:
 
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
-        render::Canvas canvas(width, height);
-        canvas.clear({1, 1, 1, 1});
-        draw_snowflakes(canvas, {0, 0, float(width), float(height)}, panels, colours_, options_.scale);
+        const FigureDrawing figure{width, height, false, [&](render::Surface& surface) {
+                                       surface.background({1, 1, 1, 1});
+                                       draw_snowflakes(surface, {0, 0, float(width), float(height)}, panels, colours_,
+                                                       options_.scale);
+                                   }};
         nlohmann::json runs_meta = nlohmann::json::array();
         for (const auto& r : runs_) runs_meta.push_back(r.used);
         // What ran: figure.panels, when given, decide the steps, not params.steps.
-        run.write_figure(canvas.read(), {{"params", params_.used()},
-                                         {"runs", runs_meta},
-                                         {"steps_run", run.last_step()},
-                                         {"style", style_.used()},
-                                         {"panels", panel_meta}});
+        run.write_figure(figure, {{"params", params_.used()},
+                                  {"runs", runs_meta},
+                                  {"steps_run", run.last_step()},
+                                  {"style", style_.used()},
+                                  {"panels", panel_meta}});
     }
 
 private:

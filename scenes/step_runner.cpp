@@ -107,7 +107,7 @@ void StepRunner::stepped() {
     progress_.advance();
 }
 
-void StepRunner::write_figure(const render::Image& figure, nlohmann::json meta) {
+void StepRunner::write_figure(const FigureDrawing& figure, nlohmann::json meta) {
     if (film_) meta["animation"] = film_->finish();
     meta["model_steps"] = model_steps_;
     out_.figure(figure, std::move(meta));
@@ -121,8 +121,8 @@ void StepRunner::finish_film() {
 
 void StepRunner::write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta) {
     if (film_only()) return finish_film();
-    write_figure(draw_field_panels(panels, scaled_even(description_.width, options_.scale),
-                                   scaled_even(description_.height, options_.scale), options_.scale),
+    write_figure(field_figure(panels, scaled_even(description_.width, options_.scale),
+                              scaled_even(description_.height, options_.scale), options_.scale),
                  std::move(meta));
 }
 

@@ -56,7 +56,7 @@ public:
     void finish_film();
     // Completes the animation, adds its metadata to `meta`, writes the
     // figure's PNG and JSON and completes the progress bar.
-    void write_figure(const render::Image& figure, nlohmann::json meta);
+    void write_figure(const FigureDrawing& figure, nlohmann::json meta);
     // The same for a figure that is a row of field panels, drawn at the figure's size.
     void write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta);
 

@@ -22,7 +22,7 @@ struct RecordingOutput : scenes::Output {
     nlohmann::json metadata;
     scenes::Progress quiet;
     std::unique_ptr<scenes::Film> film(int, int) override { return std::make_unique<RecordingFilm>(&frames); }
-    void figure(const render::Image&, nlohmann::json meta) override { metadata = std::move(meta); }
+    void figure(const scenes::FigureDrawing&, nlohmann::json meta) override { metadata = std::move(meta); }
     scenes::Progress& progress() override { return quiet; }
     std::vector<nlohmann::json> results(const scenes::WorkItems& items) override {
         std::vector<nlohmann::json> r;
@@ -64,7 +64,7 @@ TEST_CASE("the runner stops at the last step an output needs and films the anima
     CHECK(model.steps == 9);  // never past the last step any output needs
     CHECK(panels == std::vector<int>{2, 5});
     CHECK(out.frames == std::vector<int>{0, 3, 6, 9});
-    run.write_figure(render::Image(8, 8), {});
+    run.write_figure({8, 8, false, [](render::Surface&) {}}, {});
     CHECK(out.metadata["model_steps"] == 9);
     CHECK(out.metadata["animation"]["frames"] == 4);
 }
@@ -113,7 +113,7 @@ TEST_CASE("run_to_stop goes past the last step to the model's stop, filming only
                            .frame = [&](int) { return render::Image(8, 8); },
                            .advance = [&] { return second.step(); }}) == 3);
     CHECK(out.frames == std::vector<int>{0, 2, 3});
-    run.write_figure(render::Image(8, 8), {});
+    run.write_figure({8, 8, false, [](render::Surface&) {}}, {});
     CHECK(out.metadata["model_steps"] == 15);
 }
 
@@ -158,6 +158,6 @@ TEST_CASE("a kernel's leaps land on every step an output needs and count every s
         CHECK(leaps == std::vector<int>{7, 23});
         CHECK(checked == std::vector<int>{0, 7, 30});
     }
-    run.write_figure(render::Image(8, 8), {});
+    run.write_figure({8, 8, false, [](render::Surface&) {}}, {});
     CHECK(out.metadata["model_steps"] == 30);
 }
