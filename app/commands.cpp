@@ -28,6 +28,7 @@
 #include "description/plain_name.hpp"
 #include "render/gl_context.hpp"
 #include "render/media.hpp"
+#include "render/vector.hpp"
 #include "sim/check.hpp"
 
 namespace app {
@@ -162,10 +163,14 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
     app->add_option("--cmap", cmap,
                     "Colormap of a field figure's fields: viridis, inferno, magma, plasma, cividis, Reds, Blues or "
                     "Greens");
-    app->add_option("--format", format,
-                    "What to write besides the PNG and its JSON: png (nothing), mp4 (the animation, the default) or "
-                    "frames (the animation as a PNG sequence)")
-        ->check(CLI::IsMember({"png", "mp4", "frames"}));
+    app->add_option("--format", formats,
+                    "What to write besides the PNG and its JSON, a list (e.g. png,pdf,mp4): png (nothing more), pdf "
+                    "and svg (the figure as vector graphics), mp4 (the animation) or frames (the animation as a PNG "
+                    "sequence); default: mp4, and the pdf or svg the description's figure.formats asks for")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"png", "pdf", "svg", "mp4", "frames"}));
+    app->add_flag("--transparent", transparent,
+                  "Leave the figure's background out of the PNG, PDF and SVG: only the ink is opaque");
 }
 
 namespace {
@@ -188,16 +193,23 @@ OutputOptions output_options(const RenderCommand& c) {
         throw UsageError("--scale " + description::shown(c.scale) + " is not allowed: use a number from 0.1 to 8");
     if (c.seed && *c.seed > static_cast<std::uint64_t>(INT64_MAX))
         throw UsageError("--seed is not allowed: use 0..2^63-1");  // the value as parsed can differ from the one typed
-    if (!c.format.empty() && (c.no_video || c.frames))
-        throw UsageError("--format " + c.format + " is not allowed with --no-video or --frames: use one");
+    std::string formats;
+    for (const std::string& f : c.formats) formats += (formats.empty() ? "" : ",") + f;
+    if (!c.formats.empty() && (c.no_video || c.frames))
+        throw UsageError("--format " + formats + " is not allowed with --no-video or --frames: use one");
+    const auto named = [&](const char* f) { return std::find(c.formats.begin(), c.formats.end(), f) != c.formats.end(); };
     if (c.fps && !(*c.fps >= 1 && *c.fps <= 120))
         throw UsageError("--fps " + std::to_string(*c.fps) + " is not allowed: use 1..120 frames per second");
     if (c.out_dir.empty()) throw UsageError("--out is empty: give the folder the figures go into, e.g. --out out");
     OutputOptions options;
     options.dir = c.out_dir;
     options.scale = c.scale;
-    options.video = !c.no_video && c.format != "png" && c.format != "frames";
-    options.frames = c.frames || c.format == "frames";
+    options.video = c.formats.empty() ? !c.no_video : named("mp4");
+    options.frames = c.frames || named("frames");
+    options.formats_given = !c.formats.empty();
+    options.pdf = named("pdf");
+    options.svg = named("svg");
+    options.transparent = c.transparent;
     options.max_memory = parse_size("--max-memory", c.max_memory);
     options.max_disk = parse_size("--max-disk", c.max_disk);
     if (c.threads && !(*c.threads >= 1 && *c.threads <= 1024))
@@ -353,6 +365,11 @@ void render_all(const std::vector<CheckedFigure>& figures, const OutputOptions& 
             return f.description->animation.has_value();
         }))
         render::media::preload();
+    // And cairo's when a figure is written as PDF or SVG.
+    if (std::any_of(figures.begin(), figures.end(), [&](const CheckedFigure& f) {
+            return options.writes_pdf(*f.description) || options.writes_svg(*f.description);
+        }))
+        render::vector::preload();
     ProgressBar progress = ProgressBar::for_stderr();
     for (const CheckedFigure& f : figures) render_reporting(*f.description, *f.scene, folder, options, progress);
 }

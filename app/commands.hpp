@@ -72,11 +72,12 @@ struct RenderCommand : Command {
     std::optional<int> threads;
     std::string gl = "auto";  // --gl, FIGGEN_GL
     int gl_device = 0;
-    std::string out_dir = "out", size, cmap, format;
+    std::string out_dir = "out", size, cmap;
+    std::vector<std::string> formats;  // --format, split at commas
     std::optional<std::uint64_t> seed;
     std::optional<int> fps;
     double scale = 1.0;
-    bool no_video = false, frames = false;
+    bool no_video = false, frames = false, transparent = false;
     std::string max_memory = "4G", max_disk = "4G";  // sizes, read by parse_size
 };
 

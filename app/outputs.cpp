@@ -2,7 +2,10 @@
 
 #include "app/film_segments.hpp"
 
+#include <sys/stat.h>
+
 #include <cmath>
+#include <tuple>
 #include <cstdio>
 #include <utility>
 
@@ -12,6 +15,8 @@
 #include "render/canvas.hpp"
 #include "render/gl_context.hpp"
 #include "render/png_io.hpp"
+#include "render/vector.hpp"
+#include "render/vector_page.hpp"
 
 namespace app {
 
@@ -118,11 +123,18 @@ MemoryEstimate require_memory(const Description& d, const OutputOptions& options
     return estimate;
 }
 
+double vector_file_bytes(int width, int height) {
+    return 16.0 * width * height + 1024.0 * 1024.0;
+}
+
 void require_disk(const Description& d, const OutputOptions& options, double parts_bytes) {
     double bytes = 4.0 * figure_width(d, options) * figure_height(d, options);
     std::string largest = "the PNG";
     if (parts_bytes > bytes) largest = "the parts of its work items";
     bytes += parts_bytes;
+    const double vector = vector_file_bytes(figure_width(d, options), figure_height(d, options));
+    for (const bool wanted : {options.writes_pdf(d), options.writes_svg(d)})
+        if (wanted) bytes += vector;
     if (d.animation) {
         const double frames = d.animation->frame_count() * frame_pixels(d, options);
         // The preview: at most its budget, 2 MiB.
@@ -217,14 +229,34 @@ void FigureFiles::figure(const scenes::FigureDrawing& drawing, nlohmann::json me
     render::Image image;
     {
         render::Canvas canvas(drawing.width, drawing.height, render::canvas_samples, drawing.depth);
+        canvas.set_transparent(options_.transparent);
         drawing.draw(canvas);
         image = canvas.read();
     }  // the canvas's GL storage goes before the PNG is encoded
+    nlohmann::json vector = nlohmann::json::object();
+    for (const auto& [format, name, wanted] :
+         {std::tuple{render::vector::Format::pdf, "pdf", options_.writes_pdf(description_)},
+          std::tuple{render::vector::Format::svg, "svg", options_.writes_svg(description_)}}) {
+        if (!wanted) continue;
+        render::VectorPage page(drawing.width, drawing.height, options_.transparent);
+        drawing.draw(page);
+        page.page().title = description_.title;
+        page.page().creator = std::string("figgen ") + app::version();
+        const std::string file_name = description_.id + "." + name;
+        render::AtomicFile file(folder_, file_name);
+        render::vector::api().write(file.fd(), file.final_path(), format, page.page(),
+                                    static_cast<std::uint64_t>(vector_file_bytes(drawing.width, drawing.height)));
+        struct stat info {};
+        const double bytes = ::fstat(file.fd(), &info) == 0 ? static_cast<double>(info.st_size) : 0.0;
+        file.commit();  // with the figure's other files (render_figure's CommitGroup)
+        vector[name] = {{"file", file_name}, {"bytes", bytes}};
+    }
+    if (!vector.empty()) metadata["vector"] = std::move(vector);
     write_figure(description_, options_, folder_, memory_, image, std::move(metadata));
 }
 
 std::vector<std::string> output_names(const std::string& id) {
-    return {id + ".png", id + ".json", id + ".mp4", id + ".webp", id + "-frames"};
+    return {id + ".png", id + ".json", id + ".mp4", id + ".webp", id + "-frames", id + ".pdf", id + ".svg"};
 }
 
 namespace {
@@ -261,6 +293,7 @@ void write_figure(const Description& d, const OutputOptions& options, const rend
     };
     meta.update(metadata);
     meta["image"] = {{"file", d.id + ".png"}, {"size", {image.width, image.height}}};
+    if (options.transparent) meta["image"]["transparent"] = true;
 
     render::write_png(folder, d.id + ".png", image,
                       {{"Title", d.title},

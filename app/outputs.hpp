@@ -33,6 +33,9 @@ struct OutputOptions {
     double scale = 1.0;                 // multiplies every size in pixels
     bool video = true;                  // write <id>.mp4
     bool frames = false;                // write <id>-frames/*.png
+    bool pdf = false, svg = false;      // write <id>.pdf, <id>.svg (--format)
+    bool formats_given = false;         // --format was given: a description's figure.formats is not used
+    bool transparent = false;           // no background in the PNG, PDF and SVG
     render::VideoOptions video_options;
     // Limits on what one figure may need (--max-memory, --max-disk); a figure
     // whose estimate exceeds them is refused before anything is allocated.
@@ -41,6 +44,12 @@ struct OutputOptions {
     WorkOptions work;  // how work items run: threads, MPI, shards, merge
 
     bool animates() const { return video || frames; }
+    // The vector files figure `d` gets: --format's, or else those its description asks for.
+    bool writes_pdf(const Description& d) const { return formats_given ? pdf : asks(d, "pdf"); }
+    bool writes_svg(const Description& d) const { return formats_given ? svg : asks(d, "svg"); }
+    static bool asks(const Description& d, const char* format) {
+        return std::find(d.formats.begin(), d.formats.end(), format) != d.formats.end();
+    }
     // Threads for the scenes' memory estimates: --threads, but never fewer
     // than the machine's cores, so that the estimate (kept in the JSON) is
     // the same for every run on this machine that uses no more threads than
@@ -69,8 +78,14 @@ MemoryEstimate require_memory(const Description& d, const OutputOptions& options
 // Refuses a figure whose outputs would take more than options.max_disk: the
 // PNG (at most 4 bytes a pixel), the PNG sequence likewise, the MP4 at 0.15
 // bytes a pixel and frame (our films measure 0.002..0.057), and the parts
-// of its work items kept while it runs (`parts_bytes`, the scene's bound).
+// of its work items kept while it runs (`parts_bytes`, the scene's bound),
+// and vector_file_bytes for each of its PDF and SVG.
 void require_disk(const Description& d, const OutputOptions& options, double parts_bytes = 0);
+// The most a figure's PDF or SVG of width x height pixels may take: 16
+// bytes a pixel and 1 MiB (see README's vector section for what the
+// catalog's take). A file that would pass it stops with an error before
+// more is written, so the disk estimate holds.
+double vector_file_bytes(int width, int height);
 // "1.5 GiB", "12 MiB", "640 KiB", "100 bytes".
 std::string format_bytes(double bytes);
 

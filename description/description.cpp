@@ -30,6 +30,7 @@ const std::vector<Key> figure_keys = {
     {"panels", "steps shown in the panels, ascending"},
     {"size", "[width, height] in pixels"},
     {"panel_title", "title above each panel; {step} is the step shown"},
+    {"formats", "vector files written besides the PNG: a list of \"pdf\" and \"svg\" (--format decides instead)"},
 };
 
 const std::vector<Key> animation_keys = {
@@ -149,6 +150,11 @@ void read_figure(Description& d, const toml::table& root) {
         figure.refuse("panels", "steps from 0 to 100000000, ascending, each once");
     std::tie(d.width, d.height) = size_pair(figure, "size", {d.width, d.height});
     d.panel_title = figure.text("panel_title", d.panel_title);
+    for (const std::string& format : figure.texts("formats", {})) {
+        if (format == "png") continue;  // always written
+        if (format != "pdf" && format != "svg") figure.refuse("formats", "a list of \"pdf\", \"svg\" and \"png\"");
+        if (std::find(d.formats.begin(), d.formats.end(), format) == d.formats.end()) d.formats.push_back(format);
+    }
 }
 
 void read_animation(Description& d, const toml::table& root) {

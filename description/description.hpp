@@ -54,6 +54,7 @@ struct Description {
     std::vector<int> panels;        // steps of the figure's panels, ascending
     int width = 900, height = 450;  // figure size in pixels at scale 1
     std::string panel_title = "step {step}";
+    std::vector<std::string> formats;  // vector files the figure asks for: "pdf", "svg" (--format overrides)
     std::optional<Animation> animation;
     // Where each key was given: "section.key" (top-level keys under
     // "description.") -> "tc7-1.toml:7" or "--set r=0.5".

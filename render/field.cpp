@@ -203,13 +203,16 @@ std::vector<Taps> spline_taps(int pixels, int cells) {
     return taps;
 }
 
-void resample_smooth(Pipeline& p, int rows, int cols, int layers, int width, int height) {
+// `texels` (rows x cols of `layers` interleaved channels) resampled to one
+// value a pixel of width x height, into `resampled`; `across` is scratch.
+void spline_resample(const std::vector<float>& texels, int rows, int cols, int layers, int width, int height,
+                     std::vector<float>& across_rows, std::vector<float>& resampled) {
     const auto across = spline_taps(width, cols), down = spline_taps(height, rows);
     const std::size_t n = static_cast<std::size_t>(layers), line = static_cast<std::size_t>(width) * n;
-    p.across.resize(static_cast<std::size_t>(rows) * line);
+    across_rows.resize(static_cast<std::size_t>(rows) * line);
     for (int r = 0; r < rows; ++r) {
-        const float* row = p.texels.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) * n;
-        float* to = p.across.data() + static_cast<std::size_t>(r) * line;
+        const float* row = texels.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) * n;
+        float* to = across_rows.data() + static_cast<std::size_t>(r) * line;
         for (int i = 0; i < width; ++i) {
             const Taps& t = across[static_cast<std::size_t>(i)];
             for (std::size_t l = 0; l < n; ++l)
@@ -217,17 +220,21 @@ void resample_smooth(Pipeline& p, int rows, int cols, int layers, int width, int
                                 t.weight[2] * row[t.index[2] * n + l] + t.weight[3] * row[t.index[3] * n + l];
         }
     }
-    p.resampled.resize(static_cast<std::size_t>(height) * line);
+    resampled.resize(static_cast<std::size_t>(height) * line);
     for (int j = 0; j < height; ++j) {
         const Taps& t = down[static_cast<std::size_t>(j)];
-        const float* a = p.across.data() + static_cast<std::size_t>(t.index[0]) * line;
-        const float* b = p.across.data() + static_cast<std::size_t>(t.index[1]) * line;
-        const float* c = p.across.data() + static_cast<std::size_t>(t.index[2]) * line;
-        const float* d = p.across.data() + static_cast<std::size_t>(t.index[3]) * line;
-        float* to = p.resampled.data() + static_cast<std::size_t>(j) * line;
+        const float* a = across_rows.data() + static_cast<std::size_t>(t.index[0]) * line;
+        const float* b = across_rows.data() + static_cast<std::size_t>(t.index[1]) * line;
+        const float* c = across_rows.data() + static_cast<std::size_t>(t.index[2]) * line;
+        const float* d = across_rows.data() + static_cast<std::size_t>(t.index[3]) * line;
+        float* to = resampled.data() + static_cast<std::size_t>(j) * line;
         for (std::size_t x = 0; x < line; ++x)
             to[x] = t.weight[0] * a[x] + t.weight[1] * b[x] + t.weight[2] * c[x] + t.weight[3] * d[x];
     }
+}
+
+void resample_smooth(Pipeline& p, int rows, int cols, int layers, int width, int height) {
+    spline_resample(p.texels, rows, cols, layers, width, height, p.across, p.resampled);
 }
 
 // Buffers larger than this are released after each draw rather than kept
@@ -293,6 +300,32 @@ void gl_backend::field(const Canvas& canvas, const Rect& where, int rows, int co
     canvas.bind();  // the canvas's own blending and multisampling again
     glBindVertexArray(0);
     check_gl(values.size() == 2 ? "draw_field_pair" : "draw_field");
+}
+
+Image field_image(const Rect& where, int rows, int cols, std::span<const double> values, const FieldStyle& style) {
+    check_layer(rows, cols, values, style, "field_image");
+    const double vmin = style.vmin, span = style.vmax - style.vmin;
+    std::vector<float> t(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) t[i] = static_cast<float>((values[i] - vmin) / span);
+    int width = cols, height = rows;
+    const int pixels_w = std::max(1, static_cast<int>(std::lround(where.w)));
+    const int pixels_h = std::max(1, static_cast<int>(std::lround(where.h)));
+    if (style.sampling == Sampling::smooth && (pixels_w != cols || pixels_h != rows)) {
+        std::vector<float> across, resampled;
+        spline_resample(t, rows, cols, 1, pixels_w, pixels_h, across, resampled);
+        t = std::move(resampled);
+        width = pixels_w, height = pixels_h;
+    }
+    Image image(width, height);
+    const std::uint8_t alpha = static_cast<std::uint8_t>(std::lround(std::clamp(style.alpha, 0.0f, 1.0f) * 255));
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        // As the shader: entry floor(t N) clipped; a NaN (which a checked model never gives) takes the first.
+        const glm::vec3 c = style.colormap->at(std::isnan(t[i]) ? 0.0 : double(t[i]));
+        std::uint8_t* px = &image.rgba[4 * i];
+        for (int k = 0; k < 3; ++k) px[k] = static_cast<std::uint8_t>(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255));
+        px[3] = alpha;
+    }
+    return image;
 }
 
 void draw_field(Surface& surface, const Rect& where, int rows, int cols, std::span<const double> values,

@@ -9,6 +9,7 @@
 
 #include "render/canvas.hpp"
 #include "render/colormap.hpp"
+#include "render/image.hpp"
 
 namespace render {
 
@@ -28,6 +29,13 @@ struct FieldStyle {
 // Draws a rows x cols field (row-major, row 0 at the top) to fill `where`.
 void draw_field(Surface& surface, const Rect& where, int rows, int cols, std::span<const double> values,
                 const FieldStyle& style);
+
+// The field as an RGBA image (straight alpha, style.alpha in every pixel),
+// for backends that embed it (the vector page): at its own cells with
+// nearest sampling, or, smooth, resampled with the same cubic B-spline on
+// the data as the GL draw to the pixels of `where` (matplotlib's vector
+// backends likewise resample interpolated images to the output's dpi).
+Image field_image(const Rect& where, int rows, int cols, std::span<const double> values, const FieldStyle& style);
 
 // Two layers of one grid, the second over the first, in one pass: both
 // values come from one texture fetch and the pair is blended once, where two

@@ -263,7 +263,7 @@ void Text::add(Font& font, std::string_view utf8, glm::vec2 position, const glm:
     auto batch = std::find_if(batches_.begin(), batches_.end(), [&](const Batch& b) { return b.font == &font; });
     if (batch == batches_.end()) batch = batches_.insert(batches_.end(), Batch{&font, {}});
     std::vector<Vertex>& out = batch->vertices;
-    Line& line = lines_.emplace_back(Line{&font, origin, rotation_degrees, colour, {}});
+    Line& line = lines_.emplace_back(Line{&font, origin, rotation_degrees, colour, {}, std::string(utf8)});
     line.glyphs.reserve(codepoints.size());
 
     float pen = 0;

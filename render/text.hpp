@@ -114,7 +114,8 @@ public:
         glm::vec2 origin;        // the pen's start on the baseline, pixels
         float rotation_degrees;  // counter-clockwise on screen about the origin
         glm::vec4 colour;
-        std::vector<PlacedGlyph> glyphs;
+        std::vector<PlacedGlyph> glyphs;  // one a character of `utf8`
+        std::string utf8;
     };
     const std::vector<Line>& lines() const { return lines_; }
 

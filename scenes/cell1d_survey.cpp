@@ -185,12 +185,12 @@ private:
     FigureDrawing draw_figure(const render::Axes& plot, const Gallery& gallery) const {
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
         return {width, height, false, [this, &plot, &gallery](render::Surface& surface) {
-                    const float width = float(surface.width()), height = float(surface.height());
+                    const float w = float(surface.width()), h = float(surface.height());
                     surface.background({1, 1, 1, 1});
-                    const float plot_height = std::round(height * 0.45f);
-                    draw_plot_row(surface, {0, 0, width, plot_height}, {plot}, plot_);
+                    const float plot_height = std::round(h * 0.45f);
+                    draw_plot_row(surface, {0, 0, w, plot_height}, {plot}, plot_);
                     if (!gallery.panels.empty())
-                        draw_field_panels(surface, {0, plot_height, width, height - plot_height}, gallery.panels,
+                        draw_field_panels(surface, {0, plot_height, w, h - plot_height}, gallery.panels,
                                           columns_, options_.scale);
                 }};
     }

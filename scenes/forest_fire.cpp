@@ -180,12 +180,12 @@ private:
                               const render::Axes& dimension) const {
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
         return {width, height, false, [this, &history, &counts, &dimension](render::Surface& surface) {
-                    const float width = float(surface.width()), height = float(surface.height());
+                    const float w = float(surface.width()), h = float(surface.height());
                     surface.background({1, 1, 1, 1});
-                    const float top = std::round(height * 0.52f);
-                    draw_field_panels(surface, {0, 0, width, top}, history.panels,
+                    const float top = std::round(h * 0.52f);
+                    draw_field_panels(surface, {0, 0, w, top}, history.panels,
                                       static_cast<int>(history.panels.size()), options_.scale);
-                    draw_plot_row(surface, {0, top, width, height - top}, {counts, dimension}, plot_);
+                    draw_plot_row(surface, {0, top, w, h - top}, {counts, dimension}, plot_);
                 }};
     }
 

@@ -18,6 +18,7 @@ packages=(
   libpng-dev zlib1g-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libwebp-dev  # films' animated previews
+  libcairo2-dev poppler-utils librsvg2-bin  # PDF and SVG through cairo; the tests rasterise them back
   libfreetype-dev fonts-dejavu-core
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libopenmpi-dev openmpi-bin  # MPI: its headers and mpirun; figgen opens libmpi only under mpirun

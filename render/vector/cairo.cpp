@@ -1,0 +1,342 @@
+// The vector module (render/vector.hpp): a page of paths, glyphs and images
+// written as PDF or SVG through cairo.
+//
+// Glyphs come from the very font file and glyph indices the PNG drew, through
+// cairo's FreeType backend, so cairo embeds them as a TrueType (CID) subset,
+// never as Type 3 bitmaps; hinting is off, so their outlines and advances
+// are the font's own. Images keep their pixels: nearest-sampled fields are
+// marked so (PDF /Interpolate false, SVG image-rendering), smooth ones not.
+
+#include <unistd.h>
+
+#include <cairo-ft.h>
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+#include <cairo.h>
+#include <ft2build.h>
+#include FT_FREETYPE_H
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "render/vector.hpp"
+
+namespace render::vector {
+namespace {
+
+// What the write callback needs: the descriptor, and the first error it met.
+struct Sink {
+    int fd;
+    std::uint64_t max_bytes;
+    std::string* held = nullptr;  // SVG: kept here, to be marked before it is written (mark_nearest)
+    std::uint64_t written = 0;
+    int error = 0;
+    bool too_large = false;
+};
+
+bool write_all(Sink& sink, const unsigned char* data, std::size_t length) {
+    while (length > 0) {
+        const ssize_t n = ::write(sink.fd, data, length);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            sink.error = errno;
+            return false;
+        }
+        data += n;
+        length -= static_cast<std::size_t>(n);
+    }
+    return true;
+}
+
+cairo_status_t write_to_fd(void* closure, const unsigned char* data, unsigned int length) {
+    auto* sink = static_cast<Sink*>(closure);
+    if (sink->written + length > sink->max_bytes) {
+        sink->too_large = true;
+        return CAIRO_STATUS_WRITE_ERROR;
+    }
+    sink->written += length;
+    if (sink->held) {
+        sink->held->append(reinterpret_cast<const char*>(data), length);
+        return CAIRO_STATUS_SUCCESS;
+    }
+    return write_all(*sink, data, length) ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
+// cairo 1.16 (Debian 12's) writes no SVG attribute for a nearest-sampled
+// image (1.17.8 and later write image-rendering themselves), so a viewer
+// would blur a field's cells. Its images come out as <image id="imageN" ...>
+// once each, in the order the page paints them: this marks those of the
+// nearest pictures, given in the same order. Should the count differ (another
+// cairo), the SVG is left as cairo wrote it.
+void mark_nearest(std::string& svg, const std::vector<bool>& nearest) {
+    std::vector<std::size_t> at;
+    for (std::size_t p = svg.find("<image "); p != std::string::npos; p = svg.find("<image ", p + 1)) at.push_back(p);
+    if (at.size() != nearest.size()) return;
+    static const std::string mark = "<image style=\"image-rendering:optimizeSpeed;image-rendering:pixelated\" ";
+    for (std::size_t k = at.size(); k-- > 0;)
+        if (nearest[k]) svg.replace(at[k], 7, mark);
+}
+
+[[noreturn]] void fail(const std::filesystem::path& shown, const std::string& what) {
+    throw std::runtime_error("cannot write " + shown.string() + ": " + what);
+}
+
+void check(cairo_status_t status, const Sink& sink, const std::filesystem::path& shown) {
+    if (status == CAIRO_STATUS_SUCCESS) return;
+    if (status == CAIRO_STATUS_WRITE_ERROR && sink.too_large)
+        fail(shown, "it would take more than the " + std::to_string(sink.max_bytes) + " bytes allowed for it");
+    if (status == CAIRO_STATUS_WRITE_ERROR && sink.error != 0) fail(shown, std::strerror(sink.error));
+    fail(shown, std::string("cairo: ") + cairo_status_to_string(status));
+}
+
+// FreeType's library for the module's faces, made on first use and kept:
+// cairo may hold a face in its cache past the page that loaded it.
+FT_Library freetype(const std::filesystem::path& shown) {
+    static FT_Library library = [] {
+        FT_Library l = nullptr;
+        return FT_Init_FreeType(&l) == 0 ? l : nullptr;
+    }();
+    if (!library) fail(shown, "cannot start FreeType");
+    return library;
+}
+
+// cairo font faces, one per font file of the page; each FreeType face is
+// released by cairo when its font face goes.
+class Fonts {
+public:
+    explicit Fonts(const std::filesystem::path& shown) : shown_(shown) {}
+    ~Fonts() {
+        for (auto& [path, face] : faces_) cairo_font_face_destroy(face);
+    }
+    Fonts(const Fonts&) = delete;
+    Fonts& operator=(const Fonts&) = delete;
+
+    cairo_font_face_t* face(const std::string& path) {
+        if (auto found = faces_.find(path); found != faces_.end()) return found->second;
+        FT_Face ft = nullptr;
+        if (FT_New_Face(freetype(shown_), path.c_str(), 0, &ft) != 0) fail(shown_, "cannot load font " + path);
+        cairo_font_face_t* face = cairo_ft_font_face_create_for_ft_face(ft, 0);
+        static const cairo_user_data_key_t key{};
+        if (cairo_font_face_set_user_data(face, &key, ft, [](void* f) { FT_Done_Face(static_cast<FT_Face>(f)); }) !=
+            CAIRO_STATUS_SUCCESS) {
+            cairo_font_face_destroy(face);
+            FT_Done_Face(ft);
+            fail(shown_, "cairo cannot keep font " + path);
+        }
+        faces_.emplace(path, face);
+        return face;
+    }
+
+private:
+    const std::filesystem::path& shown_;
+    std::map<std::string, cairo_font_face_t*> faces_;
+};
+
+// What painting a page needs besides the item.
+struct Context {
+    Fonts fonts;
+    Format format;
+};
+
+void set_colour(cairo_t* cr, const glm::vec4& c) { cairo_set_source_rgba(cr, c.r, c.g, c.b, c.a); }
+
+void add_path(cairo_t* cr, const Path& path) {
+    for (const PathStep& step : path) {
+        switch (step.kind) {
+            case PathStep::move: cairo_move_to(cr, step.at.x, step.at.y); break;
+            case PathStep::line: cairo_line_to(cr, step.at.x, step.at.y); break;
+            case PathStep::close: cairo_close_path(cr); break;
+            case PathStep::circle:
+                // Counter-clockwise on screen is decreasing angle in y-down space: every
+                // circle winds the way the page's polygons are made to wind.
+                cairo_new_sub_path(cr);
+                cairo_arc_negative(cr, step.at.x, step.at.y, step.radius, 0, -2 * std::numbers::pi);
+                cairo_close_path(cr);
+                break;
+        }
+    }
+}
+
+void draw(cairo_t* cr, const Fill& f, Context&) {
+    add_path(cr, f.path);
+    set_colour(cr, f.colour);
+    cairo_set_fill_rule(cr, f.rule == FillRule::even_odd ? CAIRO_FILL_RULE_EVEN_ODD : CAIRO_FILL_RULE_WINDING);
+    cairo_fill(cr);
+}
+
+void draw(cairo_t* cr, const Stroke& s, Context&) {
+    add_path(cr, s.path);
+    set_colour(cr, s.colour);
+    cairo_set_line_width(cr, s.width);
+    cairo_set_line_cap(cr, s.cap == Cap::round    ? CAIRO_LINE_CAP_ROUND
+                           : s.cap == Cap::square ? CAIRO_LINE_CAP_SQUARE
+                                                  : CAIRO_LINE_CAP_BUTT);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    std::vector<double> dash(s.dash.begin(), s.dash.end());
+    cairo_set_dash(cr, dash.data(), static_cast<int>(dash.size()), s.dash_offset);
+    cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0);
+}
+
+void draw(cairo_t* cr, const Glyphs& g, Context& c) {
+    cairo_save(cr);
+    cairo_set_font_face(cr, c.fonts.face(g.font_path));
+    cairo_set_font_size(cr, g.pixel_size);
+    cairo_translate(cr, g.origin.x, g.origin.y);
+    cairo_rotate(cr, -g.rotation_degrees * std::numbers::pi / 180);
+    std::vector<cairo_glyph_t> glyphs;
+    glyphs.reserve(g.glyphs.size());
+    for (const Glyphs::Glyph& glyph : g.glyphs) glyphs.push_back({glyph.index, glyph.pen, 0});
+    set_colour(cr, g.colour);
+    // With the text and each glyph's cluster, a PDF's text can be searched and copied.
+    std::vector<cairo_text_cluster_t> clusters;
+    const std::string& text = g.text;
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < glyphs.size() && at < text.size(); ++i) {
+        int bytes = 1;
+        const auto lead = static_cast<unsigned char>(text[at]);
+        if (lead >= 0xF0) bytes = 4;
+        else if (lead >= 0xE0) bytes = 3;
+        else if (lead >= 0xC0) bytes = 2;
+        bytes = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(bytes), text.size() - at));
+        clusters.push_back({bytes, 1});
+        at += static_cast<std::size_t>(bytes);
+    }
+    if (clusters.size() == glyphs.size() && at == text.size())
+        cairo_show_text_glyphs(cr, text.data(), static_cast<int>(text.size()), glyphs.data(),
+                               static_cast<int>(glyphs.size()), clusters.data(), static_cast<int>(clusters.size()),
+                               cairo_text_cluster_flags_t(0));
+    else
+        cairo_show_glyphs(cr, glyphs.data(), static_cast<int>(glyphs.size()));
+    cairo_restore(cr);
+}
+
+bool painted(const Picture& p) {
+    return p.image.width >= 1 && p.image.height >= 1 && p.where.w > 0 && p.where.h > 0;
+}
+
+void draw(cairo_t* cr, const Picture& p, Context& c) {
+    if (!painted(p)) return;
+    // In SVG a nearest image is enlarged by whole pixels to about its
+    // rectangle's size: librsvg, among other viewers, ignores image-rendering
+    // and would blur each cell into its neighbours; enlarged, only the cells'
+    // edges can soften. PDF keeps the cells, with /Interpolate false.
+    int kx = 1, ky = 1;
+    if (!p.smooth && c.format == Format::svg) {
+        kx = std::max(1, static_cast<int>(std::ceil(p.where.w / float(p.image.width) - 1e-3f)));
+        ky = std::max(1, static_cast<int>(std::ceil(p.where.h / float(p.image.height) - 1e-3f)));
+    }
+    const Image& im = p.image;
+    const int width = im.width * kx, height = im.height * ky;
+    cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height);
+    cairo_surface_flush(surface);
+    unsigned char* data = cairo_image_surface_get_data(surface);
+    const int stride = cairo_image_surface_get_stride(surface);
+    for (int y = 0; y < height; ++y) {
+        auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+        for (int x = 0; x < width; ++x) {
+            const std::uint8_t* px = im.pixel(x / kx, y / ky);
+            const unsigned a = px[3];
+            auto pre = [a](unsigned v) { return (v * a + 127) / 255; };
+            // ARGB32: premultiplied, in a native-endian 32-bit word.
+            row[x] = (a << 24) | (pre(px[0]) << 16) | (pre(px[1]) << 8) | pre(px[2]);
+        }
+    }
+    cairo_surface_mark_dirty(surface);
+    cairo_save(cr);
+    cairo_rectangle(cr, p.where.x, p.where.y, p.where.w, p.where.h);
+    cairo_clip(cr);
+    cairo_translate(cr, p.where.x, p.where.y);
+    cairo_scale(cr, p.where.w / width, p.where.h / height);
+    cairo_set_source_surface(cr, surface, 0, 0);
+    cairo_pattern_t* pattern = cairo_get_source(cr);
+    cairo_pattern_set_extend(pattern, CAIRO_EXTEND_PAD);
+    cairo_pattern_set_filter(pattern, p.smooth ? CAIRO_FILTER_GOOD : CAIRO_FILTER_NEAREST);
+    cairo_paint(cr);
+    cairo_restore(cr);
+    cairo_surface_destroy(surface);
+}
+
+void draw(cairo_t* cr, const Clip& clip, Context&) {
+    cairo_save(cr);
+    cairo_rectangle(cr, clip.box.x0, clip.box.y0, clip.box.x1 - clip.box.x0, clip.box.y1 - clip.box.y0);
+    cairo_clip(cr);
+}
+
+void draw(cairo_t* cr, const Unclip&, Context&) { cairo_restore(cr); }
+
+void draw(cairo_t* cr, const GroupBegin&, Context&) { cairo_push_group(cr); }
+
+void draw(cairo_t* cr, const GroupEnd& g, Context&) {
+    cairo_pop_group_to_source(cr);
+    cairo_paint_with_alpha(cr, g.alpha);
+}
+
+void write(int fd, const std::filesystem::path& shown, Format format, const Page& page, std::uint64_t max_bytes) {
+    if (page.width < 1 || page.height < 1) fail(shown, "the page is empty");
+    Sink sink{fd, max_bytes};
+    std::string svg;
+    cairo_surface_t* surface = nullptr;
+    double unit = 1;  // page units a pixel
+    if (format == Format::pdf) {
+        unit = 72.0 / 100.0;  // the PNG's pixels at 100 dpi
+        surface = cairo_pdf_surface_create_for_stream(write_to_fd, &sink, page.width * unit, page.height * unit);
+        cairo_pdf_surface_restrict_to_version(surface, CAIRO_PDF_VERSION_1_5);
+        cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE, page.title.c_str());
+        cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, page.creator.c_str());
+        // No creation date: the same figure gives the same bytes.
+        cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATE_DATE, "");
+    } else {
+        sink.held = &svg;
+        surface = cairo_svg_surface_create_for_stream(write_to_fd, &sink, page.width, page.height);
+        cairo_svg_surface_restrict_to_version(surface, CAIRO_SVG_VERSION_1_1);
+        cairo_svg_surface_set_document_unit(surface, CAIRO_SVG_UNIT_PX);
+    }
+    std::unique_ptr<cairo_surface_t, void (*)(cairo_surface_t*)> owned_surface(surface, cairo_surface_destroy);
+    check(cairo_surface_status(surface), sink, shown);
+    {
+        Context context{Fonts(shown), format};
+        cairo_t* cr = cairo_create(surface);
+        std::unique_ptr<cairo_t, void (*)(cairo_t*)> owned_cr(cr, cairo_destroy);
+        cairo_scale(cr, unit, unit);
+        cairo_font_options_t* options = cairo_font_options_create();
+        cairo_font_options_set_hint_style(options, CAIRO_HINT_STYLE_NONE);
+        cairo_font_options_set_hint_metrics(options, CAIRO_HINT_METRICS_OFF);
+        cairo_set_font_options(cr, options);
+        cairo_font_options_destroy(options);
+        for (const Item& item : page.items) std::visit([&](const auto& i) { draw(cr, i, context); }, item);
+        check(cairo_status(cr), sink, shown);
+        owned_cr.reset();
+    }
+    cairo_surface_finish(surface);
+    check(cairo_surface_status(surface), sink, shown);
+    if (format == Format::svg) {
+        std::vector<bool> nearest;
+        for (const Item& item : page.items)
+            if (const auto* picture = std::get_if<Picture>(&item); picture && painted(*picture))
+                nearest.push_back(!picture->smooth);
+        mark_nearest(svg, nearest);
+        if (svg.size() > max_bytes) {
+            sink.too_large = true;
+            check(CAIRO_STATUS_WRITE_ERROR, sink, shown);
+        }
+        if (!write_all(sink, reinterpret_cast<const unsigned char*>(svg.data()), svg.size()))
+            check(CAIRO_STATUS_WRITE_ERROR, sink, shown);
+    }
+}
+
+const Api functions{api_version, write};
+
+}  // namespace
+}  // namespace render::vector
+
+extern "C" const render::vector::Api* figgen_vector_api() {
+    return &render::vector::functions;
+}
