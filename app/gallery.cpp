@@ -256,14 +256,20 @@ std::string film_html(const Folders& folders, const std::string& id, const std::
 }
 
 // The links and the collapsible tables below a card's pictures.
-void details_html(const std::string& id, const std::string& movie, const nlohmann::json& meta,
-                  std::ostringstream& card) {
+void details_html(const render::Folder& figures, const std::string& id, const std::string& movie,
+                  const nlohmann::json& meta, std::ostringstream& card) {
     card << "<div class=\"links\"><a href=\"" << escape(id) << ".png\">full PNG";
     const nlohmann::json& size = member(member(meta, "image"), "size");
     if (size.is_array() && size.size() == 2 && count_of(size[0]) && count_of(size[1]))
         card << " (" << count_of(size[0]) << " x " << count_of(size[1]) << ")";
     card << "</a><a href=\"" << escape(id) << ".json\">metadata</a>";
     if (!movie.empty()) card << "<a href=\"" << escape(movie) << "\">MP4</a>";
+    // The vector files its JSON lists and the folder holds.
+    for (const auto& [format, label] : {std::pair{"pdf", "PDF"}, std::pair{"svg", "SVG"}}) {
+        const std::string file = text_of(member(member(meta, "vector"), format), "file", "");
+        if (file == id + "." + format && is_file_in(figures, file))
+            card << "<a href=\"" << escape(file) << "\">" << label << "</a>";
+    }
     card << "</div>\n"
          << "<details><summary>parameters, seed " << seed_of(meta) << "</summary><table>"
          << "<tr><th>seed</th><td>" << seed_of(meta) << "</td></tr>" << parameter_list(meta)
@@ -293,7 +299,7 @@ std::string card_html(const Folders& folders, const std::string& id, const nlohm
          << "<a href=\"" << escape(id) << ".png\"><img src=\"thumbs/" << escape(id) << ".png\" width=\""
          << thumb.width << "\" height=\"" << thumb.height << "\" alt=\"" << escape(title) << "\"></a>\n";
     const std::string movie = film_html(folders, id, title, meta, card);
-    details_html(id, movie, meta, card);
+    details_html(folders.figures, id, movie, meta, card);
     card << "</article>\n";
     return card.str();
 }

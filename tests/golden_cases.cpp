@@ -146,7 +146,7 @@ std::vector<std::string> golden_overrides(const std::string& id) {
 }
 
 nlohmann::json comparable_metadata(nlohmann::json meta) {
-    for (const char* key : {"renderer", "figgen_version", "memory_estimate"}) meta.erase(key);
+    for (const char* key : {"renderer", "figgen_version", "memory_estimate", "vector"}) meta.erase(key);
     return meta;
 }
 
@@ -156,8 +156,9 @@ Rendered render_through_command(const std::string& id, double scale, const std::
         std::filesystem::temp_directory_path() / ("figgen-golden-" + id + "-" + std::to_string(::getpid()));
     std::filesystem::remove_all(out);
     std::ostringstream command;
-    command << FIGGEN_EXE << " render " << id << " --no-video --scale " << scale << " --out '" << out.string()
-            << "' " << figgen_args;
+    const bool formats = figgen_args.find("--format") != std::string::npos;
+    command << FIGGEN_EXE << " render " << id << (formats ? "" : " --no-video") << " --scale " << scale << " --out '"
+            << out.string() << "' " << figgen_args;
     for (const std::string& o : overrides) command << " --set '" << o << "'";
     command << " 2>&1";
     std::string output;
@@ -174,13 +175,22 @@ Rendered render_through_command(const std::string& id, double scale, const std::
     r.image = render::read_png(out / (id + ".png")).image;
     std::ifstream in(out / (id + ".json"));
     r.meta = nlohmann::json::parse(in);
+    for (const char* extension : {".pdf", ".svg"})
+        if (std::filesystem::exists(out / (id + extension))) {
+            if (r.vector_dir.empty()) {
+                r.vector_dir = out.string() + "-vector";
+                std::filesystem::remove_all(r.vector_dir);
+                std::filesystem::create_directory(r.vector_dir);
+            }
+            std::filesystem::rename(out / (id + extension), r.vector_dir / (id + extension));
+        }
     std::filesystem::remove_all(out);
     return r;
 }
 
 std::vector<GoldenCase> golden_cases() {
     const auto pattern = [](render::Image (*draw)()) {
-        return [draw](const std::string&) { return Rendered{draw(), nullptr}; };
+        return [draw](const std::string&) { return Rendered{draw(), nullptr, {}}; };
     };
     std::vector<GoldenCase> cases = {{"test-pattern", pattern(test_pattern)},
                                      {"plot-pattern", pattern(plot_pattern)},

@@ -3,6 +3,7 @@
 // primitive, drawn in this process, and every figure description of the
 // catalog rendered small through the figgen command.
 
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -16,6 +17,9 @@ namespace testkit {
 struct Rendered {
     render::Image image;
     nlohmann::json meta;  // a figure's metadata (its JSON file); null for a pattern
+    // With figgen_args asking for them (--format png,pdf,svg), the figure's
+    // PDF and SVG, moved into a folder of their own that the caller removes.
+    std::filesystem::path vector_dir;
 };
 
 struct GoldenCase {
@@ -28,12 +32,14 @@ struct GoldenCase {
 
 // A figure's metadata with what rightly differs between machines and runs
 // of the same bits removed: the GL it was drawn with (renderer), figgen's
-// version, and the memory estimate (it counts the machine's cores).
+// version, and the memory estimate (it counts the machine's cores); and the
+// vector files it was asked for, which the goldens are not.
 nlohmann::json comparable_metadata(nlohmann::json meta);
 
 // Renders figure `id` through the figgen command (FIGGEN_EXE) at `scale`
-// without video, with `overrides` as --set and `figgen_args` added, into a
-// private temporary folder; std::runtime_error with its output if it fails.
+// without video (--no-video, or figgen_args' --format), with `overrides` as
+// --set and `figgen_args` added, into a private temporary folder;
+// std::runtime_error with its output if it fails.
 Rendered render_through_command(const std::string& id, double scale, const std::vector<std::string>& overrides,
                                 const std::string& figgen_args);
 

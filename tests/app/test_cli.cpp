@@ -100,8 +100,12 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-9 --fps 5", "--fps: none of the figures named has an animation"},
         {render + "tc7-1 --cmap jet", "--cmap jet is not allowed: use one of Reds, Blues, Greens, viridis, inferno, magma, plasma, cividis"},
         {render + "tc7-9 --cmap viridis", "--cmap: tc7-9 (scene percolation_scaling) draws no field to colour; the field scenes are diffusion, "},
-        {render + "tc7-1 --format gif", "--format: gif not in {png,mp4,frames}"},
+        {render + "tc7-1 --format gif", "--format: gif not in {png,pdf,svg,mp4,frames}"},
+        {render + "tc7-1 --format png,eps", "--format: eps not in {png,pdf,svg,mp4,frames}"},
         {render + "tc7-1 --format mp4", "--format mp4 is not allowed with --no-video or --frames: use one"},
+        {render + "tc7-1 --format pdf,svg", "--format pdf,svg is not allowed with --no-video or --frames: use one"},
+        {render + "tc7-1 --set 'figure.formats=[\"eps\"]'", "--set figure.formats=[\"eps\"]: figure.formats = [ 'eps' ] is not allowed: a list of \"pdf\", \"svg\" and \"png\""},
+        {render + "tc7-1 --set figure.formats=pdf", "figure.formats = 'pdf' is not allowed: expected a list of strings"},
         // --set itself.
         {render + "tc7-1 --set r", "--set r: expected key=value, e.g. --set r=0.2"},
         {render + "tc7-1 --set =5", "--set =5: expected key=value"},
@@ -124,6 +128,8 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "pl-lsys-3d --set depth=40", "--set depth=40: depth = 40 is not allowed: a depth within the turtle's budget (it would draw more than 18,446,744,073,709,551,615 segments, more than the budget of 5,000,000)"},
         {"render --frames --out " + out.string() + " tc7-2 --max-disk 10M", // 351 frames of 480 x 520 at 4 bytes, the MP4 at 0.15, its preview at most 2 MiB and the 900 x 450 PNG: 350.3 MiB
          "its outputs would take up to about 350.3 MiB (mostly the PNG sequence), more than --max-disk 10.0 MiB"},
+        {"render --format pdf,svg --out " + out.string() + " tc7-7 --max-disk 10M", // the PNG at 4 bytes a pixel, the PDF and the SVG at 16 and 1 MiB each: 900 x 450 x 36 + 2 MiB = 15.9 MiB
+         "its outputs would take up to about 15.9 MiB (mostly the PNG), more than --max-disk 10.0 MiB"},
         // diffusion
         {render + "tc7-1 --set r=0.5", "--set r=0.5: r = 0.5 is not allowed: a number from 0 to 0.25 (the explicit 5-point update's stability bound; beyond it the checkerboard grows)"},
         {render + "tc7-1 --set r=nan", "--set r=nan: r = nan is not allowed: expected a finite number"},
@@ -459,11 +465,16 @@ TEST_CASE("render --cmap recolours a field figure with matplotlib's colormap", "
     CHECK_FALSE(metadata(out / "tc7-ex2.json")["style"].contains("colours"));
 }
 
-TEST_CASE("render --format png, mp4 or frames chooses what is written besides the PNG", "[cli][options]") {
+TEST_CASE("render --format, a list of png, pdf, svg, mp4 and frames, chooses what is written besides the PNG",
+          "[cli][options]") {
     const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
         {"png", {"tc7-1.json", "tc7-1.png"}},
         {"mp4", {"tc7-1.json", "tc7-1.mp4", "tc7-1.png", "tc7-1.webp"}},  // the film and its preview
         {"frames", {"tc7-1-frames", "tc7-1.json", "tc7-1.png"}},
+        {"pdf", {"tc7-1.json", "tc7-1.pdf", "tc7-1.png"}},
+        {"png,svg", {"tc7-1.json", "tc7-1.png", "tc7-1.svg"}},
+        {"png,pdf,mp4", {"tc7-1.json", "tc7-1.mp4", "tc7-1.pdf", "tc7-1.png", "tc7-1.webp"}},
+        {"svg,frames,pdf", {"tc7-1-frames", "tc7-1.json", "tc7-1.pdf", "tc7-1.png", "tc7-1.svg"}},
     };
     for (const auto& [format, expected] : cases) {
         INFO(format);
@@ -511,6 +522,69 @@ TEST_CASE("only a command that draws opens the GL library", "[cli][gl]") {
     const Opened osmesa = opened("render tc7-7 --format png --gl osmesa --out " + out.string());
     CHECK(osmesa.osmesa);
     CHECK_FALSE(osmesa.egl);
+}
+
+TEST_CASE("a description's figure.formats asks for its vector files, and --format decides instead", "[cli][options]") {
+    const fs::path files = fresh_dir("formats-description");
+    std::ofstream(files / "mine.toml") << "id = \"mine\"\nscene = \"diffusion\"\n[params]\nn = 16\n"
+                                          "[figure]\npanels = [0, 5]\nformats = [\"png\", \"svg\", \"pdf\"]\n";
+    const fs::path out = fresh_dir("formats-asked");
+    const Run asked = figgen("render " + (files / "mine.toml").string() + " --out " + out.string());
+    INFO(asked.output);
+    REQUIRE(asked.status == 0);
+    CHECK(files_in(out) == std::vector<std::string>{"mine.json", "mine.pdf", "mine.png", "mine.svg"});
+    std::ifstream in(out / "mine.json");
+    const nlohmann::json meta = nlohmann::json::parse(in);
+    CHECK(meta["vector"]["pdf"]["file"] == "mine.pdf");
+    CHECK(meta["vector"]["svg"]["bytes"].get<double>() == double(fs::file_size(out / "mine.svg")));
+    const fs::path decided = fresh_dir("formats-decided");
+    REQUIRE(figgen("render " + (files / "mine.toml").string() + " --format png --out " + decided.string()).status ==
+            0);
+    CHECK(files_in(decided) == std::vector<std::string>{"mine.json", "mine.png"});
+}
+
+TEST_CASE("render --transparent leaves the background out: alpha 0 at the corners, opaque ink", "[cli][options]") {
+    const fs::path out = fresh_dir("transparent");
+    const Run run = figgen("render tc7-7 --transparent --format png,svg --out " + out.string());
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    const render::Image png = render::read_png(out / "tc7-7.png").image;
+    for (const auto& [x, y] : {std::pair{0, 0}, std::pair{png.width - 1, 0}, std::pair{0, png.height - 1},
+                               std::pair{png.width - 1, png.height - 1}})
+        CHECK(int(png.pixel(x, y)[3]) == 0);
+    long opaque = 0, clear = 0;
+    for (int y = 0; y < png.height; ++y)
+        for (int x = 0; x < png.width; ++x) {
+            opaque += png.pixel(x, y)[3] == 255;  // the lines, the legends' boxes
+            clear += png.pixel(x, y)[3] == 0;
+        }
+    CHECK(opaque > 5000);
+    CHECK(clear > png.width * png.height / 2);
+    std::ifstream in(out / "tc7-7.json");
+    CHECK(nlohmann::json::parse(in)["image"]["transparent"] == true);
+    // The SVG likewise: librsvg's raster of it is clear at the corners.
+    const Run svg = testkit::run_command("rsvg-convert '" + (out / "tc7-7.svg").string() + "' -o '" +
+                                         (out / "svg.png").string() + "'");
+    REQUIRE(svg.status == 0);
+    const render::Image raster = render::read_png(out / "svg.png").image;
+    CHECK(int(raster.pixel(0, 0)[3]) == 0);
+    CHECK(int(raster.pixel(raster.width - 1, raster.height - 1)[3]) == 0);
+}
+
+TEST_CASE("only a figure written as PDF or SVG opens cairo", "[cli][vector]") {
+    auto opens_cairo = [](const std::string& args) {
+        const Run run = testkit::figgen_env("LD_DEBUG=files", args);
+        const bool module = run.output.find("file=" FIGGEN_BUILD_DIR "/lib/libfiggen_vector.so") != std::string::npos;
+        const bool cairo = run.output.find("file=libcairo.so") != std::string::npos;
+        CHECK(module == cairo);  // cairo comes only with the module
+        return cairo;
+    };
+    const fs::path out = fresh_dir("vector-loading");
+    CHECK_FALSE(opens_cairo("--version"));
+    CHECK_FALSE(opens_cairo("render tc7-7 --format pdf --fps 0 --out " + out.string()));  // refused
+    CHECK_FALSE(opens_cairo("render tc7-7 --scale 0.3 --out " + out.string()));
+    CHECK(opens_cairo("render tc7-7 --scale 0.3 --format pdf --out " + out.string()));
+    CHECK(fs::file_size(out / "tc7-7.pdf") > 1000);
 }
 
 TEST_CASE("only a command that encodes or decodes a film opens FFmpeg's codec libraries", "[cli][media]") {

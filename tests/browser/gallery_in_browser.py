@@ -15,7 +15,9 @@ size > 0, the size in its tag), every video has loaded its metadata
 (duration > 0, the frame count over the fps of its metadata, its size),
 has its poster (its last frame, at its size) and seeks to its last frame,
 nothing was logged to the console, and a phone-wide
-window with every card's details open needs no sideways scrolling. Saves a
+window with every card's details open needs no sideways scrolling; then
+that each figure's SVG (the --figgen run writes them) opens on its own as
+an SVG document of the figure's size, with nothing in the console. Saves a
 whole-page desktop screenshot and a phone one. Exits 0 when all holds, 1 with
 one line per failure otherwise.
 """
@@ -48,6 +50,13 @@ class QuietHandler(http.server.SimpleHTTPRequestHandler):
         pass
 
     def send_head(self):
+        # A document without a <link rel="icon"> of its own (an SVG opened
+        # directly) makes the browser ask for /favicon.ico: answered with no
+        # content, as a site without one would, not a 404 in the console.
+        if self.path == "/favicon.ico":
+            self.send_response(204)
+            self.end_headers()
+            return None
         match = re.fullmatch(r"bytes=(\d*)-(\d*)", self.headers.get("Range", ""))
         path = self.translate_path(self.path)
         if not match or not os.path.isfile(path) or match.group(1) == match.group(2) == "":
@@ -91,7 +100,8 @@ def figures_in(folder):
 def render(figgen, out):
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
-    subprocess.run([figgen, "render", *FIGURES, "--scale", "0.5", "--out", out], check=True)
+    subprocess.run([figgen, "render", *FIGURES, "--scale", "0.5", "--format", "png,pdf,svg,mp4", "--out", out],
+                   check=True)
     subprocess.run([figgen, "gallery", "--out", out], check=True, stdout=subprocess.DEVNULL)
 
 
@@ -239,6 +249,29 @@ def main():
         for entry in driver.get_log("browser"):
             if entry["level"] in ("SEVERE", "WARNING"):
                 failures.append("console: %s" % entry["message"])
+        # Each figure's SVG that its card links to, opened on its own: an SVG
+        # document of the figure's size whose images all decoded, and not a
+        # message in the console.
+        driver.set_window_size(1280, 2400)
+        svgs = 0
+        for figure in figures:
+            with open(os.path.join(args.out, figure + ".json")) as f:
+                meta = json.load(f)
+            if "svg" not in meta.get("vector", {}):
+                continue
+            svgs += 1
+            driver.get(url.replace("index.html", meta["vector"]["svg"]["file"]))
+            wait_for(driver, "return document.readyState == 'complete';", seconds=10)
+            root = driver.execute_script(
+                "const r = document.documentElement; return [r.localName, r.getAttribute('width'),"
+                " r.getAttribute('height'), [...document.querySelectorAll('image')].length];")
+            width, height = meta["image"]["size"]
+            if root[:3] != ["svg", "%dpx" % width, "%dpx" % height]:
+                failures.append("%s.svg opens as %s, not an SVG of %d x %d px" % (figure, root[:3], width, height))
+            for entry in driver.get_log("browser"):
+                failures.append("console on %s.svg: %s" % (figure, entry["message"]))
+        if args.figgen and svgs == 0:
+            failures.append("no figure has an SVG to open")
     finally:
         driver.quit()
         server.shutdown()

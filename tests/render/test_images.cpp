@@ -11,6 +11,7 @@
 #include "render/gl_context.hpp"
 #include "golden_cases.hpp"
 #include "image_check.hpp"
+#include "vector_check.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -52,6 +53,38 @@ std::vector<std::string> hashes_of(const nlohmann::json& meta) {
 // another process, so every figure also gives the same bits run after run
 // and on one thread or two (these were the determinism tests). Goldens are
 // llvmpipe's: a GPU's pixels are not checked against them.
+// A figure's PDF and SVG (written beside the PNG `r` holds): their files as
+// the JSON lists them, every font embedded and none Type 3, and each
+// rasterised (pdftoppm, rsvg-convert) within vector_check.hpp's tolerance of
+// the PNG.
+static void check_vector_files(const std::string& id, const testkit::Rendered& r) {
+    REQUIRE_FALSE(r.vector_dir.empty());
+    struct Remove {
+        std::filesystem::path dir;
+        ~Remove() { std::filesystem::remove_all(dir); }
+    } remove{r.vector_dir};
+    const std::filesystem::path pdf = r.vector_dir / (id + ".pdf"), svg = r.vector_dir / (id + ".svg");
+    for (const auto& [format, path] : {std::pair{"pdf", pdf}, std::pair{"svg", svg}}) {
+        INFO(format);
+        REQUIRE(std::filesystem::exists(path));
+        CHECK(r.meta["vector"][format]["file"] == path.filename().string());
+        CHECK(r.meta["vector"][format]["bytes"].get<double>() == double(std::filesystem::file_size(path)));
+        CHECK(std::filesystem::file_size(path) < 5u * 1024 * 1024);  // the bound for every catalog PDF
+    }
+    const auto fonts = testkit::pdf_fonts(pdf);
+    for (const auto& f : fonts) {
+        INFO("font " << f.name << ": " << f.type);
+        CHECK(f.embedded);
+        CHECK(f.type.find("Type 3") == std::string::npos);
+    }
+    for (const auto& [format, raster] :
+         {std::pair{"pdf (pdftoppm)", testkit::rasterise_pdf(pdf)}, std::pair{"svg (rsvg-convert)", testkit::rasterise_svg(svg)}}) {
+        const testkit::BlockDifference d = testkit::block_difference(r.image, raster);
+        INFO(id << "'s " << format << " against its PNG: " << d.message);
+        CHECK(d.within_tolerance());
+    }
+}
+
 TEST_CASE("every golden image renders as recorded", "[.golden]") {
     // One section per case; with -c naming no case the test would enter no
     // section and pass empty (Catch2 v2's --warn NoAssertions does not
@@ -64,8 +97,12 @@ TEST_CASE("every golden image renders as recorded", "[.golden]") {
             entered = true;
             std::string renderer, version, drawn_with;
             testkit::Rendered r;
+            // The egl run also writes the figure's PDF and SVG, checked below
+            // against the very PNG it drew.
+            const bool vector = c.figure && platform == "egl";
             if (c.figure) {
-                r = c.make("--gl " + platform + " --threads " + (platform == "osmesa" ? "1" : "2"));
+                r = c.make("--gl " + platform + " --threads " + (platform == "osmesa" ? "1" : "2") +
+                           (vector ? " --format png,pdf,svg" : ""));
                 renderer = r.meta["renderer"]["gl_renderer"];
                 version = r.meta["renderer"]["gl_version"];
                 drawn_with = r.meta["renderer"]["platform"];
@@ -99,6 +136,7 @@ TEST_CASE("every golden image renders as recorded", "[.golden]") {
                 INFO("metadata differences (JSON patch from the recorded one): " << patch.dump());
                 CHECK(patch.empty());
             }
+            if (vector) check_vector_files(c.name, r);
         }
     }
     INFO("no section ran: -c names no golden case");
