@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "render/field.hpp"
 #include "render/gl.hpp"
 #include "render/shapes.hpp"
 #include "render/ticks.hpp"
@@ -415,6 +416,72 @@ std::vector<Rect> plot_row(int width, int height, int count, const PlotStyle& st
     for (int i = 0; i < count; ++i)
         frames.push_back({std::round(left + float(i) * (w + gap)), std::round(top), panel_w, panel_h});
     return frames;
+}
+
+namespace {
+
+void check_bar(const ColourBar& bar) {
+    if (!(std::isfinite(bar.low) && std::isfinite(bar.high) && bar.low < bar.high))
+        throw std::invalid_argument("draw_colour_bar: its range must be finite, low below high");
+    if (bar.colormap.colours.empty()) throw std::invalid_argument("draw_colour_bar: the colormap has no colours");
+}
+
+// The bar's own rectangle beside `field`, whole pixels wide.
+Rect bar_rect(const Rect& field) {
+    const float gap = std::round(colour_bar_pad * field.w);
+    return {field.right() + gap, field.y, std::max(1.0f, std::round(field.h / colour_bar_aspect)), field.h};
+}
+
+}  // namespace
+
+std::vector<Tick> colour_bar_ticks(const ColourBar& bar, float height, const PlotStyle& style) {
+    check_bar(bar);
+    return linear_ticks(bar.low, bar.high, tick_bins(height, style.font_size * style.scale, false)).major;
+}
+
+float colour_bar_room(const ColourBar& bar, float field_width, float height, const PlotStyle& st) {
+    const float s = st.scale;
+    Font& tick_font = font_of_size(st.font_size * s);
+    float widest = 0;
+    for (const Tick& t : colour_bar_ticks(bar, height, st)) widest = std::max(widest, tick_font.width(t.label));
+    float room = std::round(colour_bar_pad * field_width) + std::max(1.0f, std::round(height / colour_bar_aspect)) +
+                 (st.major_tick + st.tick_pad) * s + widest;
+    if (!bar.label.empty()) room += st.label_pad * s + font_of_size(st.label_size * s).line_height();
+    return std::ceil(room);
+}
+
+void draw_colour_bar(Surface& surface, const Rect& field, const ColourBar& bar, const PlotStyle& st) {
+    check_bar(bar);
+    const float s = st.scale;
+    const Rect r = bar_rect(field);
+    // The entries as a column of cells, top row the last entry.
+    const int n = bar.colormap.size();
+    std::vector<double> values(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) values[static_cast<std::size_t>(i)] = n - 1 - i + 0.5;
+    const FieldStyle cells{&bar.colormap, 0.0, double(n), 1.0f, Sampling::nearest};
+    draw_field(surface, r, n, 1, values, cells);
+    Shapes shapes;
+    Text text;
+    shapes.frame(r, st.spine_width * s, st.ink);
+    Font& tick_font = font_of_size(st.font_size * s);
+    float widest = 0;
+    const float tick_length = st.major_tick * s, tick_width = st.major_tick_width * s;
+    for (const Tick& t : colour_bar_ticks(bar, r.h, st)) {
+        const float y = snap(float(r.bottom() - (t.value - bar.low) / (bar.high - bar.low) * r.h), tick_width);
+        shapes.line({r.right(), y}, {r.right() + tick_length, y}, tick_width, st.ink);
+        text.add(tick_font, t.label, {r.right() + tick_length + st.tick_pad * s, y}, st.ink, Align::left,
+                 Baseline::middle);
+        widest = std::max(widest, tick_font.width(t.label));
+    }
+    if (!bar.label.empty()) {
+        Font& label_font = font_of_size(st.label_size * s);
+        // Turned to read upwards, its top towards the ticks (matplotlib puts a
+        // vertical colorbar's label on the right, rotated 90 degrees).
+        const float x = r.right() + tick_length + st.tick_pad * s + widest + st.label_pad * s;
+        text.add(label_font, bar.label, {x, r.centre().y}, st.ink, Align::centre, Baseline::top, 90);
+    }
+    shapes.draw(surface);
+    text.draw(surface);
 }
 
 }  // namespace render

@@ -13,7 +13,9 @@
 #include <glm/glm.hpp>
 
 #include "render/canvas.hpp"
+#include "render/colormap.hpp"
 #include "render/text.hpp"
+#include "render/ticks.hpp"
 
 namespace render {
 
@@ -87,6 +89,35 @@ struct PlotStyle {
 // room). Throws std::invalid_argument for a given range that is not finite,
 // or not positive on a log axis.
 void draw_axes(Surface& surface, const Rect& frame, const Axes& axes, const PlotStyle& style);
+
+// A colour bar beside a field, as matplotlib's colorbar draws one: the
+// colormap's entries as a column, the first at the bottom, in a thin frame,
+// with outward ticks and their labels on its right and its label turned
+// along it, beyond them.
+struct ColourBar {
+    Colormap colormap;       // the entries shown, bottom to top, each an equal share of the bar
+    double low = 0, high = 1;  // the values at the bar's bottom and top edges (low < high)
+    std::string label;       // empty: none
+};
+
+// matplotlib's default proportions: the bar is 1/20 of its height wide
+// (aspect 20) and stands 0.05 of the field's width (pad) to its right.
+inline constexpr float colour_bar_aspect = 20;
+inline constexpr float colour_bar_pad = 0.05f;
+
+// The width a colour bar `height` pixels tall takes beside its field of
+// width `field_width`: the pad, the bar, its ticks, their widest label and
+// its own label, at style's sizes.
+float colour_bar_room(const ColourBar& bar, float field_width, float height, const PlotStyle& style);
+
+// The ticks a colour bar `height` pixels tall shows: linear ticks within
+// low..high, as many as fit (matplotlib's colorbar locator).
+std::vector<Tick> colour_bar_ticks(const ColourBar& bar, float height, const PlotStyle& style);
+
+// Draws it beside `field` (its rectangle): the bar as tall as the field.
+// Throws std::invalid_argument unless low < high, both finite, and the
+// colormap has entries.
+void draw_colour_bar(Surface& surface, const Rect& field, const ColourBar& bar, const PlotStyle& style);
 
 // Frames for `count` plots side by side on a width x height page, like
 // matplotlib's subplots(1, count) with its default margins (style's left

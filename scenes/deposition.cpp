@@ -21,6 +21,8 @@ const std::vector<Key> param_keys = {
 const std::vector<Key> style_keys = {
     {"bands", "arrival-time bands, coloured in turn"},
     {"band_colormap", "colormap the bands run through"},
+    {"colour_bar", "the bands' colour bar beside the deposit, in monolayers of arrival time: true or false"},
+    {"colour_bar_label", "the colour bar's label"},
 };
 
 sim::DepositionParams read_params(Settings& s) {
@@ -107,6 +109,8 @@ public:
           bands_(style_.count_in("bands", 20, 1, 255)),
           spec_(band_spec(style_, bands_)),
           band_size_((p_.particles + bands_ - 1) / std::uint64_t(bands_)),
+          colour_bar_(style_.flag("colour_bar", true)),
+          colour_bar_label_(style_.text("colour_bar_label", "arrival time (monolayers)")),
           // Steps of the film are monolayers (L particles); the view is tall
           // enough for the last one: ballistic deposits fill about half their cells.
           monolayers_(int((p_.particles + p_.width - 1) / p_.width)),
@@ -151,7 +155,8 @@ public:
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         const std::int64_t top = max_height(deposit);
         const auto field = deposit_field(deposit, int(top) + 2, band_size_);
-        const std::vector<FieldPanel> panels = {{d_.panel_title, {field_layer(field, spec_)}}};
+        std::vector<FieldPanel> panels = {{d_.panel_title, {field_layer(field, spec_)}}};
+        if (colour_bar_) panels[0].layers[0].colour_bar = band_bar();
         run.write_figure(field_figure(panels, scaled_even(d_.width, options_.scale),
                                       scaled_even(d_.height, options_.scale), options_.scale),
                          metadata(deposit, top));
@@ -159,7 +164,7 @@ public:
 
 private:
     nlohmann::json metadata(const sim::Deposition& deposit, std::int64_t top) const {
-        return {
+        nlohmann::json meta = {
             {"params", params_.used()},
             {"style", style_.used()},
             {"panels",
@@ -171,12 +176,25 @@ private:
                {"band_particles", band_size_},
                {"state_sha256", deposit_hash(deposit)}}}},
         };
+        if (colour_bar_) meta["colour_bar"] = colour_bar_metadata(band_bar());
+        return meta;
     }
 
     const sim::DepositionParams p_;
+    // The bands' colours (the field's colormap without its white for empty
+    // cells) over the arrival times they stand for, in monolayers: band b
+    // holds the particles that arrived from b to b + 1 band sizes.
+    render::ColourBar band_bar() const {
+        const auto& colours = spec_.colormap.colours;
+        return {render::listed_colormap("bands", {colours.begin() + 1, colours.end()}), 0.0,
+                double(bands_) * double(band_size_) / double(p_.width), colour_bar_label_};
+    }
+
     const int bands_;
     const FieldSpec spec_;
     const std::uint64_t band_size_;
+    const bool colour_bar_;
+    const std::string colour_bar_label_;
     const int monolayers_, view_rows_;
     Description plan_;  // d with one panel at the last monolayer: the run's length
 };

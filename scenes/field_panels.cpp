@@ -45,10 +45,22 @@ int field_page_samples(const std::vector<FieldPanel>& panels, int width, int hei
 
 void draw_field_panels(render::Surface& surface, const render::Rect& area, const std::vector<FieldPanel>& panels,
                        int columns, double scale, LayerPasses passes) {
-    const render::PanelRowStyle style = page_style(panels, scale);
+    render::PanelRowStyle style = page_style(panels, scale);
     std::vector<std::string> titles;
     for (const FieldPanel& p : panels) titles.push_back(p.title);
-    const auto rects = render::panel_grid(area, static_cast<int>(panels.size()), columns, any_title(panels), style);
+    const int count = static_cast<int>(panels.size());
+    // Colour bars: each panel's beside it, in room taken from the gaps and
+    // the right margin (worked out for the panels as they would be without).
+    const std::optional<render::ColourBar>& bar = panels.front().layers.front().colour_bar;
+    const render::PlotStyle bar_style = colour_bar_style(scale);
+    render::Rect fit = area;
+    if (bar) {
+        const render::Rect plain = render::panel_grid(area, count, columns, any_title(panels), style).front();
+        const float room = render::colour_bar_room(*bar, plain.w, plain.h, bar_style);
+        style.gap += room / style.scale;
+        fit.w = std::max(1.0f, fit.w - room);
+    }
+    const auto rects = render::panel_grid(fit, count, columns, any_title(panels), style);
     for (std::size_t i = 0; i < panels.size(); ++i) {
         const std::vector<FieldLayer>& layers = panels[i].layers;
         if (passes == LayerPasses::paired && pairable(layers)) {
@@ -60,6 +72,19 @@ void draw_field_panels(render::Surface& surface, const render::Rect& area, const
             render::draw_field(surface, rects[i], layer.rows, layer.cols, layer.values, layer.style);
     }
     render::draw_panel_decorations(surface, rects, titles, style);
+    for (std::size_t i = 0; i < panels.size(); ++i)
+        if (const auto& own = panels[i].layers.front().colour_bar)
+            render::draw_colour_bar(surface, rects[i], *own, bar_style);
+}
+
+nlohmann::json colour_bar_metadata(const render::ColourBar& bar) {
+    return {{"label", bar.label}, {"low", bar.low}, {"high", bar.high}, {"entries", bar.colormap.size()}};
+}
+
+render::PlotStyle colour_bar_style(double scale) {
+    render::PlotStyle style;
+    style.scale = static_cast<float>(scale);
+    return style;
 }
 
 render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,

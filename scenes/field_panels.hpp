@@ -3,6 +3,7 @@
 // field layers stacked (Gray-Scott draws A and B), framed, titled.
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -11,7 +12,10 @@
 #include "render/field.hpp"
 #include "render/image.hpp"
 #include "scenes/output.hpp"
+#include <nlohmann/json.hpp>
+
 #include "render/layout.hpp"
+#include "render/plot.hpp"
 #include "scenes/description_names.hpp"
 
 namespace scenes {
@@ -47,6 +51,9 @@ struct FieldLayer {
     int rows = 0, cols = 0;
     LayerCells values;  // rows * cols, row 0 at the top
     render::FieldStyle style;
+    // A colour bar for this layer beside its panel (the first layer's, when
+    // a panel has several): its colours and range, usually the style's.
+    std::optional<render::ColourBar> colour_bar = {};
 };
 
 // Drawing a field layer: its values as floats for the texture and
@@ -85,7 +92,15 @@ enum class LayerPasses { each, paired };
 render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
                                 LayerPasses passes = LayerPasses::each);
 
-// The same panels in `columns` columns inside `area` of a surface being drawn.
+// What a figure's JSON says of its colour bar: its label, the values at its
+// ends, and its entries.
+nlohmann::json colour_bar_metadata(const render::ColourBar& bar);
+
+// A colour bar's ticks and label beside field panels: matplotlib's sizes at `scale`.
+render::PlotStyle colour_bar_style(double scale);
+
+// The same panels in `columns` columns inside `area` of a surface being
+// drawn; with a colour bar beside each panel whose first layer has one.
 void draw_field_panels(render::Surface& surface, const render::Rect& area, const std::vector<FieldPanel>& panels,
                        int columns, double scale, LayerPasses passes = LayerPasses::each);
 

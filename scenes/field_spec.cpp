@@ -12,6 +12,8 @@ std::vector<Key> field_spec_keys(const std::string& prefix) {
         {prefix + "vmax", "value of the last colour; absent: the panel's maximum"},
         {prefix + "alpha", "opacity over what lies below, 0..1"},
         {prefix + "sampling", "\"nearest\" or \"smooth\""},
+        {prefix + "colour_bar", "a colour bar with ticks beside each panel, true or false"},
+        {prefix + "colour_bar_label", "the colour bar's label"},
     };
 }
 
@@ -51,6 +53,8 @@ FieldSpec read_field_spec(Settings& style, const FieldSpec& defaults, const std:
         style.text(prefix + "sampling", defaults.sampling == render::Sampling::smooth ? "smooth" : "nearest");
     if (sampling != "nearest" && sampling != "smooth") style.refuse(prefix + "sampling", "\"nearest\" or \"smooth\"");
     spec.sampling = sampling == "smooth" ? render::Sampling::smooth : render::Sampling::nearest;
+    spec.colour_bar = style.flag(prefix + "colour_bar", defaults.colour_bar);
+    spec.colour_bar_label = style.text(prefix + "colour_bar_label", defaults.colour_bar_label);
     return spec;
 }
 
@@ -69,6 +73,7 @@ FieldLayer layer_over(LayerCells cells, int rows, int cols, const FieldSpec& spe
     // matplotlib maps everything to the first colour when the range is empty.
     if (!(vmax > vmin)) vmax = vmin + 1;
     layer.style = {&spec.colormap, vmin, vmax, spec.alpha, spec.sampling};
+    if (spec.colour_bar) layer.colour_bar = render::ColourBar{spec.colormap, vmin, vmax, spec.colour_bar_label};
     return layer;
 }
 

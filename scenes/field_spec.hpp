@@ -20,6 +20,8 @@ struct FieldSpec {
     std::optional<double> vmin, vmax;  // absent: autoscale per panel
     float alpha = 0.7f;                // the book's draw_array default
     render::Sampling sampling = render::Sampling::nearest;
+    bool colour_bar = false;           // a colour bar beside each panel, with its ticks
+    std::string colour_bar_label = {};  // and this label beside it
 };
 
 // The [style] keys a FieldSpec reads, each name prefixed (e.g. "b_" gives b_colormap).

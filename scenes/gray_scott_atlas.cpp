@@ -81,7 +81,7 @@ public:
     GrayScottAtlasScene(const Description& d, const SceneOptions& options)
         : SceneBase(d, options, param_keys, with_plot_style_keys(field_spec_keys())),
           atlas_(read_params(params_)),
-          spec_(read_field_spec(style_, {render::colormap("Blues"), {}, {}, 1.0f, render::Sampling::smooth})),
+          spec_(read_field_spec(style_, {render::colormap("Blues"), {}, {}, 1.0f, render::Sampling::smooth, true, ""})),
           plot_(read_plot_style(style_, options.scale)) {
         require_drawable(params_, "n", "each tile", atlas_.base.n, atlas_.base.n);
     }
@@ -154,6 +154,8 @@ public:
                                                 {"style", style_.used()},
                                                 {"early_stop", early_stop},
                                                 {"float_error", float_error(tiles, results)},
+                                                {"colour_bar", colour_bar() ? colour_bar_metadata(*colour_bar())
+                                                                            : nlohmann::json(nullptr)},
                                                 {"tiles", tile_meta}});
         progress.finish();
     }
@@ -272,10 +274,14 @@ private:
         const int width = canvas.width(), height = canvas.height();
         const int columns = atlas_.columns, rows = atlas_.rows;
         canvas.background({1, 1, 1, 1});
-        // The plot frame, made square, holds the tiles; then the axes are drawn over it.
+        // The plot frame, made square, holds the tiles; then the axes are drawn
+        // over it, and the colour bar beside it, the pair centred.
         render::Rect frame = render::plot_row(width, height, 1, plot_)[0];
-        const float side = std::min(frame.w, frame.h);
-        frame.x += (frame.w - side) / 2;
+        const std::optional<render::ColourBar> bar = colour_bar();
+        float side = std::min(frame.w, frame.h);
+        const float room = bar ? render::colour_bar_room(*bar, side, side, plot_) : 0.0f;
+        side = std::max(1.0f, std::min(side, frame.w - room));
+        frame.x += (frame.w - side - room) / 2;
         frame.w = frame.h = side;
         const float tw = side / float(columns), th = side / float(rows);
         std::vector<double> b;  // the tile's B as doubles, reused
@@ -295,6 +301,18 @@ private:
         axes.title = "Gray-Scott B after " + std::to_string(atlas_.steps) + " steps, " +
                      std::to_string(atlas_.base.n) + "\u00b2 cells each";
         render::draw_axes(canvas, frame, axes, plot_);
+        if (bar) render::draw_colour_bar(canvas, frame, *bar, plot_);
+    }
+
+    // The colour bar, when [style] colour_bar: in B's units when vmin and vmax
+    // fix one range for every tile; else each tile's own range, 0 to 1.
+    std::optional<render::ColourBar> colour_bar() const {
+        if (!spec_.colour_bar) return std::nullopt;
+        const std::string& label = spec_.colour_bar_label;
+        if (spec_.vmin && spec_.vmax)
+            return render::ColourBar{spec_.colormap, *spec_.vmin, *spec_.vmax, label.empty() ? "B" : label};
+        return render::ColourBar{spec_.colormap, 0.0, 1.0,
+                                 label.empty() ? "B, each tile from its minimum (0) to its maximum (1)" : label};
     }
 
     const sim::GrayScottAtlasParams atlas_;

@@ -571,6 +571,35 @@ TEST_CASE("render --transparent leaves the background out: alpha 0 at the corner
     CHECK(int(raster.pixel(raster.width - 1, raster.height - 1)[3]) == 0);
 }
 
+TEST_CASE("the deposit's colour bar runs over its arrival times, its ticks labelled from 0 to the last monolayer",
+          "[cli][colour-bar]") {
+    const fs::path out = fresh_dir("colour-bar");
+    // 40 columns, 1,600 particles in 20 bands of 80: 2 monolayers a band, 40 in all.
+    const Run run = figgen("render bd-500 --set width=40 --set particles=1600 --format pdf --out " + out.string());
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    std::ifstream in(out / "bd-500.json");
+    const nlohmann::json meta = nlohmann::json::parse(in);
+    const nlohmann::json& bar = meta["colour_bar"];
+    CHECK(bar["label"] == "arrival time (monolayers)");
+    CHECK(bar["low"] == 0.0);
+    CHECK(bar["high"] == 20.0 * meta["panels"][0]["band_particles"].get<double>() / 40.0);
+    CHECK(bar["high"] == 40.0);
+    CHECK(bar["entries"] == 20);
+    // The labels as drawn: poppler reads them back from the PDF.
+    const Run text = testkit::run_command("pdftotext -raw '" + (out / "bd-500.pdf").string() + "' -");
+    REQUIRE(text.status == 0);
+    for (const char* tick : {"\n0\n", "\n10\n", "\n20\n", "\n30\n", "\n40\n"}) CHECK(text.output.find(tick) != std::string::npos);
+    CHECK(text.output.find("\n50\n") == std::string::npos);
+    CHECK(text.output.find("arrival") != std::string::npos);
+    // Off by its style key.
+    const fs::path plain = fresh_dir("colour-bar-off");
+    REQUIRE(figgen("render bd-500 --set width=40 --set particles=1600 --set style.colour_bar=false --format png "
+                   "--out " + plain.string()).status == 0);
+    std::ifstream plain_in(plain / "bd-500.json");
+    CHECK_FALSE(nlohmann::json::parse(plain_in).contains("colour_bar"));
+}
+
 TEST_CASE("only a figure written as PDF or SVG opens cairo", "[cli][vector]") {
     auto opens_cairo = [](const std::string& args) {
         const Run run = testkit::figgen_env("LD_DEBUG=files", args);

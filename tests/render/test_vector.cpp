@@ -18,6 +18,9 @@
 #include "render/text.hpp"
 #include "render/vector.hpp"
 #include "render/vector_page.hpp"
+#include "scenes/field_panels.hpp"
+#include "scenes/field_spec.hpp"
+#include "sim/grid.hpp"
 #include "vector_check.hpp"
 
 namespace fs = std::filesystem;
@@ -222,4 +225,49 @@ TEST_CASE("the vector comparison passes a figure against itself and fails one wi
     CHECK_FALSE(d.within_tolerance());
     render::Image smaller(190, 100);
     CHECK_FALSE(testkit::block_difference(figure, smaller).comparable);
+}
+
+TEST_CASE("a colour bar's tick labels span its field's range, at the bar's ends", "[vector][colour-bar]") {
+    // A field from 0 to 0.25 with its bar, drawn on a vector page: the text
+    // it holds is exactly what was drawn.
+    sim::Grid<double> grid(2, 2);
+    grid(0, 1) = 0.05, grid(1, 0) = 0.1, grid(1, 1) = 0.25;
+    scenes::FieldSpec spec{render::colormap("Reds"), 0.0, 0.25, 1.0f, render::Sampling::nearest, true, "u"};
+    const std::vector<scenes::FieldPanel> panels = {{"panel", {scenes::field_layer(grid, spec)}}};
+    REQUIRE(panels[0].layers[0].colour_bar);
+    CHECK(panels[0].layers[0].colour_bar->low == 0.0);
+    CHECK(panels[0].layers[0].colour_bar->high == 0.25);
+    render::VectorPage page(600, 400, false);
+    scenes::field_figure(panels, 600, 400, 1.0).draw(page);
+    std::vector<std::pair<std::string, float>> labels;  // tick labels and their baselines' y
+    bool label = false;
+    for (const auto& item : page.page().items)
+        if (const auto* g = std::get_if<render::vector::Glyphs>(&item)) {
+            if (g->text == "u") label = g->rotation_degrees == 90;
+            else if (g->text != "panel") labels.emplace_back(g->text, g->origin.y);
+        }
+    CHECK(label);
+    REQUIRE(labels.size() >= 3);
+    CHECK(labels.front().first == "0.00");
+    CHECK(labels.back().first == "0.25");
+    for (const auto& [text, y] : labels) {
+        const double v = std::stod(text);
+        CHECK(v >= 0.0);
+        CHECK(v <= 0.25);
+    }
+    // 0.00 at the bar's bottom, 0.25 at its top: the field's rectangle, as the bar stands beside it.
+    std::vector<const render::vector::Picture*> pictures;  // the field's, then the bar's
+    for (const auto& item : page.page().items)
+        if (const auto* p = std::get_if<render::vector::Picture>(&item)) pictures.push_back(p);
+    REQUIRE(pictures.size() == 2);
+    const auto& field = *pictures[0];
+    const float cap = render::font_of_size(14).cap_height() / 2;
+    CHECK(std::abs(labels.front().second - cap - field.where.bottom()) < 1.5f);
+    CHECK(std::abs(labels.back().second - cap - field.where.y) < 1.5f);
+    // The bar's entries: the colormap, lowest at the bottom.
+    const auto& bar = *pictures[1];
+    CHECK(bar.image.height == 256);
+    CHECK(bar.image.width == 1);
+    const glm::vec3 top = render::colormap("Reds").at(1.0);
+    CHECK(int(bar.image.pixel(0, 0)[0]) == int(std::lround(top.r * 255)));
 }
