@@ -165,10 +165,11 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
                     "Greens");
     app->add_option("--format", formats,
                     "What to write besides the PNG and its JSON, a list (e.g. png,pdf,mp4): png (nothing more), pdf "
-                    "and svg (the figure as vector graphics), mp4 (the animation) or frames (the animation as a PNG "
-                    "sequence); default: mp4, and the pdf or svg the description's figure.formats asks for")
+                    "and svg (the figure as vector graphics), mp4 (the animation), webm (the animation as VP9 in WebM) or "
+                    "frames (the animation as a PNG sequence); default: mp4, and the pdf or svg the description's "
+                    "figure.formats asks for")
         ->delimiter(',')
-        ->check(CLI::IsMember({"png", "pdf", "svg", "mp4", "frames"}));
+        ->check(CLI::IsMember({"png", "pdf", "svg", "mp4", "webm", "frames"}));
     app->add_flag("--transparent", transparent,
                   "Leave the figure's background out of the PNG, PDF and SVG: only the ink is opaque");
 }
@@ -206,6 +207,7 @@ OutputOptions output_options(const RenderCommand& c) {
     options.scale = c.scale;
     options.video = c.formats.empty() ? !c.no_video : named("mp4");
     options.frames = c.frames || named("frames");
+    options.webm = named("webm");
     options.formats_given = !c.formats.empty();
     options.pdf = named("pdf");
     options.svg = named("svg");
@@ -361,7 +363,7 @@ void render_all(const std::vector<CheckedFigure>& figures, const OutputOptions& 
     // while the first model runs.
     render::preload_gl();
     // And FFmpeg's module when a film will be encoded.
-    if (options.video && std::any_of(figures.begin(), figures.end(), [](const CheckedFigure& f) {
+    if (options.encodes() && std::any_of(figures.begin(), figures.end(), [](const CheckedFigure& f) {
             return f.description->animation.has_value();
         }))
         render::media::preload();

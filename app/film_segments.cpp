@@ -71,7 +71,7 @@ render::VideoOptions film_video_options(const Description& d, const OutputOption
 }
 
 bool films_in_segments(const Description& d, const scenes::Scene& scene, const OutputOptions& options) {
-    return options.work.cluster && options.work.cluster->size() > 1 && !scene.work() && d.animation && options.video &&
+    return options.work.cluster && options.work.cluster->size() > 1 && !scene.work() && d.animation && options.encodes() &&
            !options.frames && d.animation->segment_frames > 0 &&
            d.animation->frame_count() > d.animation->segment_frames;
 }

@@ -264,6 +264,8 @@ void details_html(const render::Folder& figures, const std::string& id, const st
         card << " (" << count_of(size[0]) << " x " << count_of(size[1]) << ")";
     card << "</a><a href=\"" << escape(id) << ".json\">metadata</a>";
     if (!movie.empty()) card << "<a href=\"" << escape(movie) << "\">MP4</a>";
+    const std::string webm = text_of(member(member(meta, "animation"), "webm"), "file", "");
+    if (webm == id + ".webm" && is_file_in(figures, webm)) card << "<a href=\"" << escape(webm) << "\">WebM</a>";
     // The vector files its JSON lists and the folder holds.
     for (const auto& [format, label] : {std::pair{"pdf", "PDF"}, std::pair{"svg", "SVG"}}) {
         const std::string file = text_of(member(member(meta, "vector"), format), "file", "");

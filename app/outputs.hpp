@@ -3,6 +3,8 @@
 //   <id>.png            the panels, with id, seed and parameters in tEXt chunks
 //   <id>.mp4            the animation, streamed frame by frame
 //   <id>.webp           its short looping preview (animated WebP), with the MP4
+//   <id>.webm           the film as VP9 in WebM, for the web (--format webm)
+//   <id>.pdf, <id>.svg  the figure as vector graphics (--format pdf, svg)
 //   <id>-frames/NNNNN.png  the same frames as a PNG sequence (--frames)
 //   <id>.json           metadata of all of them: parameters, seed, per-panel
 //                       step, statistics and state hash, frame list
@@ -33,6 +35,7 @@ struct OutputOptions {
     double scale = 1.0;                 // multiplies every size in pixels
     bool video = true;                  // write <id>.mp4
     bool frames = false;                // write <id>-frames/*.png
+    bool webm = false;                  // write <id>.webm (VP9), made from the MP4 (kept only with `video`)
     bool pdf = false, svg = false;      // write <id>.pdf, <id>.svg (--format)
     bool formats_given = false;         // --format was given: a description's figure.formats is not used
     bool transparent = false;           // no background in the PNG, PDF and SVG
@@ -43,7 +46,8 @@ struct OutputOptions {
     std::uint64_t max_disk = 4ull << 30;
     WorkOptions work;  // how work items run: threads, MPI, shards, merge
 
-    bool animates() const { return video || frames; }
+    bool animates() const { return video || webm || frames; }
+    bool encodes() const { return video || webm; }  // an MP4 is encoded, kept or not
     // The vector files figure `d` gets: --format's, or else those its description asks for.
     bool writes_pdf(const Description& d) const { return formats_given ? pdf : asks(d, "pdf"); }
     bool writes_svg(const Description& d) const { return formats_given ? svg : asks(d, "svg"); }

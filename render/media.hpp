@@ -21,7 +21,7 @@
 namespace render::media {
 
 // Bumped whenever Api or Encoder change: a module of another build is refused.
-constexpr int api_version = 3;
+constexpr int api_version = 4;
 
 using Packet = VideoPacket;
 
@@ -70,6 +70,11 @@ struct Api {
     PreviewInfo (*write_preview)(int fd, const std::filesystem::path& shown, int film_fd, int film_frames,
                                  int film_fps, const PreviewOptions& options);
     PreviewInfo (*probe_preview)(const std::filesystem::path& path);
+    // The film in the MP4 on `film_fd` (read from its start), `fps` frames
+    // a second, encoded again as VP9 in WebM to `fd`; `shown` is what errors
+    // name. Returns the WebM's size in bytes.
+    std::uint64_t (*write_webm)(int fd, const std::filesystem::path& shown, int film_fd, int fps,
+                                const WebmOptions& options);
     Image (*decode_preview_frame)(const std::filesystem::path& path, int index);
     // A smaller copy of the preview at `path`, on `fd`: its frames (at most
     // options.max_frames of them, evenly spread) scaled to fit

@@ -1,5 +1,7 @@
 #include "render/video.hpp"
 
+#include <optional>
+
 #include <algorithm>
 #include <stdexcept>
 #include <utility>
@@ -157,6 +159,32 @@ PreviewInfo VideoWriter::finish(const Folder& folder, const std::string& name, c
     preview.commit();
     encoder_->finished = true;
     return info;
+}
+
+VideoWriter::Copies VideoWriter::finish(const Folder& folder, const std::string& preview_name,
+                                        const PreviewOptions& preview_options, const std::string& webm_name,
+                                        const WebmOptions& webm_options, bool keep_mp4) {
+    if (!encoder_ || encoder_->finished) throw std::logic_error("VideoWriter::finish called twice");
+    if (frames_ == 0) throw std::logic_error("cannot write " + path_.string() + ": no frames were added");
+    check_preview(preview_options);
+    if (webm_options.crf < 0 || webm_options.crf > 63 || webm_options.speed < 0 || webm_options.speed > 8)
+        throw std::invalid_argument("WebM options out of range: crf 0..63, speed 0..8");
+    encoder_->media->finish();
+    Copies copies;
+    AtomicFile preview(folder, preview_name);
+    copies.preview = media::api().write_preview(preview.fd(), folder / preview_name, encoder_->file.fd(), frames_,
+                                                fps_, preview_options);
+    std::optional<AtomicFile> webm;
+    if (!webm_name.empty()) {
+        webm.emplace(folder, webm_name);
+        copies.webm_bytes =
+            media::api().write_webm(webm->fd(), folder / webm_name, encoder_->file.fd(), fps_, webm_options);
+    }
+    if (keep_mp4) encoder_->file.commit();  // else the temporary MP4 goes with the writer
+    preview.commit();
+    if (webm) webm->commit();
+    encoder_->finished = true;
+    return copies;
 }
 
 PreviewInfo probe_preview(const std::filesystem::path& path) {

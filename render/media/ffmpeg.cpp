@@ -178,6 +178,7 @@ const AVCodec* find_encoder(const std::string& name) {
     }
     if (name == "libx264") return avcodec_find_encoder_by_name("libx264");
     if (name == "mpeg4") return avcodec_find_encoder(AV_CODEC_ID_MPEG4);
+    if (name == "libvpx-vp9") return avcodec_find_encoder_by_name("libvpx-vp9");
     throw std::invalid_argument("video codec \"" + name + "\" is not allowed: use auto, libx264 or mpeg4");
 }
 
@@ -209,6 +210,13 @@ CodecPtr open_codec(const AVCodec* codec, const std::filesystem::path& shown, in
         // Pinned like the threads: it shapes the bytes.
         av_dict_set(&codec_options, "preset", options.preset.c_str(), 0);
         if (!options.tune.empty()) av_dict_set(&codec_options, "tune", options.tune.c_str(), 0);
+    } else if (std::string(codec->name) == "libvpx-vp9") {
+        // Constant quality: crf with no bitrate target.
+        c.bit_rate = 0;
+        av_dict_set(&codec_options, "crf", std::to_string(options.crf).c_str(), 0);
+        av_dict_set(&codec_options, "deadline", options.speed >= 6 ? "realtime" : "good", 0);
+        av_dict_set(&codec_options, "cpu-used", std::to_string(options.speed).c_str(), 0);
+        av_dict_set(&codec_options, "row-mt", "0", 0);  // one thread, as the threads above: the same bytes
     } else {
         // Fixed quantiser: crf 18 -> qscale 3, about as transparent as x264 at crf 18.
         const int qscale = std::clamp((options.crf + 3) / 6, 1, 31);
@@ -386,7 +394,8 @@ private:
     void open(int fd, const AVCodec* codec) {
         // The file is ours (custom I/O), so the muxer is named, not guessed.
         AVFormatContext* format = nullptr;
-        check(avformat_alloc_output_context2(&format, nullptr, "mp4", nullptr), "creating the muxer");
+        check(avformat_alloc_output_context2(&format, nullptr, options_.container.c_str(), nullptr),
+              "creating the muxer");
         format_.reset(format);
         format->flags |= AVFMT_FLAG_CUSTOM_IO;
         format->io_open = reopen_output;
@@ -407,7 +416,8 @@ private:
         if (!format->pb) fail_write("opening the file", AVERROR(ENOMEM));
         AVDictionary* muxer_options = nullptr;
         // No creation_time is set, so the header carries none: same frames, same bytes.
-        av_dict_set(&muxer_options, "movflags", "+faststart", 0);  // index first: playable while downloading
+        if (options_.container == "mp4")
+            av_dict_set(&muxer_options, "movflags", "+faststart", 0);  // index first: playable while downloading
         const int header = avformat_write_header(format, &muxer_options);
         av_dict_free(&muxer_options);
         check(header, "writing the header");
@@ -660,6 +670,28 @@ PreviewInfo write_preview(int fd, const std::filesystem::path& shown, int film_f
     return write_webp(fd, shown, frames, seconds, options);
 }
 
+std::uint64_t write_webm(int fd, const std::filesystem::path& shown, int film_fd, int fps, const WebmOptions& webm) {
+    Decoder decoder(film_fd, shown, 1);
+    std::unique_ptr<FfmpegEncoder> encoder;
+    VideoOptions options;
+    options.fps = fps;
+    options.threads = 1;
+    options.codec = "libvpx-vp9";
+    options.container = "webm";
+    options.crf = webm.crf;
+    options.speed = webm.speed;
+    while (const AVFrame* frame = decoder.next()) {
+        const Image rgba = to_rgba(decoder, frame);
+        if (!encoder) encoder = std::make_unique<FfmpegEncoder>(fd, shown, rgba.width, rgba.height, options);
+        encoder->add(rgba);
+    }
+    if (!encoder) throw std::runtime_error("cannot write " + shown.string() + ": its film has no frames");
+    encoder->finish();
+    struct stat st {};
+    if (::fstat(fd, &st) != 0) throw std::runtime_error("cannot write " + shown.string() + ": " + std::strerror(errno));
+    return static_cast<std::uint64_t>(st.st_size);
+}
+
 PreviewInfo write_preview_thumbnail(int fd, const std::filesystem::path& shown, const std::filesystem::path& path,
                                     const PreviewOptions& options) {
     int duration_ms = 0;
@@ -676,9 +708,9 @@ PreviewInfo write_preview_thumbnail(int fd, const std::filesystem::path& shown, 
     return write_webp(fd, shown, frames, duration_ms / 1000.0, options);
 }
 
-const Api functions{api_version,   open_encoder,      open_segment, probe_video,
-                    decode_frame,  scale,             write_preview, probe_webp,
-                    decode_webp_frame, write_preview_thumbnail};
+const Api functions{api_version,  open_encoder,      open_segment, probe_video,
+                    decode_frame, scale,             write_preview, probe_webp,
+                    write_webm,   decode_webp_frame, write_preview_thumbnail};
 
 }  // namespace
 }  // namespace render::media

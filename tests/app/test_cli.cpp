@@ -365,6 +365,38 @@ TEST_CASE("a film comes with a looping WebP preview that its JSON describes, the
     CHECK(testkit::slurp(again / "tc7-1.webp") == testkit::slurp(out / "tc7-1.webp"));
 }
 
+TEST_CASE("render --format webm writes VP9 in WebM that decodes to every frame, the same bytes every run",
+          "[cli][webm]") {
+    std::string first;
+    for (int run = 0; run < 2; ++run) {
+        const fs::path out = fresh_dir("webm-" + std::to_string(run));
+        const Run r = figgen("render tc7-1 --scale 0.3 --format mp4,webm --out " + out.string());
+        INFO(r.output);
+        REQUIRE(r.status == 0);
+        std::ifstream in(out / "tc7-1.json");
+        const nlohmann::json film = nlohmann::json::parse(in)["animation"];
+        const render::VideoInfo mp4 = render::probe_video(out / "tc7-1.mp4");
+        const render::VideoInfo webm = render::probe_video(out / "tc7-1.webm");
+        CHECK(webm.codec == "vp9");
+        CHECK(webm.frames == film["frames"].get<int>());
+        CHECK(webm.frames == mp4.frames);
+        CHECK(webm.width == mp4.width);
+        CHECK(webm.height == mp4.height);
+        CHECK(std::abs(webm.fps - mp4.fps) < 1e-6);
+        CHECK(film["webm"]["file"] == "tc7-1.webm");
+        CHECK(film["webm"]["bytes"].get<std::uintmax_t>() == fs::file_size(out / "tc7-1.webm"));
+        // Its last frame is the film's last frame, but for the two lossy codecs.
+        const render::Image a = render::decode_frame(out / "tc7-1.mp4", mp4.frames - 1);
+        const render::Image b = render::decode_frame(out / "tc7-1.webm", webm.frames - 1);
+        double difference = 0;
+        for (std::size_t i = 0; i < a.rgba.size(); ++i) difference += std::abs(int(a.rgba[i]) - int(b.rgba[i]));
+        CHECK(difference / double(a.rgba.size()) < 3.0);
+        const std::string bytes = testkit::slurp(out / "tc7-1.webm");
+        if (run == 0) first = bytes;
+        else CHECK(bytes == first);
+    }
+}
+
 TEST_CASE("a run that goes unstable stops at the step it went bad and writes nothing", "[cli]") {
     const fs::path out = fresh_dir("unstable");
     // Strong feed, fast diffusion of both, a saturated start: A leaves [0, 1] at once.
@@ -475,6 +507,8 @@ TEST_CASE("render --format, a list of png, pdf, svg, mp4 and frames, chooses wha
         {"png,svg", {"tc7-1.json", "tc7-1.png", "tc7-1.svg"}},
         {"png,pdf,mp4", {"tc7-1.json", "tc7-1.mp4", "tc7-1.pdf", "tc7-1.png", "tc7-1.webp"}},
         {"svg,frames,pdf", {"tc7-1-frames", "tc7-1.json", "tc7-1.pdf", "tc7-1.png", "tc7-1.svg"}},
+        {"webm", {"tc7-1.json", "tc7-1.png", "tc7-1.webm", "tc7-1.webp"}},  // the MP4 it is made from is dropped
+        {"mp4,webm", {"tc7-1.json", "tc7-1.mp4", "tc7-1.png", "tc7-1.webm", "tc7-1.webp"}},
     };
     for (const auto& [format, expected] : cases) {
         INFO(format);
