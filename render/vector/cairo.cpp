@@ -317,6 +317,9 @@ void write(int fd, const std::filesystem::path& shown, Format format, const Page
     }
     cairo_surface_finish(surface);
     check(cairo_surface_status(surface), sink, shown);
+    // cairo 1.16's PDF surface does not always carry a failed write into its
+    // status: what the sink saw decides too.
+    if (sink.too_large || sink.error != 0) check(CAIRO_STATUS_WRITE_ERROR, sink, shown);
     if (format == Format::svg) {
         std::vector<bool> nearest;
         for (const Item& item : page.items)

@@ -125,13 +125,15 @@ TEST_CASE("a full disk gives a clear error and leaves no partial file", "[cli][s
     // The child may write files of at most `limit` bytes (RLIMIT_FSIZE, with
     // SIGXFSZ ignored): a write past it fails as on a full disk, with EFBIG
     // instead of ENOSPC. The film (57 KiB) is written first; without it, the
-    // PNG (7 KiB), then the JSON (3 KiB).
+    // vector files asked for, then the PNG (7 KiB), then the JSON (3 KiB).
     struct Case {
         std::vector<std::string> options;
         rlim_t limit;
         std::string file;
     };
-    for (const Case& c : {Case{{}, 4096, "tc7-1.mp4"}, Case{{"--no-video"}, 4096, "tc7-1.png"}}) {
+    // A PDF (7 KiB) and an SVG (15 KiB) are written before the PNG.
+    for (const Case& c : {Case{{}, 4096, "tc7-1.mp4"}, Case{{"--no-video"}, 4096, "tc7-1.png"},
+                          Case{{"--format", "pdf"}, 4096, "tc7-1.pdf"}, Case{{"--format", "svg"}, 4096, "tc7-1.svg"}}) {
         INFO(c.file);
         const fs::path out = fresh_dir("full-disk");
         REQUIRE(testkit::figgen("render tc7-1 --out " + out.string()).status == 0);
