@@ -12,15 +12,7 @@
 #include "render/canvas.hpp"
 
 namespace render {
-
-class Shapes;
-class Text;
-struct FieldStyle;
-struct HexView;
-struct Tube;
-struct Camera;
-struct Light;
-
+// Shapes, Text, FieldStyle, HexView, Tube, Camera and Light are declared by render/surface.hpp.
 namespace gl_backend {
 
 void shapes(const Canvas& canvas, const Shapes& shapes);

@@ -6,7 +6,10 @@
 // made it, `built`. Never a path from the environment or a description.
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
+
+#include "render/background.hpp"
 
 namespace render {
 
@@ -32,5 +35,31 @@ struct OpenedModule {
 };
 // Opens it (dlopen, RTLD_LOCAL) and checks its version; a module of another build is closed again.
 OpenedModule open_module(const ModuleSpec& spec);
+
+// A module's Api, opened on a thread of its own by preload() (while the
+// first model runs) or at the first api(), which waits for it. Keep one in
+// a function-local static.
+template <typename Api>
+class LoadedModule {
+public:
+    explicit LoadedModule(OpenedModule (*open)()) : loader_(open) {}
+    // Throws std::runtime_error with the one line saying why it could not be opened.
+    const Api& api() {
+        const OpenedModule& opened = loader_.get();
+        if (!opened.api) throw std::runtime_error(opened.error);
+        return *static_cast<const Api*>(opened.api);
+    }
+    void preload() { loader_.start(); }
+
+private:
+    Background<OpenedModule> loader_;
+};
+
+// The module `spec` names, one LoadedModule for the process.
+template <typename Api, const ModuleSpec& spec>
+LoadedModule<Api>& module_of() {
+    static LoadedModule<Api> module([] { return open_module(spec); });
+    return module;
+}
 
 }  // namespace render
