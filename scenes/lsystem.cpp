@@ -32,6 +32,8 @@ const std::vector<Key> plant_keys = {
     {"width", "pen width (rewrite reading)"},
     {"width_per_level", "pen width per level (the article's pensize(2n))"},
     {"reading", "\"article\" (its recursive turtle) or \"rewrite\" (rewrite depth times, then draw)"},
+    {"draw", "the symbols that draw a step, e.g. \"FG\" (default \"F\")"},
+    {"move", "the symbols that move a step without drawing (default \"f\")"},
 };
 
 // [params]: every plant key but the title, shared by all plants, and the plants.
@@ -119,11 +121,15 @@ sim::Turtle2Params read_turtle(PlantKeys& keys, bool plus_left) {
     turtle.length_scale = keys.number("length_scale", 1);
     turtle.width = keys.number("width", 2);
     turtle.width_per_level = keys.number("width_per_level", 2);
+    turtle.draw = keys.text("draw", "F");
+    turtle.move = keys.text("move", "f");
     keys.check([&] { turtle.validate(); }, {{"angle_degrees", "angle"},
                                             {"length", "length"},
                                             {"length_scale", "length_scale"},
                                             {"width", "width"},
-                                            {"width_per_level", "width_per_level"}});
+                                            {"width_per_level", "width_per_level"},
+                                            {"draw", "draw"},
+                                            {"move", "move"}});
     turtle.angle_degrees *= plus_left ? -1 : 1;
     return turtle;
 }
@@ -146,6 +152,23 @@ bool read_choice(PlantKeys& keys, const std::string& key, const std::string& fal
     return value == yes;
 }
 
+// A plant whose string holds none of its drawing symbols would be an empty
+// panel: refused, naming the symbols its string has and the key that draws.
+[[noreturn]] void refuse_drawing_nothing(PlantKeys& keys, const Plant& p) {
+    std::string symbols;
+    const auto counts = p.article ? p.system.counts_recursive(p.depth) : p.system.counts(p.depth);
+    for (const auto& [symbol, count] : counts)
+        if (count > 0 && std::string_view(sim::turtle_commands).find(symbol) == std::string_view::npos)
+            symbols += symbol;
+    const std::string shown = "\"" + p.turtle.draw + "\"";
+    keys.from("draw").refuse(
+        "draw", shown,
+        symbols.empty() ? "a system that draws: its string at depth " + std::to_string(p.depth) +
+                              " has no symbol but the turtle's commands; give it steps, e.g. axiom = \"F\""
+                        : "symbols its string has, which draw a step: it has " + symbols + " (e.g. draw = \"" +
+                              symbols + "\"; move = \"...\" for those that move without drawing)");
+}
+
 Plant read_plant(const toml::table& own, Settings& shared, std::size_t index) {
     PlantKeys keys(own, shared, index);
     Plant p;
@@ -159,7 +182,8 @@ Plant read_plant(const toml::table& own, Settings& shared, std::size_t index) {
     p.turtle = read_turtle(keys, read_choice(keys, "plus", "right", "left", "right"));
     p.turtle.segment_budget = plant_segment_budget;
     p.article = read_choice(keys, "reading", "rewrite", "article", "rewrite");
-    p.segments = sim::segment_count(p.system, p.depth, p.article);
+    p.segments = sim::segment_count(p.system, p.depth, p.article, p.turtle.draw);
+    if (p.segments == 0) refuse_drawing_nothing(keys, p);
     // The turtle's own refusal (sim/turtle.cpp), here in phase 1, naming the key.
     check_model(keys.from("depth"), [&] { sim::require_segment_budget(p.depth, p.segments, p.turtle.segment_budget); });
     p.used = keys.own().used();

@@ -1,5 +1,7 @@
 #include "sim/turtle.hpp"
 
+#include <array>
+
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
@@ -68,10 +70,15 @@ void require_segment_budget(int depth, std::uint64_t segments, std::uint64_t bud
                              " segments, more than the budget of " + with_commas(budget) + ")");
 }
 
-std::uint64_t segment_count(const LSystem& system, int depth, bool recursive_like_article) {
+std::uint64_t segment_count(const LSystem& system, int depth, bool recursive_like_article, std::string_view draw) {
     const auto counts = recursive_like_article ? system.counts_recursive(depth) : system.counts(depth);
-    const auto draws = counts.find('F');
-    return draws == counts.end() ? 0 : draws->second;
+    std::uint64_t total = 0;
+    for (const char symbol : draw)
+        if (const auto found = counts.find(symbol); found != counts.end())
+            total = found->second > std::numeric_limits<std::uint64_t>::max() - total
+                        ? std::numeric_limits<std::uint64_t>::max()
+                        : total + found->second;
+    return total;
 }
 
 void Turtle2Params::validate() const {
@@ -84,6 +91,17 @@ void Turtle2Params::validate() const {
     require_number("start.x", start.x, -huge, huge);
     require_number("start.y", start.y, -huge, huge);
     require_number("heading_degrees", heading_degrees, -huge, huge);
+    const std::string_view commands = turtle_commands;
+    for (const auto& [name, symbols] : {std::pair{"draw", &draw}, std::pair{"move", &move}})
+        for (std::size_t i = 0; i < symbols->size(); ++i) {
+            const char c = (*symbols)[i];
+            const bool printable = c > ' ' && c < 127;
+            if (!printable || commands.find(c) != std::string_view::npos || symbols->find(c) != i ||
+                (symbols == &move && draw.find(c) != std::string::npos))
+                throw ParameterError(name, "\"" + *symbols + "\"",
+                                     "letters and other printable symbols, each once, none of the turtle's "
+                                     "commands " + std::string(commands) + " and none both drawing and moving");
+        }
 }
 
 void Turtle3Params::validate() const {
@@ -97,8 +115,12 @@ std::vector<Segment2> interpret_2d(const LSystem& system, int depth, const Turtl
                                    bool recursive_like_article) {
     params.validate();
     system.validate();
-    const std::uint64_t segments = segment_count(system, depth, recursive_like_article);
+    const std::uint64_t segments = segment_count(system, depth, recursive_like_article, params.draw);
     require_segment_budget(depth, segments, params.segment_budget);
+    // What each symbol does besides the turtle's commands: 1 draws, 2 moves.
+    std::array<std::uint8_t, 256> role{};
+    for (const char c : params.draw) role[static_cast<unsigned char>(c)] = 1;
+    for (const char c : params.move) role[static_cast<unsigned char>(c)] = 2;
 
     struct Pose {
         glm::dvec2 at;
@@ -113,21 +135,20 @@ std::vector<Segment2> interpret_2d(const LSystem& system, int depth, const Turtl
     double direction_of = std::numeric_limits<double>::quiet_NaN();  // heading `direction` was made for
     glm::dvec2 direction{0, 0};
     auto visit = [&](char c, int level) {
-        switch (c) {
-            case 'F':
-            case 'f': {
-                if (!(pose.heading == direction_of)) {  // cos and sin only when the heading changed
-                    direction = {std::cos(pose.heading * degrees), std::sin(pose.heading * degrees)};
-                    direction_of = pose.heading;
-                }
-                const glm::dvec2 to = pose.at + steps[static_cast<std::size_t>(level)] * direction;
-                if (c == 'F') {
-                    const double w = recursive_like_article ? params.width_per_level * level : pose.width;
-                    out.push_back({pose.at, to, w, level});
-                }
-                pose.at = to;
-                break;
+        if (const std::uint8_t r = role[static_cast<unsigned char>(c)]) {
+            if (!(pose.heading == direction_of)) {  // cos and sin only when the heading changed
+                direction = {std::cos(pose.heading * degrees), std::sin(pose.heading * degrees)};
+                direction_of = pose.heading;
             }
+            const glm::dvec2 to = pose.at + steps[static_cast<std::size_t>(level)] * direction;
+            if (r == 1) {
+                const double w = recursive_like_article ? params.width_per_level * level : pose.width;
+                out.push_back({pose.at, to, w, level});
+            }
+            pose.at = to;
+            return;
+        }
+        switch (c) {
             case '+':
                 pose.heading -= params.angle_degrees;
                 break;  // rt(t)

@@ -5,6 +5,9 @@
 // (its rt(t)), '-' left (lt(t)), '|' turns around, 'F' draws forward, 'f'
 // moves without drawing, '[' pushes position, heading and width, ']' pops
 // them, '!' multiplies the width by width_decay; other symbols do nothing.
+// Which symbols draw and which move is the description's (Turtle2Params's
+// draw and move): the Sierpinski gasket draws with F and G, the arrowhead
+// with A and B.
 // Headings are degrees anticlockwise from +x, so 90 is up, as turtle's seth.
 //
 // 3-D, The Algorithmic Beauty of Plants (ABOP) section 1.5: the frame is
@@ -19,6 +22,8 @@
 // an hour or runs out of memory by mistake.
 
 #include <cstdint>
+#include <string>
+#include <string_view>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <vector>
@@ -43,9 +48,15 @@ struct Turtle2Params {
     glm::dvec2 start{0, 0};                    // where the turtle starts; finite
     double heading_degrees = 90;               // starting heading, anticlockwise from +x: 90 is up; finite
     std::uint64_t segment_budget = 5'000'000;  // most segments a call may make
+    std::string draw = "F";                    // symbols that draw a step forward
+    std::string move = "f";                    // symbols that move a step without drawing
 
     void validate() const;  // throws std::invalid_argument naming the bad parameter
 };
+
+// What draw and move may hold: printable symbols other than the turtle's
+// commands, each at most once, none in both.
+inline constexpr const char* turtle_commands = "+-|![]&^\\/";
 
 // recursive_like_article: read the string of expand_recursive() (the
 // article's f(n)/L(s, n) recursion, width from the level) instead of the
@@ -55,9 +66,11 @@ struct Turtle2Params {
 std::vector<Segment2> interpret_2d(const LSystem& system, int depth, const Turtle2Params& params,
                                    bool recursive_like_article);
 
-// The segments a turtle would draw (its 'F's), counted without expanding;
-// saturates at 2^64 - 1. What the budget and the memory estimates use.
-std::uint64_t segment_count(const LSystem& system, int depth, bool recursive_like_article);
+// The segments a turtle would draw (its `draw` symbols, 'F' by default),
+// counted without expanding; saturates at 2^64 - 1. What the budget and the
+// memory estimates use.
+std::uint64_t segment_count(const LSystem& system, int depth, bool recursive_like_article,
+                            std::string_view draw = "F");
 
 // Throws ParameterError naming `depth` when `segments` (segment_count's)
 // exceed `budget`: what the interpreters check before they start.

@@ -195,6 +195,10 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "pl-lsys-3d --set style.sides=0", "--set style.sides=0: style.sides = 0 is not allowed: an integer from 3 to 256"},
         {render + "tc7-phase --set p_c=1e308", "--set p_c=1e308: p_c = 1e+308 is not allowed: "},
         {render + "pl-lsys-gallery --set 'plants=[{axiom=\"F\", angle=1e308}]'", "plants[0].angle = 1e+308 is not allowed: a number from -1e+300 to 1e+300"},
+        // The arrowhead, drawing with A and B, not with the default F.
+        {render + "pl-lsys-lycopodium --set axiom=A --set 'rules=[\"A -> B-A-B\", \"B -> A+B+A\"]' --set depth=4", "draw = \"F\" is not allowed: symbols its string has, which draw a step: it has AB (e.g. draw = \"AB\""},
+        {render + "pl-lsys-lycopodium --set draw=F+", "--set draw=F+: draw = \"F+\" is not allowed: letters and other printable symbols, each once, none of the turtle's commands"},
+        {render + "pl-lsys-lycopodium --set move=F", "move = \"F\" is not allowed: letters and other printable symbols, each once,"},
         {render + "tc7-7 --set style.line_width=-1", "--set style.line_width=-1: style.line_width = -1 is not allowed: a number from 0.1 to 50"},
         {render + "tc7-9 --set style.font_size=1000", "style.font_size = 1000 is not allowed: a number from 4 to 100"},
         {render + "tc7-2 --set style.a_alpha=2", "style.a_alpha = 2 is not allowed: a number from 0 to 1"},
@@ -575,6 +579,25 @@ TEST_CASE("a description's figure.formats asks for its vector files, and --forma
     REQUIRE(figgen("render " + (files / "mine.toml").string() + " --format png --out " + decided.string()).status ==
             0);
     CHECK(files_in(decided) == std::vector<std::string>{"mine.json", "mine.png"});
+}
+
+TEST_CASE("a new user's Sierpinski gasket and arrowhead draw with their own symbols", "[cli][lsystem]") {
+    const fs::path files = fresh_dir("gasket");
+    std::ofstream(files / "sierpinski.toml")
+        << "id = \"sierpinski\"\nscene = \"lsystem\"\n[params]\nplus = \"left\"\nlength = 10\n"
+           "[[params.plants]]\ntitle = \"gasket\"\naxiom = \"F-G-G\"\nrules = [\"F -> F-G+F+G-F\", \"G -> GG\"]\n"
+           "angle = 120\ndepth = 5\ndraw = \"FG\"\n"
+           "[[params.plants]]\ntitle = \"arrowhead\"\naxiom = \"A\"\nrules = [\"A -> B-A-B\", \"B -> A+B+A\"]\n"
+           "angle = 60\ndepth = 6\ndraw = \"AB\"\n[figure]\nsize = [800, 400]\n";
+    const fs::path out = fresh_dir("gasket-out");
+    const Run run = figgen("render " + (files / "sierpinski.toml").string() + " --out " + out.string());
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    std::ifstream in(out / "sierpinski.json");
+    const nlohmann::json panels = nlohmann::json::parse(in)["panels"];
+    CHECK(panels[0]["segments"] == 729);  // 3^(5+1)
+    CHECK(panels[1]["segments"] == 729);  // 3^6
+    CHECK(panels[0]["plant"]["draw"] == "FG");
 }
 
 TEST_CASE("render --transparent leaves the background out: alpha 0 at the corners, opaque ink", "[cli][options]") {

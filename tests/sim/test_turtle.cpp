@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sim/lsystem.hpp"
+#include "sim/check.hpp"
 #include "sim/random.hpp"
 #include "sim/turtle.hpp"
 
@@ -180,4 +181,58 @@ TEST_CASE("Apple trees draw the expected segment counts", "[turtle]") {
     Turtle2Params p;
     p.angle_degrees = 22.5;
     CHECK(sim::interpret_2d(abop, 5, p, false).size() == 3 * (1024 - 32) / 2);
+}
+
+TEST_CASE("the Sierpinski gasket and arrowhead draw with their own symbols: 3^(n+1) and 3^n segments", "[turtle]") {
+    // ABOP Fig 1.10: F-G-G, F -> F-G+F+G-F, G -> GG at 120 degrees, drawing with F and G.
+    // F's count triples and G's is 2 F's + 2 G's, so F_n = 3^n, G_n = 2 * 3^n.
+    const LSystem gasket = LSystem::parse("F-G-G", {"F -> F-G+F+G-F", "G -> GG"});
+    // The arrowhead: A -> B-A-B, B -> A+B+A at 60 degrees, each symbol three: 3^n.
+    const LSystem arrowhead = LSystem::parse("A", {"A -> B-A-B", "B -> A+B+A"});
+    // Made whole rather than assigned symbol by symbol: GCC 12 misreads short string assignments here.
+    const auto turtle = [](double angle, std::string symbols) {
+        Turtle2Params p;
+        p.angle_degrees = angle;
+        p.length = 1;
+        p.draw = std::move(symbols);
+        return p;
+    };
+    const Turtle2Params g = turtle(120, "FG"), a = turtle(60, "AB");
+    for (int n = 0; n <= 6; ++n) {
+        INFO("depth " << n);
+        const double side = std::pow(2.0, n);
+        const auto triangle = sim::interpret_2d(gasket, n, g, false);
+        CHECK(sim::segment_count(gasket, n, false, g.draw) == std::uint64_t(std::pow(3, n + 1)));
+        REQUIRE(triangle.size() == std::size_t(std::pow(3, n + 1)));
+        const auto curve = sim::interpret_2d(arrowhead, n, a, false);
+        REQUIRE(curve.size() == std::size_t(std::pow(3, n)));
+        // Every step one unit long; the gasket fills an equilateral triangle of side 2^n.
+        glm::dvec2 lo{1e9, 1e9}, hi{-1e9, -1e9};
+        for (const auto& s : triangle) {
+            CHECK(std::abs(glm::length(s.b - s.a) - 1) < 1e-9);
+            lo = glm::min(lo, glm::min(s.a, s.b)), hi = glm::max(hi, glm::max(s.a, s.b));
+        }
+        CHECK(std::abs((hi.x - lo.x) - side * std::sqrt(3.0) / 2) < 1e-6);  // heading up: the triangle lies on its side
+        CHECK(std::abs((hi.y - lo.y) - side) < 1e-6);
+        // The arrowhead's ends are 2^n apart, as its triangle's base.
+        CHECK(std::abs(glm::length(curve.back().b - curve.front().a) - side) < 1e-6);
+    }
+    // Drawing with F alone (the default), the gasket leaves out its G sides: 3^n.
+    CHECK(sim::interpret_2d(gasket, 3, turtle(120, "F"), false).size() == 27);
+}
+
+TEST_CASE("draw and move take symbols, not the turtle's commands, none in both", "[turtle]") {
+    const auto with = [](std::string draw_symbols, std::string move_symbols) {
+        Turtle2Params p;
+        p.draw = std::move(draw_symbols);
+        p.move = std::move(move_symbols);
+        return p;
+    };
+    for (const auto& [d, m] : std::vector<std::pair<std::string, std::string>>{
+             {"F+", "f"}, {"FG", "Gf"}, {"FF", "f"}, {"F", "["}, {"F ", "f"}}) {
+        INFO(d << " / " << m);
+        CHECK_THROWS_AS(with(d, m).validate(), sim::ParameterError);
+    }
+    CHECK_NOTHROW(with("AB", "fg").validate());
+    CHECK(draw("FfF", with("AB", "")).empty());  // F neither draws nor moves now
 }
