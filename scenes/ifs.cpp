@@ -21,7 +21,9 @@ const std::vector<Key> param_keys = {
     {"variants", "list of {title, maps = [[a, b, c, d, e, f, p], ...]}, one panel each"},
     {"points", "points per panel"},
     {"discard", "first points dropped"},
-    {"bounds", "[xmin, xmax, ymin, ymax] drawn; absent: the points' own bounds"},
+    {"bounds", "[xmin, xmax, ymin, ymax] drawn in every panel; absent: the points' own bounds"},
+    {"shared_bounds", "true: every panel shows the box of all panels' points, at one scale; false (default): each "
+                      "panel its own points' box"},
 };
 
 const std::vector<Key> variant_keys = {
@@ -155,8 +157,18 @@ sim::Grid<double> binned(const std::vector<glm::dvec2>& cloud, int cols, int row
 struct Clouds {
     std::vector<std::vector<glm::dvec2>> points;
     nlohmann::json meta = nlohmann::json::array();
-    glm::dvec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
+    glm::dvec2 lo{1e300, 1e300}, hi{-1e300, -1e300};  // of them all
+    std::vector<std::pair<glm::dvec2, glm::dvec2>> own;  // each panel's
 };
+
+// `box` widened about its centre, in x or in y, to width / height = aspect.
+std::pair<glm::dvec2, glm::dvec2> with_aspect(std::pair<glm::dvec2, glm::dvec2> box, double aspect) {
+    auto& [lo, hi] = box;
+    const glm::dvec2 size = glm::max(hi - lo, glm::dvec2(1e-300)), centre = (lo + hi) / 2.0;
+    const glm::dvec2 fitted = size.x / size.y < aspect ? glm::dvec2(aspect * size.y, size.y)
+                                                        : glm::dvec2(size.x, size.x / aspect);
+    return {centre - fitted / 2.0, centre + fitted / 2.0};
+}
 
 class IfsScene : public SceneBase {
 public:
@@ -164,6 +176,7 @@ public:
         : SceneBase(d, options, param_keys, style_keys()),
           game_(read_game(params_)),
           bounds_(read_bounds(params_)),
+          shared_bounds_(params_.flag("shared_bounds", false)),
           points_mode_(read_points_mode(style_)),
           spec_(read_field_spec(style_, {render::colormap("Greens"), 0.0, {}, 1.0f, render::Sampling::nearest})),
           variants_(read_variants(params_)) {}
@@ -181,12 +194,22 @@ public:
         Progress& progress = out.progress();
         progress.start(d_.id, static_cast<long long>(variants_.size()));
         Clouds clouds = play(progress);
-        glm::dvec2 lo = clouds.lo, hi = clouds.hi;
+        // The box each panel shows: [params] bounds, else all the points' box
+        // when shared, else each panel's own points' box, widened to the
+        // panels' common aspect (the geometric mean of theirs) so that each
+        // cloud keeps its shape and fills its panel one way.
+        std::vector<std::pair<glm::dvec2, glm::dvec2>> boxes(clouds.points.size(), {clouds.lo, clouds.hi});
         if (!bounds_.empty()) {
-            lo = {bounds_[0], bounds_[2]};
-            hi = {bounds_[1], bounds_[3]};
+            boxes.assign(clouds.points.size(), {{bounds_[0], bounds_[2]}, {bounds_[1], bounds_[3]}});
+        } else if (!shared_bounds_ && boxes.size() > 1) {  // one panel: its own box is all the points
+            double log_aspect = 0;
+            for (const auto& [lo, hi] : clouds.own) {
+                const glm::dvec2 size = glm::max(hi - lo, glm::dvec2(1e-300));
+                log_aspect += std::log(size.x / size.y) / double(clouds.own.size());
+            }
+            for (std::size_t i = 0; i < boxes.size(); ++i) boxes[i] = with_aspect(clouds.own[i], std::exp(log_aspect));
         }
-        const Page page = draw(clouds, lo, hi);
+        const Page page = draw(clouds, boxes);
         const FigureDrawing figure = field_figure(page.panels, scaled_even(d_.width, options_.scale),
                                                   scaled_even(d_.height, options_.scale), options_.scale);
         out.figure(figure, {{"params", params_.used()}, {"style", style_.used()}, {"panels", clouds.meta}});
@@ -208,6 +231,7 @@ private:
             }
             clouds.lo = glm::min(clouds.lo, own_lo);
             clouds.hi = glm::max(clouds.hi, own_hi);
+            clouds.own.push_back({own_lo, own_hi});
             nlohmann::json maps = nlohmann::json::array();
             for (const auto& m : v.ifs.maps) maps.push_back({m.a, m.b, m.c, m.d, m.e, m.f, m.p});
             clouds.meta.push_back({{"title", v.title},
@@ -227,17 +251,18 @@ private:
         std::vector<FieldSpec> specs;  // one per panel: a field layer points at its colormap
         std::vector<FieldPanel> panels;
     };
-    Page draw(Clouds& clouds, glm::dvec2 lo, glm::dvec2 hi) const {
+    Page draw(Clouds& clouds, const std::vector<std::pair<glm::dvec2, glm::dvec2>>& boxes) const {
         const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
         render::PanelRowStyle row;
         row.scale = float(options_.scale);
-        row.aspect = float((hi.x - lo.x) / (hi.y - lo.y));
+        row.aspect = float((boxes[0].second.x - boxes[0].first.x) / (boxes[0].second.y - boxes[0].first.y));
         const auto rects = render::panel_row(width, height, int(clouds.points.size()), true, row);
         Page page{std::vector<FieldSpec>(clouds.points.size(), spec_), {}};
         std::vector<FieldSpec>& specs = page.specs;
         std::vector<FieldPanel>& panels = page.panels;
         for (std::size_t i = 0; i < clouds.points.size(); ++i) {
             const int cols = std::max(1, int(rects[i].w)), rows = std::max(1, int(rects[i].h));
+            const auto& [lo, hi] = boxes[i];
             const sim::Grid<double> field = binned(clouds.points[i], cols, rows, lo, hi, points_mode_);
             if (points_mode_)
                 specs[i].colormap = render::listed_colormap("points", {{1, 1, 1}, {0.0f, 0.45f, 0.1f}});
@@ -249,6 +274,7 @@ private:
 
     const sim::ChaosGameParams game_;
     const std::vector<double> bounds_;  // [xmin, xmax, ymin, ymax]; empty: the points' own box
+    const bool shared_bounds_;          // without bounds_: one box for every panel
     const bool points_mode_;
     const FieldSpec spec_;
     const std::vector<Variant> variants_;

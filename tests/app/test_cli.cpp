@@ -600,6 +600,49 @@ TEST_CASE("a new user's Sierpinski gasket and arrowhead draw with their own symb
     CHECK(panels[0]["plant"]["draw"] == "FG");
 }
 
+TEST_CASE("IFS panels show their own points' bounds unless the description asks for shared ones", "[cli][ifs]") {
+    // A Sierpinski triangle, and the same triangle ten times larger and moved.
+    const fs::path files = fresh_dir("ifs-bounds");
+    std::ofstream(files / "triangles.toml")
+        << "id = \"triangles\"\nscene = \"ifs\"\n[params]\npoints = 20000\n"
+           "[[params.variants]]\ntitle = \"small\"\n"
+           "maps = [[0.5, 0, 0, 0.5, 0, 0, 0.34], [0.5, 0, 0, 0.5, 0.5, 0, 0.33], [0.5, 0, 0, 0.5, 0.25, 0.5, 0.33]]\n"
+           "[[params.variants]]\ntitle = \"large\"\n"
+           "maps = [[0.5, 0, 0, 0.5, 20, 0, 0.34], [0.5, 0, 0, 0.5, 25, 0, 0.33], [0.5, 0, 0, 0.5, 22.5, 5, 0.33]]\n";
+    for (const bool shared : {false, true}) {
+        INFO("shared_bounds = " << shared);
+        const fs::path out = fresh_dir(shared ? "ifs-shared" : "ifs-own");
+        const Run run = figgen("render " + (files / "triangles.toml").string() + " --format png --out " +
+                               out.string() + (shared ? " --set shared_bounds=true" : ""));
+        INFO(run.output);
+        REQUIRE(run.status == 0);
+        std::ifstream in(out / "triangles.json");
+        const nlohmann::json panels = nlohmann::json::parse(in)["panels"];
+        auto extent = [](const nlohmann::json& box, int axis) {
+            return box[2 * axis + 1].get<double>() - box[2 * axis].get<double>();
+        };
+        for (const auto& p : panels) {
+            const auto& own = p["points_bounds"];
+            const auto& drawn = p["drawn_bounds"];
+            CHECK(drawn[0].get<double>() <= own[0].get<double>());  // every point inside
+            CHECK(drawn[1].get<double>() >= own[1].get<double>());
+            CHECK(drawn[2].get<double>() <= own[2].get<double>());
+            CHECK(drawn[3].get<double>() >= own[3].get<double>());
+            // Own bounds: the cloud spans its box one way, widened only the other.
+            if (!shared)
+                CHECK(std::min(std::abs(extent(drawn, 0) - extent(own, 0)) / extent(drawn, 0),
+                               std::abs(extent(drawn, 1) - extent(own, 1)) / extent(drawn, 1)) < 1e-9);
+        }
+        if (shared) {
+            CHECK(panels[0]["drawn_bounds"] == panels[1]["drawn_bounds"]);
+            // The small triangle then takes less than a twentieth of its panel's width.
+            CHECK(extent(panels[0]["points_bounds"], 0) * 20 < extent(panels[0]["drawn_bounds"], 0));
+        } else {
+            CHECK(panels[0]["drawn_bounds"] != panels[1]["drawn_bounds"]);
+        }
+    }
+}
+
 TEST_CASE("render --transparent leaves the background out: alpha 0 at the corners, opaque ink", "[cli][options]") {
     const fs::path out = fresh_dir("transparent");
     const Run run = figgen("render tc7-7 --transparent --format png,svg --out " + out.string());
