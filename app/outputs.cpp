@@ -20,13 +20,14 @@
 
 namespace app {
 
+using scenes::scaled;
 using scenes::scaled_even;
 
 int figure_width(const Description& d, const OutputOptions& options) {
-    return scaled_even(d.width, options.scale);
+    return scaled(d.width, options.scale);
 }
 int figure_height(const Description& d, const OutputOptions& options) {
-    return scaled_even(d.height, options.scale);
+    return scaled(d.height, options.scale);
 }
 
 std::string format_bytes(double bytes) {
@@ -207,6 +208,11 @@ nlohmann::json FrameSink::finish() {
         {"fps", description_.animation->fps},
         {"size", {width_, height_}},
     };
+    // The film rounds its size up to even (H.264 in yuv420p needs it); the figure keeps its own.
+    const int asked_width = scaled(description_.animation->width, options_.scale),
+              asked_height = scaled(description_.animation->height, options_.scale);
+    if (asked_width != width_ || asked_height != height_)
+        meta["size_rounded"] = {{"from", {asked_width, asked_height}}, {"why", "H.264 in yuv420p needs even sizes"}};
     if (video_) {
         const render::WebmOptions webm;
         const auto copies = video_->finish(folder_, description_.id + ".webp", {},

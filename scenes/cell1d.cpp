@@ -100,7 +100,7 @@ public:
                                   {"state_sha256", render::sha256_hex(cells.data(), cells.size())}});
             progress.advance();
         }
-        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
         out.figure(field_figure(panels, width, height, options_.scale),
                    {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
         progress.finish();

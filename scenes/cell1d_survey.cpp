@@ -183,7 +183,7 @@ private:
 
     // The survey's plot above, the gallery below.
     FigureDrawing draw_figure(const render::Axes& plot, const Gallery& gallery) const {
-        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
         return {width, height, false, [this, &plot, &gallery](render::Surface& surface) {
                     const float w = float(surface.width()), h = float(surface.height());
                     surface.background({1, 1, 1, 1});

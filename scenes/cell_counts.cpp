@@ -85,7 +85,7 @@ public:
                                   {"state_sha256", state_hash(cells)}});
             progress.advance();
         }
-        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
         out.figure(plot_figure(panels, width, height, plot_),
                    {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
         progress.finish();

@@ -157,8 +157,8 @@ public:
         const auto field = deposit_field(deposit, int(top) + 2, band_size_);
         std::vector<FieldPanel> panels = {{d_.panel_title, {field_layer(field, spec_)}}};
         if (colour_bar_) panels[0].layers[0].colour_bar = band_bar();
-        run.write_figure(field_figure(panels, scaled_even(d_.width, options_.scale),
-                                      scaled_even(d_.height, options_.scale), options_.scale),
+        run.write_figure(field_figure(panels, scaled(d_.width, options_.scale),
+                                      scaled(d_.height, options_.scale), options_.scale),
                          metadata(deposit, top));
     }
 

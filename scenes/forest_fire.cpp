@@ -178,7 +178,7 @@ private:
     // The forest's panels above, the counts and the dimension plots below.
     FigureDrawing draw_figure(const ForestHistory& history, const render::Axes& counts,
                               const render::Axes& dimension) const {
-        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
         return {width, height, false, [this, &history, &counts, &dimension](render::Surface& surface) {
                     const float w = float(surface.width()), h = float(surface.height());
                     surface.background({1, 1, 1, 1});

@@ -264,7 +264,7 @@ private:
     // The tiles in a square plot frame, k along x and f up y, with the axes drawn over them.
     FigureDrawing draw_map(const std::vector<sim::GrayScottAtlasTile>& tiles,
                            const std::vector<TileSummary>& summaries) const {
-        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
         return {width, height, false,
                 [this, &tiles, &summaries](render::Surface& surface) { draw_map(surface, tiles, summaries); }};
     }

@@ -73,7 +73,7 @@ public:
         Progress& progress = out.progress();
         progress.start(d_.id, 1);
         const float s = static_cast<float>(options_.scale);
-        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
         Drawing draw(width, height, s);
         const std::vector<double> row_state = draw_row(draw);
         const std::vector<double> patch_state = draw_patch(draw);

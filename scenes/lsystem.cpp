@@ -270,7 +270,7 @@ public:
     void render(Output& out) const override {
         Progress& progress = out.progress();
         progress.start(d_.id, static_cast<long long>(plants_.size()));
-        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
         render::PanelRowStyle row;
         row.scale = float(options_.scale);
         const Drawings drawings = draw_turtles(progress);

@@ -123,8 +123,8 @@ public:
             {"p_c", p_c_},
             {"state_sha256", state_hash(plotted)},
         };
-        out.figure(plot_figure({phase_axes(sweep), walk_axes(walk)}, scaled_even(d_.width, options_.scale),
-                                 scaled_even(d_.height, options_.scale), plot_style_),
+        out.figure(plot_figure({phase_axes(sweep), walk_axes(walk)}, scaled(d_.width, options_.scale),
+                                 scaled(d_.height, options_.scale), plot_style_),
                    meta);
         progress.finish();
     }

@@ -85,8 +85,8 @@ public:
             {"r", fit.r},
             {"state_sha256", state_hash(plotted)},
         };
-        out.figure(plot_figure({axes(c)}, scaled_even(d_.width, options_.scale),
-                                 scaled_even(d_.height, options_.scale), plot_style_),
+        out.figure(plot_figure({axes(c)}, scaled(d_.width, options_.scale),
+                                 scaled(d_.height, options_.scale), plot_style_),
                    meta);
         progress.finish();
     }

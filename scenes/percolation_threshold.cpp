@@ -215,7 +215,7 @@ public:
         const sim::ThresholdExtrapolation fit = extrapolate(sizes);
         out.figure(
             plot_figure({curves_axes(sizes, ps), extrapolation_axes(sizes, crossings, fit)},
-                          scaled_even(d_.width, options_.scale), scaled_even(d_.height, options_.scale), plot_style_),
+                          scaled(d_.width, options_.scale), scaled(d_.height, options_.scale), plot_style_),
             metadata(sizes, ps, crossings, fit));
         progress.finish();
     }

@@ -104,6 +104,10 @@ void refuse_steps(const Description& d, const std::string& why, bool film_too) {
                            "none: the figure has no film; " + why);
 }
 
+int scaled(int pixels, double scale) {
+    return std::max(2, static_cast<int>(std::lround(pixels * scale)));
+}
+
 int scaled_even(int pixels, double scale) {
     const int scaled = static_cast<int>(std::lround(pixels * scale));
     return std::max(2, scaled + (scaled % 2));

@@ -102,7 +102,10 @@ std::string shown_steps(const std::vector<int>& steps);
 // that has no steps to show; `why` says what it shows instead.
 void refuse_steps(const Description& d, const std::string& why, bool film_too);
 
-// Pixel size at the given scale, rounded up to even (what H.264 in yuv420p needs).
+// A figure's pixel size at the given scale: rounded, at least 2.
+int scaled(int pixels, double scale);
+// A film's pixel size at the given scale, rounded up to even (what H.264 in
+// yuv420p needs); the film's JSON says when that changed it (animation.size_rounded).
 int scaled_even(int pixels, double scale);
 using render::format_fixed;  // numbers shown on a figure, "1.57"
 

@@ -132,7 +132,7 @@ public:
         });
 
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
-        const int width = scaled_even(d_.width, options_.scale), height = scaled_even(d_.height, options_.scale);
+        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
         const FigureDrawing figure{width, height, false, [&](render::Surface& surface) {
                                        surface.background({1, 1, 1, 1});
                                        draw_snowflakes(surface, {0, 0, float(width), float(height)}, panels, colours_,

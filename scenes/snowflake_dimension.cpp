@@ -76,7 +76,7 @@ public:
         const std::vector<double> ref_l = {1.0, double(steps_)};
         axes.series.push_back(line_series(ref_l, {filled, filled * steps_ * steps_}, "filled plane, D = 2",
                                           {0.6f, 0.6f, 0.6f, 1}, 1.0f, true));
-        out.figure(plot_figure({axes}, scaled_even(d_.width, options_.scale), scaled_even(d_.height, options_.scale),
+        out.figure(plot_figure({axes}, scaled(d_.width, options_.scale), scaled(d_.height, options_.scale),
                                  plot_style_),
                    {{"params", params_.used()}, {"style", style_.used()}, {"fits", fits}});
         progress.finish();

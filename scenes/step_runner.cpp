@@ -121,8 +121,8 @@ void StepRunner::finish_film() {
 
 void StepRunner::write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta) {
     if (film_only()) return finish_film();
-    write_figure(field_figure(panels, scaled_even(description_.width, options_.scale),
-                              scaled_even(description_.height, options_.scale), options_.scale),
+    write_figure(field_figure(panels, scaled(description_.width, options_.scale),
+                              scaled(description_.height, options_.scale), options_.scale),
                  std::move(meta));
 }
 

@@ -464,6 +464,31 @@ TEST_CASE("render --size sets the figure's pixels before --scale", "[cli][option
     CHECK(metadata(out / "tc7-1.json")["image"]["size"] == nlohmann::json({600, 400}));
 }
 
+TEST_CASE("a figure is the exact size asked for and only its film rounds to even as its JSON says", "[cli][options]") {
+    const fs::path out = fresh_dir("exact-size");
+    for (const char* id : {"tc7-7", "sf87-3", "pl-lsys-lycopodium"}) {
+        INFO(id);
+        REQUIRE(figgen(std::string("render ") + id + " --format png,pdf --size 333x111 --out " + out.string()).status ==
+                0);
+        const auto png = render::read_png(out / (std::string(id) + ".png")).image;
+        CHECK(png.width == 333);
+        CHECK(png.height == 111);
+        CHECK(metadata(out / (std::string(id) + ".json"))["image"]["size"] == nlohmann::json({333, 111}));
+    }
+    // 0.5 of 900 x 450 is 450 x 225, not 226.
+    REQUIRE(figgen("render tc7-1 --scale 0.5 --set 'animation.size=[333,111]' --out " + out.string()).status == 0);
+    CHECK(render::read_png(out / "tc7-1.png").image.height == 225);
+    const nlohmann::json film = metadata(out / "tc7-1.json")["animation"];
+    CHECK(film["size"] == nlohmann::json({168, 56}));  // 166.5 x 55.5 rounds to 167 x 56, then up to even
+    CHECK(film["size_rounded"]["from"] == nlohmann::json({167, 56}));
+    const render::VideoInfo mp4 = render::probe_video(out / "tc7-1.mp4");
+    CHECK(mp4.width == 168);
+    CHECK(mp4.height == 56);
+    // An even film says nothing.
+    REQUIRE(figgen("render tc7-1 --scale 0.3 --out " + out.string()).status == 0);
+    CHECK_FALSE(metadata(out / "tc7-1.json")["animation"].contains("size_rounded"));
+}
+
 TEST_CASE("render --fps sets the animation's frame rate in the MP4 and its metadata", "[cli][options]") {
     const fs::path out = fresh_dir("fps");
     REQUIRE(figgen("render tc7-1 --fps 5 --scale 0.5 --out " + out.string()).status == 0);
