@@ -78,6 +78,16 @@ constexpr double encoder_bytes_per_pixel_frame = 5.0;
 // 480 x 520 and 86.5 MiB at 960 x 1040, 21 MiB and 69 bytes a pixel; with
 // a margin, 32 MiB and 96.
 constexpr double webm_encoder_bytes = 32.0 * 1024 * 1024;
+// The PDF's and SVG's stage: a vector page (its paths, and its images at
+// most render::max_cells_per_pixel cells a pixel each way, hexagons under a
+// pixel drawn as one image) and cairo writing it, one format at a time,
+// after the PNG's canvas has gone. Measured above the same run without
+// them: 1.1 to 9.0 MiB on six catalog figures (900 x 450 to 1000 x 620),
+// 13.0 MiB for tc7-1's three fields of 3000 x 3000 cells; with a margin,
+// 16 MiB and 64 bytes a pixel of the figure. A plant's paths are counted by
+// its own estimate (a segment's bytes there are far more than its path's).
+constexpr double vector_page_bytes = 16.0 * 1024 * 1024;
+constexpr double vector_page_bytes_per_pixel = 64.0;
 constexpr double webm_encoder_bytes_per_pixel = 96.0;
 constexpr int encoder_frames_held = 40;
 
@@ -96,6 +106,10 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
     all.push_back({"figure " + std::to_string(figure_width(d, options)) + " x " +
                        std::to_string(figure_height(d, options)) + " RGBA",
                    canvas_bytes_per_pixel * figure_width(d, options) * figure_height(d, options)});
+    if (options.writes_pdf(d) || options.writes_svg(d))
+        all.push_back({"the PDF and SVG's vector page", vector_page_bytes + vector_page_bytes_per_pixel *
+                                                                                figure_width(d, options) *
+                                                                                figure_height(d, options)});
     if (d.animation && options.animates()) {
         const std::string size = std::to_string(scaled_even(d.animation->width, options.scale)) + " x " +
                                  std::to_string(scaled_even(d.animation->height, options.scale));

@@ -315,6 +315,17 @@ Image field_image(const Rect& where, int rows, int cols, std::span<const double>
         spline_resample(t, rows, cols, 1, pixels_w, pixels_h, across, resampled);
         t = std::move(resampled);
         width = pixels_w, height = pixels_h;
+    } else if (cols > max_cells_per_pixel * pixels_w || rows > max_cells_per_pixel * pixels_h) {
+        // Denser than any zoom shows: nearest samples at max_cells_per_pixel a pixel each way.
+        width = std::min(cols, max_cells_per_pixel * pixels_w), height = std::min(rows, max_cells_per_pixel * pixels_h);
+        std::vector<float> sampled(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+        for (int r = 0; r < height; ++r) {
+            const int from_r = static_cast<int>((r + 0.5) * rows / height);
+            for (int c = 0; c < width; ++c)
+                sampled[static_cast<std::size_t>(r) * width + c] =
+                    t[static_cast<std::size_t>(from_r) * cols + static_cast<std::size_t>((c + 0.5) * cols / width)];
+        }
+        t = std::move(sampled);
     }
     Image image(width, height);
     const std::uint8_t alpha = static_cast<std::uint8_t>(std::lround(std::clamp(style.alpha, 0.0f, 1.0f) * 255));

@@ -34,7 +34,12 @@ void draw_field(Surface& surface, const Rect& where, int rows, int cols, std::sp
 // for backends that embed it (the vector page): at its own cells with
 // nearest sampling, or, smooth, resampled with the same cubic B-spline on
 // the data as the GL draw to the pixels of `where` (matplotlib's vector
-// backends likewise resample interpolated images to the output's dpi).
+// backends likewise resample interpolated images to the output's dpi). A
+// nearest field with more than max_cells_per_pixel cells a pixel of
+// `where` either way is sampled (nearest) down to that many: no zoom a
+// reader uses tells them apart, and the image, with the memory and the file
+// it takes, stays bounded by the figure's pixels.
+inline constexpr int max_cells_per_pixel = 2;
 Image field_image(const Rect& where, int rows, int cols, std::span<const double> values, const FieldStyle& style);
 
 // Two layers of one grid, the second over the first, in one pass: both

@@ -197,6 +197,19 @@ void VectorPage::field_pair(const Rect& where, int rows, int cols, std::span<con
 }
 
 void VectorPage::hex_cells(const HexView& view, std::span<const glm::ivec2> cells, const glm::vec4& colour) {
+    // Cells under a pixel across would be more hexagons than the page has
+    // pixels to show them: drawn by GL at the page's pixels and embedded as
+    // that image, which keeps the file and the memory bounded by the page.
+    if (view.size < min_vector_hex_size) {
+        Canvas canvas(page_.width, page_.height, canvas_samples);
+        canvas.set_transparent(true);
+        canvas.background({0, 0, 0, 0});
+        const std::vector<glm::ivec2> all(cells.begin(), cells.end());
+        draw_hex_cells(canvas, view, all, colour);
+        page_.items.push_back(
+            vector::Picture{canvas.read(), {0, 0, float(page_.width), float(page_.height)}, false});
+        return;
+    }
     // The corners as the GL backend places them: exact lattice offsets in half sizes.
     static constexpr int corner[6][2] = {{2, 0}, {1, 1}, {-1, 1}, {-2, 0}, {-1, -1}, {1, -1}};
     const double half = 0.5 * view.size, root3 = std::sqrt(3.0);

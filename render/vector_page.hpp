@@ -9,7 +9,9 @@
 //   text       the same glyphs of the same font at the same pen positions;
 //   fields     one embedded image each (render::field_image): nearest fields
 //              at their own cells, marked not to be smoothed;
-//   hex cells  one path of hexagons a layer;
+//   hex cells  one path of hexagons a layer; cells smaller than
+//              min_vector_hex_size pixels across are drawn by GL and embedded
+//              as an image of the page;
 //   tubes      drawn by GL, as the PNG draws them, at the page's pixels, and
 //              embedded as that image (3-D has no vector form here).
 
@@ -19,6 +21,9 @@
 #include "render/vector.hpp"
 
 namespace render {
+
+// The smallest hexagon (circumradius, pixels) drawn as a path.
+inline constexpr float min_vector_hex_size = 1.0f;
 
 class VectorPage : public Surface {
 public:

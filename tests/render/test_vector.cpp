@@ -13,6 +13,7 @@
 #include "render/canvas.hpp"
 #include "render/colormap.hpp"
 #include "render/field.hpp"
+#include "render/hex_cells.hpp"
 #include "render/plot.hpp"
 #include "render/shapes.hpp"
 #include "render/text.hpp"
@@ -270,4 +271,23 @@ TEST_CASE("a colour bar's tick labels span its field's range, at the bar's ends"
     CHECK(bar.image.width == 1);
     const glm::vec3 top = render::colormap("Reds").at(1.0);
     CHECK(int(bar.image.pixel(0, 0)[0]) == int(std::lround(top.r * 255)));
+}
+
+TEST_CASE("hexagons under a pixel across are embedded as one image, larger ones as one path", "[vector]") {
+    std::vector<glm::ivec2> cells;
+    for (int q = -20; q <= 20; ++q)
+        for (int r = -20; r <= 20; ++r) cells.push_back({q, r});
+    render::VectorPage coarse(200, 200, false), fine(200, 200, false);
+    render::draw_hex_cells(coarse, {{100, 100}, 2.0f}, cells, {0, 0, 1, 1});
+    render::draw_hex_cells(fine, {{100, 100}, 0.5f}, cells, {0, 0, 1, 1});
+    REQUIRE(coarse.page().items.size() == 1);
+    const auto& path = std::get<render::vector::Fill>(coarse.page().items[0]).path;
+    CHECK(path.size() == cells.size() * 7);  // six corners and a close each
+    REQUIRE(fine.page().items.size() == 1);
+    const auto& picture = std::get<render::vector::Picture>(fine.page().items[0]);
+    CHECK(picture.image.width == 200);
+    CHECK(picture.image.height == 200);
+    CHECK(int(picture.image.pixel(100, 100)[2]) == 255);  // the lattice's centre, inked
+    CHECK(int(picture.image.pixel(100, 100)[3]) == 255);
+    CHECK(int(picture.image.pixel(0, 0)[3]) == 0);        // beyond it, clear
 }
