@@ -150,13 +150,13 @@ public:
                      "(fixed_point), tested every " + std::to_string(sim::gray_scott_atlas_stop_check) +
                          " steps: both leave B as the full run would"},
             {"tiles_stopped", stopped}};
-        out.figure(draw_map(tiles, summaries), {{"params", params_.used()},
-                                                {"style", style_.used()},
-                                                {"early_stop", early_stop},
-                                                {"float_error", float_error(tiles, results)},
-                                                {"colour_bar", colour_bar() ? colour_bar_metadata(*colour_bar())
-                                                                            : nlohmann::json(nullptr)},
-                                                {"tiles", tile_meta}});
+        nlohmann::json meta = {{"params", params_.used()},
+                               {"style", style_.used()},
+                               {"early_stop", early_stop},
+                               {"float_error", float_error(tiles, results)},
+                               {"tiles", tile_meta}};
+        if (const auto bar = colour_bar()) meta["colour_bar"] = colour_bar_metadata(*bar);  // as the deposit: only when drawn
+        out.figure(draw_map(tiles, summaries), std::move(meta));
         progress.finish();
     }
 
