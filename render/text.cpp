@@ -10,9 +10,15 @@
 #include <cstring>
 #include <stdexcept>
 
+#include <mutex>
+#include <set>
+
 #include <ft2build.h>
 #include FT_FREETYPE_H
 #include FT_TRUETYPE_TABLES_H
+#include <hb.h>
+#include <linebreak.h>
+#include <raqm.h>
 
 #include "render/gl_context.hpp"
 #include "render/program.hpp"
@@ -28,6 +34,9 @@ namespace {
 constexpr int pad = 2;
 constexpr int atlas_min_width = 1024;
 constexpr int atlas_start_height = 256;
+// The tallest atlas a face may fill in memory: 1024 x 8192 bytes, some 3,000
+// CJK glyphs at 40 px (bind_atlas also checks GL's own limit).
+constexpr int max_atlas_height = 8192;
 
 const char* const vertex_shader = R"(#version 330 core
 layout(location = 0) in vec2 position;
@@ -84,101 +93,223 @@ struct Rotation {
 
 }  // namespace
 
+namespace {
+
+std::function<void(const std::string&)>& missing_glyph_warning() {
+    static std::function<void(const std::string&)> warn = [](const std::string& line) {
+        std::fprintf(stderr, "figgen: warning: %s\n", line.c_str());
+    };
+    return warn;
+}
+
+std::string codepoint_name(char32_t c) {
+    char name[16];
+    std::snprintf(name, sizeof name, "U+%04lX", static_cast<unsigned long>(c));
+    return name;
+}
+
+// Characters that take the face of the character before them: combining
+// marks, joiners and variation selectors belong to their base's cluster.
+bool follows_base(char32_t c) {
+    switch (hb_unicode_general_category(hb_unicode_funcs_get_default(), c)) {
+        case HB_UNICODE_GENERAL_CATEGORY_NON_SPACING_MARK:
+        case HB_UNICODE_GENERAL_CATEGORY_SPACING_MARK:
+        case HB_UNICODE_GENERAL_CATEGORY_ENCLOSING_MARK:
+        case HB_UNICODE_GENERAL_CATEGORY_FORMAT: return true;
+        default: return (c >= 0xFE00 && c <= 0xFE0F) || (c >= 0xE0100 && c <= 0xE01EF);
+    }
+}
+
+// Characters nothing is drawn for, so no font needs to have them.
+bool invisible(char32_t c) {
+    return c < 0x20 || (c >= 0x7F && c < 0xA0) || follows_base(c) ||
+           hb_unicode_general_category(hb_unicode_funcs_get_default(), c) == HB_UNICODE_GENERAL_CATEGORY_LINE_SEPARATOR;
+}
+
+std::string encode_utf8(char32_t c) {
+    std::string out;
+    if (c < 0x80) {
+        out += static_cast<char>(c);
+    } else if (c < 0x800) {
+        out += static_cast<char>(0xC0 | (c >> 6));
+        out += static_cast<char>(0x80 | (c & 0x3F));
+    } else if (c < 0x10000) {
+        out += static_cast<char>(0xE0 | (c >> 12));
+        out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+        out += static_cast<char>(0x80 | (c & 0x3F));
+    } else {
+        out += static_cast<char>(0xF0 | (c >> 18));
+        out += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
+        out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+        out += static_cast<char>(0x80 | (c & 0x3F));
+    }
+    return out;
+}
+
+struct RaqmDeleter {
+    void operator()(raqm_t* rq) const { raqm_destroy(rq); }
+};
+
+}  // namespace
+
+void set_missing_glyph_warning(std::function<void(const std::string&)> warn) {
+    missing_glyph_warning() = std::move(warn);
+}
+
 Font::Font(float pixel_size, const std::string& path) : pixel_size_(pixel_size), path_(path) {
     if (!(pixel_size > 0)) throw std::invalid_argument("font pixel size must be positive, got " + std::to_string(pixel_size));
-    GlContext::get();
     if (const FT_Error error = FT_Init_FreeType(&library_))
         throw std::runtime_error("cannot start FreeType for font " + path + ": " + freetype_error(error));
-    if (const FT_Error error = FT_New_Face(library_, path.c_str(), 0, &face_)) {
+    try {
+        faces_.push_back(open_face(FontFile{path, 0}));
+    } catch (...) {
         FT_Done_FreeType(library_);
-        throw std::runtime_error("cannot load font " + path + ": " + freetype_error(error));
+        throw;
     }
-    // Fractional sizes are fine: 26.6 fixed point at 72 dpi is pixels.
-    const auto size_26_6 = static_cast<FT_F26Dot6>(std::lround(pixel_size * 64));
-    if (!FT_IS_SCALABLE(face_) || FT_Set_Char_Size(face_, 0, size_26_6, 72, 72) != 0) {
-        FT_Done_Face(face_);
-        FT_Done_FreeType(library_);
-        throw std::runtime_error("font " + path + " cannot be scaled to " + std::to_string(pixel_size) + " px");
-    }
+    FT_Face face = faces_[0]->face;
     // Metrics from font units rather than face->size->metrics, which FreeType
     // rounds to whole pixels.
-    scale_ = static_cast<float>(size_26_6) / 64.0f / static_cast<float>(face_->units_per_EM);
-    ascender_ = static_cast<float>(face_->ascender) * scale_;
-    descender_ = static_cast<float>(face_->descender) * scale_;
-    line_height_ = static_cast<float>(face_->height) * scale_;
-    const auto* os2 = static_cast<const TT_OS2*>(FT_Get_Sfnt_Table(face_, FT_SFNT_OS2));
+    const float scale = static_cast<float>(std::lround(pixel_size * 64)) / 64.0f / static_cast<float>(face->units_per_EM);
+    ascender_ = static_cast<float>(face->ascender) * scale;
+    descender_ = static_cast<float>(face->descender) * scale;
+    line_height_ = static_cast<float>(face->height) * scale;
+    const auto* os2 = static_cast<const TT_OS2*>(FT_Get_Sfnt_Table(face, FT_SFNT_OS2));
     if (os2 && os2->version >= 2 && os2->sCapHeight > 0) {
-        cap_height_ = static_cast<float>(os2->sCapHeight) * scale_;
-    } else if (FT_Load_Char(face_, 'H', FT_LOAD_NO_SCALE) == 0) {  // older tables: measure the letter itself
-        cap_height_ = static_cast<float>(face_->glyph->metrics.horiBearingY) * scale_;
+        cap_height_ = static_cast<float>(os2->sCapHeight) * scale;
+    } else if (FT_Load_Char(face, 'H', FT_LOAD_NO_SCALE) == 0) {  // older tables: measure the letter itself
+        cap_height_ = static_cast<float>(face->glyph->metrics.horiBearingY) * scale;
     } else {
         cap_height_ = 0.7f * pixel_size;
     }
-    has_kerning_ = FT_HAS_KERNING(face_);
-
-    // Wide enough for the font's widest possible glyph.
-    const float widest = static_cast<float>(face_->bbox.xMax - face_->bbox.xMin) * scale_;
-    atlas_.width = std::max(atlas_min_width, static_cast<int>(std::ceil(widest)) + 2 * pad + 2);
-    atlas_.height = atlas_start_height;
-    atlas_.pixels.assign(static_cast<std::size_t>(atlas_.width) * atlas_.height, 0);
-    atlas_.shelf_x = atlas_.shelf_y = pad;
 }
 
 Font::~Font() {
-    if (atlas_.texture) glDeleteTextures(1, &atlas_.texture);
-    FT_Done_Face(face_);
+    for (auto& f : faces_) {
+        if (f->atlas.texture) glDeleteTextures(1, &f->atlas.texture);
+        FT_Done_Face(f->face);
+    }
     FT_Done_FreeType(library_);
 }
 
-float Font::width(std::string_view utf8) const { return width(decode_utf8(utf8)); }
-
-float Font::width(const std::u32string& codepoints) const {
-    float pen = 0;
-    const Glyph* previous = nullptr;
-    for (const char32_t c : codepoints) {
-        const Glyph& g = glyph(c);
-        if (previous) pen += kerning(*previous, g);
-        pen += g.advance;
-        previous = &g;
+std::unique_ptr<Font::Face> Font::open_face(const FontFile& file) const {
+    auto f = std::make_unique<Face>();
+    f->file = file;
+    if (const FT_Error error = FT_New_Face(library_, file.path.c_str(), file.index, &f->face))
+        throw std::runtime_error("cannot load font " + file.path + ": " + freetype_error(error));
+    // Fractional sizes are fine: 26.6 fixed point at 72 dpi is pixels.
+    const auto size_26_6 = static_cast<FT_F26Dot6>(std::lround(pixel_size_ * 64));
+    if (!FT_IS_SCALABLE(f->face) || FT_Set_Char_Size(f->face, 0, size_26_6, 72, 72) != 0) {
+        FT_Done_Face(f->face);
+        throw std::runtime_error("font " + file.path + " cannot be scaled to " + std::to_string(pixel_size_) + " px");
     }
-    return pen;
+    const float scale = static_cast<float>(size_26_6) / 64.0f / static_cast<float>(f->face->units_per_EM);
+    // Wide enough for the face's widest possible glyph.
+    const float widest = static_cast<float>(f->face->bbox.xMax - f->face->bbox.xMin) * scale;
+    f->atlas.width = std::max(atlas_min_width, static_cast<int>(std::ceil(widest)) + 2 * pad + 2);
+    f->atlas.height = atlas_start_height;
+    f->atlas.pixels.assign(static_cast<std::size_t>(f->atlas.width) * f->atlas.height, 0);
+    f->atlas.shelf_x = f->atlas.shelf_y = pad;
+    return f;
 }
 
-float Font::kerning(const Glyph& left, const Glyph& right) const {
-    if (!has_kerning_) return 0;
-    FT_Vector delta{};
-    // Unscaled, then scaled here: FreeType's scaled kerning is rounded to 1/64 px or whole pixels.
-    if (FT_Get_Kerning(face_, left.index, right.index, FT_KERNING_UNSCALED, &delta) != 0) return 0;
-    return static_cast<float>(delta.x) * scale_;
+const FontFile& Font::face_file(std::size_t face) const { return faces_.at(face)->file; }
+
+std::uint32_t Font::face_for(char32_t c, std::string_view language) const {
+    if (FT_Get_Char_Index(faces_[0]->face, c) != 0 || invisible(c)) return 0;
+    const auto key = std::make_pair(c, std::string(language));
+    if (const auto found = fallback_of_.find(key); found != fallback_of_.end()) return found->second;
+    std::uint32_t face = 0;
+    if (const std::optional<FontFile> file = fallback_font(c, language)) {
+        const auto known = std::find_if(faces_.begin(), faces_.end(), [&](const auto& f) { return f->file == *file; });
+        face = static_cast<std::uint32_t>(known - faces_.begin());
+        if (known == faces_.end()) faces_.push_back(open_face(*file));
+        if (FT_Get_Char_Index(faces_[face]->face, c) == 0) face = 0;  // fontconfig's charset and the face disagree
+    }
+    if (face == 0) {
+        // Once a process: the font cache is cleared before each figure.
+        static std::mutex mutex;
+        static std::set<char32_t> reported;
+        const std::lock_guard lock(mutex);
+        if (reported.insert(c).second)
+            missing_glyph_warning()("no installed font has " + codepoint_name(c) + "; it is drawn as an empty box");
+    }
+    fallback_of_.emplace(key, face);
+    return face;
 }
 
-const Font::Glyph& Font::glyph(char32_t codepoint) const {
-    if (const auto found = glyphs_.find(codepoint); found != glyphs_.end()) return found->second;
+float Font::width(std::string_view utf8, std::string_view language) const { return shape(utf8, language).width; }
+
+Font::Shaped Font::shape(std::string_view utf8, std::string_view language) const {
+    Shaped out;
+    const std::u32string codepoints = decode_utf8(utf8);
+    if (codepoints.empty()) return out;
+    // Valid UTF-8 for raqm, and each character's face: runs of one face are
+    // shaped together.
+    std::vector<std::pair<std::size_t, std::uint32_t>> runs;  // byte offset where a run starts, its face
+    for (std::size_t i = 0; i < codepoints.size(); ++i) {
+        const char32_t c = codepoints[i];
+        const std::uint32_t face = (i > 0 && follows_base(c)) ? runs.back().second : face_for(c, language);
+        if (runs.empty() || runs.back().second != face) runs.emplace_back(out.text.size(), face);
+        out.text += encode_utf8(c);
+    }
+    std::unique_ptr<raqm_t, RaqmDeleter> rq(raqm_create());
+    if (!rq || !raqm_set_text_utf8(rq.get(), out.text.data(), out.text.size()) ||
+        !raqm_set_par_direction(rq.get(), RAQM_DIRECTION_DEFAULT))
+        throw std::runtime_error("raqm cannot take the text \"" + out.text + "\"");
+    if (!language.empty()) {
+        const std::string tag(language);
+        raqm_set_language(rq.get(), tag.c_str(), 0, out.text.size());
+    }
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+        const std::size_t end = r + 1 < runs.size() ? runs[r + 1].first : out.text.size();
+        if (!raqm_set_freetype_face_range(rq.get(), faces_[runs[r].second]->face, runs[r].first, end - runs[r].first))
+            throw std::runtime_error("raqm cannot take a face for \"" + out.text + "\"");
+    }
+    // Unhinted advances (FreeType's linear ones): the pen keeps fractional
+    // positions, so spacing stays true at every size.
+    raqm_set_freetype_load_flags(rq.get(), FT_LOAD_NO_HINTING);
+    if (!raqm_layout(rq.get())) throw std::runtime_error("raqm cannot lay out \"" + out.text + "\"");
+    std::size_t count = 0;
+    const raqm_glyph_t* glyphs = raqm_get_glyphs(rq.get(), &count);
+    out.glyphs.reserve(count);
+    float pen = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        const raqm_glyph_t& g = glyphs[i];
+        std::uint32_t face = 0;
+        while (face < faces_.size() && faces_[face]->face != g.ftface) ++face;
+        if (face == faces_.size()) throw std::runtime_error("raqm gave a glyph of a face the font does not hold");
+        out.glyphs.push_back({face, g.index,
+                              {pen + static_cast<float>(g.x_offset) / 64.0f, -static_cast<float>(g.y_offset) / 64.0f},
+                              g.cluster});
+        pen += static_cast<float>(g.x_advance) / 64.0f;
+    }
+    out.width = pen;
+    return out;
+}
+
+const Font::Glyph& Font::glyph(std::uint32_t face, unsigned index) const {
+    Face& f = *faces_[face];
+    if (const auto found = f.glyphs.find(index); found != f.glyphs.end()) return found->second;
     Glyph g;
-    g.index = FT_Get_Char_Index(face_, codepoint);  // 0, the .notdef box, when the font lacks it
     // Light hinting snaps only vertically (baseline, x-height), which keeps
     // the unhinted advances below true; the bitmap is 8-bit grey coverage.
-    if (const FT_Error error = FT_Load_Glyph(face_, g.index, FT_LOAD_RENDER | FT_LOAD_TARGET_LIGHT)) {
-        char name[16];
-        std::snprintf(name, sizeof name, "U+%04lX", static_cast<unsigned long>(codepoint));
-        throw std::runtime_error(std::string("cannot render glyph ") + name + " of " + path_ + ": " +
+    if (const FT_Error error = FT_Load_Glyph(f.face, index, FT_LOAD_RENDER | FT_LOAD_TARGET_LIGHT))
+        throw std::runtime_error("cannot render glyph " + std::to_string(index) + " of " + f.file.path + ": " +
                                  freetype_error(error));
-    }
-    const FT_GlyphSlot slot = face_->glyph;
+    const FT_GlyphSlot slot = f.face->glyph;
     const FT_Bitmap& bitmap = slot->bitmap;
     if (bitmap.pixel_mode != FT_PIXEL_MODE_GRAY && bitmap.rows > 0)
-        throw std::runtime_error("font " + path_ + " gave a glyph bitmap that is not 8-bit grey");
-    g.advance = static_cast<float>(slot->linearHoriAdvance) / 65536.0f;  // 16.16 pixels, before hinting
-    g.left = slot->bitmap_left;
-    g.top = slot->bitmap_top;
+        throw std::runtime_error("font " + f.file.path + " gave a glyph bitmap that is not 8-bit grey");
+    g.left = static_cast<float>(slot->bitmap_left);
+    g.top = static_cast<float>(slot->bitmap_top);
     g.width = static_cast<int>(bitmap.width);
     g.height = static_cast<int>(bitmap.rows);
-    if (g.width > 0 && g.height > 0) place(g, bitmap.buffer, bitmap.pitch);
-    return glyphs_.emplace(codepoint, g).first->second;
+    if (g.width > 0 && g.height > 0) place(f, g, bitmap.buffer, bitmap.pitch);
+    return f.glyphs.emplace(index, g).first->second;
 }
 
-void Font::place(Glyph& g, const unsigned char* rows, int pitch) const {
-    Atlas& a = atlas_;
+void Font::place(Face& f, Glyph& g, const unsigned char* rows, int pitch) const {
+    Atlas& a = f.atlas;
     if (g.width + 2 * pad > a.width)
         throw std::runtime_error("glyph of " + std::to_string(g.width) + " px is wider than the font atlas");
     if (a.shelf_x + g.width + pad > a.width) {  // start the next shelf
@@ -187,10 +318,8 @@ void Font::place(Glyph& g, const unsigned char* rows, int pitch) const {
         a.shelf_height = 0;
     }
     while (a.shelf_y + g.height + pad > a.height) {
-        GLint max_size = 0;
-        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-        if (2 * a.height > max_size)
-            throw std::runtime_error("font atlas for " + path_ + " is full (" + std::to_string(a.width) + "x" +
+        if (2 * a.height > max_atlas_height)
+            throw std::runtime_error("font atlas for " + f.file.path + " is full (" + std::to_string(a.width) + "x" +
                                      std::to_string(a.height) + ")");
         a.height *= 2;
         a.pixels.resize(static_cast<std::size_t>(a.width) * a.height, 0);
@@ -209,8 +338,13 @@ void Font::place(Glyph& g, const unsigned char* rows, int pitch) const {
     a.shelf_height = std::max(a.shelf_height, g.height + pad);
 }
 
-void Font::bind_atlas() const {
-    Atlas& a = atlas_;
+void Font::bind_atlas(std::uint32_t face) const {
+    Atlas& a = faces_[face]->atlas;
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (a.height > max_size)
+        throw std::runtime_error("font atlas for " + faces_[face]->file.path + " (" + std::to_string(a.width) + "x" +
+                                 std::to_string(a.height) + ") is larger than GL's textures");
     glActiveTexture(GL_TEXTURE0);
     if (!a.texture) {
         glGenTextures(1, &a.texture);
@@ -237,15 +371,46 @@ void Font::bind_atlas() const {
     check_gl("Font::bind_atlas");
 }
 
+std::vector<std::string> wrap(const Font& font, std::string_view paragraph, float width, std::string_view language) {
+    static std::once_flag started;
+    std::call_once(started, init_linebreak);
+    const std::string text = font.shape(paragraph, language).text;  // valid UTF-8
+    std::vector<char> breaks(text.size());
+    const std::string tag(language);
+    set_linebreaks_utf8(reinterpret_cast<const utf8_t*>(text.data()), text.size(), tag.empty() ? nullptr : tag.c_str(),
+                        breaks.data());
+    auto trimmed = [](std::string line) {
+        while (!line.empty() && (line.back() == ' ' || line.back() == '\n')) line.pop_back();
+        return line;
+    };
+    std::vector<std::string> lines;
+    std::size_t start = 0, fits = std::string::npos;  // the line's start; the end of the longest piece that fits
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (breaks[i] != LINEBREAK_ALLOWBREAK && breaks[i] != LINEBREAK_MUSTBREAK) continue;
+        const std::size_t end = i + 1;  // a break after byte i
+        if (fits != std::string::npos && font.width(trimmed(text.substr(start, end - start)), language) > width) {
+            lines.push_back(trimmed(text.substr(start, fits - start)));  // break at the last place that fitted
+            start = fits;
+        }
+        fits = end;  // a piece wider than the room stays whole, alone on its line
+        if (breaks[i] == LINEBREAK_MUSTBREAK) {
+            lines.push_back(trimmed(text.substr(start, end - start)));
+            start = end;
+            fits = std::string::npos;
+        }
+    }
+    if (start < text.size()) lines.push_back(trimmed(text.substr(start)));
+    return lines;
+}
+
 void Text::add(Font& font, std::string_view utf8, glm::vec2 position, const glm::vec4& colour, Align align,
-               Baseline baseline, float rotation_degrees) {
-    const std::u32string codepoints = decode_utf8(utf8);
-    if (codepoints.empty()) return;
+               Baseline baseline, float rotation_degrees, std::string_view language) {
+    Font::Shaped shaped = font.shape(utf8, language);
+    if (shaped.glyphs.empty()) return;
     // The pen's start in the line's own frame (x along the baseline, y down), relative to the anchor.
     glm::vec2 start{0, 0};
-    const float line_width = font.width(codepoints);
-    if (align == Align::centre) start.x = -line_width / 2;
-    if (align == Align::right) start.x = -line_width;
+    if (align == Align::centre) start.x = -shaped.width / 2;
+    if (align == Align::right) start.x = -shaped.width;
     switch (baseline) {
         case Baseline::top: start.y = font.ascender(); break;
         case Baseline::middle: start.y = font.cap_height() / 2; break;
@@ -260,32 +425,23 @@ void Text::add(Font& font, std::string_view utf8, glm::vec2 position, const glm:
     if (rotate.s == 0) origin.y = std::round(origin.y);
     if (rotate.c == 0) origin.x = std::round(origin.x);
 
-    auto batch = std::find_if(batches_.begin(), batches_.end(), [&](const Batch& b) { return b.font == &font; });
-    if (batch == batches_.end()) batch = batches_.insert(batches_.end(), Batch{&font, {}});
-    std::vector<Vertex>& out = batch->vertices;
-    Line& line = lines_.emplace_back(Line{&font, origin, rotation_degrees, colour, {}, std::string(utf8)});
-    line.glyphs.reserve(codepoints.size());
-
-    float pen = 0;
-    const Font::Glyph* previous = nullptr;
-    for (const char32_t c : codepoints) {
-        const Font::Glyph& g = font.glyph(c);
-        if (previous) pen += font.kerning(*previous, g);
-        previous = &g;
-        line.glyphs.push_back({g.index, pen});
-        if (g.width > 0 && g.height > 0) {
-            // One texel of the zero border on each side, so the edge fades out under filtering.
-            const glm::vec2 q0{pen + static_cast<float>(g.left - 1), static_cast<float>(-g.top - 1)};
-            const glm::vec2 size{static_cast<float>(g.width + 2), static_cast<float>(g.height + 2)};
-            const glm::vec2 t0{static_cast<float>(g.atlas_x - 1), static_cast<float>(g.atlas_y - 1)};
-            const Vertex tl{origin + rotate(q0), t0, colour};
-            const Vertex tr{origin + rotate(q0 + glm::vec2(size.x, 0)), t0 + glm::vec2(size.x, 0), colour};
-            const Vertex bl{origin + rotate(q0 + glm::vec2(0, size.y)), t0 + glm::vec2(0, size.y), colour};
-            const Vertex br{origin + rotate(q0 + size), t0 + size, colour};
-            out.insert(out.end(), {tl, tr, br, tl, br, bl});
-        }
-        pen += g.advance;
+    for (const Font::ShapedGlyph& placed : shaped.glyphs) {
+        const Font::Glyph& g = font.glyph(placed.face, placed.index);
+        if (g.width <= 0 || g.height <= 0) continue;
+        auto batch = std::find_if(batches_.begin(), batches_.end(),
+                                  [&](const Batch& b) { return b.font == &font && b.face == placed.face; });
+        if (batch == batches_.end()) batch = batches_.insert(batches_.end(), Batch{&font, placed.face, {}});
+        // One texel of the zero border on each side, so the edge fades out under filtering.
+        const glm::vec2 q0 = placed.position + glm::vec2(g.left - 1, -g.top - 1);
+        const glm::vec2 size{static_cast<float>(g.width + 2), static_cast<float>(g.height + 2)};
+        const glm::vec2 t0{static_cast<float>(g.atlas_x - 1), static_cast<float>(g.atlas_y - 1)};
+        const Vertex tl{origin + rotate(q0), t0, colour};
+        const Vertex tr{origin + rotate(q0 + glm::vec2(size.x, 0)), t0 + glm::vec2(size.x, 0), colour};
+        const Vertex bl{origin + rotate(q0 + glm::vec2(0, size.y)), t0 + glm::vec2(0, size.y), colour};
+        const Vertex br{origin + rotate(q0 + size), t0 + size, colour};
+        batch->vertices.insert(batch->vertices.end(), {tl, tr, br, tl, br, bl});
     }
+    lines_.push_back(Line{&font, origin, rotation_degrees, colour, std::move(shaped)});
 }
 
 void Text::draw(Surface& surface) const {
@@ -312,7 +468,7 @@ void gl_backend::text(const Canvas& canvas, const Text& text) {
                           reinterpret_cast<const void*>(offsetof(Vertex, colour)));
     for (const Text::Batch& batch : text.batches_) {
         if (batch.vertices.empty()) continue;
-        batch.font->bind_atlas();
+        batch.font->bind_atlas(batch.face);
         glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(batch.vertices.size() * sizeof(Vertex)),
                      batch.vertices.data(), GL_STREAM_DRAW);
         glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(batch.vertices.size()));

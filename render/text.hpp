@@ -1,17 +1,27 @@
 #pragma once
-// Text: a FreeType face at one pixel size whose glyphs are rasterised on
-// demand into a single-channel atlas texture, and a batch of strings drawn
-// from it. Single lines only; pixel coordinates, origin top left, y down.
+// Text: lines shaped by HarfBuzz through libraqm (kerning, ligatures,
+// combining marks, right-to-left and mixed directions by FriBidi), from the
+// figure's font (DejaVu Sans) and, for characters it lacks, from the
+// fallback faces fontconfig finds (render/font_fallback.hpp). Each face's
+// glyphs are rasterised on demand into a single-channel atlas texture, and a
+// batch of strings is drawn from them. Single lines; wrap() breaks a
+// paragraph into lines by the Unicode line-breaking rules (libunibreak).
+// Pixel coordinates, origin top left, y down.
 
 #include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "render/canvas.hpp"
+#include "render/font_fallback.hpp"
 #include "render/gl.hpp"
 #include "render/gl_backend.hpp"
 
@@ -41,17 +51,37 @@ public:
     float cap_height() const { return cap_height_; }    // baseline to the top of "H"
     const std::string& path() const { return path_; }
 
-    // Advance width of a line, pixels, kerning included (not the ink's extent).
-    float width(std::string_view utf8) const;
+    // Advance width of a line as shaped, pixels (not the ink's extent).
+    // `language` (e.g. "zh-cn", "ja"; empty: none) picks the fallback faces
+    // and the language's glyph forms.
+    float width(std::string_view utf8, std::string_view language = {}) const;
+
+    // A line laid out: its glyphs in visual order (left to right on the
+    // page), each from face `face` of this font (0 is the font's own file).
+    struct ShapedGlyph {
+        std::uint32_t face;
+        unsigned index;      // glyph index in that face: 0 is its .notdef box
+        glm::vec2 position;  // the glyph's origin from the line's start on the baseline, pixels, y down
+        std::uint32_t cluster;  // byte offset in `text` of the characters it draws
+    };
+    struct Shaped {
+        std::string text;  // the line as shaped: valid UTF-8 (malformed bytes became U+FFFD)
+        std::vector<ShapedGlyph> glyphs;
+        float width = 0;   // the pen's advance, pixels
+    };
+    Shaped shape(std::string_view utf8, std::string_view language = {}) const;
+
+    // The faces shaped lines draw from: [0] is the font's own file, then
+    // fallbacks in the order they were first needed.
+    std::size_t face_count() const { return faces_.size(); }
+    const FontFile& face_file(std::size_t face) const;
 
 private:
-    friend class Text;
     friend void gl_backend::text(const Canvas& canvas, const Text& text);
+    friend class Text;
 
     struct Glyph {
-        unsigned index = 0;      // FreeType glyph index: 0 is the font's .notdef box
-        float advance = 0;       // unhinted, pixels
-        int left = 0, top = 0;   // bitmap's top-left corner relative to the pen, y up (FreeType's bitmap_left/top)
+        float left = 0, top = 0;        // bitmap's top-left corner relative to the pen, y up (FreeType's bitmap_left/top)
         int width = 0, height = 0;      // bitmap size, pixels
         int atlas_x = 0, atlas_y = 0;   // bitmap's top-left texel in the atlas
     };
@@ -67,22 +97,44 @@ private:
         int texture_height = 0;               // rows allocated on the GL side
     };
 
-    const Glyph& glyph(char32_t codepoint) const;  // from the cache, rasterised on first use
-    float kerning(const Glyph& left, const Glyph& right) const;
-    float width(const std::u32string& codepoints) const;
-    void place(Glyph& glyph, const unsigned char* rows, int pitch) const;  // copies a bitmap into the atlas
-    void bind_atlas() const;  // uploads new glyphs, binds the atlas to texture unit 0
+    // One FreeType face at the font's size, its rasterised glyphs and their atlas.
+    struct Face {
+        FontFile file;
+        FT_FaceRec_* face = nullptr;
+        std::unordered_map<unsigned, Glyph> glyphs;  // by glyph index
+        Atlas atlas;
+    };
+
+    std::unique_ptr<Face> open_face(const FontFile& file) const;
+    // The face to draw `c` from: the font's own when it has it, else the
+    // fallback for `language`, else (no installed font has it) the font's
+    // own, whose .notdef box is drawn, with a warning.
+    std::uint32_t face_for(char32_t c, std::string_view language) const;
+    const Glyph& glyph(std::uint32_t face, unsigned index) const;  // from the cache, rasterised on first use
+    void place(Face& face, Glyph& glyph, const unsigned char* rows, int pitch) const;  // copies a bitmap into the atlas
+    void bind_atlas(std::uint32_t face) const;  // uploads new glyphs, binds the face's atlas to texture unit 0
 
     float pixel_size_;
     std::string path_;
     FT_LibraryRec_* library_ = nullptr;
-    FT_FaceRec_* face_ = nullptr;
-    float scale_ = 0;  // pixels per font unit
     float ascender_ = 0, descender_ = 0, line_height_ = 0, cap_height_ = 0;
-    bool has_kerning_ = false;
-    mutable std::unordered_map<char32_t, Glyph> glyphs_;  // a cache: filling it does not change what the font is
-    mutable Atlas atlas_;
+    // Caches: filling them does not change what the font draws.
+    mutable std::vector<std::unique_ptr<Face>> faces_;
+    mutable std::map<std::pair<char32_t, std::string>, std::uint32_t> fallback_of_;
 };
+
+// Where a line of text may break, by the Unicode line-breaking algorithm:
+// `paragraph` in lines no wider than `width` pixels in `font`, each line's
+// trailing spaces dropped. A word wider than `width` stays whole, on a line
+// of its own: callers compare the widest line with the room they have.
+std::vector<std::string> wrap(const Font& font, std::string_view paragraph, float width,
+                              std::string_view language = {});
+
+// Characters no installed font has are drawn as the .notdef box and reported
+// here once per process each, as a line such as "no installed font has
+// U+E000 (in "...")". By default the line goes to standard error behind
+// "figgen: warning: ".
+void set_missing_glyph_warning(std::function<void(const std::string&)> warn);
 
 // A batch of strings, drawn with one draw call per font. The fonts must
 // outlive the batch's last draw().
@@ -92,7 +144,8 @@ public:
     // `rotation_degrees` counter-clockwise on screen about it (90 for a
     // y-axis label, reading bottom to top).
     void add(Font& font, std::string_view utf8, glm::vec2 position, const glm::vec4& colour,
-             Align align = Align::left, Baseline baseline = Baseline::baseline, float rotation_degrees = 0);
+             Align align = Align::left, Baseline baseline = Baseline::baseline, float rotation_degrees = 0,
+             std::string_view language = {});
 
     bool empty() const { return lines_.empty(); }
     void clear() {
@@ -105,17 +158,12 @@ public:
     // Each line as laid out, for backends that draw glyphs from the font
     // itself (the vector page): the same glyphs at the same pen positions
     // as the GL quads.
-    struct PlacedGlyph {
-        unsigned index;  // FreeType glyph index in the font's face
-        float pen;       // along the baseline from the origin, pixels
-    };
     struct Line {
         const Font* font;
         glm::vec2 origin;        // the pen's start on the baseline, pixels
         float rotation_degrees;  // counter-clockwise on screen about the origin
         glm::vec4 colour;
-        std::vector<PlacedGlyph> glyphs;  // one a character of `utf8`
-        std::string utf8;
+        Font::Shaped shaped;     // the glyphs, their faces and positions from the origin, and the text
     };
     const std::vector<Line>& lines() const { return lines_; }
 
@@ -129,6 +177,7 @@ private:
     };
     struct Batch {
         const Font* font;
+        std::uint32_t face;
         std::vector<Vertex> vertices;
     };
     std::vector<Batch> batches_;

@@ -18,6 +18,8 @@
 #include <variant>
 #include <vector>
 
+#include <utility>
+
 #include <glm/glm.hpp>
 
 #include "render/image.hpp"
@@ -26,7 +28,7 @@
 namespace render::vector {
 
 // Bumped whenever Api or the page's types change: a module of another build is refused.
-constexpr int api_version = 1;
+constexpr int api_version = 2;
 
 enum class Format { pdf, svg };
 
@@ -61,18 +63,26 @@ struct Stroke {
     float dash_offset = 0;
 };
 
+// A run of glyphs of one face, as the PNG drew them.
 struct Glyphs {
-    std::string font_path;  // the TrueType file the glyph indices are of
+    std::string font_path;  // the font file the glyph indices are of
+    int font_index = 0;     // the face within it (a .ttc collection holds several)
     float pixel_size;       // em size, pixels
     glm::vec4 colour;
-    glm::vec2 origin;         // the pen's start on the baseline
+    glm::vec2 origin;         // the line's start on the baseline
     float rotation_degrees;   // counter-clockwise on screen about the origin
     struct Glyph {
-        unsigned index;  // in the font's face 0
-        float pen;       // along the baseline from the origin, pixels
+        unsigned index;      // in that face
+        glm::vec2 position;  // from the origin in the line's frame, pixels, y down
     };
-    std::vector<Glyph> glyphs;
-    std::string text;  // the line as UTF-8, for text search and copying (PDF's ActualText, SVG's title)
+    std::vector<Glyph> glyphs;  // left to right on the page
+    // The characters the glyphs draw, as UTF-8, for text search and copying
+    // (PDF's ActualText), and how they correspond: cairo's clusters, each
+    // {bytes, glyphs}, in the text's order; `backward` when the glyphs run
+    // right to left through the text. Empty text: the glyphs alone.
+    std::string text;
+    std::vector<std::pair<int, int>> clusters;
+    bool backward = false;
 };
 
 struct Picture {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include "render/canvas.hpp"
@@ -174,13 +175,63 @@ void VectorPage::shapes(const Shapes& shapes, Coverage coverage) {
     if (group_alpha) page_.items.push_back(vector::GroupEnd{*group_alpha});
 }
 
-void VectorPage::text(const Text& text) {
-    for (const Text::Line& line : text.lines()) {
-        vector::Glyphs g{line.font->path(), line.font->pixel_size(), line.colour, line.origin, line.rotation_degrees,
-                         {}, line.utf8};
-        for (const Text::PlacedGlyph& p : line.glyphs) g.glyphs.push_back({p.index, p.pen});
-        page_.items.push_back(std::move(g));
+namespace {
+
+// Splits a shaped line into runs of one face whose clusters go one way
+// through the text (a right-to-left run goes backward), each with the
+// characters it draws and cairo's clusters, so that the PDF's text reads
+// back in the text's order.
+std::vector<vector::Glyphs> glyph_runs(const Text::Line& line) {
+    const Font::Shaped& shaped = line.shaped;
+    std::vector<std::uint32_t> starts;  // every cluster's first byte, ascending
+    for (const Font::ShapedGlyph& g : shaped.glyphs) starts.push_back(g.cluster);
+    std::sort(starts.begin(), starts.end());
+    starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
+    auto end_of = [&](std::uint32_t cluster) {
+        const auto next = std::upper_bound(starts.begin(), starts.end(), cluster);
+        return next == starts.end() ? static_cast<std::uint32_t>(shaped.text.size()) : *next;
+    };
+    std::vector<vector::Glyphs> runs;
+    const auto& glyphs = shaped.glyphs;
+    for (std::size_t i = 0; i < glyphs.size();) {
+        // The longest run from i of one face with clusters all ascending or all descending.
+        std::size_t j = i + 1;
+        int way = 0;  // +1 forward, -1 backward, 0 not known yet
+        while (j < glyphs.size() && glyphs[j].face == glyphs[i].face) {
+            const int step = glyphs[j].cluster > glyphs[j - 1].cluster ? 1 : glyphs[j].cluster < glyphs[j - 1].cluster ? -1 : 0;
+            if (step != 0 && way != 0 && step != way) break;
+            if (step != 0) way = step;
+            ++j;
+        }
+        const FontFile& file = line.font->face_file(glyphs[i].face);
+        vector::Glyphs run{file.path, file.index, line.font->pixel_size(), line.colour, line.origin,
+                           line.rotation_degrees, {}, {}, {}, way < 0};
+        std::map<std::uint32_t, int> per_cluster;  // glyphs of each cluster, in the text's order
+        for (std::size_t k = i; k < j; ++k) {
+            run.glyphs.push_back({glyphs[k].index, glyphs[k].position});
+            ++per_cluster[glyphs[k].cluster];
+        }
+        // The run's clusters must be consecutive in the line for its text to be one piece.
+        const auto first = std::lower_bound(starts.begin(), starts.end(), per_cluster.begin()->first);
+        if (static_cast<std::size_t>(starts.end() - first) >= per_cluster.size() &&
+            std::equal(per_cluster.begin(), per_cluster.end(), first,
+                       [](const auto& entry, std::uint32_t start) { return entry.first == start; })) {
+            const std::uint32_t from = per_cluster.begin()->first, to = end_of(per_cluster.rbegin()->first);
+            run.text = shaped.text.substr(from, to - from);
+            for (const auto& [cluster, count] : per_cluster)
+                run.clusters.emplace_back(static_cast<int>(end_of(cluster) - cluster), count);
+        }
+        runs.push_back(std::move(run));
+        i = j;
     }
+    return runs;
+}
+
+}  // namespace
+
+void VectorPage::text(const Text& text) {
+    for (const Text::Line& line : text.lines())
+        for (vector::Glyphs& run : glyph_runs(line)) page_.items.push_back(std::move(run));
 }
 
 void VectorPage::field(const Rect& where, int rows, int cols, std::span<const double> values,

@@ -20,6 +20,9 @@ packages=(
   libwebp-dev  # films' animated previews
   libcairo2-dev poppler-utils librsvg2-bin  # PDF and SVG through cairo; the tests rasterise them back
   libfreetype-dev fonts-dejavu-core
+  # text: shaping (libraqm over HarfBuzz and FriBidi), line breaks (libunibreak),
+  # fallback fonts through fontconfig, and the documents' own scripts (Noto Sans CJK)
+  libraqm-dev libharfbuzz-dev libfribidi-dev libunibreak-dev libfontconfig-dev fonts-noto-cjk
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libopenmpi-dev openmpi-bin  # MPI: its headers and mpirun; figgen opens libmpi only under mpirun
   catch2 libbenchmark-dev

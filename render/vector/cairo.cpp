@@ -113,15 +113,15 @@ class Fonts {
 public:
     explicit Fonts(const std::filesystem::path& shown) : shown_(shown) {}
     ~Fonts() {
-        for (auto& [path, face] : faces_) cairo_font_face_destroy(face);
+        for (auto& [file, face] : faces_) cairo_font_face_destroy(face);
     }
     Fonts(const Fonts&) = delete;
     Fonts& operator=(const Fonts&) = delete;
 
-    cairo_font_face_t* face(const std::string& path) {
-        if (auto found = faces_.find(path); found != faces_.end()) return found->second;
+    cairo_font_face_t* face(const std::string& path, int index) {
+        if (auto found = faces_.find({path, index}); found != faces_.end()) return found->second;
         FT_Face ft = nullptr;
-        if (FT_New_Face(freetype(shown_), path.c_str(), 0, &ft) != 0) fail(shown_, "cannot load font " + path);
+        if (FT_New_Face(freetype(shown_), path.c_str(), index, &ft) != 0) fail(shown_, "cannot load font " + path);
         cairo_font_face_t* face = cairo_ft_font_face_create_for_ft_face(ft, 0);
         static const cairo_user_data_key_t key{};
         if (cairo_font_face_set_user_data(face, &key, ft, [](void* f) { FT_Done_Face(static_cast<FT_Face>(f)); }) !=
@@ -130,13 +130,13 @@ public:
             FT_Done_Face(ft);
             fail(shown_, "cairo cannot keep font " + path);
         }
-        faces_.emplace(path, face);
+        faces_.emplace(std::make_pair(path, index), face);
         return face;
     }
 
 private:
     const std::filesystem::path& shown_;
-    std::map<std::string, cairo_font_face_t*> faces_;
+    std::map<std::pair<std::string, int>, cairo_font_face_t*> faces_;
 };
 
 // What painting a page needs besides the item.
@@ -187,32 +187,26 @@ void draw(cairo_t* cr, const Stroke& s, Context&) {
 
 void draw(cairo_t* cr, const Glyphs& g, Context& c) {
     cairo_save(cr);
-    cairo_set_font_face(cr, c.fonts.face(g.font_path));
+    cairo_set_font_face(cr, c.fonts.face(g.font_path, g.font_index));
     cairo_set_font_size(cr, g.pixel_size);
     cairo_translate(cr, g.origin.x, g.origin.y);
     cairo_rotate(cr, -g.rotation_degrees * std::numbers::pi / 180);
     std::vector<cairo_glyph_t> glyphs;
     glyphs.reserve(g.glyphs.size());
-    for (const Glyphs::Glyph& glyph : g.glyphs) glyphs.push_back({glyph.index, glyph.pen, 0});
+    for (const Glyphs::Glyph& glyph : g.glyphs) glyphs.push_back({glyph.index, glyph.position.x, glyph.position.y});
     set_colour(cr, g.colour);
     // With the text and each glyph's cluster, a PDF's text can be searched and copied.
     std::vector<cairo_text_cluster_t> clusters;
-    const std::string& text = g.text;
-    std::size_t at = 0;
-    for (std::size_t i = 0; i < glyphs.size() && at < text.size(); ++i) {
-        int bytes = 1;
-        const auto lead = static_cast<unsigned char>(text[at]);
-        if (lead >= 0xF0) bytes = 4;
-        else if (lead >= 0xE0) bytes = 3;
-        else if (lead >= 0xC0) bytes = 2;
-        bytes = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(bytes), text.size() - at));
-        clusters.push_back({bytes, 1});
-        at += static_cast<std::size_t>(bytes);
+    std::size_t bytes = 0, clustered = 0;
+    for (const auto& [b, n] : g.clusters) {
+        clusters.push_back({b, n});
+        bytes += static_cast<std::size_t>(std::max(b, 0));
+        clustered += static_cast<std::size_t>(std::max(n, 0));
     }
-    if (clusters.size() == glyphs.size() && at == text.size())
-        cairo_show_text_glyphs(cr, text.data(), static_cast<int>(text.size()), glyphs.data(),
+    if (!g.text.empty() && bytes == g.text.size() && clustered == glyphs.size())
+        cairo_show_text_glyphs(cr, g.text.data(), static_cast<int>(g.text.size()), glyphs.data(),
                                static_cast<int>(glyphs.size()), clusters.data(), static_cast<int>(clusters.size()),
-                               cairo_text_cluster_flags_t(0));
+                               g.backward ? CAIRO_TEXT_CLUSTER_FLAG_BACKWARD : cairo_text_cluster_flags_t(0));
     else
         cairo_show_glyphs(cr, glyphs.data(), static_cast<int>(glyphs.size()));
     cairo_restore(cr);

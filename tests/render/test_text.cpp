@@ -4,7 +4,10 @@
 #include <climits>
 #include <cmath>
 #include <cstdlib>
+#include <cstdio>
+#include <set>
 #include <stdexcept>
+#include <vector>
 #include <string>
 
 #include "render/canvas.hpp"
@@ -269,9 +272,135 @@ TEST_CASE("one batch holds several fonts and the atlas grows without losing glyp
     std::string alphabet;
     for (char c = 'B'; c <= 'Z'; ++c) alphabet += c;
     for (char c = 'a'; c <= 'z'; ++c) alphabet += c;
-    CHECK(big.width(alphabet) > 0);  // rasterises them all
+    Text more;
+    more.add(big, alphabet, {0, 170}, black);  // rasterises them all
     canvas.clear(white);
     text.draw(canvas);
     const Image after = canvas.read();
     CHECK(after.rgba == before.rgba);
+}
+
+namespace {
+
+// Collects the missing-glyph warnings while it lives.
+struct Warnings {
+    std::vector<std::string> lines;
+    Warnings() {
+        render::set_missing_glyph_warning([this](const std::string& line) { lines.push_back(line); });
+    }
+    ~Warnings() {
+        render::set_missing_glyph_warning([](const std::string& line) {
+            std::fprintf(stderr, "figgen: warning: %s\n", line.c_str());
+        });
+    }
+};
+
+std::set<std::string> face_files(const Font& font, const Font::Shaped& shaped) {
+    std::set<std::string> files;
+    for (const Font::ShapedGlyph& g : shaped.glyphs)
+        files.insert(font.face_file(g.face).path + "#" + std::to_string(font.face_file(g.face).index));
+    return files;
+}
+
+}  // namespace
+
+TEST_CASE("a Chinese caption is drawn from Noto Sans CJK with real glyphs and no warning", "[text]") {
+    Warnings warnings;
+    Font font(32);
+    // Liu and Zhang's caption of their Fig 3, with a Latin digit and CJK quotation marks.
+    const std::string caption = "图3 “奇偶规则”生长出的雪花瞬时图象";
+    const Font::Shaped shaped = font.shape(caption, "zh-cn");
+    REQUIRE(shaped.glyphs.size() == render::decode_utf8(caption).size());
+    for (const Font::ShapedGlyph& g : shaped.glyphs) CHECK(g.index != 0);  // no .notdef
+    // The ideographs come from the Simplified Chinese face of the collection
+    // (index 2 of NotoSansCJK-Regular.ttc), the digit and space from DejaVu Sans.
+    const auto files = face_files(font, shaped);
+    CHECK(files.count(std::string(FIGGEN_FONT_PATH) + "#0") == 1);
+    CHECK(files.count("/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc#2") == 1);
+    // Ideographs are one em wide: 雪花 is two.
+    CHECK(font.width("雪花", "zh-cn") == Approx(64).margin(0.05));
+    // In Japanese the same characters take the Japanese face (index 0).
+    CHECK(face_files(font, font.shape("弾道軌道凝集", "ja")).count("/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc#0") ==
+          1);
+    // And they leave ink: each ideograph marks its em square.
+    const Image image = [&] {
+        Canvas canvas(600, 60);
+        canvas.clear(white);
+        Text text;
+        text.add(font, caption, {4, 44}, black, Align::left, Baseline::baseline, 0, "zh-cn");
+        text.draw(canvas);
+        return canvas.read();
+    }();
+    const Ink box = ink(image);
+    CHECK(box.width() > 16 * 32 * 0.85);
+    CHECK(warnings.lines.empty());
+}
+
+TEST_CASE("a character no installed font has is a box with a warning naming it", "[text]") {
+    Warnings warnings;
+    Font font(24);
+    const Font::Shaped shaped = font.shape("a\U0010FFFDb");  // plane 16's private use
+    REQUIRE(shaped.glyphs.size() == 3);
+    CHECK(shaped.glyphs[1].index == 0);
+    REQUIRE(warnings.lines.size() == 1);
+    CHECK(warnings.lines[0].find("U+10FFFD") != std::string::npos);
+    font.shape("\U0010FFFD again");
+    CHECK(warnings.lines.size() == 1);  // once a process
+}
+
+TEST_CASE("lines are shaped: kerning and marks and right to left", "[text]") {
+    Font font(40);
+    // GPOS kerning pulls A and V together.
+    CHECK(font.width("AV") < font.width("A") + font.width("V") - 1);
+    // e and a combining acute become the precomposed é.
+    const Font::Shaped combined = font.shape("e\u0301");
+    REQUIRE(combined.glyphs.size() == 1);
+    CHECK(combined.glyphs[0].index == font.shape("\u00e9").glyphs[0].index);
+    // A combining mark with no precomposed form sits on its base, not after it.
+    const Font::Shaped marked = font.shape("x\u0323");  // x with dot below
+    REQUIRE(marked.glyphs.size() == 2);
+    CHECK(marked.glyphs[1].position.x < font.width("x"));
+    // Hebrew runs right to left: the first character is drawn rightmost.
+    const Font::Shaped hebrew = font.shape("שלום");
+    REQUIRE(hebrew.glyphs.size() == 4);
+    CHECK(hebrew.glyphs.front().cluster > hebrew.glyphs.back().cluster);
+    CHECK(hebrew.glyphs.back().cluster == 0);
+    // In a Latin line a Hebrew word keeps its own direction inside it.
+    const Font::Shaped mixed = font.shape("ab שלום cd");
+    REQUIRE(mixed.glyphs.size() == 10);
+    CHECK(mixed.glyphs[0].cluster == 0);
+    CHECK(mixed.glyphs[3].cluster > mixed.glyphs[6].cluster);
+    // Arabic letters join: beh between two behs is not the isolated beh.
+    const unsigned isolated = font.shape("\u0628").glyphs[0].index;
+    const Font::Shaped joined = font.shape("\u0628\u0628\u0628");
+    REQUIRE(joined.glyphs.size() == 3);
+    CHECK(joined.glyphs[1].index != isolated);
+}
+
+TEST_CASE("wrap breaks Latin between words and Chinese between characters", "[text]") {
+    Font font(20);
+    const auto latin = render::wrap(font, "the quick brown fox jumps over the lazy dog", 120);
+    REQUIRE(latin.size() > 2);
+    std::string joined;
+    for (const std::string& line : latin) {
+        CHECK(font.width(line) <= 120);
+        CHECK(line.front() != ' ');
+        CHECK(line.back() != ' ');
+        joined += (joined.empty() ? "" : " ") + line;
+    }
+    CHECK(joined == "the quick brown fox jumps over the lazy dog");
+    // Ideographs break anywhere but never before a closing mark: 100 px holds five.
+    const auto chinese = render::wrap(font, "雪花是自然界的生长现象，它具有复杂的树枝状形态。", 100, "zh-cn");
+    REQUIRE(chinese.size() >= 5);
+    std::string all;
+    for (const std::string& line : chinese) {
+        CHECK(font.width(line, "zh-cn") <= 100);
+        CHECK(line.rfind("，", 0) != 0);
+        CHECK(line.rfind("。", 0) != 0);
+        all += line;
+    }
+    CHECK(all == "雪花是自然界的生长现象，它具有复杂的树枝状形态。");
+    // A word wider than the room stays whole on its own line.
+    const auto long_word = render::wrap(font, "a supercalifragilistic b", 60);
+    CHECK(long_word == std::vector<std::string>{"a", "supercalifragilistic", "b"});
 }

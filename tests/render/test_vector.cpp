@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 #include <variant>
 
@@ -118,7 +119,7 @@ TEST_CASE("text in a PDF is the font's own glyphs, embedded as TrueType, and rea
     CHECK(glyphs.font_path == font.path());
     CHECK(glyphs.text == "Number of Cells \u2265 10\u00b2");
     CHECK(glyphs.glyphs.size() == 21);  // one a character
-    CHECK(glyphs.glyphs[1].pen > glyphs.glyphs[0].pen);
+    CHECK(glyphs.glyphs[1].position.x > glyphs.glyphs[0].position.x);
     const fs::path pdf = write(page, dir, "text.pdf", render::vector::Format::pdf);
     // cairo subsets the font: its Latin-1 glyphs as a TrueType font, the others (≥) as a second.
     const auto fonts = testkit::pdf_fonts(pdf);
@@ -133,6 +134,38 @@ TEST_CASE("text in a PDF is the font's own glyphs, embedded as TrueType, and rea
     REQUIRE(words.status == 0);
     CHECK(words.output.find("Number of Cells \u2265 10\u00b2") != std::string::npos);
     CHECK(words.output.find("azimuth") != std::string::npos);  // turned a quarter: poppler reads it in pieces
+}
+
+TEST_CASE("Chinese and Hebrew text in a PDF: fallback faces embedded and the words read back in order",
+          "[vector]") {
+    const fs::path dir = testkit::fresh_dir("vector-scripts");
+    render::VectorPage page(500, 120, false);
+    page.background({1, 1, 1, 1});
+    render::Text text;
+    render::Font& font = render::font_of_size(20);
+    text.add(font, "图3 “奇偶规则”生长出的雪花瞬时图象", {20, 40}, {0, 0, 0, 1}, render::Align::left,
+             render::Baseline::baseline, 0, "zh-cn");
+    text.add(font, "שלום", {20, 90}, {0, 0, 0, 1});
+    text.draw(page);
+    // The caption's runs: DejaVu for "3 ", Noto Sans CJK SC for the rest.
+    std::set<std::string> faces;
+    for (const auto& item : page.page().items)
+        if (const auto* g = std::get_if<render::vector::Glyphs>(&item))
+            faces.insert(fs::path(g->font_path).filename().string() + "#" + std::to_string(g->font_index));
+    CHECK(faces == std::set<std::string>{"DejaVuSans.ttf#0", "NotoSansCJK-Regular.ttc#2"});
+    const fs::path pdf = write(page, dir, "scripts.pdf", render::vector::Format::pdf);
+    bool cjk = false;
+    for (const auto& f : testkit::pdf_fonts(pdf)) {
+        INFO(f.name << ": " << f.type);
+        CHECK(f.embedded);
+        CHECK(f.type.find("Type 3") == std::string::npos);
+        cjk = cjk || f.name.find("NotoSansCJKsc") != std::string::npos;
+    }
+    CHECK(cjk);
+    const testkit::ToolRun words = testkit::run_tool("pdftotext '" + pdf.string() + "' -");
+    REQUIRE(words.status == 0);
+    CHECK(words.output.find("图3 “奇偶规则”生长出的雪花瞬时图象") != std::string::npos);
+    CHECK(words.output.find("שלום") != std::string::npos);
 }
 
 TEST_CASE("a nearest field is embedded at its cells and marked so; a smooth one as the PNG resamples it",
