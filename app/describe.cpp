@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "app/terminal_text.hpp"
 #include "description/description.hpp"
 #include "scenes/scene.hpp"
 #include "sim/check.hpp"
@@ -42,9 +43,7 @@ std::string shown(const nlohmann::json& value) {
         std::snprintf(number, sizeof number, "%.6g", value.get<double>());
         return number;
     }
-    std::string text = value.is_string() ? "\"" + value.get<std::string>() + "\"" : value.dump();
-    if (text.size() > 28) text = text.substr(0, 25) + "...";
-    return text;
+    return fit_columns(value.is_string() ? "\"" + value.get<std::string>() + "\"" : value.dump(), 28);
 }
 
 std::string range_of(const std::string& key, const std::vector<sim::CheckedRange>& ranges) {
@@ -78,23 +77,26 @@ std::string describe(const std::filesystem::path& file) {
     out << d.id << ": " << d.title << "\n"
         << "  source: " << d.source << "\n"
         << "  scene: " << d.scene << ", seed " << d.seed << ", described in " << file.string() << "\n";
-    char line[512];
+    if (!d.original_caption.empty())
+        out << "  original caption" << (d.language.empty() ? "" : " (" + d.language + ")") << ": " << d.original_caption
+            << "\n";
+    // Columns by display width: a value in Chinese takes two columns a character.
+    auto row = [&](const std::string& key, const std::string& value, const std::string& fallback,
+                   const std::string& allowed, const std::string& meaning) {
+        out << "  " << pad_columns(key, 20) << " " << pad_columns(value, 28) << " " << pad_columns(fallback, 28) << " "
+            << pad_columns(allowed, 30) << " " << meaning << "\n";
+    };
     auto section = [&](const SettingsLog::Section& s, const SettingsLog::Section* fallback,
                        const std::vector<sim::CheckedRange>& ranges) {
         out << "\n[" << s.name << "]\n";
-        std::snprintf(line, sizeof line, "  %-20s %-28s %-28s %-30s %s\n", "key", "this figure", "default",
-                      "allowed", "meaning");
-        out << line;
+        row("key", "this figure", "default", "allowed", "meaning");
         for (const Key& key : s.keys) {
             const nlohmann::json value = s.used.contains(key.name) ? s.used[key.name] : nlohmann::json();
             const nlohmann::json fallback_value =
                 fallback && fallback->used.contains(key.name) ? fallback->used[key.name] : nlohmann::json();
             std::string allowed = s.allowed.count(key.name) ? s.allowed.at(key.name) : range_of(key.name, ranges);
             if (allowed.empty()) allowed = "see meaning";
-            std::snprintf(line, sizeof line, "  %-20s %-28s %-28s %-30s %s\n", key.name.c_str(),
-                          shown(value).c_str(), fallback ? shown(fallback_value).c_str() : "-", allowed.c_str(),
-                          key.help.c_str());
-            out << line;
+            row(key.name, shown(value), fallback ? shown(fallback_value) : "-", allowed, key.help);
         }
     };
     std::vector<sim::CheckedRange> ranges = own.ranges;

@@ -1,12 +1,10 @@
 #include "app/outputs.hpp"
 
-#include "app/film_segments.hpp"
-
 #include <sys/stat.h>
 
 #include <cmath>
-#include <tuple>
 #include <cstdio>
+#include <tuple>
 #include <utility>
 
 #include "app/film_segments.hpp"
@@ -17,6 +15,7 @@
 #include "render/png_io.hpp"
 #include "render/vector.hpp"
 #include "render/vector_page.hpp"
+#include "scenes/figure_caption.hpp"
 
 namespace app {
 
@@ -262,7 +261,16 @@ std::unique_ptr<scenes::Film> FigureFiles::film(int width, int height) {
     return std::make_unique<FrameSink>(description_, options_, folder_, width, height, film_segments_);
 }
 
-void FigureFiles::figure(const scenes::FigureDrawing& drawing, nlohmann::json metadata) {
+void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json metadata) {
+    const scenes::FigureCaption caption = scenes::figure_caption(
+        description_, scaled(description_.width, options_.scale), scaled(description_.height, options_.scale),
+        options_.scale);
+    const scenes::FigureDrawing drawing = scenes::with_caption(scene, caption);
+    if (!caption.lines.empty())
+        metadata["figure_caption"] = {{"shows", description_.figure_caption},
+                                      {"lines", caption.lines},
+                                      {"language", caption.language},
+                                      {"band", caption.band}};
     render::Image image;
     {
         render::Canvas canvas(drawing.width, drawing.height, render::canvas_samples, drawing.depth);

@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+
+#include "app/terminal_text.hpp"
 
 namespace app {
 
@@ -43,11 +46,18 @@ void ProgressBar::draw(bool force) {
     // Ten redraws a second are enough for the eye and cost nothing.
     if (!force && now - last_draw_ < std::chrono::milliseconds(100)) return;
     last_draw_ = now;
-    constexpr int width = 30;
+    // "label [####      ]  40%    1.2s" in one column less than the
+    // terminal has, so that it never wraps: the bar up to 30 wide, the
+    // label up to 12 columns, both shorter on a narrow terminal.
+    const int columns = terminal_columns(STDERR_FILENO) - 1;
+    constexpr int numbers = 16;  // "] 100% 9999.9s" and the " [" before the bar
+    const int label_columns = std::clamp(columns - numbers - 10, 0, 12);
+    const int width = std::clamp(columns - numbers - (label_columns ? label_columns + 1 : 0), 1, 30);
     const double fraction = done_ >= total_ ? 1.0 : double(done_) / double(total_);
     const int filled = static_cast<int>(fraction * width);
     const double seconds = std::chrono::duration<double>(now - started_).count();
-    std::fprintf(stderr, "\r%-12s [%.*s%*s] %3d%% %6.1fs", label_.c_str(), filled, "##############################",
+    const std::string label = label_columns ? pad_columns(fit_columns(label_, label_columns), label_columns) + " " : "";
+    std::fprintf(stderr, "\r%s[%.*s%*s] %3d%% %6.1fs", label.c_str(), filled, "##############################",
                  width - filled, "", static_cast<int>(fraction * 100), seconds);
     std::fflush(stderr);
 }

@@ -20,6 +20,8 @@ const std::vector<Key> top_level_keys = {
     {"model", "old name of scene"},
     {"seed", "seed of the random generator, 0..2^63-1"},
     {"caption", "decisions and notes"},
+    {"original_caption", "the printed figure's own caption, in its document's language and script"},
+    {"language", "the document's language, a fontconfig tag such as \"zh-cn\", \"ja\" or \"en\""},
     {"params", "[params] section"},
     {"style", "[style] section"},
     {"figure", "[figure] section"},
@@ -31,6 +33,7 @@ const std::vector<Key> figure_keys = {
     {"size", "[width, height] in pixels"},
     {"panel_title", "title above each panel; {step} is the step shown"},
     {"formats", "vector files written besides the PNG: a list of \"pdf\" and \"svg\" (--format decides instead)"},
+    {"caption", "a caption drawn beneath the figure: \"none\", \"title\" or \"original\" (original_caption)"},
 };
 
 const std::vector<Key> animation_keys = {
@@ -130,6 +133,11 @@ void read_top_level(Description& d, const toml::table& root, std::optional<std::
     d.source = top.text("source", "");
     d.scene = top.text("scene", top.text("model", ""));
     d.caption = top.text("caption", "");
+    d.original_caption = top.text("original_caption", "");
+    d.language = top.text("language", "");
+    if (!is_language_tag(d.language))
+        top.refuse("language", "\"" + printable(d.language) + "\"",
+                   "a language tag of lower-case letters, digits and hyphens, e.g. \"zh-cn\", \"zh-tw\", \"ja\" or \"en\"");
     const long long seed_value = top.integer("seed", 0);
     if (seed_value < 0) top.refuse("seed", "an integer from 0 to 2^63-1");
     d.seed = seed ? *seed : static_cast<std::uint64_t>(seed_value);
@@ -150,6 +158,13 @@ void read_figure(Description& d, const toml::table& root) {
         figure.refuse("panels", "steps from 0 to 100000000, ascending, each once");
     std::tie(d.width, d.height) = size_pair(figure, "size", {d.width, d.height});
     d.panel_title = figure.text("panel_title", d.panel_title);
+    d.figure_caption = figure.text("caption", "none");
+    if (d.figure_caption != "none" && d.figure_caption != "title" && d.figure_caption != "original")
+        figure.refuse("caption", "\"" + printable(d.figure_caption) + "\"", "\"none\", \"title\" or \"original\"");
+    if (d.figure_caption == "original" && d.original_caption.empty())
+        figure.refuse("caption", "\"original\"",
+                      "\"none\" or \"title\": the description has no original_caption (the printed figure's own "
+                      "caption) to draw");
     for (const std::string& format : figure.texts("formats", {})) {
         if (format == "png") continue;  // always written
         if (format != "pdf" && format != "svg") figure.refuse("formats", "a list of \"pdf\", \"svg\" and \"png\"");

@@ -2,10 +2,12 @@
 // A figure description: one TOML file under figures/ saying what to draw.
 //
 //   id, title, source, scene, seed, caption      top-level keys
+//   original_caption, language                   the printed caption and its language
 //                                                (`model` is read as an old name of `scene`)
 //   [params]     the model's parameters (checked by its scene)
 //   [style]      drawing options (checked by its scene)
-//   [figure]     panels = [steps...], size = [w, h], panel_title = "step {step}"
+//   [figure]     panels = [steps...], size = [w, h], panel_title = "step {step}",
+//                caption = "none" | "title" | "original" (drawn beneath the figure)
 //   [animation]  steps = [first, last], stride, fps, size = [w, h], title
 //
 // Values given on the command line (--set key=value, --seed) are written
@@ -48,12 +50,15 @@ struct Description {
     std::string source;             // the printed figure it reproduces
     std::string scene;              // which scene draws it, e.g. "gray_scott", "roughness"
     std::string caption;            // decisions and notes, copied into the metadata
+    std::string original_caption;   // the printed figure's own caption, in the document's language
+    std::string language;           // that language, a fontconfig tag ("zh-cn", "ja"); empty: not given
     std::uint64_t seed = 0;         // for the project's generator
     toml::table params;             // [params], read by the scene through Settings
     toml::table style;              // [style], likewise
     std::vector<int> panels;        // steps of the figure's panels, ascending
     int width = 900, height = 450;  // figure size in pixels at scale 1
     std::string panel_title = "step {step}";
+    std::string figure_caption = "none";  // drawn beneath the figure: "none", "title" or "original"
     std::vector<std::string> formats;  // vector files the figure asks for: "pdf", "svg" (--format overrides)
     std::optional<Animation> animation;
     // Where each key was given: "section.key" (top-level keys under

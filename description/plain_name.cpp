@@ -5,6 +5,17 @@
 
 namespace description {
 
+bool is_language_tag(std::string_view tag) {
+    if (tag.empty()) return true;
+    if (tag.size() < 2 || tag.size() > 35) return false;
+    std::size_t letters = 0;
+    while (letters < tag.size() && tag[letters] >= 'a' && tag[letters] <= 'z') ++letters;
+    if (letters < 2 || letters > 3 || (letters < tag.size() && tag[letters] != '-')) return false;
+    for (const char c : tag)
+        if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-')) return false;
+    return tag.back() != '-' && tag.find("--") == std::string_view::npos;
+}
+
 bool is_plain_id(std::string_view id) {
     if (id.empty() || id.size() > 100 || id.front() == '.' || id.find("..") != std::string_view::npos) return false;
     for (const char c : id) {

@@ -17,6 +17,11 @@ inline constexpr const char* plain_id_allowed =
 // bidirectional or other non-ASCII character, not empty, not hidden.
 bool is_plain_id(std::string_view id);
 
+// Whether `tag` may be a language tag: empty (none given), or 2 to 35
+// lower-case ASCII letters, digits and hyphens, starting with 2 or 3
+// letters ("zh-cn", "ja", "en"): fontconfig's form.
+bool is_language_tag(std::string_view tag);
+
 // `text` quoted for a one-line message: control characters, the
 // bidirectional controls (U+202A..U+202E, U+2066..U+2069, U+200E, U+200F,
 // U+061C) and invalid UTF-8 are written as escapes (\n, \x00, \u202E), so a

@@ -3,6 +3,7 @@
 #include "scenes/field_spec.hpp"
 #include "scenes/model_check.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/figure_caption.hpp"
 #include "render/digest.hpp"
 #include "render/gl_context.hpp"
 #include "sim/cell1d.hpp"
@@ -100,7 +101,7 @@ public:
                                   {"state_sha256", render::sha256_hex(cells.data(), cells.size())}});
             progress.advance();
         }
-        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         out.figure(field_figure(panels, width, height, options_.scale),
                    {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
         progress.finish();

@@ -10,6 +10,7 @@
 #include "scenes/field_stats.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/figure_caption.hpp"
 #include "render/digest.hpp"
 #include "sim/cell1d.hpp"
 #include "sim/fractal.hpp"
@@ -183,7 +184,7 @@ private:
 
     // The survey's plot above, the gallery below.
     FigureDrawing draw_figure(const render::Axes& plot, const Gallery& gallery) const {
-        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         return {width, height, false, [this, &plot, &gallery](render::Surface& surface) {
                     const float w = float(surface.width()), h = float(surface.height());
                     surface.background({1, 1, 1, 1});

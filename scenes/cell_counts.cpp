@@ -6,6 +6,7 @@
 #include "scenes/model_check.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/figure_caption.hpp"
 #include "sim/cell1d.hpp"
 #include "sim/check.hpp"
 #include "sim/fractal.hpp"
@@ -85,7 +86,7 @@ public:
                                   {"state_sha256", state_hash(cells)}});
             progress.advance();
         }
-        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         out.figure(plot_figure(panels, width, height, plot_),
                    {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
         progress.finish();

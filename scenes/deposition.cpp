@@ -10,6 +10,7 @@
 #include "scenes/model_check.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/step_runner.hpp"
+#include "scenes/figure_caption.hpp"
 
 namespace scenes {
 namespace {
@@ -157,8 +158,8 @@ public:
         const auto field = deposit_field(deposit, int(top) + 2, band_size_);
         std::vector<FieldPanel> panels = {{d_.panel_title, {field_layer(field, spec_)}}};
         if (colour_bar_) panels[0].layers[0].colour_bar = band_bar();
-        run.write_figure(field_figure(panels, scaled(d_.width, options_.scale),
-                                      scaled(d_.height, options_.scale), options_.scale),
+        run.write_figure(field_figure(panels, figure_width(d_, options_),
+                                      figure_height(d_, options_), options_.scale),
                          metadata(deposit, top));
     }
 

@@ -13,6 +13,7 @@
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/step_runner.hpp"
+#include "scenes/figure_caption.hpp"
 #include "sim/fractal.hpp"
 
 namespace scenes {
@@ -178,7 +179,7 @@ private:
     // The forest's panels above, the counts and the dimension plots below.
     FigureDrawing draw_figure(const ForestHistory& history, const render::Axes& counts,
                               const render::Axes& dimension) const {
-        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         return {width, height, false, [this, &history, &counts, &dimension](render::Surface& surface) {
                     const float w = float(surface.width()), h = float(surface.height());
                     surface.background({1, 1, 1, 1});

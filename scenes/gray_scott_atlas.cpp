@@ -21,6 +21,7 @@
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/work_codec.hpp"
+#include "scenes/figure_caption.hpp"
 #include "sim/gray_scott_atlas.hpp"
 
 namespace scenes {
@@ -264,7 +265,7 @@ private:
     // The tiles in a square plot frame, k along x and f up y, with the axes drawn over them.
     FigureDrawing draw_map(const std::vector<sim::GrayScottAtlasTile>& tiles,
                            const std::vector<TileSummary>& summaries) const {
-        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         return {width, height, false,
                 [this, &tiles, &summaries](render::Surface& surface) { draw_map(surface, tiles, summaries); }};
     }

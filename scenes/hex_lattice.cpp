@@ -4,6 +4,7 @@
 #include "scenes/field_stats.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/figure_caption.hpp"
 #include "render/hex_cells.hpp"
 #include "render/layout.hpp"
 #include "render/text.hpp"
@@ -73,7 +74,7 @@ public:
         Progress& progress = out.progress();
         progress.start(d_.id, 1);
         const float s = static_cast<float>(options_.scale);
-        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         Drawing draw(width, height, s);
         const std::vector<double> row_state = draw_row(draw);
         const std::vector<double> patch_state = draw_patch(draw);

@@ -9,6 +9,7 @@
 #include "scenes/field_stats.hpp"
 #include "scenes/model_check.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/figure_caption.hpp"
 #include "render/layout.hpp"
 #include "sim/check.hpp"
 #include "sim/ifs.hpp"
@@ -210,8 +211,8 @@ public:
             for (std::size_t i = 0; i < boxes.size(); ++i) boxes[i] = with_aspect(clouds.own[i], std::exp(log_aspect));
         }
         const Page page = draw(clouds, boxes);
-        const FigureDrawing figure = field_figure(page.panels, scaled(d_.width, options_.scale),
-                                                  scaled(d_.height, options_.scale), options_.scale);
+        const FigureDrawing figure = field_figure(page.panels, figure_width(d_, options_),
+                                                  figure_height(d_, options_), options_.scale);
         out.figure(figure, {{"params", params_.used()}, {"style", style_.used()}, {"panels", clouds.meta}});
         progress.finish();
     }
@@ -252,7 +253,7 @@ private:
         std::vector<FieldPanel> panels;
     };
     Page draw(Clouds& clouds, const std::vector<std::pair<glm::dvec2, glm::dvec2>>& boxes) const {
-        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         render::PanelRowStyle row;
         row.scale = float(options_.scale);
         row.aspect = float((boxes[0].second.x - boxes[0].first.x) / (boxes[0].second.y - boxes[0].first.y));

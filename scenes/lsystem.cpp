@@ -9,6 +9,7 @@
 #include "scenes/model_check.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/figure_caption.hpp"
 #include "render/layout.hpp"
 #include "render/shapes.hpp"
 #include "render/text.hpp"
@@ -270,7 +271,7 @@ public:
     void render(Output& out) const override {
         Progress& progress = out.progress();
         progress.start(d_.id, static_cast<long long>(plants_.size()));
-        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         render::PanelRowStyle row;
         row.scale = float(options_.scale);
         const Drawings drawings = draw_turtles(progress);

@@ -13,6 +13,7 @@
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/step_runner.hpp"
+#include "scenes/figure_caption.hpp"
 #include "sim/check.hpp"
 #include "sim/lsystem.hpp"
 #include "sim/turtle.hpp"
@@ -161,7 +162,7 @@ public:
           turtle_(read_turtle(params_)),
           bark_(style_colour(style_, "bark_colour", "#6b4a2b")),
           leaf_(style_colour(style_, "leaf_colour", "#3c8d2f")),
-          views_(read_views(style_, scaled(d.width, options.scale), scaled(d.height, options.scale),
+          views_(read_views(style_, figure_width(d, options), figure_height(d, options),
                             float(options.scale))),
           elevation_(float(style_.number_in("elevation", 12, -max_elevation, max_elevation))),
           sides_(style_.count_in("sides", 12, min_sides, max_sides)),
@@ -185,7 +186,7 @@ public:
     // stencil byte: 16 bytes a pixel), beyond what the estimate counts for a
     // 2-D canvas.
     double depth_bytes() const {
-        double pixels = double(scaled(d_.width, options_.scale)) * scaled(d_.height, options_.scale);
+        double pixels = double(figure_width(d_, options_)) * figure_height(d_, options_);
         if (d_.animation && options_.film)
             pixels += double(scaled_even(d_.animation->width, options_.scale)) *
                       scaled_even(d_.animation->height, options_.scale);
@@ -218,7 +219,7 @@ public:
         nlohmann::json panel_meta = nlohmann::json::array();
         for (double azimuth : views_)
             panel_meta.push_back({{"azimuth_degrees", azimuth}, {"elevation_degrees", elevation_}});
-        const FigureDrawing figure{scaled(d_.width, options_.scale), scaled(d_.height, options_.scale), true,
+        const FigureDrawing figure{figure_width(d_, options_), figure_height(d_, options_), true,
                                    [&](render::Surface& surface) { draw_views(surface, plant, row, font); }};
         const glm::vec3 lo = plant.lo, hi = plant.hi;
         run.write_figure(figure, {{"params", params_.used()},

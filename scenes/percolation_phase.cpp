@@ -9,6 +9,7 @@
 #include "scenes/percolation_common.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/figure_caption.hpp"
 
 namespace scenes {
 namespace {
@@ -123,8 +124,8 @@ public:
             {"p_c", p_c_},
             {"state_sha256", state_hash(plotted)},
         };
-        out.figure(plot_figure({phase_axes(sweep), walk_axes(walk)}, scaled(d_.width, options_.scale),
-                                 scaled(d_.height, options_.scale), plot_style_),
+        out.figure(plot_figure({phase_axes(sweep), walk_axes(walk)}, figure_width(d_, options_),
+                                 figure_height(d_, options_), plot_style_),
                    meta);
         progress.finish();
     }

@@ -7,6 +7,7 @@
 #include "scenes/percolation_common.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/figure_caption.hpp"
 #include "sim/fractal.hpp"
 
 namespace scenes {
@@ -85,8 +86,8 @@ public:
             {"r", fit.r},
             {"state_sha256", state_hash(plotted)},
         };
-        out.figure(plot_figure({axes(c)}, scaled(d_.width, options_.scale),
-                                 scaled(d_.height, options_.scale), plot_style_),
+        out.figure(plot_figure({axes(c)}, figure_width(d_, options_),
+                                 figure_height(d_, options_), plot_style_),
                    meta);
         progress.finish();
     }

@@ -23,6 +23,7 @@
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/work_codec.hpp"
+#include "scenes/figure_caption.hpp"
 
 namespace scenes {
 namespace {
@@ -215,7 +216,7 @@ public:
         const sim::ThresholdExtrapolation fit = extrapolate(sizes);
         out.figure(
             plot_figure({curves_axes(sizes, ps), extrapolation_axes(sizes, crossings, fit)},
-                          scaled(d_.width, options_.scale), scaled(d_.height, options_.scale), plot_style_),
+                          figure_width(d_, options_), figure_height(d_, options_), plot_style_),
             metadata(sizes, ps, crossings, fit));
         progress.finish();
     }

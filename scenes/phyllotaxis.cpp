@@ -9,6 +9,7 @@
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/step_runner.hpp"
+#include "scenes/figure_caption.hpp"
 #include "render/layout.hpp"
 #include "render/shapes.hpp"
 #include "render/text.hpp"
@@ -131,7 +132,7 @@ public:
         nlohmann::json panel_meta = nlohmann::json::array();
         Page page;
         add_figure(page, spirals, panel_meta);
-        const FigureDrawing figure{scaled(d_.width, options_.scale), scaled(d_.height, options_.scale), false,
+        const FigureDrawing figure{figure_width(d_, options_), figure_height(d_, options_), false,
                                    [&page](render::Surface& surface) {
                                        surface.background({1, 1, 1, 1});
                                        page.shapes.draw(surface);
@@ -145,7 +146,7 @@ public:
     // touches no more: a doubling copy is the same twice). The figure draws
     // every flower; a frame only the first, so the figure bounds it too.
     std::vector<MemoryNeed> memory() const override {
-        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         int most = std::min(width, height);
         if (d_.animation && options_.film)
             most = std::max(most, std::min(scaled_even(d_.animation->width, options_.scale),
@@ -196,7 +197,7 @@ private:
 
     // Every flower whole, a panel each, into `page`; their metadata into `panel_meta`.
     void add_figure(Page& page, const std::vector<std::vector<sim::Seed>>& spirals, nlohmann::json& panel_meta) const {
-        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         const auto rects = render::panel_row(width, height, int(flowers_.size()), true, row_);
         render::Shapes& shapes = page.shapes;
         std::vector<std::string> titles;

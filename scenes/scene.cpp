@@ -6,6 +6,7 @@
 
 #include "render/colormap.hpp"
 #include "render/gl_context.hpp"
+#include "scenes/figure_caption.hpp"
 
 namespace scenes {
 
@@ -49,7 +50,10 @@ const SceneInfo& scene_of(const Description& d) {
 }  // namespace
 
 std::unique_ptr<Scene> read_scene(const Description& d, const SceneOptions& options) {
-    return scene_of(d).read(d, options);
+    const SceneInfo& scene = scene_of(d);
+    // A caption that cannot fit is refused before the model is read or run.
+    figure_caption(d, scaled(d.width, options.scale), scaled(d.height, options.scale), options.scale);
+    return scene.read(d, options);
 }
 
 void apply_colormap(Description& d, const std::string& name) {

@@ -7,6 +7,7 @@
 #include "scenes/scene.hpp"
 #include "scenes/snowflake_setup.hpp"
 #include "scenes/step_runner.hpp"
+#include "scenes/figure_caption.hpp"
 #include "render/hex_cells.hpp"
 #include "render/layout.hpp"
 #include "render/text.hpp"
@@ -132,7 +133,7 @@ public:
         });
 
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
-        const int width = scaled(d_.width, options_.scale), height = scaled(d_.height, options_.scale);
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         const FigureDrawing figure{width, height, false, [&](render::Surface& surface) {
                                        surface.background({1, 1, 1, 1});
                                        draw_snowflakes(surface, {0, 0, float(width), float(height)}, panels, colours_,

@@ -1,4 +1,5 @@
 #include "scenes/step_runner.hpp"
+#include "scenes/figure_caption.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -121,8 +122,8 @@ void StepRunner::finish_film() {
 
 void StepRunner::write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta) {
     if (film_only()) return finish_film();
-    write_figure(field_figure(panels, scaled(description_.width, options_.scale),
-                              scaled(description_.height, options_.scale), options_.scale),
+    write_figure(field_figure(panels, figure_width(description_, options_),
+                              figure_height(description_, options_), options_.scale),
                  std::move(meta));
 }
 

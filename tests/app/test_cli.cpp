@@ -203,6 +203,12 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-9 --set style.font_size=1000", "style.font_size = 1000 is not allowed: a number from 4 to 100"},
         {render + "tc7-2 --set style.a_alpha=2", "style.a_alpha = 2 is not allowed: a number from 0 to 1"},
         {render + "tc7-ex2 --set style.trees_colour=\\\"chartreuse-ish\\\"", "style.trees_colour = 'chartreuse-ish' is not allowed: #rrggbb or one of "},
+        // captions beneath the figure
+        {render + "tc7-1 --set figure.caption=original", "figure.caption = \"original\" is not allowed: \"none\" or \"title\": the description has no original_caption"},
+        {render + "sf87-3 --set figure.caption=below", "figure.caption = \"below\" is not allowed: \"none\", \"title\" or \"original\""},
+        {render + "sf87-3 --set figure.caption=original --size 200x40", "figure.caption = \"original\" at 200 x 40 is not allowed: a figure whose caption fits in a third of its height: its 2 line(s) take 51 px; --size 200x153 or larger fits them"},
+        {render + description("lang.toml", head + "language = \"Chinese\"\n"), "lang.toml:3: language = \"Chinese\" is not allowed: a language tag of lower-case letters"},
+        {render + description("lang2.toml", head + "language = \"xq-zz\"\noriginal_caption = \"x\"\n[figure]\ncaption = \"original\"\n"), "lang2.toml:3: language = \"xq-zz\" is not allowed: a language fontconfig knows"},
         // ballistic deposition
         {render + "bd-500 --set width=0", "--set width=0: width = 0 is not allowed: an integer from 3 to 10000000"},
         {render + "bd-500 --set particles=50000000 --set width=3", "--set particles=50000000: particles = 50000000 is not allowed: the deposit's view at most 16384 cells a side (it would be 40000016 x 3): the renderer draws one field that large"},

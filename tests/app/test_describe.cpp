@@ -1,5 +1,6 @@
 // figgen describe: every setting of every figure, with value, default, range and meaning.
 #include <catch2/catch.hpp>
+#include <fstream>
 #include <sstream>
 #include <toml++/toml.h>
 
@@ -63,4 +64,52 @@ TEST_CASE("figgen describe gives tc7-1's value, default and checked range", "[cl
     const testkit::Run bad = testkit::figgen("describe tc7-99");
     CHECK(bad.status == 2);
     CHECK_THAT(bad.output, Catch::Contains("unknown figure id 'tc7-99'; closest: tc7-9"));
+}
+
+namespace {
+
+// Terminal columns of a line, counted here from the code points: two for
+// CJK ideographs, kana and fullwidth forms (East Asian Wide), one for the
+// rest of what these lines hold.
+int columns_of(const std::string& utf8) {
+    int columns = 0;
+    for (std::size_t i = 0; i < utf8.size();) {
+        const auto lead = static_cast<unsigned char>(utf8[i]);
+        const int bytes = lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1;
+        char32_t c = bytes == 1 ? lead : lead & (0xFF >> (bytes + 1));
+        for (int k = 1; k < bytes; ++k) c = (c << 6) | (static_cast<unsigned char>(utf8[i + k]) & 0x3F);
+        const bool wide = (c >= 0x2E80 && c <= 0x9FFF) || (c >= 0xFF01 && c <= 0xFF60) || (c >= 0x3000 && c <= 0x303F);
+        columns += wide ? 2 : 1;
+        i += static_cast<std::size_t>(bytes);
+    }
+    return columns;
+}
+
+// The column at which the n-th (from 0) `needle` starts in `line`.
+int column_of(const std::string& line, const std::string& needle, int n = 0) {
+    auto at = line.find(needle);
+    for (; n > 0 && at != std::string::npos; --n) at = line.find(needle, at + 1);
+    return at == std::string::npos ? -1 : columns_of(line.substr(0, at));
+}
+
+}  // namespace
+
+TEST_CASE("figgen describe aligns its columns by display width with Chinese values", "[cli][describe]") {
+    const auto dir = testkit::fresh_dir("describe-wide");
+    const auto file = dir / "wide.toml";
+    std::ofstream(file) << "id = \"wide\"\nscene = \"snowflake\"\noriginal_caption = \"图 3 雪花\"\nlanguage = \"zh-cn\"\n"
+                           "[params]\nruns = [{rule = \"0101010\", label = \"(a)\"}]\n"
+                           "[style]\ncaption = \"图{label} 规则{rule}\"\nice_colour = \"#1d4e89\"\n";
+    const testkit::Run run = testkit::figgen("describe " + file.string());
+    REQUIRE(run.status == 0);
+    CHECK(run.output.find("original caption (zh-cn): 图 3 雪花") != std::string::npos);
+    const std::string wide = line_of(run.output, "style", "caption");
+    const std::string narrow = line_of(run.output, "style", "ice_colour");
+    REQUIRE(!wide.empty());
+    REQUIRE(!narrow.empty());
+    // The defaults' column starts at the same place on both lines: the
+    // Chinese value took its 2 columns a character, not its 3 bytes.
+    const int column = column_of(narrow, "\"#1d4e89\"", 1);
+    CHECK(column == 2 + 20 + 1 + 28 + 1);
+    CHECK(column_of(wide, "\"{label} {rule}\"") == column);
 }
