@@ -1,6 +1,7 @@
 #include "render/layout.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "render/shapes.hpp"
 #include "render/text.hpp"
@@ -51,6 +52,70 @@ std::vector<Rect> panel_grid(const Rect& area, int count, int columns, bool titl
         panels.insert(panels.end(), row.begin(), row.begin() + in_row);
     }
     return panels;
+}
+
+int best_columns(const Rect& area, int count, bool titled, const PanelRowStyle& style) {
+    int best = 1;
+    float best_area = -1;
+    for (int columns = 1; columns <= count; ++columns) {
+        const int rows = (count + columns - 1) / columns;
+        // A column more that leaves the rows as they are only shrinks the panels.
+        if (columns > 1 && rows == (count + columns - 2) / (columns - 1)) continue;
+        const Rect r = panel_grid(area, count, columns, titled, style).front();
+        if (r.w * r.h > best_area * 1.0001f) {
+            best_area = r.w * r.h;
+            best = columns;
+        }
+    }
+    return best;
+}
+
+GridText grid_text(std::vector<Rect> panels, const std::vector<std::string>& titles, TitlePlace place,
+                   float font_pixels, float pad) {
+    GridText layout{std::move(panels), {}};
+    const Font& font = font_of_size(font_pixels);
+    for (std::size_t i = 0; i < layout.panels.size(); ++i) {
+        const Rect& p = layout.panels[i];
+        if (i >= titles.size() || titles[i].empty()) {
+            layout.titles.push_back({p.centre().x, p.y, 0, 0});
+            continue;
+        }
+        const float w = font.width(titles[i]), h = font.ascender() - font.descender();
+        const float top = place == TitlePlace::above ? p.y - pad - font.ascender() : p.bottom() + pad;
+        layout.titles.push_back({p.centre().x - w / 2, top, w, h});
+    }
+    return layout;
+}
+
+namespace {
+
+bool overlap(const Rect& a, const Rect& b) {
+    return a.w > 0 && b.w > 0 && a.x < b.right() && b.x < a.right() && a.y < b.bottom() && b.y < a.bottom();
+}
+
+std::string box_text(const Rect& r) {
+    char text[96];
+    std::snprintf(text, sizeof text, "[%.0f, %.0f, %.0f x %.0f]", r.x, r.y, r.w, r.h);
+    return text;
+}
+
+}  // namespace
+
+std::string text_clash(const GridText& layout, const Rect& page) {
+    const float slack = 0.5f;  // rounding of pixel positions
+    for (std::size_t i = 0; i < layout.titles.size(); ++i) {
+        const Rect& t = layout.titles[i];
+        if (t.w <= 0) continue;
+        const std::string which = "the title of panel " + std::to_string(i + 1) + " " + box_text(t);
+        if (t.x < page.x - slack || t.y < page.y - slack || t.right() > page.right() + slack ||
+            t.bottom() > page.bottom() + slack)
+            return which + " runs off the page";
+        for (std::size_t j = 0; j < layout.titles.size(); ++j)
+            if (j != i && overlap(t, layout.titles[j])) return which + " overlaps the title of panel " + std::to_string(j + 1);
+        for (std::size_t j = 0; j < layout.panels.size(); ++j)
+            if (overlap(t, layout.panels[j])) return which + " overlaps panel " + std::to_string(j + 1);
+    }
+    return "";
 }
 
 void draw_panel_decorations(Surface& surface, const std::vector<Rect>& panels,

@@ -2,6 +2,7 @@
 // Figure layout: a row of equal panels on a white page, each in a thin frame
 // with its title above, like matplotlib's subplots(1, n) with imshow.
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,41 @@ std::vector<Rect> panel_row(const Rect& area, int count, bool titled, const Pane
 std::vector<Rect> panel_row(int width, int height, int count, bool titled, const PanelRowStyle& style);
 // `count` panels in rows of `columns`, the area split into equal bands.
 std::vector<Rect> panel_grid(const Rect& area, int count, int columns, bool titled, const PanelRowStyle& style);
+
+// The columns that give `count` panels of style.aspect the largest size in
+// `area` (panel_grid's layout); of equal sizes, the fewest rows. Four
+// square panels on a square page: 2 x 2, not 3 + 1.
+int best_columns(const Rect& area, int count, bool titled, const PanelRowStyle& style);
+
+// Where a grid's text goes, to check that it fits.
+enum class TitlePlace { above, below };  // a title over its panel, or a caption under it
+struct GridText {
+    std::vector<Rect> panels;
+    std::vector<Rect> titles;  // each title's line box (advance width x ascender to descender); w = 0: none
+};
+// The boxes of `titles` (one a panel, centred on it) at `place`, in `font_pixels`.
+// Above: the baseline `pad` over the panel's top; below: the line box's top
+// `pad` under its bottom.
+GridText grid_text(std::vector<Rect> panels, const std::vector<std::string>& titles, TitlePlace place,
+                   float font_pixels, float pad);
+// What is wrong with the text of `layout` on `page`: a title that leaves the
+// page, or overlaps another title or a panel. Empty when it all fits.
+std::string text_clash(const GridText& layout, const Rect& page);
+// The smallest page, `width` x `height` enlarged by steps of 5% (its aspect
+// kept, up to 8 times), at which `layout_at(w, h)` has no clash; {0, 0} when
+// none up to that.
+struct PageSize {
+    int width = 0, height = 0;
+};
+template <class LayoutAt>
+PageSize size_that_fits(int width, int height, LayoutAt&& layout_at) {
+    for (int step = 1; step <= 43; ++step) {  // 1.05^43 ~ 8
+        const double k = std::pow(1.05, step);
+        const int w = static_cast<int>(std::ceil(width * k)), h = static_cast<int>(std::ceil(height * k));
+        if (text_clash(layout_at(w, h), Rect{0, 0, float(w), float(h)}).empty()) return {w, h};
+    }
+    return {};
+}
 
 // The frames and titles of the panels, drawn over their contents.
 void draw_panel_decorations(Surface& surface, const std::vector<Rect>& panels,
