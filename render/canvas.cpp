@@ -238,9 +238,9 @@ void Canvas::hex_cells(const HexView& view, std::span<const glm::ivec2> cells, c
     gl_backend::hex_cells(*this, view, cells, colour);
 }
 
-void Canvas::tubes(const Rect& viewport, const std::vector<Tube>& tubes, const Camera& camera, const Light& light,
-                   int sides) {
-    gl_backend::tubes(*this, viewport, tubes, camera, light, sides);
+void Canvas::tubes(const Rect& viewport, const std::vector<Tube>& tubes, const std::vector<Facet>& facets,
+                   const Camera& camera, const Light& light, int sides) {
+    gl_backend::tubes(*this, viewport, tubes, facets, camera, light, sides);
 }
 
 void Canvas::clip(const Rect& box) {

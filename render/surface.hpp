@@ -26,6 +26,7 @@ class Text;
 struct FieldStyle;
 struct HexView;
 struct Tube;
+struct Facet;
 struct Camera;
 struct Light;
 
@@ -55,9 +56,9 @@ public:
                             const FieldStyle& first_style, std::span<const double> second,
                             const FieldStyle& second_style) = 0;
     virtual void hex_cells(const HexView& view, std::span<const glm::ivec2> cells, const glm::vec4& colour) = 0;
-    // 3-D tubes in `viewport` (render/tubes.hpp).
-    virtual void tubes(const Rect& viewport, const std::vector<Tube>& tubes, const Camera& camera, const Light& light,
-                       int sides) = 0;
+    // 3-D tubes and flat facets in `viewport`, one depth-tested picture (render/tubes.hpp).
+    virtual void tubes(const Rect& viewport, const std::vector<Tube>& tubes, const std::vector<Facet>& facets,
+                       const Camera& camera, const Light& light, int sides) = 0;
     // Until unclip(), only what falls inside `box`, rounded to whole pixels, is drawn.
     virtual void clip(const Rect& box) = 0;
     virtual void unclip() = 0;

@@ -60,7 +60,8 @@ uniform vec3 light_direction;  // unit, towards the light
 uniform vec3 light;            // ambient, diffuse, specular
 out vec4 out_colour;
 void main() {
-    vec3 n = normalize(v_normal);
+    // A facet is lit on the side the eye sees; a tube's back faces are culled, so this never flips one.
+    vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
     vec3 to_eye = normalize(eye - v_position);
     float lambert = max(dot(n, light_direction), 0.0);
     // Blinn-Phong: a highlight where the normal halves light and eye; none on the dark side.
@@ -68,6 +69,27 @@ void main() {
     vec3 lit = v_colour.rgb * (light.x + light.y * lambert) + light.z * highlight;
     out_colour = vec4(min(lit, vec3(1.0)), v_colour.a);
 })";
+
+const char* const facet_vertex_shader = R"(#version 330 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+layout(location = 2) in vec4 colour;
+uniform mat4 view_projection;
+out vec3 v_position;
+centroid out vec3 v_normal;
+flat out vec4 v_colour;
+void main() {
+    v_position = position;
+    v_normal = normal;
+    v_colour = colour;
+    gl_Position = view_projection * vec4(position, 1.0);
+})";
+
+// A facet's corner as GL reads it: the facet's normal, the same at each corner.
+struct FacetVertex {
+    glm::vec3 position, normal;
+    glm::vec4 colour;
+};
 
 struct MeshVertex {
     glm::vec3 local;  // across the axis (x, y) and along it (h), in radii
@@ -187,6 +209,57 @@ struct TubePipeline {
     }
 };
 
+// Lives as long as the context, beside the tubes' (the same fragment shader).
+struct FacetPipeline {
+    Program program{facet_vertex_shader, fragment_shader};
+    GLuint vao = 0, vbo = 0;
+
+    FacetPipeline() {
+        glGenVertexArrays(1, &vao);
+        glGenBuffers(1, &vbo);
+        glBindVertexArray(vao);
+        glBindBuffer(GL_ARRAY_BUFFER, vbo);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(FacetVertex),
+                              reinterpret_cast<const void*>(offsetof(FacetVertex, position)));
+        glEnableVertexAttribArray(1);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(FacetVertex),
+                              reinterpret_cast<const void*>(offsetof(FacetVertex, normal)));
+        glEnableVertexAttribArray(2);
+        glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(FacetVertex),
+                              reinterpret_cast<const void*>(offsetof(FacetVertex, colour)));
+        glBindVertexArray(0);
+    }
+
+    // The facets with an area, three corners each; returns how many corners.
+    GLsizei upload(const std::vector<Facet>& facets) const {
+        std::vector<FacetVertex> corners;
+        corners.reserve(3 * facets.size());
+        for (const Facet& f : facets) {
+            const glm::vec3 across = glm::cross(f.b - f.a, f.c - f.a);
+            const float area = glm::length(across);
+            if (!(area > 0) || !std::isfinite(area)) continue;  // no normal to light it by
+            const glm::vec3 n = across / area;
+            for (const glm::vec3& p : {f.a, f.b, f.c}) corners.push_back({p, n, f.colour});
+        }
+        glBindVertexArray(vao);
+        glBindBuffer(GL_ARRAY_BUFFER, vbo);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(corners.size() * sizeof(FacetVertex)), corners.data(),
+                     GL_STREAM_DRAW);
+        return GLsizei(corners.size());
+    }
+};
+
+void set_lighting(const Program& program, const Camera& camera, const Light& light, float aspect) {
+    program.use();
+    program.set("view_projection", view_projection(camera, aspect));
+    glUniform3f(program.uniform("eye"), camera.eye.x, camera.eye.y, camera.eye.z);
+    const glm::vec3 towards_light = glm::length(light.direction) > 0 ? glm::normalize(light.direction)
+                                                                      : glm::vec3(0, 1, 0);
+    glUniform3f(program.uniform("light_direction"), towards_light.x, towards_light.y, towards_light.z);
+    glUniform3f(program.uniform("light"), light.ambient, light.diffuse, light.specular);
+}
+
 struct PixelRect {
     int x, y, w, h;  // top-left origin, y down
 };
@@ -248,6 +321,105 @@ std::pair<glm::vec3, glm::vec3> tube_bounds(const std::vector<Tube>& tubes) {
     return {lo, hi};
 }
 
+std::vector<Ball> balls_of(const std::vector<Tube>& tubes, const std::vector<Facet>& facets) {
+    std::vector<Ball> balls;
+    balls.reserve(2 * tubes.size() + 3 * facets.size());
+    for (const Tube& t : tubes) balls.insert(balls.end(), {{t.a, t.radius_a}, {t.b, t.radius_b}});
+    for (const Facet& f : facets) balls.insert(balls.end(), {{f.a, 0}, {f.b, 0}, {f.c, 0}});
+    return balls;
+}
+
+namespace {
+
+// The camera's axes for a direction, as frame_bounds takes them: towards the
+// eye, up on screen (the derivative of `back` in elevation, so straight down
+// still has an up) and right.
+struct Axes {
+    glm::vec3 back, up, right;
+};
+
+Axes axes_of(float azimuth_degrees, float elevation_degrees) {
+    const float azimuth = glm::radians(azimuth_degrees), elevation = glm::radians(elevation_degrees);
+    Axes axes;
+    axes.back = {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
+    axes.up = {-std::sin(elevation) * std::sin(azimuth), std::cos(elevation), -std::sin(elevation) * std::cos(azimuth)};
+    axes.right = glm::cross(axes.up, axes.back);
+    return axes;
+}
+
+// The extent in tangents of the view angle, (x, y) / depth, of balls seen
+// from target + distance * back; doubles, as the balls may be many.
+Extent tangent_extent(std::span<const Ball> balls, const Axes& axes, glm::vec3 target, double distance) {
+    const double inf = std::numeric_limits<double>::infinity();
+    glm::dvec2 lo(inf), hi(-inf);
+    for (const Ball& b : balls) {
+        const glm::dvec3 q = glm::dvec3(b.centre) - glm::dvec3(target);
+        const double depth = distance - glm::dot(q, glm::dvec3(axes.back));
+        const glm::dvec2 at{glm::dot(q, glm::dvec3(axes.right)), glm::dot(q, glm::dvec3(axes.up))};
+        lo = glm::min(lo, (at - double(b.radius)) / depth);
+        hi = glm::max(hi, (at + double(b.radius)) / depth);
+    }
+    return {glm::vec2(lo), glm::vec2(hi)};
+}
+
+}  // namespace
+
+Extent projected_extent(std::span<const Ball> balls, const Camera& camera, float aspect) {
+    // Only the projection matters here: the axes from the camera itself.
+    const glm::vec3 back = glm::normalize(camera.eye - camera.target);
+    const glm::vec3 right = glm::normalize(glm::cross(camera.up, back));
+    const Axes axes{back, glm::cross(back, right), right};
+    const Extent t = tangent_extent(balls, axes, camera.target, glm::length(camera.eye - camera.target));
+    const float tan_v = std::tan(glm::radians(camera.fov_degrees) / 2);
+    const glm::vec2 scale{tan_v * aspect, tan_v};
+    return {t.lo / scale, t.hi / scale};
+}
+
+Camera frame_balls(std::span<const Ball> balls, float azimuth_degrees, float elevation_degrees, float aspect,
+                   float fill, float min_distance, float fov_degrees) {
+    const Axes axes = axes_of(azimuth_degrees, elevation_degrees);
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (const Ball& b : balls) {
+        lo = glm::min(lo, glm::dvec3(b.centre) - double(b.radius));
+        hi = glm::max(hi, glm::dvec3(b.centre) + double(b.radius));
+    }
+    if (balls.empty()) lo = hi = glm::dvec3(0);
+    glm::dvec3 target = (lo + hi) * 0.5;
+    const double reach = glm::length(hi - lo) / 2;  // every ball lies within this of the box's centre
+    const double tan_v = std::tan(glm::radians(double(fov_degrees)) / 2), tan_h = tan_v * aspect;
+    const glm::dvec3 back(axes.back), up(axes.up), right(axes.right);
+    double distance = 1;
+    // Fit, centre, fit again: a shift across the line of sight moves every
+    // ball's image alike but for perspective, so a few rounds settle it.
+    constexpr int rounds = 8;
+    for (int round = 0; round < rounds; ++round) {
+        // The distance at which the widest ball reaches `fill` of the half-width or half-height.
+        distance = std::max(double(min_distance), 1e-6);
+        for (const Ball& b : balls) {
+            const glm::dvec3 q = glm::dvec3(b.centre) - target;
+            const double z = glm::dot(q, back), r = b.radius;
+            distance = std::max({distance, z + (std::abs(glm::dot(q, right)) + r) / (fill * tan_h),
+                                 z + (std::abs(glm::dot(q, up)) + r) / (fill * tan_v)});
+        }
+        // Outside every ball, so that near stays positive.
+        distance = reach > 0 ? std::max(distance, 1.05 * (reach + glm::length(target - (lo + hi) * 0.5)))
+                             : std::max(distance, 1.0);
+        if (round == rounds - 1) break;
+        const Extent t = tangent_extent(balls, axes, glm::vec3(target), distance);
+        const glm::dvec2 middle = (glm::dvec2(t.lo) + glm::dvec2(t.hi)) * 0.5;
+        target += distance * (middle.x * right + middle.y * up);
+    }
+    const double radius = reach + glm::length(target - (lo + hi) * 0.5);  // of a sphere about target holding all
+    Camera camera;
+    camera.target = glm::vec3(target);
+    camera.eye = glm::vec3(target + distance * back);
+    camera.up = axes.up;
+    camera.fov_degrees = fov_degrees;
+    camera.near = float(std::max(distance - radius, 1e-3 * distance) * 0.9);
+    camera.far = float((distance + radius) * 1.1);
+    return camera;
+}
+
 glm::mat4 view_projection(const Camera& camera, float aspect) {
     return glm::perspective(glm::radians(camera.fov_degrees), aspect, camera.near, camera.far) *
            glm::lookAt(camera.eye, camera.target, camera.up);
@@ -260,19 +432,27 @@ glm::vec2 project(const Camera& camera, const Rect& viewport, glm::vec3 point) {
     return {float(p.x) + (ndc.x + 1) / 2 * float(p.w), float(p.y) + (1 - ndc.y) / 2 * float(p.h)};
 }
 
-void draw_tubes(Surface& surface, const Rect& viewport, const std::vector<Tube>& tubes, const Camera& camera,
-                const Light& light, int sides) {
+void draw_tubes(Surface& surface, const Rect& viewport, const std::vector<Tube>& tubes,
+                const std::vector<Facet>& facets, const Camera& camera, const Light& light, int sides) {
     if (sides < 3 || sides > 256) throw std::invalid_argument("draw_tubes: sides must be 3..256");
     for (const Tube& t : tubes)
         if (!(t.radius_a >= 0 && t.radius_b >= 0 && std::isfinite(t.radius_a) && std::isfinite(t.radius_b) &&
               finite(t.a) && finite(t.b)))
             throw std::invalid_argument("draw_tubes: a tube has a negative or non-finite radius or end point");
+    for (const Facet& f : facets)
+        if (!(finite(f.a) && finite(f.b) && finite(f.c)))
+            throw std::invalid_argument("draw_tubes: a facet has a non-finite corner");
     whole_pixels(viewport);  // refuses an empty one
-    surface.tubes(viewport, tubes, camera, light, sides);
+    surface.tubes(viewport, tubes, facets, camera, light, sides);
+}
+
+void draw_tubes(Surface& surface, const Rect& viewport, const std::vector<Tube>& tubes, const Camera& camera,
+                const Light& light, int sides) {
+    draw_tubes(surface, viewport, tubes, {}, camera, light, sides);
 }
 
 void gl_backend::tubes(const Canvas& canvas, const Rect& viewport, const std::vector<Tube>& tubes,
-                       const Camera& camera, const Light& light, int sides) {
+                       const std::vector<Facet>& facets, const Camera& camera, const Light& light, int sides) {
     if (!canvas.has_depth())
         throw std::logic_error("draw_tubes: the canvas has no depth buffer (make it with depth = true)");
     const PixelRect p = whole_pixels(viewport);
@@ -293,14 +473,7 @@ void gl_backend::tubes(const Canvas& canvas, const Rect& viewport, const std::ve
         glFrontFace(GL_CCW);
         pipeline.use_mesh(sides);
         pipeline.upload(tubes);
-        const Program& program = pipeline.program;
-        program.use();
-        program.set("view_projection", view_projection(camera, float(p.w) / float(p.h)));
-        glUniform3f(program.uniform("eye"), camera.eye.x, camera.eye.y, camera.eye.z);
-        const glm::vec3 towards_light = glm::length(light.direction) > 0 ? glm::normalize(light.direction)
-                                                                          : glm::vec3(0, 1, 0);
-        glUniform3f(program.uniform("light_direction"), towards_light.x, towards_light.y, towards_light.z);
-        glUniform3f(program.uniform("light"), light.ambient, light.diffuse, light.specular);
+        set_lighting(pipeline.program, camera, light, float(p.w) / float(p.h));
         // Batches of tubes, finishing each: see triangles_per_finish.
         const long long total = static_cast<long long>(tubes.size());
         const long long batch = std::max(1LL, triangles_per_finish / (pipeline.index_count / 3));
@@ -308,6 +481,23 @@ void gl_backend::tubes(const Canvas& canvas, const Rect& viewport, const std::ve
             if (first > 0) glFinish();
             glDrawElementsInstancedBaseInstance(GL_TRIANGLES, pipeline.index_count, GL_UNSIGNED_INT, nullptr,
                                                 GLsizei(std::min(batch, total - first)), GLuint(first));
+        }
+        glBindVertexArray(0);
+    }
+    if (!facets.empty()) {
+        static FacetPipeline facet_pipeline;
+        if (!tubes.empty()) glFinish();  // one batch queued at a time, tubes' or facets'
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDisable(GL_CULL_FACE);  // a leaf is seen from both sides
+        const GLsizei corners = facet_pipeline.upload(facets);
+        set_lighting(facet_pipeline.program, camera, light, float(p.w) / float(p.h));
+        glBindVertexArray(facet_pipeline.vao);
+        // Batches, finishing each: see triangles_per_finish.
+        const GLsizei batch = GLsizei(3 * triangles_per_finish);
+        for (GLsizei first = 0; first < corners; first += batch) {
+            if (first > 0) glFinish();
+            glDrawArrays(GL_TRIANGLES, first, std::min(batch, corners - first));
         }
         glBindVertexArray(0);
     }

@@ -276,15 +276,15 @@ void VectorPage::hex_cells(const HexView& view, std::span<const glm::ivec2> cell
     page_.items.push_back(vector::Fill{std::move(path), colour});
 }
 
-void VectorPage::tubes(const Rect& viewport, const std::vector<Tube>& tubes, const Camera& camera,
-                       const Light& light, int sides) {
+void VectorPage::tubes(const Rect& viewport, const std::vector<Tube>& tubes, const std::vector<Facet>& facets,
+                       const Camera& camera, const Light& light, int sides) {
     const PixelBox box = clip_box(viewport);
     const int w = box.x1 - box.x0, h = box.y1 - box.y0;
     if (w < 1 || h < 1) return;
     Canvas canvas(w, h, canvas_samples, true);
     canvas.set_transparent(true);
     canvas.background({0, 0, 0, 0});
-    draw_tubes(canvas, {0, 0, float(w), float(h)}, tubes, camera, light, sides);
+    draw_tubes(canvas, {0, 0, float(w), float(h)}, tubes, facets, camera, light, sides);
     page_.items.push_back(vector::Picture{canvas.read(), {float(box.x0), float(box.y0), float(w), float(h)}, true});
 }
 

@@ -41,8 +41,8 @@ public:
                     const FieldStyle& first_style, std::span<const double> second,
                     const FieldStyle& second_style) override;
     void hex_cells(const HexView& view, std::span<const glm::ivec2> cells, const glm::vec4& colour) override;
-    void tubes(const Rect& viewport, const std::vector<Tube>& tubes, const Camera& camera, const Light& light,
-               int sides) override;
+    void tubes(const Rect& viewport, const std::vector<Tube>& tubes, const std::vector<Facet>& facets,
+               const Camera& camera, const Light& light, int sides) override;
     void clip(const Rect& box) override;
     void unclip() override;
 

@@ -37,9 +37,10 @@ public:
     void hex_cells(const render::HexView& view, std::span<const glm::ivec2> cells, const glm::vec4& colour) override {
         page_.hex_cells(view, cells, colour);
     }
-    void tubes(const render::Rect& viewport, const std::vector<render::Tube>& tubes, const render::Camera& camera,
-               const render::Light& light, int sides) override {
-        page_.tubes(viewport, tubes, camera, light, sides);
+    void tubes(const render::Rect& viewport, const std::vector<render::Tube>& tubes,
+               const std::vector<render::Facet>& facets, const render::Camera& camera, const render::Light& light,
+               int sides) override {
+        page_.tubes(viewport, tubes, facets, camera, light, sides);
     }
     void clip(const render::Rect& box) override { page_.clip(box); }
     void unclip() override { page_.unclip(); }

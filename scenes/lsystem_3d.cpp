@@ -1,6 +1,8 @@
 // A 3-D bracketed L-system plant ("Plants hidden in mathematical formulas",
 // part 1, "even three-dimensional plants"): the ABOP turtle's segments drawn
-// as lit, shaded tubes in perspective, and a turntable film.
+// as lit, shaded tubes and its polygons (leaves) as lit facets in one
+// depth-tested perspective picture, framed so the plant fills its panels,
+// and a turntable film.
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -33,7 +35,9 @@ const std::vector<Key> param_keys = {
 };
 
 const std::vector<Key> style_keys = {
-    {"bark_colour", "colour at the trunk"},       {"leaf_colour", "colour of the thinnest twigs"},
+    {"bark_colour", "colour of colour index 0"},
+    {"leaf_colour", "colour of colour index leaf_index and above"},
+    {"leaf_index", "colour index drawn in leaf_colour"},
     {"views", "azimuths of the panels, degrees"}, {"elevation", "camera elevation, degrees"},
     {"sides", "facets around each tube"},
 };
@@ -42,15 +46,18 @@ constexpr int max_depth = 64;                  // far past any budget: the count
 constexpr int min_sides = 3, max_sides = 256;  // what render::draw_tubes draws
 constexpr double max_azimuth = 360;            // degrees either way: one turn
 constexpr double max_elevation = 90;           // degrees: straight down or up; beyond, the camera turns over
+constexpr int max_leaf_index = 1 << 20;        // far past any colour table
 // The panels' width / height follows the plant's box within these.
 constexpr float min_aspect = 0.5f, max_aspect = 2.0f;
 
 // A plant without a segment has nothing to frame; the turtle refuses one
-// over its segment budget when it starts drawing (sim/turtle.cpp): both
-// refused here, in phase 1.
-void require_drawn_segments(Settings& params, int depth, std::uint64_t segments, std::uint64_t budget) {
+// over its segment or vertex budget when it starts drawing
+// (sim/turtle.cpp): all refused here, in phase 1.
+void require_drawn_segments(Settings& params, int depth, std::uint64_t segments, std::uint64_t vertices,
+                            const sim::Turtle3Params& turtle) {
     if (segments == 0) params.refuse("depth", "a depth at which the plant draws a segment (an 'F'); it draws none");
-    check_model(params, [&] { sim::require_segment_budget(depth, segments, budget); });
+    check_model(params, [&] { sim::require_segment_budget(depth, segments, turtle.segment_budget); });
+    check_model(params, [&] { sim::require_vertex_budget(depth, vertices, turtle.vertex_budget); });
 }
 
 // The axiom and rules, a single "rule" replacing the list; the parser's
@@ -111,32 +118,65 @@ std::vector<double> read_views(Settings& style, int width, int height, float sca
     return views;
 }
 
-// Bark at the trunk to green at the thinnest twigs, by the segment's width.
-std::vector<render::Tube> tubes_of(const std::vector<sim::Segment3>& segments, double trunk_width,
-                                   const glm::vec4& bark, const glm::vec4& leaf) {
+// ABOP's colour table, made of two colours: index 0 is bark, leaf_index and
+// above leaf, the indices between a mix (each ' a step from bark to leaf).
+struct Palette {
+    glm::vec4 bark, leaf;
+    int leaf_index;  // >= 1
+    glm::vec4 operator()(int index) const {
+        return glm::mix(bark, leaf, float(std::min(index, leaf_index)) / float(leaf_index));
+    }
+};
+
+// Each segment a tube as wide as the pen, in its colour index's colour.
+std::vector<render::Tube> tubes_of(const std::vector<sim::Segment3>& segments, const Palette& palette) {
     std::vector<render::Tube> tubes;
     tubes.reserve(segments.size());
     for (const auto& s : segments) {
-        const float t = float(std::clamp(1.0 - s.width / trunk_width, 0.0, 1.0));
-        const glm::vec4 colour = glm::mix(bark, leaf, std::sqrt(t));
         const float r = float(s.width / 2);
-        tubes.push_back({glm::vec3(s.a), glm::vec3(s.b), r, r, colour});
+        tubes.push_back({glm::vec3(s.a), glm::vec3(s.b), r, r, palette(s.colour)});
     }
     return tubes;
 }
 
-// SHA-256 of the turtle's segments in drawing order: from, to, width, level.
-std::string segments_hash(const std::vector<sim::Segment3>& segments) {
+// Each polygon a fan of facets from its first vertex: right for the convex,
+// nearly planar leaves of ABOP (Fig 1.25's are flat hexagons).
+std::vector<render::Facet> facets_of(const sim::Drawing3& drawing, const Palette& palette) {
+    std::vector<render::Facet> facets;
+    facets.reserve(drawing.vertices.size());  // count - 2 a polygon
+    for (const sim::Polygon3& polygon : drawing.polygons) {
+        const glm::vec4 colour = palette(polygon.colour);
+        const auto* v = &drawing.vertices[polygon.first];
+        for (std::uint32_t k = 1; k + 1 < polygon.count; ++k)
+            facets.push_back({glm::vec3(v[0]), glm::vec3(v[k]), glm::vec3(v[k + 1]), colour});
+    }
+    return facets;
+}
+
+// SHA-256 of what the turtle drew: each segment (from, to, width, level,
+// colour) in drawing order, then each polygon (colour, vertex count,
+// vertices) in the order they ended.
+std::string drawing_hash(const sim::Drawing3& drawing) {
     std::vector<double> values;
-    values.reserve(8 * segments.size());
-    for (const auto& s : segments)
-        values.insert(values.end(), {s.a.x, s.a.y, s.a.z, s.b.x, s.b.y, s.b.z, s.width, double(s.level)});
+    values.reserve(9 * drawing.segments.size() + 2 * drawing.polygons.size() + 3 * drawing.vertices.size());
+    for (const auto& s : drawing.segments)
+        values.insert(values.end(),
+                      {s.a.x, s.a.y, s.a.z, s.b.x, s.b.y, s.b.z, s.width, double(s.level), double(s.colour)});
+    for (const auto& p : drawing.polygons) {
+        values.insert(values.end(), {double(p.colour), double(p.count)});
+        for (std::uint32_t k = 0; k < p.count; ++k) {
+            const glm::dvec3& v = drawing.vertices[p.first + k];
+            values.insert(values.end(), {v.x, v.y, v.z});
+        }
+    }
     return state_hash(values);
 }
 
-// The tubes and the box that holds them.
+// The tubes, the facets, the balls that frame them and the box that holds them.
 struct Plant {
     std::vector<render::Tube> tubes;
+    std::vector<render::Facet> facets;
+    std::vector<render::Ball> balls;
     glm::vec3 lo, hi;
 };
 
@@ -153,6 +193,22 @@ void require_framable(const Plant& plant) {
                                  sim::shown(most) + "); no image written");
 }
 
+// The default light (from the upper left, in front) carried round with the
+// camera: every view and every frame of the turntable lit alike, as on a
+// turntable under a studio light, rather than the far side left dark.
+render::Light studio_light(const render::Camera& camera) {
+    const glm::vec3 back = glm::normalize(camera.eye - camera.target);
+    const glm::vec3 right = glm::normalize(glm::cross(camera.up, back)), up = glm::cross(back, right);
+    render::Light light;
+    const glm::vec3 d = light.direction;  // given for a camera on +z looking down -z
+    light.direction = d.x * right + d.y * up + d.z * back;
+    return light;
+}
+
+// The share of its viewport's height or width the plant fills, whichever it
+// reaches first, leaving a margin on the tighter sides.
+constexpr float fill = 0.94f;
+
 class LSystem3dScene : public SceneBase {
 public:
     LSystem3dScene(const Description& d, const SceneOptions& options)
@@ -160,24 +216,33 @@ public:
           system_(read_system(params_)),
           depth_(params_.count_in("depth", 7, 0, max_depth)),
           turtle_(read_turtle(params_)),
-          bark_(style_colour(style_, "bark_colour", "#6b4a2b")),
-          leaf_(style_colour(style_, "leaf_colour", "#3c8d2f")),
+          palette_{style_colour(style_, "bark_colour", "#6b4a2b"), style_colour(style_, "leaf_colour", "#3c8d2f"),
+                   style_.count_in("leaf_index", 3, 1, max_leaf_index)},
           views_(read_views(style_, figure_width(d, options), figure_height(d, options),
                             float(options.scale))),
           elevation_(float(style_.number_in("elevation", 12, -max_elevation, max_elevation))),
           sides_(style_.count_in("sides", 12, min_sides, max_sides)),
-          segments_(sim::segment_count(system_, depth_, false)) {
-        require_drawn_segments(params_, depth_, segments_, turtle_.segment_budget);
+          segments_(sim::segment_count(system_, depth_, false)),
+          vertices_(sim::polygon_vertex_count(system_, depth_)) {
+        require_drawn_segments(params_, depth_, segments_, vertices_, turtle_);
     }
 
-    // Each segment: the turtle's Segment3, its 8 doubles hashed, its tube
+    // Each segment: the turtle's Segment3, its 9 doubles hashed, its tube
     // here and in llvmpipe's instance buffer (one capsule mesh serves them
-    // all); and llvmpipe's queue of binned triangles. Measured at depths 8
+    // all), its two framing balls. Each polygon vertex (at most vertices_,
+    // a polygon of n giving n - 2 facets): its dvec3 in the drawing and on
+    // the turtle's polygon stack, 3 doubles hashed, a facet here, three
+    // balls and three corners for GL, each twice (our buffer and llvmpipe's
+    // copy). And llvmpipe's queue of binned triangles. Measured at depths 8
     // to 11 (up to 318,552 segments): 1.0 to 1.5 times below this.
     std::vector<MemoryNeed> memory() const override {
         return {{"plant of depth " + std::to_string(depth_) + ", " + std::to_string(segments_) + " segments",
-                 static_cast<double>(segments_) *
-                     (sizeof(sim::Segment3) + 8 * sizeof(double) + 2.0 * sizeof(render::Tube))},
+                 static_cast<double>(segments_) * (sizeof(sim::Segment3) + 9 * sizeof(double) +
+                                                   2.0 * sizeof(render::Tube) + 2.0 * sizeof(render::Ball))},
+                {"its polygons, " + std::to_string(vertices_) + " vertices at most",
+                 static_cast<double>(vertices_) *
+                     (2.0 * sizeof(glm::dvec3) + 3 * sizeof(double) + sizeof(render::Facet) +
+                      3.0 * sizeof(render::Ball) + 2.0 * 3 * (10 * sizeof(float)))},
                 {"llvmpipe's queue of binned triangles", render::queued_triangles_bytes},
                 {"depth samples of the figure and film canvases", depth_bytes()}};
     }
@@ -194,13 +259,15 @@ public:
     }
 
     void render(Output& out) const override {
-        const std::vector<sim::Segment3> segments = sim::interpret_3d(system_, depth_, turtle_);
+        const sim::Drawing3 drawing = sim::interpret_3d(system_, depth_, turtle_);
         Plant plant;
-        plant.tubes = tubes_of(segments, turtle_.width, bark_, leaf_);
-        // Named copies, not a structured binding: clang 14 (make fuzz) cannot capture those in a lambda.
-        const auto bounds_of_tubes = render::tube_bounds(plant.tubes);
-        plant.lo = bounds_of_tubes.first;
-        plant.hi = bounds_of_tubes.second;
+        plant.tubes = tubes_of(drawing.segments, palette_);
+        plant.facets = facets_of(drawing, palette_);
+        plant.balls = render::balls_of(plant.tubes, plant.facets);
+        const auto bounds = sim::bounds(drawing);
+        const auto bounds_of_tubes = render::tube_bounds(plant.tubes);  // the radii too
+        plant.lo = glm::min(bounds_of_tubes.first, glm::vec3(bounds.lo));
+        plant.hi = glm::max(bounds_of_tubes.second, glm::vec3(bounds.hi));
         require_framable(plant);
 
         // The turntable: one turn around the vertical axis over the film.
@@ -210,52 +277,106 @@ public:
         render::PanelRowStyle row;
         row.scale = float(options_.scale);
         render::Font& font = render::font_of_size(std::round(row.title_size * row.scale));
+        std::vector<render::Camera> film_cameras;
         run.run({.check = {},
                  .panel = {},
-                 .frame = [&](int step) { return turntable_frame(run.frame_canvas(true), plant, step); },
+                 .frame =
+                     [&](int step) {
+                         render::Canvas& canvas = run.frame_canvas(true);
+                         if (film_cameras.empty())
+                             film_cameras = turntable_cameras(plant, float(canvas.width()) / float(canvas.height()));
+                         return turntable_frame(canvas, plant, film_cameras[std::size_t(step)]);
+                     },
                  .advance = [] { return true; }});
 
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
+        const std::vector<render::Rect> panels = panel_rects(plant, row, width, height);
+        // Each panel, its camera and the plant's projected box in it, in the figure's pixels.
+        std::vector<render::Camera> cameras;
         nlohmann::json panel_meta = nlohmann::json::array();
-        for (double azimuth : views_)
-            panel_meta.push_back({{"azimuth_degrees", azimuth}, {"elevation_degrees", elevation_}});
-        const FigureDrawing figure{figure_width(d_, options_), figure_height(d_, options_), true,
-                                   [&](render::Surface& surface) { draw_views(surface, plant, row, font); }};
+        for (std::size_t i = 0; i < views_.size(); ++i) {
+            const render::Rect& r = panels[i];
+            cameras.push_back(view_camera(plant, i, r.w / r.h));
+            const render::Extent e = render::projected_extent(plant.balls, cameras.back(), r.w / r.h);
+            panel_meta.push_back({{"azimuth_degrees", views_[i]},
+                                  {"elevation_degrees", elevation_},
+                                  {"rect", {r.x, r.y, r.w, r.h}},
+                                  {"plant_box",
+                                   {r.x + (e.lo.x + 1) / 2 * r.w, r.y + (1 - e.hi.y) / 2 * r.h,
+                                    r.x + (e.hi.x + 1) / 2 * r.w, r.y + (1 - e.lo.y) / 2 * r.h}}});
+        }
+        const FigureDrawing figure{width, height, true, [&](render::Surface& surface) {
+                                       draw_views(surface, plant, panels, cameras, row, font);
+                                   }};
         const glm::vec3 lo = plant.lo, hi = plant.hi;
         run.write_figure(figure, {{"params", params_.used()},
                                   {"style", style_.used()},
                                   {"panels", panel_meta},
-                                  {"segments", segments.size()},
-                                  {"state_sha256", segments_hash(segments)},
+                                  {"segments", drawing.segments.size()},
+                                  {"polygons", drawing.polygons.size()},
+                                  {"polygon_vertices", drawing.vertices.size()},
+                                  {"state_sha256", drawing_hash(drawing)},
                                   {"symbols", system_.length(depth_)},
                                   {"bounds", {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}}});
     }
 
 private:
-    // The film's frame at `step`: the plant seen from its share of one turn.
-    render::Image turntable_frame(render::Canvas& canvas, const Plant& plant, int step) const {
+    // The figure's view i in a panel of `aspect`.
+    render::Camera view_camera(const Plant& plant, std::size_t i, float aspect) const {
+        return render::frame_balls(plant.balls, float(views_[i]), elevation_, aspect, fill);
+    }
+
+    // The film's cameras, one a frame: each frame's share of one turn, every
+    // one from the distance of the farthest, so the plant keeps its size as
+    // it turns, centred in each.
+    std::vector<render::Camera> turntable_cameras(const Plant& plant, float aspect) const {
+        const int frames = d_.animation->last + 1;
+        auto azimuth = [&](int step) { return 360.0f * float(step) / float(frames); };
+        float distance = 0;
+        for (int step = 0; step < frames; ++step) {
+            const render::Camera c = render::frame_balls(plant.balls, azimuth(step), elevation_, aspect, fill);
+            distance = std::max(distance, glm::length(c.eye - c.target));
+        }
+        std::vector<render::Camera> cameras;
+        for (int step = 0; step < frames; ++step)
+            cameras.push_back(render::frame_balls(plant.balls, azimuth(step), elevation_, aspect, fill, distance));
+        return cameras;
+    }
+
+    // The film's frame: the plant seen through its camera.
+    render::Image turntable_frame(render::Canvas& canvas, const Plant& plant, const render::Camera& camera) const {
         canvas.clear({1, 1, 1, 1});
         const render::Rect view{0, 0, float(canvas.width()), float(canvas.height())};
-        const float azimuth = 360.0f * float(step) / float(d_.animation->last + 1);
-        render::draw_tubes(canvas, view, plant.tubes,
-                           render::frame_bounds(plant.lo, plant.hi, azimuth, elevation_, view.w / view.h), {}, sides_);
+        render::draw_tubes(canvas, view, plant.tubes, plant.facets, camera, studio_light(camera), sides_);
         return canvas.read();
     }
 
-    // The figure: one panel per azimuth, titled.
-    void draw_views(render::Surface& canvas, const Plant& plant, render::PanelRowStyle row, render::Font& font) const {
-        const int width = canvas.width(), height = canvas.height();
+    // One panel per azimuth, as wide as the widest view of the plant needs
+    // (within min_aspect..max_aspect), so that the plant fills the height of
+    // each.
+    std::vector<render::Rect> panel_rects(const Plant& plant, render::PanelRowStyle row, int width, int height) const {
+        float widest = min_aspect;
+        for (std::size_t i = 0; i < views_.size(); ++i) {
+            const render::Extent e = render::projected_extent(plant.balls, view_camera(plant, i, 1), 1);
+            const glm::vec2 size = e.hi - e.lo;
+            if (size.y > 0) widest = std::max(widest, size.x / size.y);
+        }
+        row.aspect = std::clamp(widest, min_aspect, max_aspect);
+        return render::panel_row(width, height, int(views_.size()), true, row);
+    }
+
+    // The figure: the plant in each panel through its camera, titled.
+    void draw_views(render::Surface& canvas, const Plant& plant, const std::vector<render::Rect>& panels,
+                    const std::vector<render::Camera>& cameras, const render::PanelRowStyle& row,
+                    render::Font& font) const {
         canvas.background({1, 1, 1, 1});
-        const glm::vec3 lo = plant.lo, hi = plant.hi;
-        row.aspect = float(std::clamp((hi.x - lo.x) / std::max(1e-6f, hi.y - lo.y), min_aspect, max_aspect));
-        const auto rects = render::panel_row(width, height, int(views_.size()), true, row);
         render::Text text;
         for (std::size_t i = 0; i < views_.size(); ++i) {
-            render::draw_tubes(canvas, rects[i], plant.tubes,
-                               render::frame_bounds(lo, hi, float(views_[i]), elevation_, rects[i].w / rects[i].h), {},
+            render::draw_tubes(canvas, panels[i], plant.tubes, plant.facets, cameras[i], studio_light(cameras[i]),
                                sides_);
             const std::string title = "azimuth " + format_fixed(views_[i], 0) + "\u00b0";
-            text.add(font, title, {rects[i].centre().x, rects[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
+            text.add(font, title, {panels[i].centre().x, panels[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
                      render::Align::centre, render::Baseline::baseline);
         }
         text.draw(canvas);
@@ -264,11 +385,12 @@ private:
     const sim::LSystem system_;
     const int depth_;
     const sim::Turtle3Params turtle_;
-    const glm::vec4 bark_, leaf_;
+    const Palette palette_;
     const std::vector<double> views_;  // azimuths, degrees
     const float elevation_;            // degrees
     const int sides_;
     const std::uint64_t segments_;  // what the turtle will draw, counted without drawing
+    const std::uint64_t vertices_;  // its polygons' vertices at most, likewise
 };
 
 }  // namespace

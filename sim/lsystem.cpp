@@ -10,7 +10,7 @@ namespace sim {
 
 namespace {
 
-constexpr const char* allowed_symbols = "letters A-Z a-z and + - & ^ \\ / | [ ] !";
+constexpr const char* allowed_symbols = "letters A-Z a-z and + - & ^ \\ / | [ ] ! { } . '";
 constexpr std::uint64_t saturated = std::numeric_limits<std::uint64_t>::max();
 
 std::uint64_t add(std::uint64_t a, std::uint64_t b) {
@@ -33,24 +33,32 @@ std::string quoted(std::string_view text) {
 }
 
 // `name` and `value` name the text in the message: axiom "F]" or rules[1] "F -> F[".
+// Brackets and braces are each balanced within every text, so they are in
+// every string the system rewrites to: a successor replaces one symbol, and
+// a balanced text put in place of one symbol keeps the whole balanced.
 void check_text(std::string_view text, const std::string& name, const std::string& value) {
-    int open = 0;
+    int open = 0, polygons = 0;
     for (char c : text) {
         if (!lsystem_symbol(c))
             throw ParameterError(name, value, std::string(allowed_symbols) + " (unknown symbol '" + c + "')");
         open += c == '[' ? 1 : c == ']' ? -1 : 0;
-        if (open < 0) break;  // a ']' before its '[' pops an empty stack
+        polygons += c == '{' ? 1 : c == '}' ? -1 : 0;
+        if (open < 0 || polygons < 0) break;  // a ']' before its '[' pops an empty stack; a '}' closes nothing
     }
     if (open != 0)
         throw ParameterError(name, value,
                              "balanced brackets, every '[' with a later ']' and every ']' with an earlier '[' "
                              "(unbalanced brackets)");
+    if (polygons != 0)
+        throw ParameterError(name, value,
+                             "balanced braces, every '{' (a polygon begins) with a later '}' (it ends) and every "
+                             "'}' with an earlier '{' (unbalanced braces)");
 }
 
 void check_predecessor(char c, const std::string& name, const std::string& value) {
-    if (!lsystem_symbol(c) || c == '[' || c == ']')
+    if (!lsystem_symbol(c) || c == '[' || c == ']' || c == '{' || c == '}')
         throw ParameterError(name, value,
-                             "a predecessor that is a letter or one of + - & ^ \\ / | ! (the predecessor '" +
+                             "a predecessor that is a letter or one of + - & ^ \\ / | ! . ' (the predecessor '" +
                                  std::string(1, c) + "' cannot be rewritten)");
 }
 
@@ -110,7 +118,7 @@ Counts counts_of(std::string_view text, const Alphabet& a, const std::vector<Cou
 
 bool lsystem_symbol(char c) {
     if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z')) return true;
-    return std::string_view("+-&^\\/|[]!").find(c) != std::string_view::npos;
+    return std::string_view("+-&^\\/|[]!{}.'").find(c) != std::string_view::npos;
 }
 
 // Each error names the text by its parameter: "axiom", or "rules[i]" for the i-th rule as given.
@@ -220,6 +228,43 @@ std::map<char, std::uint64_t> LSystem::counts_recursive(int depth) const {
 
 std::uint64_t LSystem::length_recursive(int depth) const {
     return total(counts_recursive(depth));
+}
+
+// all[c] counts the `symbols` in c's expansion at level k, inside[c] only
+// those within a brace pair of that expansion. Reading a successor with its
+// own brace depth d, a symbol y adds all of y's when d > 0 (the pair encloses
+// y's whole expansion) and inside[y] otherwise; braces are balanced in each
+// text, so a pair never spans two successors.
+std::uint64_t LSystem::count_enclosed(int depth, std::string_view symbols) const {
+    check_depth(depth);
+    const Alphabet a = alphabet_of(*this);
+    const std::size_t n = a.symbols.size();
+    std::vector<std::uint64_t> all(n, 0), inside(n, 0);
+    for (std::size_t i = 0; i < n; ++i) all[i] = symbols.find(a.symbols[i]) != std::string_view::npos ? 1 : 0;
+    auto read = [&](std::string_view text, std::uint64_t& sum_all, std::uint64_t& sum_inside) {
+        sum_all = sum_inside = 0;
+        int open = 0;
+        for (char c : text) {
+            const auto i = static_cast<std::size_t>(a.index[static_cast<unsigned char>(c)]);
+            open += c == '{' ? 1 : 0;
+            sum_all = add(sum_all, all[i]);
+            sum_inside = add(sum_inside, open > 0 ? all[i] : inside[i]);
+            open -= c == '}' ? 1 : 0;
+        }
+    };
+    for (int k = 1; k <= depth; ++k) {
+        std::vector<std::uint64_t> next_all = all, next_inside = inside;
+        for (const auto& [predecessor, successor] : rules) {
+            const auto i = static_cast<std::size_t>(a.index[static_cast<unsigned char>(predecessor)]);
+            read(successor, next_all[i], next_inside[i]);
+        }
+        if (next_all == all && next_inside == inside) break;
+        all = std::move(next_all);
+        inside = std::move(next_inside);
+    }
+    std::uint64_t sum_all = 0, sum_inside = 0;
+    read(axiom, sum_all, sum_inside);
+    return sum_inside;
 }
 
 }  // namespace sim

@@ -47,7 +47,9 @@
 namespace sim {
 
 // Symbols a rule or axiom may use: letters, the turtle's turns + - & ^ \ / |,
-// the brackets [ ] and ! (width decay).
+// the brackets [ ], ! (width decay), and ABOP's polygon and colour symbols
+// { } . ' (sim/turtle.hpp). Brackets and braces are balanced in the axiom
+// and in every successor, and neither may be rewritten.
 bool lsystem_symbol(char c);
 
 struct LSystem {
@@ -68,6 +70,10 @@ struct LSystem {
     // Article reading, the same for the string expand_recursive() streams.
     std::uint64_t length_recursive(int depth) const;
     std::map<char, std::uint64_t> counts_recursive(int depth) const;
+    // Rewrite reading: how many of `symbols` stand inside a pair of braces
+    // { } in the depth-n string (a polygon's vertex moves), counted without
+    // expanding. Saturates like counts().
+    std::uint64_t count_enclosed(int depth, std::string_view symbols) const;
 
     // Streams the depth-n string to visit(char symbol, int level). Memory is
     // O(depth): each frame is a view of the axiom or of a rule.

@@ -17,6 +17,7 @@ namespace {
 
 constexpr double huge = 1e300;  // "any finite number" for require_number
 constexpr double degrees = std::numbers::pi / 180.0;
+constexpr int max_colour_index = 1 << 30;  // where ' stops counting
 
 // 10077696 -> "10,077,696": budgets are read by people.
 std::string with_commas(std::uint64_t n) {
@@ -244,20 +245,75 @@ void TurtleFrame::turn(char symbol, double c, double s) {
     up = glm::cross(heading, left);
 }
 
-std::vector<Segment3> interpret_3d(const LSystem& system, int depth, const Turtle3Params& params) {
+std::uint64_t polygon_vertex_count(const LSystem& system, int depth) {
+    std::uint64_t starts = 0;
+    const auto counts = system.counts(depth);
+    if (const auto found = counts.find('{'); found != counts.end()) starts = found->second;
+    const std::uint64_t moves = system.count_enclosed(depth, "Ff.");
+    return moves > std::numeric_limits<std::uint64_t>::max() - starts ? std::numeric_limits<std::uint64_t>::max()
+                                                                      : starts + moves;
+}
+
+void require_vertex_budget(int depth, std::uint64_t vertices, std::uint64_t budget) {
+    if (vertices <= budget) return;
+    const bool saturated = vertices == std::numeric_limits<std::uint64_t>::max();
+    throw ParameterError("depth", std::to_string(depth),
+                         std::string("a depth within the turtle's budget (its polygons would have ") +
+                             (saturated ? "more than " : "") + with_commas(vertices) +
+                             " vertices, more than the budget of " + with_commas(budget) + ")");
+}
+
+namespace {
+
+// The polygons the turtle has open, innermost last: each one's vertices so
+// far. Ended ones go to the drawing, each with its vertices together.
+class PolygonStack {
+public:
+    PolygonStack(Drawing3& out, double step) : out_(out), same_(1e-9 * step) {}
+
+    void begin(const glm::dvec3& at) { open_.push_back({at}); }
+    void vertex(const glm::dvec3& at) {
+        if (open_.empty()) return;  // '.' outside a polygon: nothing to add to
+        std::vector<glm::dvec3>& polygon = open_.back();
+        if (glm::length(at - polygon.back()) > same_) polygon.push_back(at);
+    }
+    void end(int colour) {  // balanced braces: never without a begin
+        std::vector<glm::dvec3> polygon = std::move(open_.back());
+        open_.pop_back();
+        if (polygon.size() > 1 && glm::length(polygon.back() - polygon.front()) <= same_) polygon.pop_back();
+        if (polygon.size() < 3) return;
+        out_.polygons.push_back({std::uint32_t(out_.vertices.size()), std::uint32_t(polygon.size()), colour});
+        out_.vertices.insert(out_.vertices.end(), polygon.begin(), polygon.end());
+    }
+    bool inside() const { return !open_.empty(); }
+
+private:
+    Drawing3& out_;
+    double same_;  // vertices closer than this are one
+    std::vector<std::vector<glm::dvec3>> open_;
+};
+
+}  // namespace
+
+Drawing3 interpret_3d(const LSystem& system, int depth, const Turtle3Params& params) {
     params.validate();
     system.validate();
     const std::uint64_t segments = segment_count(system, depth, false);
     require_segment_budget(depth, segments, params.segment_budget);
+    const std::uint64_t vertices = polygon_vertex_count(system, depth);
+    require_vertex_budget(depth, vertices, params.vertex_budget);
 
     struct Pose {
         glm::dvec3 at{0, 0, 0};
         TurtleFrame frame;
         double width;
+        int colour = 0;
     };
     const double c = std::cos(params.angle_degrees * degrees), s = std::sin(params.angle_degrees * degrees);
-    std::vector<Segment3> out;
-    out.reserve(static_cast<std::size_t>(segments));
+    Drawing3 out;
+    out.segments.reserve(static_cast<std::size_t>(segments));
+    out.vertices.reserve(static_cast<std::size_t>(vertices));
+    PolygonStack polygons(out, params.length);
     std::vector<Pose> stack;
     Pose pose{};
     pose.width = params.width;
@@ -266,12 +322,16 @@ std::vector<Segment3> interpret_3d(const LSystem& system, int depth, const Turtl
             case 'F':
             case 'f': {
                 const glm::dvec3 to = pose.at + params.length * pose.frame.heading;
-                if (symbol == 'F') out.push_back({pose.at, to, pose.width, level});
+                if (symbol == 'F') out.segments.push_back({pose.at, to, pose.width, level, pose.colour});
                 pose.at = to;
+                polygons.vertex(to);
                 break;
             }
             case '!':
                 pose.width *= params.width_decay;
+                break;
+            case '\'':
+                if (pose.colour < max_colour_index) ++pose.colour;  // a string may hold more ' than an int counts
                 break;
             case '[':
                 stack.push_back(pose);
@@ -280,13 +340,35 @@ std::vector<Segment3> interpret_3d(const LSystem& system, int depth, const Turtl
                 pose = stack.back();
                 stack.pop_back();
                 break;
+            case '{':
+                polygons.begin(pose.at);
+                break;
+            case '.':
+                polygons.vertex(pose.at);
+                break;
+            case '}':
+                polygons.end(pose.colour);
+                break;
             default:
                 pose.frame.turn(symbol, c, s);
                 break;  // letters fall through as no-ops
         }
     });
-    require_finite_segments(out);
+    require_finite_segments(out.segments);
+    for (const glm::dvec3& v : out.vertices)
+        if (!(std::abs(v.x) <= 1e300 && std::abs(v.y) <= 1e300 && std::abs(v.z) <= 1e300))
+            throw std::runtime_error("the turtle went numerically unstable at a polygon's vertex "
+                                     "(a coordinate beyond 1e300); no image written");
     return out;
+}
+
+Bounds3 bounds(const Drawing3& drawing) {
+    Bounds3 box = bounds(drawing.segments);
+    for (const glm::dvec3& v : drawing.vertices) {
+        box.lo = glm::min(box.lo, v);
+        box.hi = glm::max(box.hi, v);
+    }
+    return box;
 }
 
 }  // namespace sim

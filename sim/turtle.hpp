@@ -16,10 +16,25 @@
 // right about U, '&' / '^' pitch down / up about L, '\' / '/' roll left /
 // right about H, '|' turns around about U; the signs follow ABOP's words
 // (left, down), taken as rotations of the frame in its own plane.
+// The apostrophe ' increments the colour index (an index into a colour
+// table, kept on the bracket stack like the width), as Fig 1.25 uses it.
+// Polygons, as Fig 1.25's leaves "{-f+f+f-|-f+f+f}" use them, their boundary
+// traced by the turtle's moves: '{' starts a polygon whose first vertex is
+// where the turtle stands; inside it, every 'F' and 'f' adds the vertex it
+// moves to (an 'F' still draws its segment), and '.' adds where the turtle
+// stands (ABOP ch. 5's explicit vertices); '}' ends it. A vertex equal to
+// the one before (within 1e-9 of a step), or a last one equal to the first,
+// is left out, so "{.f.f.}" and "{ff}" give the same triangle. Polygons nest
+// (an inner '{' keeps the outer one open: ABOP's polygon stack) and are apart
+// from the bracket stack: '[' and ']' inside a polygon move the turtle, not
+// the polygon. One with fewer than 3 vertices encloses nothing and is
+// dropped. The braces are balanced in every text (sim/lsystem.hpp), so every
+// polygon ends.
 //
 // Both turtles count the segments with counts() before streaming the string
-// and refuse when there are more than segment_budget: a figure never waits
-// an hour or runs out of memory by mistake.
+// and refuse when there are more than segment_budget (the 3-D one also its
+// polygon vertices against vertex_budget): a figure never waits an hour or
+// runs out of memory by mistake.
 
 #include <cstdint>
 #include <string>
@@ -85,6 +100,19 @@ struct Segment3 {
     glm::dvec3 a, b;  // from, to
     double width;     // at the time it was drawn, after any '!'
     int level;        // the level of the symbol that drew it (see lsystem.hpp)
+    int colour;       // the colour index, 0 at the start, one up for each ' before it
+};
+
+struct Polygon3 {
+    std::uint32_t first, count;  // its vertices: Drawing3::vertices[first, first + count), count >= 3
+    int colour;                  // the colour index when its '}' was read
+};
+
+// What the 3-D turtle draws: segments, and polygons in the order they end.
+struct Drawing3 {
+    std::vector<Segment3> segments;
+    std::vector<glm::dvec3> vertices;  // of every polygon, each polygon's together
+    std::vector<Polygon3> polygons;
 };
 
 struct Turtle3Params {
@@ -93,17 +121,28 @@ struct Turtle3Params {
     double width = 0.1;                        // starting width; >= 0
     double width_decay = 0.7;                  // '!' multiplies the width by this; > 0
     std::uint64_t segment_budget = 5'000'000;  // most segments a call may make
+    std::uint64_t vertex_budget = 5'000'000;   // most polygon vertices (polygon_vertex_count) a call may make
 
     void validate() const;  // throws std::invalid_argument naming the bad parameter
 };
 
-// The rewrite reading only. Throws like interpret_2d.
-std::vector<Segment3> interpret_3d(const LSystem& system, int depth, const Turtle3Params& params);
+// The rewrite reading only. Throws like interpret_2d, and likewise when the
+// polygons' vertices would exceed vertex_budget.
+Drawing3 interpret_3d(const LSystem& system, int depth, const Turtle3Params& params);
+
+// At most how many polygon vertices the 3-D turtle records at `depth`: one
+// for each '{' and each 'F', 'f' and '.' inside braces, counted without
+// expanding (the dropped repeats are counted too). Saturates.
+std::uint64_t polygon_vertex_count(const LSystem& system, int depth);
+
+// Throws ParameterError naming `depth` when `vertices` exceed `budget`.
+void require_vertex_budget(int depth, std::uint64_t vertices, std::uint64_t budget);
 
 struct Bounds3 {
     glm::dvec3 lo, hi;  // the box's corners; lo > hi for no segments
 };
 Bounds3 bounds(const std::vector<Segment3>& segments);
+Bounds3 bounds(const Drawing3& drawing);  // of the segments' end points and the polygons' vertices
 
 // The 3-D turtle's frame, exposed so that its orthonormality can be tested.
 struct TurtleFrame {

@@ -193,6 +193,11 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "pl-lsys-3d --set width_decay=-1", "--set width_decay=-1: width_decay = -1 is not allowed: a finite number above 0"},
         // Settings of the drawing, checked before the model runs like the model's own.
         {render + "pl-lsys-3d --set style.sides=0", "--set style.sides=0: style.sides = 0 is not allowed: an integer from 3 to 256"},
+        {render + "pl-lsys-3d --set style.leaf_index=0", "--set style.leaf_index=0: style.leaf_index = 0 is not allowed: an integer from 1 to 1048576"},
+        // Polygons: a '{' never closed, a '}' that closes nothing, and more vertices than the turtle's budget.
+        {render + "pl-lsys-3d --set 'rules=[\"A -> F{-f+f+f\"]'", "rules[0] = \"A -> F{-f+f+f\" is not allowed: balanced braces, every '{' (a polygon begins) with a later '}' (it ends)"},
+        {render + "pl-lsys-3d --set 'rules=[\"A -> F}-f{\"]'", "rules[0] = \"A -> F}-f{\" is not allowed: balanced braces"},
+        {render + "pl-lsys-3d --set axiom=FX --set 'rules=[\"X -> {ffff}XX\"]' --set depth=20", "depth = 20 is not allowed: a depth within the turtle's budget (its polygons would have 5,242,875 vertices, more than the budget of 5,000,000)"},
         {render + "tc7-phase --set p_c=1e308", "--set p_c=1e308: p_c = 1e+308 is not allowed: "},
         {render + "pl-lsys-gallery --set 'plants=[{axiom=\"F\", angle=1e308}]'", "plants[0].angle = 1e+308 is not allowed: a number from -1e+300 to 1e+300"},
         // The arrowhead, drawing with A and B, not with the default F.

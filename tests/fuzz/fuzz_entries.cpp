@@ -140,9 +140,10 @@ Outcome lsystem(const std::uint8_t* data, std::size_t size) {
         turtle.segment_budget = 20'000;
         (void)sim::interpret_2d(system, depth, turtle, article);
     }
-    if (sim::segment_count(system, depth, false) <= 20'000) {
+    if (sim::segment_count(system, depth, false) <= 20'000 && sim::polygon_vertex_count(system, depth) <= 20'000) {
         sim::Turtle3Params turtle;
         turtle.segment_budget = 20'000;
+        turtle.vertex_budget = 20'000;
         (void)sim::interpret_3d(system, depth, turtle);
     }
     return Outcome::accepted;

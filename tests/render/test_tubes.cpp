@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -248,3 +249,78 @@ TEST_CASE("a branching plant of a few hundred tubes is framed whole", "[tubes]")
     CHECK(std::max(right - left, bottom - top) > size / 2);
 }
 
+
+TEST_CASE("frame_balls centres the balls and fills the tighter side of the viewport", "[tubes]") {
+    // A tall cloud of balls off the origin, some with radii.
+    std::vector<render::Ball> balls;
+    for (int k = 0; k < 40; ++k) {
+        const float t = float(k) / 39;
+        balls.push_back({{4 + 3 * std::sin(7.0f * t), 10 + 20 * t, -2 + 4 * std::cos(5.0f * t)}, 0.3f * t});
+    }
+    for (const float azimuth : {0.0f, 30.0f, 150.0f, -100.0f})
+        for (const float elevation : {0.0f, 12.0f, 60.0f, -40.0f})
+            for (const float aspect : {0.5f, 1.0f, 2.5f}) {
+                INFO("azimuth " << azimuth << " elevation " << elevation << " aspect " << aspect);
+                const Camera camera = render::frame_balls(balls, azimuth, elevation, aspect, 0.9f);
+                const render::Extent e = render::projected_extent(balls, camera, aspect);
+                // Centred, inside, and one side filled to 0.9.
+                CHECK(std::abs(e.lo.x + e.hi.x) < 0.01f);
+                CHECK(std::abs(e.lo.y + e.hi.y) < 0.01f);
+                CHECK(std::max(e.hi.x, e.hi.y) == Approx(0.9f).margin(0.01f));
+                // The centres land where GL puts them, inside the viewport and between near and far.
+                const glm::mat4 m = render::view_projection(camera, aspect);
+                for (const render::Ball& b : balls) {
+                    const glm::vec4 clip = m * glm::vec4(b.centre, 1);
+                    REQUIRE(clip.w > 0);
+                    const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+                    CHECK(ndc.x >= e.lo.x - 1e-4f);
+                    CHECK(ndc.x <= e.hi.x + 1e-4f);
+                    CHECK(ndc.y >= e.lo.y - 1e-4f);
+                    CHECK(ndc.y <= e.hi.y + 1e-4f);
+                    CHECK(std::abs(ndc.z) <= 1);
+                }
+                // Kept back: the balls shrink about the centre.
+                const float d = glm::length(camera.eye - camera.target);
+                const Camera far = render::frame_balls(balls, azimuth, elevation, aspect, 0.9f, 2 * d);
+                CHECK(glm::length(far.eye - far.target) == Approx(2 * d));
+                const render::Extent f = render::projected_extent(balls, far, aspect);
+                CHECK(std::max(f.hi.x, f.hi.y) < 0.6f);
+                CHECK(std::abs(f.lo.y + f.hi.y) < 0.01f);
+            }
+}
+
+TEST_CASE("a facet is lit on the side the eye sees and hides a tube behind it", "[tubes]") {
+    render::Canvas canvas(100, 100, 4, true);
+    const glm::vec4 green{0.2f, 0.6f, 0.2f, 1}, red{0.8f, 0.1f, 0.1f, 1};
+    // A square in z = 0 facing +z, two triangles wound one way, and a red tube behind it.
+    const std::vector<render::Facet> square = {{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, green},
+                                               {{-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, green}};
+    const std::vector<Tube> behind = {{{0, -3, -1}, {0, 3, -1}, 0.3f, 0.3f, red}};
+    const Light head_on{{0, 0, 1}, 0.3f, 0.7f, 0};
+    const Light head_on_back{{0, 0, -1}, 0.3f, 0.7f, 0};
+    for (const float z : {5.0f, -5.0f}) {
+        INFO("eye at z = " << z);
+        canvas.clear(white);
+        Camera camera = looking_from({0, 0, z}, 40);
+        render::draw_tubes(canvas, {0, 0, 100, 100}, behind, square, camera, z > 0 ? head_on : head_on_back);
+        const render::Image image = canvas.read();
+        // Beside the tube: the leaf, fully lit from the eye's side (ambient + diffuse = 1) whichever side it is.
+        const auto middle = image.pixel(30, 50);
+        CHECK(int(middle[0]) == Approx(0.2 * 255).margin(2));
+        CHECK(int(middle[1]) == Approx(0.6 * 255).margin(2));
+        if (z > 0) {
+            // The tube shows above and below the square, and not through it.
+            CHECK(int(image.pixel(50, 5)[0]) > 150);
+            CHECK(int(image.pixel(50, 5)[1]) < 100);
+        }
+    }
+    // A facet with no area, or none at all, draws nothing and is no error.
+    canvas.clear(white);
+    render::draw_tubes(canvas, {0, 0, 100, 100}, {}, {{{0, 0, 0}, {1, 1, 0}, {2, 2, 0}, green}},
+                       looking_from({0, 0, 5}, 40));
+    CHECK(canvas.read().pixel(50, 50)[0] == 255);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    CHECK_THROWS_AS(render::draw_tubes(canvas, {0, 0, 100, 100}, {}, {{{0, 0, 0}, {1, 0, 0}, {0, nan, 0}, green}},
+                                       looking_from({0, 0, 5}, 40)),
+                    std::invalid_argument);
+}

@@ -1,7 +1,9 @@
 // The pl figures as a user drives them, and the numbers they record.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "figgen_run.hpp"
+#include "render/image.hpp"
+#include "render/png_io.hpp"
 
 namespace fs = std::filesystem;
 
@@ -87,4 +91,83 @@ TEST_CASE("the sunflower places 240 seeds and 40 petals", "[plants]") {
     CHECK(meta["panels"][0]["seeds"] == 240);
     CHECK(meta["panels"][0]["petals"] == 40);
     CHECK(meta["panels"][0]["outer_radius"].get<double>() == Approx(7 * std::sqrt(239.0)));
+}
+
+namespace {
+
+// The least box (x0, y0, x1, y1, pixels, ends exclusive) of the pixels in
+// `r` that are not white: the plant's ink. Empty (x0 >= x1) when none.
+struct InkBox {
+    int x0, y0, x1, y1;
+};
+InkBox ink_in(const render::Image& image, int left, int top, int right, int bottom) {
+    InkBox box{right, bottom, left, top};
+    for (int y = top; y < bottom; ++y)
+        for (int x = left; x < right; ++x) {
+            const std::uint8_t* p = image.pixel(x, y);
+            if (p[0] < 245 || p[1] < 245 || p[2] < 245) {
+                box.x0 = std::min(box.x0, x), box.y0 = std::min(box.y0, y);
+                box.x1 = std::max(box.x1, x + 1), box.y1 = std::max(box.y1, y + 1);
+            }
+        }
+    return box;
+}
+
+}  // namespace
+
+TEST_CASE("the 3-D plant fills at least 80% of its panels' height and stays inside them", "[plants][lsys-3d]") {
+    // The figure at the golden's scale, and a film of 12 frames (a turn in 30 degree steps) as PNGs.
+    const fs::path out = out_dir("lsys-3d-fill");
+    const Run run = figgen("render pl-lsys-3d --no-video --frames --scale 0.5 --set 'animation.steps=[0,11]' --out " +
+                           out.string());
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    const render::Image figure = render::read_png(out / "pl-lsys-3d.png").image;
+    std::ifstream in(out / "pl-lsys-3d.json");
+    const nlohmann::json meta = nlohmann::json::parse(in);
+    CHECK(meta["polygons"].get<int>() > 1000);  // the leaves are there
+    REQUIRE(meta["panels"].size() == 2);
+    for (const auto& panel : meta["panels"]) {
+        INFO("azimuth " << panel["azimuth_degrees"]);
+        const auto& r = panel["rect"];
+        const int left = int(std::lround(r[0].get<double>())), top = int(std::lround(r[1].get<double>()));
+        const int right = int(std::lround(r[0].get<double>() + r[2].get<double>()));
+        const int bottom = int(std::lround(r[1].get<double>() + r[3].get<double>()));
+        const InkBox ink = ink_in(figure, left, top, right, bottom);
+        const double fill = double(ink.y1 - ink.y0) / double(bottom - top);
+        INFO("panel " << left << "," << top << " to " << right << "," << bottom << ": ink " << ink.x0 << ","
+                      << ink.y0 << " to " << ink.x1 << "," << ink.y1 << ", height fill " << fill);
+        CHECK(fill >= 0.8);
+        // Not cut off at any edge of the panel.
+        CHECK(ink.x0 > left);
+        CHECK(ink.y0 > top);
+        CHECK(ink.x1 < right);
+        CHECK(ink.y1 < bottom);
+        // The box the metadata gives is the one drawn, to a pixel or two.
+        const auto& box = panel["plant_box"];
+        CHECK(box[1].get<double>() == Approx(ink.y0).margin(2));
+        CHECK(box[3].get<double>() == Approx(ink.y1).margin(2));
+    }
+    // Below and beside the panels: nothing.
+    const auto& first = meta["panels"][0]["rect"];
+    const int panels_bottom = int(std::lround(first[1].get<double>() + first[3].get<double>()));
+    const InkBox below = ink_in(figure, 0, panels_bottom + 1, figure.width, figure.height);
+    CHECK(below.x0 >= below.x1);
+
+    int frames = 0;
+    for (const auto& entry : fs::directory_iterator(out / "pl-lsys-3d-frames")) {
+        if (entry.path().extension() != ".png") continue;
+        ++frames;
+        INFO(entry.path().filename().string());
+        const render::Image frame = render::read_png(entry.path()).image;
+        const InkBox ink = ink_in(frame, 0, 0, frame.width, frame.height);
+        const double fill = double(ink.y1 - ink.y0) / double(frame.height);
+        INFO("ink " << ink.x0 << "," << ink.y0 << " to " << ink.x1 << "," << ink.y1 << ", height fill " << fill);
+        CHECK(fill >= 0.8);
+        CHECK(ink.x0 > 0);
+        CHECK(ink.y0 > 0);
+        CHECK(ink.x1 < frame.width);
+        CHECK(ink.y1 < frame.height);
+    }
+    CHECK(frames == 12);
 }

@@ -243,6 +243,47 @@ TEST_CASE("Parse errors name the problem and what is allowed", "[lsystem]") {
     }
 }
 
+TEST_CASE("Malformed polygons are refused when the system is read", "[lsystem][polygon]") {
+    using Catch::Contains;
+    const std::string balanced = "balanced braces, every '{' (a polygon begins) with a later '}' (it ends)";
+    CHECK_THROWS_WITH(LSystem::parse("A", {"A -> F{-f+f"}),
+                      Contains("rules[0] = \"A -> F{-f+f\" is not allowed: " + balanced) &&
+                          Contains("(unbalanced braces)"));
+    CHECK_THROWS_WITH(LSystem::parse("A", {"A -> F}f{"}), Contains("rules[0] = \"A -> F}f{\"") && Contains(balanced));
+    CHECK_THROWS_WITH(LSystem::parse("{F", {}), Contains("axiom = \"{F\" is not allowed: " + balanced));
+    CHECK_THROWS_WITH(LSystem::parse("F}", {}), Contains("axiom = \"F}\"") && Contains(balanced));
+    // Open in one text and closed in another: refused too, as a bracket is.
+    CHECK_THROWS_WITH(LSystem::parse("X}", {"X -> {F"}), Contains(balanced));
+    CHECK_THROWS_WITH(LSystem::parse("F", {"{ -> F"}), Contains("the predecessor '{' cannot be rewritten"));
+    CHECK_THROWS_WITH(LSystem::parse("F", {"} -> F"}), Contains("the predecessor '}' cannot be rewritten"));
+    CHECK_NOTHROW(LSystem::parse("A", {"A -> [&FL!A]/////'[&FL!A]///////'[&FL!A]", "L -> ['''^^{-f+f+f-|-f+f+f}]"}));
+    CHECK_NOTHROW(LSystem::parse("{[f{.f}]f}", {}));  // nested, and a bracket inside: both ABOP's
+}
+
+TEST_CASE("count_enclosed counts the symbols between braces without expanding", "[lsystem][polygon]") {
+    CHECK(LSystem::parse("F{F{F}F}F", {}).count_enclosed(0, "F") == 3);
+    CHECK(LSystem::parse("F{f.F}", {}).count_enclosed(0, "Ff.") == 3);
+    const LSystem leaf = LSystem::parse("FXF", {"X -> {F}"});
+    CHECK(leaf.count_enclosed(0, "F") == 0);
+    CHECK(leaf.count_enclosed(1, "F") == 1);
+    const LSystem doubled = LSystem::parse("F{F}X", {"F -> FF", "X -> F{FX}"});
+    CHECK(doubled.count_enclosed(0, "F") == 1);
+    // depth 1: {FF} gives 2, X -> F{FX} the F inside: 3.
+    CHECK(doubled.count_enclosed(1, "F") == 3);
+    // depth 2: {FFFF} gives 4, X -> FF{FF F{FX}} 2 + 1 + 1: 8.
+    CHECK(doubled.count_enclosed(2, "F") == 8);
+    // Against the streamed string, its brace depth tracked as it goes.
+    for (int depth = 0; depth <= 6; ++depth) {
+        std::uint64_t inside = 0;
+        int open = 0;
+        doubled.expand(depth, [&](char c, int) {
+            open += c == '{' ? 1 : c == '}' ? -1 : 0;
+            if (c == 'F' && open > 0) ++inside;
+        });
+        CHECK(doubled.count_enclosed(depth, "F") == inside);
+    }
+}
+
 TEST_CASE("A depth outside 0 to max_depth is refused", "[lsystem]") {
     CHECK_THROWS_WITH(club_moss.length(-1), Catch::Contains("depth = -1 is not allowed"));
     CHECK_THROWS_AS(club_moss.counts_recursive(LSystem::max_depth + 1), std::invalid_argument);

@@ -25,7 +25,7 @@ std::vector<Segment2> draw(const std::string& text, Turtle2Params p = {}) {
     return sim::interpret_2d(LSystem::parse(text, {}), 0, p, false);
 }
 std::vector<Segment3> draw3(const std::string& text, Turtle3Params p = {}) {
-    return sim::interpret_3d(LSystem::parse(text, {}), 0, p);
+    return sim::interpret_3d(LSystem::parse(text, {}), 0, p).segments;
 }
 
 bool near(glm::dvec2 a, glm::dvec2 b) {
@@ -235,4 +235,117 @@ TEST_CASE("draw and move take symbols, not the turtle's commands, none in both",
     }
     CHECK_NOTHROW(with("AB", "fg").validate());
     CHECK(draw("FfF", with("AB", "")).empty());  // F neither draws nor moves now
+}
+
+namespace {
+
+sim::Drawing3 drawing3(const std::string& text, Turtle3Params p = {}) {
+    return sim::interpret_3d(LSystem::parse(text, {}), 0, p);
+}
+
+std::vector<glm::dvec3> vertices_of(const sim::Drawing3& d, std::size_t polygon) {
+    const sim::Polygon3& p = d.polygons.at(polygon);
+    return {d.vertices.begin() + p.first, d.vertices.begin() + p.first + p.count};
+}
+
+}  // namespace
+
+TEST_CASE("ABOP Fig 1.25's leaf is the hexagon its moves trace", "[turtle][polygon]") {
+    // Worked by hand: the turtle starts at the origin heading +y with L = -x;
+    // '-' turns right (towards +x) by 22.5 degrees, s = sin and c = cos of it.
+    //   - f: (s, c)   + f: (s, 1 + c)   + f: (0, 1 + 2c)
+    //   - | - f: (-s, 1 + c)   + f: (-s, c)   + f: (0, 0), the start again, left out.
+    const double s = std::sin(22.5 * std::numbers::pi / 180), c = std::cos(22.5 * std::numbers::pi / 180);
+    const sim::Drawing3 leaf = drawing3("{-f+f+f-|-f+f+f}");
+    CHECK(leaf.segments.empty());  // f draws nothing
+    REQUIRE(leaf.polygons.size() == 1);
+    const std::vector<glm::dvec3> expected = {{0, 0, 0},      {s, c, 0},      {s, 1 + c, 0},
+                                              {0, 1 + 2 * c, 0}, {-s, 1 + c, 0}, {-s, c, 0}};
+    const auto got = vertices_of(leaf, 0);
+    REQUIRE(got.size() == expected.size());
+    for (std::size_t k = 0; k < expected.size(); ++k) {
+        INFO("vertex " << k);
+        CHECK(near(got[k], expected[k]));
+    }
+    CHECK(leaf.polygons[0].colour == 0);
+}
+
+TEST_CASE("The colour index counts apostrophes and follows the brackets", "[turtle][polygon]") {
+    const sim::Drawing3 d = drawing3("F'F['F'''{+f+f}]F{'+f+f}");
+    REQUIRE(d.segments.size() == 4);
+    CHECK(d.segments[0].colour == 0);
+    CHECK(d.segments[1].colour == 1);
+    CHECK(d.segments[2].colour == 2);
+    CHECK(d.segments[3].colour == 1);  // ']' restored it
+    REQUIRE(d.polygons.size() == 2);
+    CHECK(d.polygons[0].colour == 5);
+    CHECK(d.polygons[1].colour == 2);  // the index when '}' is read
+}
+
+TEST_CASE("Polygon vertices: moves, dots, repeats, nesting and brackets", "[turtle][polygon]") {
+    Turtle3Params p;
+    p.angle_degrees = 90;
+    // '+' turns left, towards -x, then towards -y.
+    const std::vector<glm::dvec3> triangle = {{0, 0, 0}, {-1, 0, 0}, {-1, -1, 0}};
+    for (const char* text : {"+{f+f}", "+{.f.+f.}", "+{f.+.f..}", "{.+f+f}", "{+f+f.}"}) {
+        INFO(text);
+        const sim::Drawing3 d = drawing3(text, p);
+        REQUIRE(d.polygons.size() == 1);
+        const auto got = vertices_of(d, 0);
+        REQUIRE(got.size() == 3);
+        for (std::size_t k = 0; k < 3; ++k) CHECK(near(got[k], triangle[k]));
+    }
+    // F inside a polygon draws and adds its vertex.
+    const sim::Drawing3 drawn = drawing3("{+F+F}", p);
+    CHECK(drawn.segments.size() == 2);
+    REQUIRE(drawn.polygons.size() == 1);
+    CHECK(drawn.polygons[0].count == 3);
+    // Fewer than 3 vertices enclose nothing: dropped, not drawn.
+    CHECK(drawing3("{f}", p).polygons.empty());
+    CHECK(drawing3("{}", p).polygons.empty());
+    CHECK(drawing3("..f.", p).polygons.empty());  // '.' outside a polygon adds to nothing
+    // A bracket inside a polygon moves the turtle back, not the polygon.
+    const sim::Drawing3 bracketed = drawing3("{f[+f]-f}", p);
+    REQUIRE(bracketed.polygons.size() == 1);
+    const auto b = vertices_of(bracketed, 0);
+    REQUIRE(b.size() == 4);
+    CHECK(near(b[2], {-1, 1, 0}));
+    CHECK(near(b[3], {1, 1, 0}));
+    // Nested: the inner polygon ends first and takes the moves made while it is open.
+    const sim::Drawing3 nested = drawing3("{f+f{f+f+f}-f}", p);
+    REQUIRE(nested.polygons.size() == 2);
+    REQUIRE(nested.polygons[0].count == 4);  // the inner: its start and three moves
+    CHECK(near(vertices_of(nested, 0)[0], {-1, 1, 0}));
+    CHECK(near(vertices_of(nested, 0)[3], {-1, 0, 0}));
+    REQUIRE(nested.polygons[1].count == 4);  // the outer: its start, two moves and the one after the inner
+    CHECK(near(vertices_of(nested, 1)[2], {-1, 1, 0}));
+    CHECK(near(vertices_of(nested, 1)[3], {-1, -1, 0}));
+}
+
+TEST_CASE("Fig 1.25's plant: vertex count, budget and bounds", "[turtle][polygon]") {
+    const LSystem plant = LSystem::parse("A", {"A -> [&FL!A]/////'[&FL!A]///////'[&FL!A]", "F -> S/////F",
+                                               "S -> FL", "L -> ['''^^{-f+f+f-|-f+f+f}]"});
+    for (int depth = 0; depth <= 5; ++depth) {
+        INFO("depth " << depth);
+        const auto counts = plant.counts(depth);
+        const std::uint64_t leaves = counts.count('{') ? counts.at('{') : 0;
+        CHECK(sim::polygon_vertex_count(plant, depth) == 7 * leaves);  // '{' and six f
+        const sim::Drawing3 d = sim::interpret_3d(plant, depth, Turtle3Params{});
+        CHECK(d.polygons.size() == leaves);
+        CHECK(d.vertices.size() == 6 * leaves);  // the closing vertex left out
+        for (const auto& p : d.polygons) CHECK(p.colour >= 3);
+        const sim::Bounds3 box = sim::bounds(d);
+        for (const glm::dvec3& v : d.vertices) {
+            CHECK(glm::all(glm::greaterThanEqual(v, box.lo)));
+            CHECK(glm::all(glm::lessThanEqual(v, box.hi)));
+        }
+    }
+    Turtle3Params small;
+    small.vertex_budget = 100;
+    const std::uint64_t vertices = sim::polygon_vertex_count(plant, 4);
+    REQUIRE(vertices > 100);
+    CHECK_THROWS_WITH(sim::interpret_3d(plant, 4, small),
+                      Catch::StartsWith("depth = 4 is not allowed: a depth within the turtle's budget (its polygons "
+                                        "would have ") &&
+                          Catch::EndsWith("vertices, more than the budget of 100)"));
 }
