@@ -54,7 +54,7 @@ void render_figure(const Description& d, const scenes::Scene& scene, const rende
     }
     FigureFiles files(d, options, folder, progress, estimate_memory(d, options, scene.memory()),
                       segments ? &*segments : nullptr);
-    scene.render(files);
+    description::at_source(d, [&] { scene.render(files); });  // a setting refused at draw time names its line
     outputs.commit();
     // The figure is in place: the parts of its items are no longer needed
     // (a merge's came from elsewhere and are left as they are).

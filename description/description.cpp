@@ -33,6 +33,7 @@ const std::vector<Key> figure_keys = {
     {"size", "[width, height] in pixels"},
     {"panel_title", "title above each panel; {step} is the step shown"},
     {"formats", "vector files written besides the PNG: a list of \"pdf\" and \"svg\" (--format decides instead)"},
+    {"columns", "panels a row, 1..64; absent: as many as make the panels largest on the figure's size"},
     {"caption", "a caption drawn beneath the figure: \"none\", \"title\" or \"original\" (original_caption)"},
 };
 
@@ -158,6 +159,7 @@ void read_figure(Description& d, const toml::table& root) {
         figure.refuse("panels", "steps from 0 to 100000000, ascending, each once");
     std::tie(d.width, d.height) = size_pair(figure, "size", {d.width, d.height});
     d.panel_title = figure.text("panel_title", d.panel_title);
+    d.columns = figure.has("columns") ? figure.count_in("columns", 1, 1, 64) : 0;
     d.figure_caption = figure.text("caption", "none");
     if (d.figure_caption != "none" && d.figure_caption != "title" && d.figure_caption != "original")
         figure.refuse("caption", "\"" + printable(d.figure_caption) + "\"", "\"none\", \"title\" or \"original\"");

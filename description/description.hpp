@@ -58,6 +58,7 @@ struct Description {
     std::vector<int> panels;        // steps of the figure's panels, ascending
     int width = 900, height = 450;  // figure size in pixels at scale 1
     std::string panel_title = "step {step}";
+    int columns = 0;                // panels a row ([figure] columns); 0: chosen for the figure's size
     std::string figure_caption = "none";  // drawn beneath the figure: "none", "title" or "original"
     std::vector<std::string> formats;  // vector files the figure asks for: "pdf", "svg" (--format overrides)
     std::optional<Animation> animation;

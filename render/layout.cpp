@@ -56,14 +56,19 @@ std::vector<Rect> panel_grid(const Rect& area, int count, int columns, bool titl
 
 int best_columns(const Rect& area, int count, bool titled, const PanelRowStyle& style) {
     int best = 1;
-    float best_area = -1;
+    float best_score = -1;
     for (int columns = 1; columns <= count; ++columns) {
         const int rows = (count + columns - 1) / columns;
         // A column more that leaves the rows as they are only shrinks the panels.
         if (columns > 1 && rows == (count + columns - 2) / (columns - 1)) continue;
         const Rect r = panel_grid(area, count, columns, titled, style).front();
-        if (r.w * r.h > best_area * 1.0001f) {
-            best_area = r.w * r.h;
+        // The panels' size, weighed by the square of how full the grid is: a
+        // ragged last row must buy much larger panels (three wide panels stay
+        // one row on a wide page; four square ones make 2 x 2, never 3 + 1).
+        const float full = float(count) / float(rows * columns);
+        const float score = r.w * r.h * full * full;
+        if (score > best_score * 1.0001f) {
+            best_score = score;
             best = columns;
         }
     }

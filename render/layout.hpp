@@ -29,8 +29,10 @@ std::vector<Rect> panel_row(int width, int height, int count, bool titled, const
 std::vector<Rect> panel_grid(const Rect& area, int count, int columns, bool titled, const PanelRowStyle& style);
 
 // The columns that give `count` panels of style.aspect the largest size in
-// `area` (panel_grid's layout); of equal sizes, the fewest rows. Four
-// square panels on a square page: 2 x 2, not 3 + 1.
+// `area` (panel_grid's layout), weighed by the square of the share of the
+// grid's cells they fill, so that a ragged last row must buy much larger
+// panels; of equal scores, the fewest columns. Four square panels on a
+// square page: 2 x 2, never 3 + 1.
 int best_columns(const Rect& area, int count, bool titled, const PanelRowStyle& style);
 
 // Where a grid's text goes, to check that it fits.

@@ -101,8 +101,7 @@ public:
                                   {"state_sha256", render::sha256_hex(cells.data(), cells.size())}});
             progress.advance();
         }
-        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
-        out.figure(field_figure(panels, width, height, options_.scale),
+        out.figure(field_figure(panels, d_, options_),
                    {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
         progress.finish();
     }

@@ -158,8 +158,7 @@ public:
         const auto field = deposit_field(deposit, int(top) + 2, band_size_);
         std::vector<FieldPanel> panels = {{d_.panel_title, {field_layer(field, spec_)}}};
         if (colour_bar_) panels[0].layers[0].colour_bar = band_bar();
-        run.write_figure(field_figure(panels, figure_width(d_, options_),
-                                      figure_height(d_, options_), options_.scale),
+        run.write_figure(field_figure(panels, d_, options_),
                          metadata(deposit, top));
     }
 

@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include "scenes/figure_caption.hpp"
+#include "scenes/panel_grid.hpp"
+
 namespace scenes {
 namespace {
 
@@ -95,11 +98,23 @@ render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldP
     return canvas.read();
 }
 
-FigureDrawing field_figure(const std::vector<FieldPanel>& panels, int width, int height, double scale) {
-    return {width, height, false, [&panels, scale](render::Surface& surface) {
+FigureDrawing field_figure(const std::vector<FieldPanel>& panels, const Description& d, const SceneOptions& options) {
+    const int width = figure_width(d, options), height = figure_height(d, options);
+    const double scale = options.scale;
+    const render::PanelRowStyle style = page_style(panels, scale);
+    std::vector<std::string> titles;
+    for (const FieldPanel& p : panels) titles.push_back(p.title);
+    const bool titled = any_title(panels);
+    const int count = static_cast<int>(panels.size());
+    auto columns_in = [&](const render::Rect& area) { return figure_columns(d, area, count, titled, style); };
+    require_text_fits(d, options, [&](const render::Rect& area) {
+        return titled_grid_text(area, titles, columns_in(area), titled, style);
+    });
+    const int columns = columns_in({0, 0, float(width), float(height)});
+    return {width, height, false, [&panels, scale, columns](render::Surface& surface) {
                 surface.background({1, 1, 1, 1});
-                draw_field_panels(surface, {0, 0, float(surface.width()), float(surface.height())}, panels,
-                                  static_cast<int>(panels.size()), scale);
+                draw_field_panels(surface, {0, 0, float(surface.width()), float(surface.height())}, panels, columns,
+                                  scale);
             }};
 }
 

@@ -17,6 +17,7 @@
 #include "render/layout.hpp"
 #include "render/plot.hpp"
 #include "scenes/description_names.hpp"
+#include "scenes/scene.hpp"
 
 namespace scenes {
 
@@ -79,9 +80,11 @@ struct FieldPanel {
 // Figures keep four samples, so their pixels do not change at all.
 int field_page_samples(const std::vector<FieldPanel>& panels, int width, int height, double scale);
 
-// A row of panels on a white width x height page (pixels, already scaled):
-// the figure, drawing `panels`, which must outlive it.
-FigureDrawing field_figure(const std::vector<FieldPanel>& panels, int width, int height, double scale);
+// The panels on a white page of the figure's size (scenes/figure_caption.hpp),
+// in rows of [figure] columns or of the count that makes them largest: the
+// figure, drawing `panels`, which must outlive it. Throws a SettingError
+// for figure.size when the panels' titles do not fit on it.
+FigureDrawing field_figure(const std::vector<FieldPanel>& panels, const Description& d, const SceneOptions& options);
 
 // How a panel's two layers are drawn: one draw each, or both in one pass
 // (render::draw_field_pair: faster, the same but for rounding; films).

@@ -211,8 +211,7 @@ public:
             for (std::size_t i = 0; i < boxes.size(); ++i) boxes[i] = with_aspect(clouds.own[i], std::exp(log_aspect));
         }
         const Page page = draw(clouds, boxes);
-        const FigureDrawing figure = field_figure(page.panels, figure_width(d_, options_),
-                                                  figure_height(d_, options_), options_.scale);
+        const FigureDrawing figure = field_figure(page.panels, d_, options_);
         out.figure(figure, {{"params", params_.used()}, {"style", style_.used()}, {"panels", clouds.meta}});
         progress.finish();
     }

@@ -10,6 +10,7 @@
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/figure_caption.hpp"
+#include "scenes/panel_grid.hpp"
 #include "render/layout.hpp"
 #include "render/shapes.hpp"
 #include "render/text.hpp"
@@ -248,8 +249,11 @@ public:
         : SceneBase(d, options, param_keys(), style_keys),
           plants_(read_plants(params_)),
           colour_(style_colour(style_, "colour", "green")),
-          min_width_(float(style_.number_in("min_width", 0.6, 0.0, 100.0) * options.scale)),
-          columns_(std::min<int>(int(plants_.size()), params_.has("plants") ? 3 : 1)) {}
+          min_width_(float(style_.number_in("min_width", 0.6, 0.0, 100.0) * options.scale)) {
+        // The titles must fit before anything runs; the plants' shapes are
+        // not known yet, so square panels stand in for them.
+        require_text_fits(d, options, [&](const render::Rect& area) { return title_layout(area, 1.0f); });
+    }
 
     // Each plant's segments, from the turtle and as lines to draw: per
     // segment the turtle's Segment2, its 6 doubles hashed, and a line with a
@@ -276,8 +280,8 @@ public:
         row.scale = float(options_.scale);
         const Drawings drawings = draw_turtles(progress);
         row.aspect = panel_aspect(drawings);
-        const auto rects = render::panel_grid({0, 0, float(width), float(height)}, int(plants_.size()),
-                                              std::max(1, columns_), true, row);
+        require_text_fits(d_, options_, [&](const render::Rect& area) { return title_layout(area, row.aspect); });
+        const std::vector<render::Rect> rects = title_layout({0, 0, float(width), float(height)}, row.aspect).panels;
         render::Shapes shapes;
         const nlohmann::json panel_meta = add_plants(shapes, rects, drawings);
         const FigureDrawing figure{width, height, false, [&](render::Surface& surface) {
@@ -290,6 +294,21 @@ public:
     }
 
 private:
+    render::PanelRowStyle row_style(float aspect) const {
+        render::PanelRowStyle row;
+        row.scale = float(options_.scale);
+        row.aspect = aspect;
+        return row;
+    }
+
+    // The plants' panels in `area` and their titles above them.
+    render::GridText title_layout(const render::Rect& area, float aspect) const {
+        const render::PanelRowStyle row = row_style(aspect);
+        std::vector<std::string> titles;
+        for (const Plant& p : plants_) titles.push_back(p.title);
+        return titled_grid_text(area, titles, figure_columns(d_, area, int(plants_.size()), true, row), true, row);
+    }
+
     Drawings draw_turtles(Progress& progress) const {
         Drawings drawings;
         for (const auto& p : plants_) {
@@ -333,7 +352,6 @@ private:
     const std::vector<Plant> plants_;
     const glm::vec4 colour_;
     const float min_width_;  // pixels, scaled
-    const int columns_;
 };
 
 }  // namespace

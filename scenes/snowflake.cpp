@@ -8,6 +8,7 @@
 #include "scenes/snowflake_setup.hpp"
 #include "scenes/step_runner.hpp"
 #include "scenes/figure_caption.hpp"
+#include "scenes/panel_grid.hpp"
 #include "render/hex_cells.hpp"
 #include "render/layout.hpp"
 #include "render/text.hpp"
@@ -42,22 +43,47 @@ SnowflakePanel panel_of(const sim::Snowflake& crystal, const sim::SnowflakeParam
     return panel;
 }
 
-// A row of crystals in `area`, captions beneath.
-void draw_snowflakes(render::Surface& canvas, const render::Rect& area, const std::vector<SnowflakePanel>& panels,
-                     const SnowflakeColours& colours, double scale) {
+// The crystals' panels in `area`, in rows of `columns`, each caption
+// beneath its panel: a band under every row, as the paper labels them.
+render::GridText snowflake_layout(const render::Rect& area, const std::vector<std::string>& captions, int columns,
+                                  double scale) {
     render::PanelRowStyle style;
     style.scale = static_cast<float>(scale);
     const float caption_band = 1.8f * style.title_size * style.scale;
-    const render::Rect above{area.x, area.y, area.w, area.h - caption_band};
-    const auto rects = render::panel_row(above, static_cast<int>(panels.size()), false, style);
-    render::Font& font = render::font_of_size(std::round(style.title_size * style.scale));
+    const float font_pixels = std::round(style.title_size * style.scale);
+    const int count = static_cast<int>(captions.size());
+    const int rows = (count + columns - 1) / columns;
+    const float band = area.h / float(rows);
+    std::vector<render::Rect> panels;
+    for (int r = 0; r < rows; ++r) {
+        const render::Rect above{area.x, area.y + float(r) * band, area.w, band - caption_band};
+        const auto row = render::panel_row(above, columns, false, style);
+        panels.insert(panels.end(), row.begin(), row.begin() + std::min(columns, count - r * columns));
+    }
+    // The caption's baseline 1.3 em under the panel: its line box's top that less the ascender.
+    const render::Font& font = render::font_of_size(font_pixels);
+    return render::grid_text(std::move(panels), captions, render::TitlePlace::below, font_pixels,
+                             1.3f * font.pixel_size() - font.ascender());
+}
+
+std::vector<std::string> captions_of(const std::vector<SnowflakePanel>& panels) {
+    std::vector<std::string> captions;
+    for (const SnowflakePanel& p : panels) captions.push_back(p.caption);
+    return captions;
+}
+
+void draw_snowflakes(render::Surface& canvas, const render::Rect& area, const std::vector<SnowflakePanel>& panels,
+                     const SnowflakeColours& colours, double scale, int columns) {
+    const render::GridText layout = snowflake_layout(area, captions_of(panels), columns, scale);
+    render::Font& font = render::font_of_size(std::round(17.0f * static_cast<float>(scale)));
     render::Text captions;
     for (std::size_t i = 0; i < panels.size(); ++i) {
-        const auto view = render::fit_hex_view(rects[i], panels[i].view_radius);
+        const render::Rect& r = layout.panels[i];
+        const auto view = render::fit_hex_view(r, panels[i].view_radius);
         render::draw_hex_cells(canvas, view, panels[i].forbidden, colours.tint);
         render::draw_hex_cells(canvas, view, panels[i].ice, colours.ice);
-        captions.add(font, panels[i].caption, {rects[i].centre().x, rects[i].bottom() + 1.3f * font.pixel_size()},
-                     colours.text, render::Align::centre, render::Baseline::baseline);
+        captions.add(font, panels[i].caption, {r.centre().x, r.bottom() + 1.3f * font.pixel_size()}, colours.text,
+                     render::Align::centre, render::Baseline::baseline);
     }
     captions.draw(canvas);
 }
@@ -93,7 +119,11 @@ public:
                    style_colour(style_, "tint_colour", "#dde8f3"),
                    {0, 0, 0, 1}},
           caption_(style_.text("caption", "{label} {rule}")),
-          plan_(plan_of(d, steps_)) {}
+          plan_(plan_of(d, steps_)) {
+        require_text_fits(d, options, [&](const render::Rect& area) {
+            return snowflake_layout(area, figure_captions(), figure_columns(area), options_.scale);
+        });
+    }
 
     // Every crystal at once, grown to the last step shown, and the panels'
     // copies of its ice (and, for a restriction, of the forbidden cells in
@@ -136,8 +166,9 @@ public:
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         const FigureDrawing figure{width, height, false, [&](render::Surface& surface) {
                                        surface.background({1, 1, 1, 1});
-                                       draw_snowflakes(surface, {0, 0, float(width), float(height)}, panels, colours_,
-                                                       options_.scale);
+                                       const render::Rect area{0, 0, float(width), float(height)};
+                                       draw_snowflakes(surface, area, panels, colours_, options_.scale,
+                                                       figure_columns(area));
                                    }};
         nlohmann::json runs_meta = nlohmann::json::array();
         for (const auto& r : runs_) runs_meta.push_back(r.used);
@@ -150,6 +181,21 @@ public:
     }
 
 private:
+    // The figure's panels: every run at each step of the plan, as keep_panels adds them.
+    std::vector<std::string> figure_captions() const {
+        std::vector<std::string> captions;
+        for (int step : plan_.panels)
+            for (std::size_t i = 0; i < runs_.size(); ++i) captions.push_back(caption_of(i, step));
+        return captions;
+    }
+
+    int figure_columns(const render::Rect& area) const {
+        render::PanelRowStyle style;
+        style.scale = float(options_.scale);
+        // A caption band under each row, counted as a title's room.
+        return scenes::figure_columns(d_, area, int(plan_.panels.size() * runs_.size()), true, style);
+    }
+
     std::string caption_of(std::size_t i, int step) const {
         return expand(
             caption_,
@@ -180,7 +226,8 @@ private:
             frame.push_back(panel_of(crystals[i], runs_[i].params, run.last_step() + 1, caption_of(i, step)));
         auto& canvas = run.frame_canvas();
         canvas.clear({1, 1, 1, 1});
-        draw_snowflakes(canvas, {0, 0, float(canvas.width()), float(canvas.height())}, frame, colours_, options_.scale);
+        draw_snowflakes(canvas, {0, 0, float(canvas.width()), float(canvas.height())}, frame, colours_, options_.scale,
+                        int(frame.size()));
         return canvas.read();
     }
 

@@ -122,8 +122,7 @@ void StepRunner::finish_film() {
 
 void StepRunner::write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta) {
     if (film_only()) return finish_film();
-    write_figure(field_figure(panels, figure_width(description_, options_),
-                              figure_height(description_, options_), options_.scale),
+    write_figure(field_figure(panels, description_, options_),
                  std::move(meta));
 }
 

@@ -272,7 +272,9 @@ TEST_CASE("a colour bar's tick labels span its field's range, at the bar's ends"
     CHECK(panels[0].layers[0].colour_bar->low == 0.0);
     CHECK(panels[0].layers[0].colour_bar->high == 0.25);
     render::VectorPage page(600, 400, false);
-    scenes::field_figure(panels, 600, 400, 1.0).draw(page);
+    description::Description d;
+    d.width = 600, d.height = 400;
+    scenes::field_figure(panels, d, scenes::SceneOptions{}).draw(page);
     std::vector<std::pair<std::string, float>> labels;  // tick labels and their baselines' y
     bool label = false;
     for (const auto& item : page.page().items)
