@@ -6,7 +6,8 @@
 //   [params]     the model's parameters (checked by its scene)
 //   [style]      drawing options (checked by its scene)
 //   [figure]     panels = [steps...], size = [w, h], panel_title = "step {step}"
-//   [animation]  steps = [first, last], stride, fps, size = [w, h], title
+//   [animation]  steps = [first, last], stride, fps, size = [w, h], title,
+//                poster = step (the frame a player shows before it plays)
 //
 // Values given on the command line (--set key=value, --seed) are written
 // into the table before it is read, so they pass the same checks.
@@ -37,6 +38,10 @@ struct Animation {
     // on many processes is the same film (0: one segment). 120 frames, 4 s
     // at 30 fps: one key frame more per 4 s than a single stream.
     int segment_frames = 120;
+    // The step whose frame is the film's poster (the still a player shows
+    // before it plays, as ffmpeg's thumbnail or HTML's poster): one of the
+    // steps the film shows. None: its last frame.
+    std::optional<int> poster = std::nullopt;
     int frame_count() const { return (last - first) / stride + 1; }
     bool shows(int step) const { return step >= first && step <= last && (step - first) % stride == 0; }
 };
