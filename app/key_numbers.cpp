@@ -235,8 +235,11 @@ std::string label_of(const std::string& label, const nlohmann::json* element, st
             text += value ? shown_if_present : "";
         else if (value && value->is_string() && value->get<std::string>().size() <= 80)
             text += value->get<std::string>();
-        else if (value && value->is_number())
-            text += significant(value->get<double>(), 6);
+        else if (value && value->is_number()) {
+            char number[32];  // as a person writes it: q = 0.6, rule 18
+            std::snprintf(number, sizeof number, "%.6g", value->get<double>());
+            text += number;
+        }
         else
             text += "?";
         at = close + 1;
@@ -301,11 +304,20 @@ std::string value_text(const Entry& entry, const Found& found, const nlohmann::j
 
 std::string significant(double value, int digits) {
     if (!std::isfinite(value)) return value != value ? "NaN" : (value > 0 ? "inf" : "-inf");
-    char text[40];
-    if (value == std::floor(value) && std::abs(value) < 1e9)
+    digits = std::clamp(digits, 1, 17);
+    char text[48];
+    // Whole numbers, and numbers too large for their digits, below 10^9 in
+    // full: 250000 and 12988, not 2.500e+05 and 1.299e+04.
+    if (std::abs(value) < 1e9 && (value == std::floor(value) || std::abs(value) >= std::pow(10.0, digits))) {
         std::snprintf(text, sizeof text, "%.0f", value);
-    else
-        std::snprintf(text, sizeof text, "%#.*g", std::clamp(digits, 1, 17), value);  // 2.000, not 2
+        return text;
+    }
+    // A number the digits give exactly as it is (0.02 of 100 trials) in
+    // its shortest form; a rounded one keeps its trailing zeros (2.000 is
+    // not 2).
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    if (std::strtod(text, nullptr) == value) return text;
+    std::snprintf(text, sizeof text, "%#.*g", digits, value);
     std::string shown = text;
     if (shown.back() == '.') shown.pop_back();  // "1235." from %#g
     return shown;

@@ -30,8 +30,9 @@ struct KeyNumberRow {
 std::vector<KeyNumberRow> key_numbers(const nlohmann::json& meta);
 
 // `value` rounded to `digits` significant digits, as the cards show numbers:
-// 0.592746 -> "0.5927", 2.000191 -> "2.000", 1.5e12 -> "1.500e+12"; whole
-// numbers below 10^9 in full (250000, not 2.500e+05).
+// 0.592746 -> "0.5927", 2.000191 -> "2.000" (rounded: its zeros kept), 0.02
+// -> "0.02" (exact), 12988.27 -> "12988" and 250000 -> "250000" (below 10^9
+// in full), 1.5e12 -> "1.500e+12".
 std::string significant(double value, int digits);
 
 }  // namespace app
