@@ -141,12 +141,42 @@ void computed_rows(const nlohmann::json& node, const std::string& path, std::vec
     }
 }
 
+// `value` as JSON text, cut at about `limit` characters and 8 levels deep
+// ("..."): a hand-made metadata nested a million levels deep must not take
+// the serializer's recursion with it.
+void brief_into(const nlohmann::json& value, std::size_t limit, int depth, std::string& text) {
+    if (text.size() > limit) return;
+    if (!value.is_structured()) {
+        text += value.dump();
+        return;
+    }
+    const bool object = value.is_object();
+    text += object ? "{" : "[";
+    if (depth >= 8 && !value.empty()) text += "...";
+    else {
+        bool first = true;
+        for (const auto& [key, item] : value.items()) {
+            if (text.size() > limit) break;
+            if (!first) text += ",";
+            first = false;
+            if (object) text += nlohmann::json(key).dump() + ":";
+            brief_into(item, limit, depth + 1, text);
+        }
+    }
+    text += object ? "}" : "]";
+}
+std::string brief(const nlohmann::json& value, std::size_t limit) {
+    std::string text;
+    brief_into(value, limit, 0, text);
+    return text;
+}
+
 std::string parameter_list(const nlohmann::json& meta) {
     std::string html;
     for (const char* section : {"params", "style"}) {
         if (!meta.contains(section) || !meta[section].is_object()) continue;
         for (const auto& [key, value] : meta[section].items()) {
-            std::string text = value.is_string() ? value.get<std::string>() : value.dump();
+            std::string text = value.is_string() ? value.get<std::string>() : brief(value, 120);
             if (text.size() > 120) text = text.substr(0, 117) + "...";
             html += "<tr><th>" + escape(std::string(section) == "params" ? key : "style." + key) + "</th><td>" +
                     escape(text) + "</td></tr>";

@@ -217,6 +217,13 @@ TEST_CASE("gallery escapes hostile metadata and survives JSON that lies", "[gall
     testkit::spill(out / "liar.json", liar.dump());
     fs::copy_file(out / "tc7-5.png", out / "liar.png");
     fs::copy_file(out / "tc7-5.mp4", out / "liar.mp4");
+    // Nested a hundred thousand levels deep, where the parameters go.
+    std::string deep = read_json(out / "tc7-7.json").dump();
+    deep.replace(deep.find("\"id\":\"tc7-7\""), 12, "\"id\":\"deep\"");
+    const std::string nest = std::string(100000, '[') + std::string(100000, ']');
+    deep.insert(deep.find("\"params\":{") + 10, "\"nested\":" + nest + ",");
+    testkit::spill(out / "deep.json", deep);
+    fs::copy_file(out / "tc7-7.png", out / "deep.png");
     testkit::spill(out / "broken.json", "{\"id\": \"broken\", \"figgen_version\": ");
     fs::copy_file(out / "tc7-5.png", out / "broken.png");
 
@@ -230,6 +237,7 @@ TEST_CASE("gallery escapes hostile metadata and survives JSON that lies", "[gall
     CHECK_THAT(page, Catch::Contains("&lt;script&gt;alert(&#39;x&#39;)&lt;/script&gt;&quot;&gt;&lt;img src=x"));
     REQUIRE(page.find("<article id=\"evil\">") != std::string::npos);
     CHECK(page.find("<article id=\"broken\">") == std::string::npos);
+    CHECK_THAT(page, Catch::Contains("<tr><th>nested</th><td>[[[[[[[[[...]]]]]]]]]</td></tr>"));
     // The honest slope is shown under its hostile label; the string and
     // the null are not numbers and are left out.
     const auto cards = key_cells(page);
