@@ -41,8 +41,8 @@ const std::vector<Key> animation_keys = {
                        "copy: the unit spread over MPI ranks; 0 = one segment"},
     {"size", "[width, height] in pixels"},
     {"title", "title above each frame; {step} is the step shown"},
-    {"poster", "the step whose frame is the film's poster (the still shown before it plays): a step the film "
-               "shows; default its last frame"},
+    {"poster", "the step whose frame is the film's poster (the still shown before it plays): the frame at that "
+               "step or the last before it; default its last frame"},
 };
 
 // A command-line value as TOML would read it ("0.2" a float, "[1,2]" a list,
@@ -159,17 +159,6 @@ void read_figure(Description& d, const toml::table& root) {
     }
 }
 
-// The steps a film shows, as an error message lists them: "0, 20, ..., 7000".
-std::string shown_steps(const Animation& a) {
-    const int frames = a.frame_count(), final_step = a.first + (frames - 1) * a.stride;
-    std::string list = std::to_string(a.first);
-    if (frames > 1) list += ", " + std::to_string(a.first + a.stride);
-    if (frames > 3) list += ", ...";
-    if (frames > 2) list += ", " + std::to_string(final_step);
-    return list + " (from animation.steps [" + std::to_string(a.first) + ", " + std::to_string(a.last) +
-           "] every animation.stride " + std::to_string(a.stride) + ")";
-}
-
 void read_animation(Description& d, const toml::table& root) {
     if (!root.contains("animation")) return;
     Settings anim("animation", section_table(root, "animation"), animation_keys);
@@ -185,9 +174,12 @@ void read_animation(Description& d, const toml::table& root) {
     std::tie(a.width, a.height) = size_pair(anim, "size", {a.width, a.height});
     a.title = anim.text("title", a.title);
     if (anim.has("poster")) {
+        // As ffmpeg's -ss seeks: the frame at that step, else the last before it.
         const long long poster = anim.integer("poster", a.last);
-        if (!a.shows(poster < 0 || poster > a.last ? -1 : static_cast<int>(poster)))
-            anim.refuse("poster", "a step the film shows: " + shown_steps(a));
+        if (poster < a.first || poster > a.last)
+            anim.refuse("poster", "a step from " + std::to_string(a.first) + " to " + std::to_string(a.last) +
+                                      " (animation.steps); the poster is the frame at that step or the last "
+                                      "before it");
         a.poster = static_cast<int>(poster);
     }
     d.animation = a;

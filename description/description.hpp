@@ -39,8 +39,9 @@ struct Animation {
     // at 30 fps: one key frame more per 4 s than a single stream.
     int segment_frames = 120;
     // The step whose frame is the film's poster (the still a player shows
-    // before it plays, as ffmpeg's thumbnail or HTML's poster): one of the
-    // steps the film shows. None: its last frame.
+    // before it plays, HTML's poster): a step from first to last; the frame
+    // at that step or, as ffmpeg's -ss seeks, the last one before it. None:
+    // the last frame.
     std::optional<int> poster = std::nullopt;
     int frame_count() const { return (last - first) / stride + 1; }
     bool shows(int step) const { return step >= first && step <= last && (step - first) % stride == 0; }

@@ -145,11 +145,11 @@ TEST_CASE("figgen thumbnails makes a film's preview an animated thumbnail of the
 
 TEST_CASE("gallery poster is the frame the description names and else the last frame", "[gallery][cli]") {
     const fs::path out = testkit::fresh_dir("gallery-poster");
-    // tc7-1 names step 8; the same film with poster = 3 given on the command
-    // line; tc7-5 names none.
+    // tc7-1 names step 8; the same film every third step, whose frames pass
+    // step 8 (poster: step 6, the last before it); tc7-5 names none.
     REQUIRE(testkit::figgen("render tc7-1 tc7-5 --scale 0.5 --format mp4,frames --out " + out.string()).status == 0);
     const fs::path other = out / "other";
-    REQUIRE(testkit::figgen("render tc7-1 --scale 0.5 --set id=tc7-1-early --set animation.poster=3 --out " +
+    REQUIRE(testkit::figgen("render tc7-1 --scale 0.5 --set id=tc7-1-early --set animation.stride=3 --out " +
                             other.string()).status == 0);
     fs::copy_file(other / "tc7-1-early.json", out / "tc7-1-early.json");
     fs::copy_file(other / "tc7-1-early.png", out / "tc7-1-early.png");
@@ -158,15 +158,20 @@ TEST_CASE("gallery poster is the frame the description names and else the last f
     INFO(run.output);
     REQUIRE(run.status == 0);
     const std::string page = slurp(out / "index.html");
-    for (const auto& [id, step] : {std::pair{std::string("tc7-1"), 8}, {std::string("tc7-1-early"), 3},
-                                   {std::string("tc7-5"), -1}}) {
+    struct Poster {
+        std::string id;
+        int frame, step;  // -1: the last
+    };
+    for (const auto& [id, frame_named, step] :
+         {Poster{"tc7-1", 8, 8}, Poster{"tc7-1-early", 2, 6}, Poster{"tc7-5", -1, -1}}) {
         INFO(id);
         std::ifstream in(out / (id + ".json"));
         const auto film = nlohmann::json::parse(in)["animation"];
         const int frames = film["frames"].get<int>(), frame = film["poster"]["frame"].get<int>();
         // The metadata names the frame of the step; without one, the last.
         CHECK(film["poster"]["step"] == film["steps"][frame]);
-        CHECK(frame == (step < 0 ? frames - 1 : step));
+        CHECK(frame == (frame_named < 0 ? frames - 1 : frame_named));
+        if (step >= 0) CHECK(film["poster"]["step"] == step);
         CHECK_THAT(page, Catch::Contains("src=\"" + id + ".mp4\" poster=\"posters/" + id + ".png\""));
         CHECK_THAT(page, Catch::Contains("data-poster-frame=\"" + std::to_string(frame) + "\""));
         // The poster is that frame of the film as a browser decodes it, and
@@ -187,5 +192,20 @@ TEST_CASE("gallery poster is the frame the description names and else the last f
             const auto last = render::read_png(out / (id + "-frames") / name).image;
             CHECK(mean_difference(poster, last) > 5 * mean_difference(poster, lossless));
         }
+    }
+    // A second gallery keeps a poster decoded from the same film at the same
+    // frame; a film rendered again, or another frame named, is decoded anew.
+    const auto kept = fs::last_write_time(out / "posters" / "tc7-1-early.png");
+    REQUIRE(testkit::figgen("render tc7-1 --scale 0.5 --set animation.poster=20 --out " + out.string()).status == 0);
+    std::ifstream in(out / "tc7-5.json");
+    nlohmann::json edited = nlohmann::json::parse(in);
+    edited["animation"]["poster"] = {{"frame", 2}, {"step", 2}};
+    std::ofstream(out / "tc7-5.json") << edited.dump();
+    REQUIRE(testkit::figgen("gallery --out " + out.string()).status == 0);
+    CHECK(fs::last_write_time(out / "posters" / "tc7-1-early.png") == kept);
+    for (const auto& [id, frame] : {std::pair{std::string("tc7-1"), 20}, {std::string("tc7-5"), 2}}) {
+        INFO(id);
+        CHECK(mean_difference(render::read_png(out / "posters" / (id + ".png")).image,
+                              render::decode_frame(out / (id + ".mp4"), frame)) < 0.01);
     }
 }
