@@ -300,6 +300,26 @@ int write_thumbnails(const std::filesystem::path& from, const std::filesystem::p
 
 namespace {
 
+// Which film and frame a poster shows: the film's name, size, inode and
+// time of its last change (a render puts a new file in place), and the frame.
+std::string film_identity(const render::Folder& folder, const std::string& movie, int frame) {
+    struct stat st {};
+    if (::fstatat(folder.fd(), movie.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0) return "";
+    return movie + " frame " + std::to_string(frame) + ", " + std::to_string(st.st_size) + " bytes, file " +
+           std::to_string(st.st_ino) + ", changed " + std::to_string(st.st_mtim.tv_sec) + "." +
+           std::to_string(st.st_mtim.tv_nsec);
+}
+
+// The PNG's tEXt `key`, or "" (also for a PNG that cannot be read).
+std::string png_text(const render::Folder& folder, const std::string& name, const std::string& key) {
+    try {
+        for (const auto& [k, value] : render::read_png(folder, name).text)
+            if (k == key) return value;
+    } catch (const std::exception&) {
+    }
+    return "";
+}
+
 // The card's <video>, where the figure's film ID.mp4 is in the folder (its
 // name is never taken from the metadata). Its poster, posters/ID.png, is the
 // frame the description named (animation.poster: the metadata gives its
@@ -321,9 +341,17 @@ std::string film_html(const Folders& folders, const std::string& id, const std::
     const int poster_frame = named >= 0 ? named : frames - 1;
     std::string poster;
     try {
-        const render::Image frame = render::decode_frame(folders.figures / movie, poster_frame, 0);
-        render::write_png(folders.posters, id + ".png", frame,
-                          {{"Title", title + " (frame " + std::to_string(poster_frame) + " of " + movie + ")"}});
+        // A poster decoded from this very film (its size and time) at this
+        // frame by an earlier run is kept: decoding a long film to its last
+        // frame is most of the gallery's time.
+        const std::string source = film_identity(folders.figures, movie, poster_frame);
+        if (source.empty() || !is_file_in(folders.posters, id + ".png") ||
+            png_text(folders.posters, id + ".png", "Source") != source) {
+            const render::Image frame = render::decode_frame(folders.figures / movie, poster_frame, 0);
+            render::write_png(folders.posters, id + ".png", frame,
+                              {{"Title", title + " (frame " + std::to_string(poster_frame) + " of " + movie + ")"},
+                               {"Source", source}});
+        }
         poster = "posters/" + id + ".png";
     } catch (const std::exception&) {
     }
