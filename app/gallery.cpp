@@ -1,9 +1,11 @@
 #include "app/gallery.hpp"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -13,6 +15,8 @@
 #include <vector>
 
 #include "description/catalog.hpp"
+#include "description/plain_name.hpp"
+#include "app/key_numbers.hpp"
 #include "app/version.hpp"
 #include "render/atomic_file.hpp"
 #include "render/png_io.hpp"
@@ -24,6 +28,9 @@ using description::catalog_files;
 namespace {
 
 constexpr int thumb_width = 480, thumb_height = 360;
+// Figures of other descriptions shown at most: a folder of a million JSON
+// files makes a long page, not an endless one.
+constexpr std::size_t max_other_figures = 1000;
 
 // The gallery's folder (the rendered figures, index.html) and the two it makes.
 struct Folders {
@@ -63,6 +70,12 @@ int count_of(const nlohmann::json& value) {
     return value.is_number_integer() && value.get<long long>() > 0 && value.get<long long>() <= 1'000'000
                ? static_cast<int>(value.get<long long>())
                : 0;
+}
+// An index below `limit` (a frame of a film), else -1.
+int index_of(const nlohmann::json& value, int limit) {
+    return value.is_number_integer() && value.get<long long>() >= 0 && value.get<long long>() < limit
+               ? static_cast<int>(value.get<long long>())
+               : -1;
 }
 std::string seed_of(const nlohmann::json& meta) {
     const nlohmann::json& seed = member(meta, "seed");
@@ -128,12 +141,42 @@ void computed_rows(const nlohmann::json& node, const std::string& path, std::vec
     }
 }
 
+// `value` as JSON text, cut at about `limit` characters and 8 levels deep
+// ("..."): a hand-made metadata nested a million levels deep must not take
+// the serializer's recursion with it.
+void brief_into(const nlohmann::json& value, std::size_t limit, int depth, std::string& text) {
+    if (text.size() > limit) return;
+    if (!value.is_structured()) {
+        text += value.dump();
+        return;
+    }
+    const bool object = value.is_object();
+    text += object ? "{" : "[";
+    if (depth >= 8 && !value.empty()) text += "...";
+    else {
+        bool first = true;
+        for (const auto& [key, item] : value.items()) {
+            if (text.size() > limit) break;
+            if (!first) text += ",";
+            first = false;
+            if (object) text += nlohmann::json(key).dump() + ":";
+            brief_into(item, limit, depth + 1, text);
+        }
+    }
+    text += object ? "}" : "]";
+}
+std::string brief(const nlohmann::json& value, std::size_t limit) {
+    std::string text;
+    brief_into(value, limit, 0, text);
+    return text;
+}
+
 std::string parameter_list(const nlohmann::json& meta) {
     std::string html;
     for (const char* section : {"params", "style"}) {
         if (!meta.contains(section) || !meta[section].is_object()) continue;
         for (const auto& [key, value] : meta[section].items()) {
-            std::string text = value.is_string() ? value.get<std::string>() : value.dump();
+            std::string text = value.is_string() ? value.get<std::string>() : brief(value, 120);
             if (text.size() > 120) text = text.substr(0, 117) + "...";
             html += "<tr><th>" + escape(std::string(section) == "params" ? key : "style." + key) + "</th><td>" +
                     escape(text) + "</td></tr>";
@@ -165,6 +208,12 @@ table { border-collapse: collapse; width: 100%; table-layout: fixed; }
 th, td { text-align: left; vertical-align: top; padding: 0.1rem 0.4rem 0.1rem 0; overflow-wrap: anywhere; }
 th { font-weight: normal; color: var(--muted); width: 42%; }
 td { font-family: "DejaVu Sans Mono", monospace; }
+table.key { margin: 0.4rem 0 0.2rem; font-size: 0.9rem; }
+table.key caption { text-align: left; color: var(--muted); font-size: 0.85rem; }
+table.key thead th { font-size: 0.8rem; border-bottom: 1px solid var(--line); }
+table.key thead th:first-child { width: 34%; }
+table.key th { width: auto; }
+table.key td.reference { font-family: inherit; color: var(--muted); font-size: 0.85rem; }
 )";
 
 }  // namespace
@@ -184,6 +233,38 @@ nlohmann::json read_metadata(const render::Folder& folder, const std::string& na
     const std::optional<std::string> text = render::read_file_at(folder, name, 16u << 20);
     if (!text) return nullptr;
     return nlohmann::json::parse(*text, nullptr, false);  // discarded (not an exception) when malformed
+}
+
+// The figures in the folder that are not the catalog's: every ID.json
+// figgen wrote (an object whose "id" is its file's name, a plain id, and
+// which names the figgen that wrote it) beside its ID.png, in name order.
+// Names come from the folder's listing, never from a JSON; symlinks are
+// passed over, as everywhere in the gallery.
+std::vector<std::string> figures_outside(const render::Folder& folder, const std::vector<std::string>& catalog) {
+    std::vector<std::string> ids;
+    const int fd = ::openat(folder.fd(), ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return ids;
+    DIR* listing = ::fdopendir(fd);
+    if (!listing) {
+        ::close(fd);
+        return ids;
+    }
+    while (const dirent* entry = ::readdir(listing)) {
+        const std::string name = entry->d_name;
+        if (name.size() <= 5 || name.compare(name.size() - 5, 5, ".json") != 0) continue;
+        const std::string id = name.substr(0, name.size() - 5);
+        if (!description::is_plain_id(id) || std::find(catalog.begin(), catalog.end(), id) != catalog.end()) continue;
+        if (!is_file_in(folder, name) || !is_file_in(folder, id + ".png")) continue;
+        ids.push_back(id);
+        if (ids.size() >= max_other_figures) break;
+    }
+    ::closedir(listing);
+    std::sort(ids.begin(), ids.end());
+    std::erase_if(ids, [&](const std::string& id) {
+        const nlohmann::json meta = read_metadata(folder, id + ".json");
+        return !(meta.is_object() && text_of(meta, "id", "") == id && !text_of(meta, "figgen_version", "").empty());
+    });
+    return ids;
 }
 
 }  // namespace
@@ -219,12 +300,33 @@ int write_thumbnails(const std::filesystem::path& from, const std::filesystem::p
 
 namespace {
 
+// Which film and frame a poster shows: the film's name, size, inode and
+// time of its last change (a render puts a new file in place), and the frame.
+std::string film_identity(const render::Folder& folder, const std::string& movie, int frame) {
+    struct stat st {};
+    if (::fstatat(folder.fd(), movie.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0) return "";
+    return movie + " frame " + std::to_string(frame) + ", " + std::to_string(st.st_size) + " bytes, file " +
+           std::to_string(st.st_ino) + ", changed " + std::to_string(st.st_mtim.tv_sec) + "." +
+           std::to_string(st.st_mtim.tv_nsec);
+}
+
+// The PNG's tEXt `key`, or "" (also for a PNG that cannot be read).
+std::string png_text(const render::Folder& folder, const std::string& name, const std::string& key) {
+    try {
+        for (const auto& [k, value] : render::read_png(folder, name).text)
+            if (k == key) return value;
+    } catch (const std::exception&) {
+    }
+    return "";
+}
+
 // The card's <video>, where the figure's film ID.mp4 is in the folder (its
-// name is never taken from the metadata). Its poster is the film's looping
-// preview ID.webp, which plays until the film does; without one (a folder
-// rendered by an older figgen), the film's last frame decoded from the MP4,
-// written as posters/ID.png: what the film grows into, where the first frame
-// (what a browser shows by itself) is often nearly empty. Returns the film's
+// name is never taken from the metadata). Its poster, posters/ID.png, is the
+// frame the description named (animation.poster: the metadata gives its
+// index), else the film's last frame, decoded from the MP4: what the film is
+// about, where the first frame (what a browser shows by itself) is often
+// nearly empty. A poster that cannot be decoded (a hand-edited metadata that
+// promises more frames than the film has) is left out. Returns the film's
 // file name, or "" for none.
 std::string film_html(const Folders& folders, const std::string& id, const std::string& title,
                       const nlohmann::json& meta, std::ostringstream& card) {
@@ -235,24 +337,61 @@ std::string film_html(const Folders& folders, const std::string& id, const std::
     const int height = size.is_array() && size.size() == 2 ? count_of(size[1]) : 0;
     const int frames = count_of(member(film, "frames")), fps = count_of(member(film, "fps"));
     if (!is_file_in(folders.figures, movie) || !width || !height || !frames || !fps) return "";
-    const std::string preview = id + ".webp";
-    std::string poster = preview;
-    int poster_width = 0, poster_height = 0;
-    if (is_file_in(folders.figures, preview)) {
-        const render::PreviewInfo info = render::probe_preview(folders.figures / preview);
-        poster_width = info.width, poster_height = info.height;
-    } else {
+    const int named = index_of(member(member(film, "poster"), "frame"), frames);
+    const int poster_frame = named >= 0 ? named : frames - 1;
+    std::string poster;
+    try {
+        // A poster decoded from this very film (its size and time) at this
+        // frame by an earlier run is kept: decoding a long film to its last
+        // frame is most of the gallery's time.
+        const std::string source = film_identity(folders.figures, movie, poster_frame);
+        if (source.empty() || !is_file_in(folders.posters, id + ".png") ||
+            png_text(folders.posters, id + ".png", "Source") != source) {
+            const render::Image frame = render::decode_frame(folders.figures / movie, poster_frame, 0);
+            render::write_png(folders.posters, id + ".png", frame,
+                              {{"Title", title + " (frame " + std::to_string(poster_frame) + " of " + movie + ")"},
+                               {"Source", source}});
+        }
         poster = "posters/" + id + ".png";
-        render::write_png(folders.posters, id + ".png", render::decode_frame(folders.figures / movie, frames - 1, 0),
-                          {{"Title", title + " (last frame of " + movie + ")"}});
-        poster_width = width, poster_height = height;
+    } catch (const std::exception&) {
     }
-    card << "<video controls preload=\"metadata\" src=\"" << escape(movie) << "\" poster=\"" << escape(poster)
-         << "\" width=\"" << width << "\" height=\"" << height << "\" data-width=\"" << width
+    card << "<video controls preload=\"metadata\" src=\"" << escape(movie) << "\"";
+    if (!poster.empty()) card << " poster=\"" << escape(poster) << "\"";
+    card << " width=\"" << width << "\" height=\"" << height << "\" data-width=\"" << width
          << "\" data-height=\"" << height << "\" data-frames=\"" << frames << "\" data-fps=\"" << fps
-         << "\" data-poster-width=\"" << poster_width << "\" data-poster-height=\"" << poster_height
-         << "\"></video>\n";
+         << "\" data-poster-frame=\"" << poster_frame << "\" data-poster-width=\"" << width
+         << "\" data-poster-height=\"" << height << "\"></video>\n";
     return movie;
+}
+
+// The figure's key results (app/key_numbers.hpp): label, value and the
+// catalog's reference value side by side. Each value cell names the JSON
+// pointer it came from (data-path), so a reader or a test can find it in the
+// metadata the card links to.
+void key_numbers_html(const nlohmann::json& meta, std::ostringstream& card) {
+    const std::vector<KeyNumberRow> rows = key_numbers(meta);
+    if (rows.empty()) return;
+    const bool references = std::any_of(rows.begin(), rows.end(), [](const auto& r) { return !r.reference.empty(); });
+    card << "<table class=\"key\"><caption>key results</caption><thead><tr><th scope=\"col\">result</th>"
+         << "<th scope=\"col\">value</th>" << (references ? "<th scope=\"col\">reference</th>" : "")
+         << "</tr></thead><tbody>\n";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const KeyNumberRow& row = rows[i];
+        card << "<tr><th scope=\"row\">" << escape(row.label) << "</th><td data-path=\"" << escape(row.path)
+             << "\" data-kind=\"" << escape(row.kind) << "\"";
+        if (!row.error_path.empty()) card << " data-error-path=\"" << escape(row.error_path) << "\"";
+        card << ">" << escape(row.value) << "</td>";
+        // One reference cell for a run of rows that share it (D of five crystals).
+        if (references && (i == 0 || row.reference.empty() || rows[i - 1].reference != row.reference)) {
+            std::size_t run = 1;
+            while (!row.reference.empty() && i + run < rows.size() && rows[i + run].reference == row.reference) ++run;
+            card << "<td class=\"reference\"";
+            if (run > 1) card << " rowspan=\"" << run << "\"";
+            card << ">" << escape(row.reference) << "</td>";
+        }
+        card << "</tr>\n";
+    }
+    card << "</tbody></table>\n";
 }
 
 // The links and the collapsible tables below a card's pictures.
@@ -272,8 +411,9 @@ void details_html(const render::Folder& figures, const std::string& id, const st
         if (file == id + "." + format && is_file_in(figures, file))
             card << "<a href=\"" << escape(file) << "\">" << label << "</a>";
     }
-    card << "</div>\n"
-         << "<details><summary>parameters, seed " << seed_of(meta) << "</summary><table>"
+    card << "</div>\n";
+    key_numbers_html(meta, card);
+    card << "<details><summary>parameters, seed " << seed_of(meta) << "</summary><table>"
          << "<tr><th>seed</th><td>" << seed_of(meta) << "</td></tr>" << parameter_list(meta)
          << "</table></details>\n";
     std::vector<std::string> numbers;
@@ -306,7 +446,8 @@ std::string card_html(const Folders& folders, const std::string& id, const nlohm
     return card.str();
 }
 
-std::string page_html(const std::string& cards, int shown, int missing) {
+std::string page_html(const std::string& cards, int shown, int missing, int others,
+                      const std::vector<std::string>& unreadable) {
     std::ostringstream page;
     page << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
          << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
@@ -314,7 +455,9 @@ std::string page_html(const std::string& cards, int shown, int missing) {
          << "<title>figgen gallery</title>\n<style>" << style_sheet << "</style>\n</head>\n<body>\n"
          << "<header><h1>figgen gallery</h1>\n<p>" << shown << " figure" << (shown == 1 ? "" : "s")
          << " rendered by figgen " << escape(version()) << " from the descriptions in figures/";
+    if (others > 0) page << " (" << others << " from descriptions outside it)";
     if (missing > 0) page << "; " << missing << " of the catalog not rendered here";
+    for (const std::string& failure : unreadable) page << "; could not show " << escape(failure);
     page << ".</p></header>\n<main>\n" << cards << "</main>\n</body>\n</html>\n";
     return page.str();
 }
@@ -326,17 +469,34 @@ int write_gallery(const std::filesystem::path& dir) {
     const Folders folders{figures, render::Folder(figures, "thumbs"), render::Folder(figures, "posters")};
     std::string cards;
     int shown = 0, missing = 0;
+    std::vector<std::string> unreadable;
+    // One card; a figure whose files cannot be read (a PNG that is not
+    // one) is named in the header instead of stopping the gallery.
+    const auto show = [&](const std::string& id, const nlohmann::json& meta) {
+        try {
+            cards += card_html(folders, id, meta);
+            ++shown;
+        } catch (const std::exception& e) {
+            unreadable.push_back(id + ": " + e.what());
+        }
+    };
+    std::vector<std::string> catalog;
     for (const auto& file : catalog_files()) {
         const std::string id = file.stem().string();
+        catalog.push_back(id);
         const nlohmann::json meta = read_metadata(figures, id + ".json");
         if (!meta.is_object() || !is_file_in(figures, id + ".png")) {
             ++missing;
             continue;
         }
-        cards += card_html(folders, id, meta);
-        ++shown;
+        show(id, meta);
     }
-    render::write_file_atomically(figures, "index.html", page_html(cards, shown, missing));
+    int others = 0;
+    for (const std::string& id : figures_outside(figures, catalog)) {
+        show(id, read_metadata(figures, id + ".json"));
+        ++others;
+    }
+    render::write_file_atomically(figures, "index.html", page_html(cards, shown, missing, others, unreadable));
     return shown;
 }
 

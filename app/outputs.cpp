@@ -221,6 +221,14 @@ nlohmann::json FrameSink::finish() {
         {"fps", description_.animation->fps},
         {"size", {width_, height_}},
     };
+    // The poster: the frame of the step the description names (the last
+    // frame before it where the run stopped early), else the last frame.
+    if (!steps_.empty()) {
+        std::size_t frame = steps_.size() - 1;
+        if (const std::optional<int>& poster = description_.animation->poster)
+            while (frame > 0 && steps_[frame].get<int>() > *poster) --frame;
+        meta["poster"] = {{"frame", frame}, {"step", steps_[frame]}};
+    }
     // The film rounds its size up to even (H.264 in yuv420p needs it); the figure keeps its own.
     const int asked_width = scaled(description_.animation->width, options_.scale),
               asked_height = scaled(description_.animation->height, options_.scale);

@@ -45,6 +45,8 @@ const std::vector<Key> animation_keys = {
                        "copy: the unit spread over MPI ranks; 0 = one segment"},
     {"size", "[width, height] in pixels"},
     {"title", "title above each frame; {step} is the step shown"},
+    {"poster", "the step whose frame is the film's poster (the still shown before it plays): the frame at that "
+               "step or the last before it; default its last frame"},
 };
 
 // A command-line value as TOML would read it ("0.2" a float, "[1,2]" a list,
@@ -188,6 +190,15 @@ void read_animation(Description& d, const toml::table& root) {
     a.segment_frames = anim.count_in("segment_frames", a.segment_frames, 0, 100'000'000);
     std::tie(a.width, a.height) = size_pair(anim, "size", {a.width, a.height});
     a.title = anim.text("title", a.title);
+    if (anim.has("poster")) {
+        // As ffmpeg's -ss seeks: the frame at that step, else the last before it.
+        const long long poster = anim.integer("poster", a.last);
+        if (poster < a.first || poster > a.last)
+            anim.refuse("poster", "a step from " + std::to_string(a.first) + " to " + std::to_string(a.last) +
+                                      " (animation.steps); the poster is the frame at that step or the last "
+                                      "before it");
+        a.poster = static_cast<int>(poster);
+    }
     d.animation = a;
 }
 

@@ -6,9 +6,10 @@
 //                                                (`model` is read as an old name of `scene`)
 //   [params]     the model's parameters (checked by its scene)
 //   [style]      drawing options (checked by its scene)
-//   [figure]     panels = [steps...], size = [w, h], panel_title = "step {step}",
+//   [figure]     panels = [steps...], size = [w, h], panel_title = "step {step}", columns,
 //                caption = "none" | "title" | "original" (drawn beneath the figure)
-//   [animation]  steps = [first, last], stride, fps, size = [w, h], title
+//   [animation]  steps = [first, last], stride, fps, size = [w, h], title,
+//                poster = step (the frame a player shows before it plays)
 //
 // Values given on the command line (--set key=value, --seed) are written
 // into the table before it is read, so they pass the same checks.
@@ -39,6 +40,11 @@ struct Animation {
     // on many processes is the same film (0: one segment). 120 frames, 4 s
     // at 30 fps: one key frame more per 4 s than a single stream.
     int segment_frames = 120;
+    // The step whose frame is the film's poster (the still a player shows
+    // before it plays, HTML's poster): a step from first to last; the frame
+    // at that step or, as ffmpeg's -ss seeks, the last one before it. None:
+    // the last frame.
+    std::optional<int> poster = std::nullopt;
     int frame_count() const { return (last - first) / stride + 1; }
     bool shows(int step) const { return step >= first && step <= last && (step - first) % stride == 0; }
 };

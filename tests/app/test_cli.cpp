@@ -120,6 +120,13 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-2 --set animation.fps=1000", "animation.fps = 1000 is not allowed"},
         {render + "tc7-2 --set animation.steps=[500,100]", "--set animation.steps=[500,100]: animation.steps = [ 500, 100 ] is not allowed: [first, last] with 0 <= first <= last <= 100000000"},
         {render + "tc7-2 --set animation.stride=0", "animation.stride = 0 is not allowed"},
+        // The poster: a step of the film's window.
+        {render + "tc7-2 --set animation.poster=7001", "--set animation.poster=7001: animation.poster = 7001 is not allowed: a step from 0 to 7000 (animation.steps); the poster is the frame at that step or the last before it"},
+        {render + "tc7-1 --set animation.poster=-1", "animation.poster = -1 is not allowed: a step from 0 to 60"},
+        {render + "tc7-1 --set animation.poster=last", "--set animation.poster=last: animation.poster = 'last' is not allowed: expected an integer"},
+        {render + "tc7-1 --set animation.steps=[0,4]", "tc7-1.toml:39: animation.poster = 8 is not allowed: a step from 0 to 4 (animation.steps)"},
+        {render + description("poster.toml", head + "[animation]\nsteps = [5, 10]\nstride = 5\nposter = 4\n"),
+         "poster.toml:6: animation.poster = 4 is not allowed: a step from 5 to 10 (animation.steps); the poster is the frame at that step or the last before it"},
         {render + "tc7-6 --set figure.panels=[20000]", "--set figure.panels=[20000]: figure.panels = [20000] is not allowed: a step below 16384: each automaton at most 16384 rows (the renderer draws one field that large)"},
         // Memory and disk.
         {render + "tc7-1 --set n=8000 --max-memory 256M", "needs about 4.0 GiB of memory (grids of doubles 8000 x 8000 x 5: 2.4 GiB), more than --max-memory 256.0 MiB"},

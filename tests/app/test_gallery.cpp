@@ -91,37 +91,16 @@ TEST_CASE("figgen gallery shows every rendered figure with thumbnail, film, para
                                      "\" height=\"" + std::to_string(thumb.height) + "\""));
     // The film, with the frame count and size of its metadata; tc7-9 has none.
     const auto& film = meta["animation"];
-    // Its poster: the film's looping preview, at the size its metadata gives.
-    CHECK_THAT(page, Catch::Contains("<video controls preload=\"metadata\" src=\"tc7-1.mp4\" poster=\"tc7-1.webp\" width=\"" +
+    // Its poster: the frame of the step its description names (tc7-1.toml:
+    // poster = 8, the block spread into a bump), decoded from the film.
+    REQUIRE(film["poster"]["step"] == 8);
+    const int poster_frame = film["poster"]["frame"].get<int>();
+    CHECK(film["steps"][poster_frame] == 8);
+    CHECK_THAT(page, Catch::Contains("<video controls preload=\"metadata\" src=\"tc7-1.mp4\" poster=\"posters/tc7-1.png\" width=\"" +
                                      std::to_string(film["size"][0].get<int>()) + "\""));
     CHECK_THAT(page, Catch::Contains("data-frames=\"" + std::to_string(film["frames"].get<int>()) + "\""));
-    CHECK_THAT(page, Catch::Contains("data-poster-width=\"" + std::to_string(film["preview"]["size"][0].get<int>()) +
-                                     "\" data-poster-height=\"" +
-                                     std::to_string(film["preview"]["size"][1].get<int>()) + "\""));
+    CHECK_THAT(page, Catch::Contains("data-poster-frame=\"" + std::to_string(poster_frame) + "\""));
     CHECK(count(page, "<video ") == 1);
-    CHECK_FALSE(fs::exists(out / "posters" / "tc7-1.png"));
-    // Without a preview (a folder of an older figgen), the poster is the
-    // film's last frame, as the same render's PNG sequence has it (within
-    // H.264's loss), not its first.
-    fs::remove(out / "tc7-1.webp");
-    REQUIRE(testkit::figgen("gallery --out " + out.string()).status == 0);
-    CHECK_THAT(slurp(out / "index.html"),
-               Catch::Contains("src=\"tc7-1.mp4\" poster=\"posters/tc7-1.png\" width=\"" +
-                               std::to_string(film["size"][0].get<int>()) + "\""));
-    const fs::path frames = testkit::fresh_dir("gallery-frames");
-    REQUIRE(testkit::figgen("render tc7-1 --scale 0.5 --seed 4 --format frames --out " + frames.string()).status == 0);
-    const auto poster = render::read_png(out / "posters" / "tc7-1.png").image;
-    const int last = film["frames"].get<int>() - 1;
-    char name[16];
-    std::snprintf(name, sizeof name, "%05d.png", last);
-    const auto last_frame = render::read_png(frames / "tc7-1-frames" / name).image;
-    const auto first_frame = render::read_png(frames / "tc7-1-frames" / "00000.png").image;
-    REQUIRE(poster.width == film["size"][0].get<int>());
-    REQUIRE(poster.height == film["size"][1].get<int>());
-    REQUIRE(last_frame.width == poster.width);
-    REQUIRE(last_frame.height == poster.height);
-    CHECK(mean_difference(poster, last_frame) < 1.5);
-    CHECK(mean_difference(poster, first_frame) > 5 * mean_difference(poster, last_frame));
     // Source, seed, parameters and the numbers computed.
     CHECK_THAT(page, Catch::Contains("Think Complexity"));
     CHECK_THAT(page, Catch::Contains("<tr><th>seed</th><td>4</td></tr>"));
@@ -162,4 +141,71 @@ TEST_CASE("figgen thumbnails makes a film's preview an animated thumbnail of the
     }
     CHECK(fs::exists(thumbs / "tc7-9.png"));
     CHECK_FALSE(fs::exists(thumbs / "tc7-9.webp"));  // no film, no animated thumbnail
+}
+
+TEST_CASE("gallery poster is the frame the description names and else the last frame", "[gallery][cli]") {
+    const fs::path out = testkit::fresh_dir("gallery-poster");
+    // tc7-1 names step 8; the same film every third step, whose frames pass
+    // step 8 (poster: step 6, the last before it); tc7-5 names none.
+    REQUIRE(testkit::figgen("render tc7-1 tc7-5 --scale 0.5 --format mp4,frames --out " + out.string()).status == 0);
+    const fs::path other = out / "other";
+    REQUIRE(testkit::figgen("render tc7-1 --scale 0.5 --set id=tc7-1-early --set animation.stride=3 --out " +
+                            other.string()).status == 0);
+    fs::copy_file(other / "tc7-1-early.json", out / "tc7-1-early.json");
+    fs::copy_file(other / "tc7-1-early.png", out / "tc7-1-early.png");
+    fs::copy_file(other / "tc7-1-early.mp4", out / "tc7-1-early.mp4");
+    const testkit::Run run = testkit::figgen("gallery --out " + out.string());
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    const std::string page = slurp(out / "index.html");
+    struct Poster {
+        std::string id;
+        int frame, step;  // -1: the last
+    };
+    for (const auto& [id, frame_named, step] :
+         {Poster{"tc7-1", 8, 8}, Poster{"tc7-1-early", 2, 6}, Poster{"tc7-5", -1, -1}}) {
+        INFO(id);
+        std::ifstream in(out / (id + ".json"));
+        const auto film = nlohmann::json::parse(in)["animation"];
+        const int frames = film["frames"].get<int>(), frame = film["poster"]["frame"].get<int>();
+        // The metadata names the frame of the step; without one, the last.
+        CHECK(film["poster"]["step"] == film["steps"][frame]);
+        CHECK(frame == (frame_named < 0 ? frames - 1 : frame_named));
+        if (step >= 0) CHECK(film["poster"]["step"] == step);
+        CHECK_THAT(page, Catch::Contains("src=\"" + id + ".mp4\" poster=\"posters/" + id + ".png\""));
+        CHECK_THAT(page, Catch::Contains("data-poster-frame=\"" + std::to_string(frame) + "\""));
+        // The poster is that frame of the film as a browser decodes it, and
+        // the same render's lossless frame within H.264's loss.
+        const auto poster = render::read_png(out / "posters" / (id + ".png")).image;
+        const auto decoded = render::decode_frame(out / (id + ".mp4"), frame);
+        REQUIRE(poster.width == film["size"][0].get<int>());
+        REQUIRE(poster.height == film["size"][1].get<int>());
+        REQUIRE(decoded.width == poster.width);
+        CHECK(mean_difference(poster, decoded) < 0.01);
+        if (id == "tc7-1-early") continue;  // its frames are in the other folder's film only
+        char name[16];
+        std::snprintf(name, sizeof name, "%05d.png", frame);
+        const auto lossless = render::read_png(out / (id + "-frames") / name).image;
+        CHECK(mean_difference(poster, lossless) < 1.5);
+        if (step >= 0) {
+            std::snprintf(name, sizeof name, "%05d.png", frames - 1);
+            const auto last = render::read_png(out / (id + "-frames") / name).image;
+            CHECK(mean_difference(poster, last) > 5 * mean_difference(poster, lossless));
+        }
+    }
+    // A second gallery keeps a poster decoded from the same film at the same
+    // frame; a film rendered again, or another frame named, is decoded anew.
+    const auto kept = fs::last_write_time(out / "posters" / "tc7-1-early.png");
+    REQUIRE(testkit::figgen("render tc7-1 --scale 0.5 --set animation.poster=20 --out " + out.string()).status == 0);
+    std::ifstream in(out / "tc7-5.json");
+    nlohmann::json edited = nlohmann::json::parse(in);
+    edited["animation"]["poster"] = {{"frame", 2}, {"step", 2}};
+    std::ofstream(out / "tc7-5.json") << edited.dump();
+    REQUIRE(testkit::figgen("gallery --out " + out.string()).status == 0);
+    CHECK(fs::last_write_time(out / "posters" / "tc7-1-early.png") == kept);
+    for (const auto& [id, frame] : {std::pair{std::string("tc7-1"), 20}, {std::string("tc7-5"), 2}}) {
+        INFO(id);
+        CHECK(mean_difference(render::read_png(out / "posters" / (id + ".png")).image,
+                              render::decode_frame(out / (id + ".mp4"), frame)) < 0.01);
+    }
 }

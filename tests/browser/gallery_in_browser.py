@@ -13,7 +13,8 @@ figure whose ID.json is in the folder. Either way it serves the folder on
 127.0.0.1 and checks in the browser that every image has loaded (natural
 size > 0, the size in its tag), every video has loaded its metadata
 (duration > 0, the frame count over the fps of its metadata, its size),
-has its poster (its last frame, at its size) and seeks to its last frame,
+has its poster (the frame its description names, else its last, at its
+size) and seeks to its last frame,
 nothing was logged to the console, and a phone-wide
 window with every card's details open needs no sideways scrolling; then
 that each figure's SVG (the --figgen run writes them) opens on its own as
@@ -198,8 +199,8 @@ def main():
                                 % (src, duration, film["frames"], film["fps"], expected))
             if [width, height] != film["size"]:
                 failures.append("video %s is %dx%d, its metadata says %s" % (src, width, height, film["size"]))
-        # Every video's poster decoded, at the size its tag gives: the film's
-        # looping preview, or its last frame where there is no preview.
+        # Every video's poster decoded, at the size its tag gives: the frame
+        # its description names (animation.poster), else its last frame.
         driver.set_script_timeout(30)
         posters = driver.execute_async_script(
             "const done = arguments[arguments.length - 1];"
@@ -220,7 +221,7 @@ def main():
                                 % (src, poster, width, height, tagged, expected))
         # The whole page in one picture: a window as tall as the page, every
         # card's parameters, numbers and notes open, every video showing its
-        # poster (the film's last frame) as a visitor first sees it.
+        # poster as a visitor first sees it.
         driver.execute_script("document.querySelectorAll('details').forEach(d => d.open = true);")
         driver.set_window_size(1280, 600)
         height, chrome = driver.execute_script(
