@@ -30,7 +30,9 @@ TEST_CASE("any valid rule code can be set from the command line", "[sf87]") {
 
 TEST_CASE("the metadata says how far the crystals grew when panels ask past params.steps", "[sf87]") {
     // 0110000 fills the hexagon: 3t(t+1)+1 cells after t steps, whatever params.steps says.
-    const auto meta = render_json("sf87-3", "--set rule=0110000 --set steps=5 --set figure.panels=[4,12]");
+    // Four panels at scale 0.3 hold captions of a label each, not the whole sentence.
+    const auto meta = render_json("sf87-3", "--set rule=0110000 --set steps=5 --set figure.panels=[4,12] "
+                                            "--set style.caption={label}");
     CHECK(meta["steps_run"] == 12);
     REQUIRE(meta["panels"].size() == 4);
     CHECK(meta["panels"][3]["step"] == 12);
