@@ -10,6 +10,7 @@
 #include "scenes/scene.hpp"
 #include "scenes/step_runner.hpp"
 #include "scenes/figure_caption.hpp"
+#include "scenes/panel_grid.hpp"
 #include "render/layout.hpp"
 #include "render/shapes.hpp"
 #include "render/text.hpp"
@@ -117,6 +118,7 @@ public:
           line_width_(float(style_.number_in("line_width", 1.0, 0.0, 20.0) * options.scale)),
           row_(row_style(options.scale)) {
         refuse_steps(d, "each panel shows a whole flower (the film places the seeds one a step)", false);
+        require_text_fits(d, options, [&](const render::Rect& area) { return figure_layout(area); });
     }
 
     void render(Output& out) const override {
@@ -195,16 +197,27 @@ private:
         render::Text text;
     };
 
+    // Each flower's title: its divergence angle.
+    std::vector<std::string> titles() const {
+        std::vector<std::string> titles;
+        for (const sim::PhyllotaxisParams& f : flowers_) titles.push_back(format_fixed(f.divergence, 3) + "\u00b0");
+        return titles;
+    }
+
+    // The flowers' panels in `area`, in the grid chosen for it, and their titles.
+    render::GridText figure_layout(const render::Rect& area) const {
+        return titled_grid_text(area, titles(), figure_columns(d_, area, int(flowers_.size()), true, row_), true, row_);
+    }
+
     // Every flower whole, a panel each, into `page`; their metadata into `panel_meta`.
     void add_figure(Page& page, const std::vector<std::vector<sim::Seed>>& spirals, nlohmann::json& panel_meta) const {
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
-        const auto rects = render::panel_row(width, height, int(flowers_.size()), true, row_);
+        const std::vector<render::Rect> rects = figure_layout({0, 0, float(width), float(height)}).panels;
         render::Shapes& shapes = page.shapes;
-        std::vector<std::string> titles;
+        const std::vector<std::string> titles = this->titles();
         for (std::size_t i = 0; i < flowers_.size(); ++i) {
             const sim::PhyllotaxisParams& f = flowers_[i];
             draw_flower(shapes, rects[i], spirals[i], f.seeds, f.divergence, look_, line_width_);
-            titles.push_back(format_fixed(f.divergence, 3) + "\u00b0");
             panel_meta.push_back({{"divergence_degrees", f.divergence},
                                   {"seeds", f.seeds},
                                   {"petals", std::max(0, f.seeds - look_.petal_start)},
