@@ -75,15 +75,18 @@ std::vector<std::string> captions_of(const std::vector<SnowflakePanel>& panels) 
 void draw_snowflakes(render::Surface& canvas, const render::Rect& area, const std::vector<SnowflakePanel>& panels,
                      const SnowflakeColours& colours, double scale, int columns) {
     const render::GridText layout = snowflake_layout(area, captions_of(panels), columns, scale);
-    render::Font& font = render::font_of_size(std::round(17.0f * static_cast<float>(scale)));
+    render::PanelRowStyle style;  // the caption font of the layout
+    style.scale = static_cast<float>(scale);
+    render::Font& font = render::font_of_size(std::round(style.title_size * style.scale));
     render::Text captions;
     for (std::size_t i = 0; i < panels.size(); ++i) {
         const render::Rect& r = layout.panels[i];
         const auto view = render::fit_hex_view(r, panels[i].view_radius);
         render::draw_hex_cells(canvas, view, panels[i].forbidden, colours.tint);
         render::draw_hex_cells(canvas, view, panels[i].ice, colours.ice);
-        captions.add(font, panels[i].caption, {r.centre().x, r.bottom() + 1.3f * font.pixel_size()}, colours.text,
-                     render::Align::centre, render::Baseline::baseline);
+        // At the layout's caption box, whose top is the line box's: the box that was checked is the one drawn.
+        captions.add(font, panels[i].caption, {r.centre().x, layout.titles[i].y}, colours.text, render::Align::centre,
+                     render::Baseline::top);
     }
     captions.draw(canvas);
 }
