@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <span>
 
 #include "render/shapes.hpp"
 #include "render/text.hpp"
@@ -77,26 +78,27 @@ int best_columns(const Rect& area, int count, bool titled, const PanelRowStyle& 
 
 GridText grid_text(std::vector<Rect> panels, const std::vector<std::string>& titles, TitlePlace place,
                    float font_pixels, float pad) {
-    GridText layout{std::move(panels), {}};
+    GridText layout{std::move(panels), {}, {}};
     const Font& font = font_of_size(font_pixels);
     for (std::size_t i = 0; i < layout.panels.size(); ++i) {
         const Rect& p = layout.panels[i];
         if (i >= titles.size() || titles[i].empty()) {
             layout.titles.push_back({p.centre().x, p.y, 0, 0});
+            layout.inks.push_back({layout.titles.back(), {}});
             continue;
         }
         const float w = font.width(titles[i]), h = font.ascender() - font.descender();
         const float top = place == TitlePlace::above ? p.y - pad - font.ascender() : p.bottom() + pad;
         layout.titles.push_back({p.centre().x - w / 2, top, w, h});
+        // As draw_panel_decorations and the snowflakes' captions draw them.
+        layout.inks.push_back(place == TitlePlace::above
+                                  ? line_ink(font, titles[i], {p.centre().x, p.y - pad}, Align::centre)
+                                  : line_ink(font, titles[i], {p.centre().x, top}, Align::centre, Baseline::top));
     }
     return layout;
 }
 
 namespace {
-
-bool overlap(const Rect& a, const Rect& b) {
-    return a.w > 0 && b.w > 0 && a.x < b.right() && b.x < a.right() && a.y < b.bottom() && b.y < a.bottom();
-}
 
 std::string box_text(const Rect& r) {
     char text[96];
@@ -106,22 +108,76 @@ std::string box_text(const Rect& r) {
 
 }  // namespace
 
-std::string text_clash(const GridText& layout, const Rect& page) {
+void PageText::add(const PageText& other) {
+    const int offset = static_cast<int>(panels.size());
+    panels.insert(panels.end(), other.panels.begin(), other.panels.end());
+    for (Box text : other.texts) {
+        if (text.within >= 0) text.within += offset;
+        texts.push_back(std::move(text));
+    }
+}
+
+PageText page_text(const GridText& grid) {
+    PageText page;
+    for (std::size_t i = 0; i < grid.panels.size(); ++i)
+        page.panels.push_back({grid.panels[i], "panel " + std::to_string(i + 1)});
+    for (std::size_t i = 0; i < grid.titles.size(); ++i) {
+        const std::string what = "the title of panel " + std::to_string(i + 1);
+        if (i < grid.inks.size()) page.texts.push_back({grid.inks[i].box, what, -1, grid.inks[i].glyphs});
+        else page.texts.push_back({grid.titles[i], what});
+    }
+    return page;
+}
+
+std::string text_clash(const PageText& layout, const Rect& page) {
     const float slack = 0.5f;  // rounding of pixel positions
-    for (std::size_t i = 0; i < layout.titles.size(); ++i) {
-        const Rect& t = layout.titles[i];
-        if (t.w <= 0) continue;
-        const std::string which = "the title of panel " + std::to_string(i + 1) + " " + box_text(t);
-        if (t.x < page.x - slack || t.y < page.y - slack || t.right() > page.right() + slack ||
-            t.bottom() > page.bottom() + slack)
-            return which + " runs off the page";
-        for (std::size_t j = 0; j < layout.titles.size(); ++j)
-            if (j != i && overlap(t, layout.titles[j])) return which + " overlaps the title of panel " + std::to_string(j + 1);
-        for (std::size_t j = 0; j < layout.panels.size(); ++j)
-            if (overlap(t, layout.panels[j])) return which + " overlaps panel " + std::to_string(j + 1);
+    auto inside = [slack](const Rect& r, const Rect& room) {
+        return r.x >= room.x - slack && r.y >= room.y - slack && r.right() <= room.right() + slack &&
+               r.bottom() <= room.bottom() + slack;
+    };
+    // Overlapping by more than the slack both ways.
+    auto clash = [slack](const Rect& a, const Rect& b) {
+        return a.w > 0 && b.w > 0 && a.x + slack < b.right() && b.x + slack < a.right() && a.y + slack < b.bottom() &&
+               b.y + slack < a.bottom();
+    };
+    // A text's glyphs, or its box when it has none listed.
+    auto parts = [](const PageText::Box& t) { return t.parts.empty() ? std::span<const Rect>(&t.box, 1) : std::span<const Rect>(t.parts); };
+    auto texts_clash = [&](const PageText::Box& a, const PageText::Box& b) {
+        if (!clash(a.box, b.box)) return false;
+        for (const Rect& p : parts(a))
+            for (const Rect& q : parts(b))
+                if (clash(p, q)) return true;
+        return false;
+    };
+    auto clashes_panel = [&](const PageText::Box& t, const Rect& panel) {
+        if (!clash(t.box, panel)) return false;
+        for (const Rect& p : parts(t))
+            if (clash(p, panel)) return true;
+        return false;
+    };
+    // First what leaves its room, the cause of most overlaps, then the overlaps.
+    for (const PageText::Box& t : layout.texts) {
+        if (t.box.w <= 0) continue;
+        const std::string which = t.what + " " + box_text(t.box);
+        if (!inside(t.box, page)) return which + " runs off the page";
+        if (t.within >= 0 && static_cast<std::size_t>(t.within) < layout.panels.size() &&
+            !inside(t.box, layout.panels[static_cast<std::size_t>(t.within)].box))
+            return which + " runs out of " + layout.panels[static_cast<std::size_t>(t.within)].what;
+    }
+    for (std::size_t i = 0; i < layout.texts.size(); ++i) {
+        const PageText::Box& t = layout.texts[i];
+        if (t.box.w <= 0) continue;
+        const std::string which = t.what + " " + box_text(t.box);
+        for (std::size_t j = 0; j < layout.texts.size(); ++j)
+            if (j != i && texts_clash(t, layout.texts[j])) return which + " overlaps " + layout.texts[j].what;
+        if (t.within < 0)
+            for (const PageText::Box& panel : layout.panels)
+                if (clashes_panel(t, panel.box)) return which + " overlaps " + panel.what;
     }
     return "";
 }
+
+std::string text_clash(const GridText& layout, const Rect& page) { return text_clash(page_text(layout), page); }
 
 void draw_panel_decorations(Surface& surface, const std::vector<Rect>& panels,
                             const std::vector<std::string>& titles, const PanelRowStyle& style) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "render/canvas.hpp"
+#include "render/text.hpp"
 
 namespace render {
 
@@ -39,15 +40,39 @@ int best_columns(const Rect& area, int count, bool titled, const PanelRowStyle& 
 enum class TitlePlace { above, below };  // a title over its panel, or a caption under it
 struct GridText {
     std::vector<Rect> panels;
-    std::vector<Rect> titles;  // each title's line box (advance width x ascender to descender); w = 0: none
+    std::vector<Rect> titles;  // each title's line box (advance width x ascender to descender), where it is
+                               // drawn; w = 0: none
+    std::vector<LineInk> inks;  // each title's ink (render::line_ink), what the fit check reads
 };
 // The boxes of `titles` (one a panel, centred on it) at `place`, in `font_pixels`.
 // Above: the baseline `pad` over the panel's top; below: the line box's top
 // `pad` under its bottom.
 GridText grid_text(std::vector<Rect> panels, const std::vector<std::string>& titles, TitlePlace place,
                    float font_pixels, float pad);
-// What is wrong with the text of `layout` on `page`: a title that leaves the
-// page, or overlaps another title or a panel. Empty when it all fits.
+// Any page's text, to check that it fits: the boxes of its lines, each
+// named for the message that says what clashes, and the panels (plot frames,
+// fields, colour bars) they must keep clear of or stay inside.
+struct PageText {
+    struct Box {
+        Rect box;
+        std::string what;  // "the title of panel 2", "the x tick label "0.5" of plot 1"
+        int within = -1;   // the panel a text belongs inside (a legend, a note), -1: outside every panel
+        std::vector<Rect> parts;  // a text's glyphs, all inside `box`; empty: the box is solid
+    };
+    std::vector<Box> panels;
+    std::vector<Box> texts;  // w = 0: none, never clashes
+    // Adds `other`'s panels and texts, its `within` indices moved past this one's panels.
+    void add(const PageText& other);
+};
+// A grid's titles as page text: "the title of panel N" over "panel N".
+PageText page_text(const GridText& grid);
+
+// What is wrong with the text of `layout` on `page`: a text that leaves the
+// page, overlaps another text, overlaps a panel, or (one that belongs
+// inside a panel) leaves its panel. Texts overlap where their glyphs' ink
+// boxes do (parts). Empty when it all fits. Boxes may touch; half a pixel
+// of overlap is rounding.
+std::string text_clash(const PageText& layout, const Rect& page);
 std::string text_clash(const GridText& layout, const Rect& page);
 // The smallest page, `width` x `height` enlarged by steps of 5% (its aspect
 // kept, up to 8 times), at which `layout_at(w, h)` has no clash; {0, 0} when

@@ -54,19 +54,68 @@ struct TickFonts {
     float width(const TickLabel& l) const { return base.width(l.base) + script.width(l.exponent); }
 };
 
-// Adds a tick label anchored like Text::add (Baseline::middle: the middle of the base's capitals).
-void add_tick_label(Text& text, const TickFonts& fonts, const TickLabel& label, glm::vec2 at, const glm::vec4& colour,
-                    Align align, Baseline baseline) {
+// Where a plot's text goes: into a batch to draw, or, for the fit check,
+// only as named boxes on a PageText. Both take the same positions from the
+// same code, so the check sees what would be drawn.
+class TextSink {
+public:
+    TextSink() = default;  // drawing
+    TextSink(PageText& page, int panel, std::string of) : page_(&page), panel_(panel), of_(std::move(of)) {}
+
+    bool drawing() const { return page_ == nullptr; }
+    // Adds a line (Text::add's arguments) and returns its ink.
+    LineInk add(Font& font, std::string_view utf8, glm::vec2 at, const glm::vec4& colour, Align align = Align::left,
+                Baseline baseline = Baseline::baseline, float rotation = 0) {
+        if (drawing()) {
+            text_.add(font, utf8, at, colour, align, baseline, rotation);
+            return {};
+        }
+        return line_ink(font, utf8, at, align, baseline, rotation);
+    }
+    // Names a text ("the x tick label "0.5"") for the check; `inside`: it belongs inside the plot's frame.
+    void name(const LineInk& ink, const std::string& what, bool inside = false) {
+        if (!drawing()) page_->texts.push_back({ink.box, what + of_, inside ? panel_ : -1, ink.glyphs});
+    }
+    // Names a solid box (the legend's).
+    void name(const Rect& box, const std::string& what, bool inside = false) { name(LineInk{box, {}}, what, inside); }
+    void draw(Surface* surface) const {
+        if (surface != nullptr) text_.draw(*surface);
+    }
+
+private:
+    Text text_;
+    PageText* page_ = nullptr;
+    int panel_ = -1;
+    std::string of_;  // " of plot 2"
+};
+
+// Two lines' ink as one text's.
+LineInk united(LineInk a, const LineInk& b) {
+    if (a.box.w <= 0) return b;
+    if (b.box.w <= 0) return a;
+    const float x = std::min(a.box.x, b.box.x), y = std::min(a.box.y, b.box.y);
+    a.box = {x, y, std::max(a.box.right(), b.box.right()) - x, std::max(a.box.bottom(), b.box.bottom()) - y};
+    a.glyphs.insert(a.glyphs.end(), b.glyphs.begin(), b.glyphs.end());
+    return a;
+}
+
+// Adds a tick label anchored like Text::add (Baseline::middle: the middle of
+// the base's capitals), and names its box, exponent included.
+void add_tick_label(TextSink& text, const TickFonts& fonts, const std::string& shown, glm::vec2 at,
+                    const glm::vec4& colour, Align align, Baseline baseline, const char* axis) {
+    const TickLabel label = split_exponent(shown);
     const float w = fonts.width(label);
     const float x = align == Align::left ? at.x : align == Align::centre ? at.x - w / 2 : at.x - w;
     const float y = baseline == Baseline::middle ? at.y + fonts.base.cap_height() / 2
                     : baseline == Baseline::top  ? at.y + fonts.base.ascender()
                     : baseline == Baseline::bottom ? at.y + fonts.base.descender()
                                                    : at.y;
-    text.add(fonts.base, label.base, {x, y}, colour);
+    LineInk box = text.add(fonts.base, label.base, {x, y}, colour);
     if (!label.exponent.empty())
-        text.add(fonts.script, label.exponent, {x + fonts.base.width(label.base), y - script_rise * fonts.base.pixel_size()},
-                 colour);
+        box = united(box, text.add(fonts.script, label.exponent,
+                                   {x + fonts.base.width(label.base), y - script_rise * fonts.base.pixel_size()},
+                                   colour));
+    text.name(box, std::string("the ") + axis + " tick label \"" + shown + "\"");
 }
 
 bool usable(double v, Scale scale) { return std::isfinite(v) && (scale == Scale::linear || v > 0); }
@@ -249,13 +298,12 @@ void draw_data(Surface& surface, const Rect& frame, const Axes& axes, const Axis
 }
 
 // Spines, ticks, tick labels, axis labels, title and notes.
-void draw_decorations(Surface& surface, const Rect& frame, const Axes& axes, const AxisMap& mx,
+void draw_decorations(Surface* surface, TextSink& text, const Rect& frame, const Axes& axes, const AxisMap& mx,
                       const AxisMap& my, const PlotStyle& st) {
     const float s = st.scale;
     Font& tick_font = font_of_size(st.font_size * s);
     Font& label_font = font_of_size(st.label_size * s);
     Shapes shapes;
-    Text text;
     const float sw = st.spine_width * s;
     const float left = snap(frame.x, sw), right = snap(frame.right(), sw);
     const float top = snap(frame.y, sw), bottom = snap(frame.bottom(), sw);
@@ -292,32 +340,38 @@ void draw_decorations(Surface& surface, const Rect& frame, const Axes& axes, con
     for (const auto* list : {&xt.major, &xt.minor})
         for (const Tick& t : *list)
             if (!t.label.empty())
-                add_tick_label(text, fonts, split_exponent(t.label), {float(mx(t.value)), x_baseline}, st.ink,
-                               Align::centre, Baseline::baseline);
+                add_tick_label(text, fonts, t.label, {float(mx(t.value)), x_baseline}, st.ink,
+                               Align::centre, Baseline::baseline, "x");
     for (const auto* list : {&yt.major, &yt.minor})
         for (const Tick& t : *list)
             if (!t.label.empty()) {
                 const TickLabel label = split_exponent(t.label);
-                add_tick_label(text, fonts, label, {left - major - pad, float(my(t.value))}, st.ink, Align::right,
-                               Baseline::middle);
+                add_tick_label(text, fonts, t.label, {left - major - pad, float(my(t.value))}, st.ink, Align::right,
+                               Baseline::middle, "y");
                 labels_left = std::min(labels_left, left - major - pad - fonts.width(label));
             }
 
     const float lf = label_font.pixel_size();
     if (!axes.x_label.empty()) {
         const float y = x_baseline + text_descent * tick_font.pixel_size() + st.label_pad * s + text_ascent * lf;
-        text.add(label_font, axes.x_label, {frame.x + frame.w / 2, y}, st.ink, Align::centre);
+        text.name(text.add(label_font, axes.x_label, {frame.x + frame.w / 2, y}, st.ink, Align::centre),
+                  "the x axis label");
     }
     if (!axes.y_label.empty()) {  // turned to read upwards, its text box's bottom label_pad left of the labels
         const float x = labels_left - st.label_pad * s - text_descent * lf;
-        text.add(label_font, axes.y_label, {x, frame.y + frame.h / 2}, st.ink, Align::centre, Baseline::baseline, 90);
+        text.name(
+            text.add(label_font, axes.y_label, {x, frame.y + frame.h / 2}, st.ink, Align::centre, Baseline::baseline, 90),
+            "the y axis label");
     }
     if (!axes.title.empty())
-        text.add(font_of_size(st.title_size * s), axes.title, {frame.x + frame.w / 2, frame.y - st.title_pad * s},
-                 st.ink, Align::centre);
+        text.name(text.add(font_of_size(st.title_size * s), axes.title,
+                           {frame.x + frame.w / 2, frame.y - st.title_pad * s}, st.ink, Align::centre),
+                  "the title");
     for (const Note& n : axes.notes)
-        text.add(tick_font, n.text, {frame.x + n.at.x * frame.w, frame.bottom() - n.at.y * frame.h}, n.colour, n.align);
-    shapes.draw(surface);
+        text.name(text.add(tick_font, n.text, {frame.x + n.at.x * frame.w, frame.bottom() - n.at.y * frame.h},
+                           n.colour, n.align),
+                  "the note \"" + n.text + "\"", true);
+    if (surface != nullptr) shapes.draw(*surface);
     text.draw(surface);
 }
 
@@ -340,7 +394,7 @@ std::vector<glm::vec2> rounded_rect(const Rect& r, float radius) {
 
 // matplotlib's legend: white at 0.8 alpha in a 0.8 grey rounded frame, half
 // an em from the axes' corner; rows of a 2 em line sample and the label.
-void draw_legend(Surface& surface, const Rect& frame, const Axes& axes, const PlotStyle& st) {
+void draw_legend(Surface* surface, TextSink& text, const Rect& frame, const Axes& axes, const PlotStyle& st) {
     std::vector<const Series*> entries;
     for (const Series& s : axes.series)
         if (!s.label.empty()) entries.push_back(&s);
@@ -361,7 +415,8 @@ void draw_legend(Surface& surface, const Rect& frame, const Axes& axes, const Pl
     const std::vector<glm::vec2> outline = rounded_rect(box, 0.2f * f);
     shapes.convex_polygon(outline, {1, 1, 1, 0.8f});
     shapes.polyline(outline, 1.4f * st.scale, {0.8f, 0.8f, 0.8f, 1});
-    Text text;
+    text.name(box, "the legend", true);
+    if (!text.drawing()) return;  // its entries lie inside its box
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const Series& s = *entries[i];
         const float baseline = box.y + 0.4f * f + float(i) * (row + 0.5f * f) + text_ascent * font.pixel_size();
@@ -374,21 +429,35 @@ void draw_legend(Surface& surface, const Rect& frame, const Axes& axes, const Pl
             add_marker(shapes, {(x0 + x1) / 2, y}, s.marker_size * st.scale / 2, st.marker_edge * st.scale, s.colour);
         text.add(font, s.label, {x1 + 0.8f * f, baseline}, st.ink);
     }
-    shapes.draw(surface);
+    shapes.draw(*surface);
     text.draw(surface);
 }
 
-}  // namespace
-
-void draw_axes(Surface& surface, const Rect& frame, const Axes& axes, const PlotStyle& style) {
+// draw_axes onto `surface`, or (null) its text into `text`'s page.
+void lay_out_axes(Surface* surface, TextSink& text, const Rect& frame, const Axes& axes, const PlotStyle& style) {
     if (!(frame.w > 0 && frame.h > 0)) return;
     const auto [x_lo, x_hi] = view_range(axes, true);
     const auto [y_lo, y_hi] = view_range(axes, false);
     const AxisMap mx{axes.x_scale, x_lo, x_hi, frame.x, frame.right()};
     const AxisMap my{axes.y_scale, y_lo, y_hi, frame.bottom(), frame.y};  // y up on the page
-    draw_data(surface, frame, axes, mx, my, style);
-    draw_decorations(surface, frame, axes, mx, my, style);
-    draw_legend(surface, frame, axes, style);
+    if (surface != nullptr) draw_data(*surface, frame, axes, mx, my, style);
+    draw_decorations(surface, text, frame, axes, mx, my, style);
+    TextSink legend_text = text.drawing() ? TextSink() : text;
+    draw_legend(surface, legend_text, frame, axes, style);
+}
+
+}  // namespace
+
+void draw_axes(Surface& surface, const Rect& frame, const Axes& axes, const PlotStyle& style) {
+    TextSink text;
+    lay_out_axes(&surface, text, frame, axes, style);
+}
+
+void axes_text(PageText& page, const Rect& frame, const Axes& axes, const PlotStyle& style, int plot) {
+    const std::string name = plot > 0 ? "plot " + std::to_string(plot) : "the plot";
+    page.panels.push_back({frame, "the frame of " + name});
+    TextSink text(page, static_cast<int>(page.panels.size()) - 1, plot > 0 ? " of " + name : "");
+    lay_out_axes(nullptr, text, frame, axes, style);
 }
 
 std::vector<Rect> plot_row(int width, int height, int count, const PlotStyle& style) {
@@ -450,27 +519,33 @@ float colour_bar_room(const ColourBar& bar, float field_width, float height, con
     return std::ceil(room);
 }
 
-void draw_colour_bar(Surface& surface, const Rect& field, const ColourBar& bar, const PlotStyle& st) {
+namespace {
+
+// draw_colour_bar onto `surface`, or (null) its text into `text`'s page.
+void lay_out_colour_bar(Surface* surface, TextSink& text, const Rect& field, const ColourBar& bar,
+                        const PlotStyle& st) {
     check_bar(bar);
     const float s = st.scale;
     const Rect r = bar_rect(field);
-    // The entries as a column of cells, top row the last entry.
-    const int n = bar.colormap.size();
-    std::vector<double> values(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) values[static_cast<std::size_t>(i)] = n - 1 - i + 0.5;
-    const FieldStyle cells{&bar.colormap, 0.0, double(n), 1.0f, Sampling::nearest};
-    draw_field(surface, r, n, 1, values, cells);
     Shapes shapes;
-    Text text;
-    shapes.frame(r, st.spine_width * s, st.ink);
+    if (surface != nullptr) {
+        // The entries as a column of cells, top row the last entry.
+        const int n = bar.colormap.size();
+        std::vector<double> values(static_cast<std::size_t>(n));
+        for (int i = 0; i < n; ++i) values[static_cast<std::size_t>(i)] = n - 1 - i + 0.5;
+        const FieldStyle cells{&bar.colormap, 0.0, double(n), 1.0f, Sampling::nearest};
+        draw_field(*surface, r, n, 1, values, cells);
+        shapes.frame(r, st.spine_width * s, st.ink);
+    }
     Font& tick_font = font_of_size(st.font_size * s);
     float widest = 0;
     const float tick_length = st.major_tick * s, tick_width = st.major_tick_width * s;
     for (const Tick& t : colour_bar_ticks(bar, r.h, st)) {
         const float y = snap(float(r.bottom() - (t.value - bar.low) / (bar.high - bar.low) * r.h), tick_width);
         shapes.line({r.right(), y}, {r.right() + tick_length, y}, tick_width, st.ink);
-        text.add(tick_font, t.label, {r.right() + tick_length + st.tick_pad * s, y}, st.ink, Align::left,
-                 Baseline::middle);
+        text.name(text.add(tick_font, t.label, {r.right() + tick_length + st.tick_pad * s, y}, st.ink, Align::left,
+                           Baseline::middle),
+                  "the colour bar's tick label \"" + t.label + "\"");
         widest = std::max(widest, tick_font.width(t.label));
     }
     if (!bar.label.empty()) {
@@ -478,10 +553,25 @@ void draw_colour_bar(Surface& surface, const Rect& field, const ColourBar& bar, 
         // Turned to read upwards, its top towards the ticks (matplotlib puts a
         // vertical colorbar's label on the right, rotated 90 degrees).
         const float x = r.right() + tick_length + st.tick_pad * s + widest + st.label_pad * s;
-        text.add(label_font, bar.label, {x, r.centre().y}, st.ink, Align::centre, Baseline::top, 90);
+        text.name(text.add(label_font, bar.label, {x, r.centre().y}, st.ink, Align::centre, Baseline::top, 90),
+                  "the colour bar's label");
     }
-    shapes.draw(surface);
+    if (surface != nullptr) shapes.draw(*surface);
     text.draw(surface);
+}
+
+}  // namespace
+
+void draw_colour_bar(Surface& surface, const Rect& field, const ColourBar& bar, const PlotStyle& st) {
+    TextSink text;
+    lay_out_colour_bar(&surface, text, field, bar, st);
+}
+
+void colour_bar_text(PageText& page, const Rect& field, const ColourBar& bar, const PlotStyle& style, int panel) {
+    const std::string of = " of panel " + std::to_string(panel);
+    page.panels.push_back({bar_rect(field), "the colour bar" + of});
+    TextSink text(page, static_cast<int>(page.panels.size()) - 1, of);
+    lay_out_colour_bar(nullptr, text, field, bar, style);
 }
 
 }  // namespace render

@@ -14,6 +14,7 @@
 
 #include "render/canvas.hpp"
 #include "render/colormap.hpp"
+#include "render/layout.hpp"
 #include "render/text.hpp"
 #include "render/ticks.hpp"
 
@@ -90,6 +91,13 @@ struct PlotStyle {
 // or not positive on a log axis.
 void draw_axes(Surface& surface, const Rect& frame, const Axes& axes, const PlotStyle& style);
 
+// The text draw_axes would draw around `frame`, as boxes on `page` for its
+// fit check (render/layout.hpp's text_clash): the tick labels, axis labels
+// and title, which must keep clear of every frame, and the notes and the
+// legend, which must stay inside their own. The frame becomes one of the
+// page's panels. Names end " of plot N" when `plot` > 0.
+void axes_text(PageText& page, const Rect& frame, const Axes& axes, const PlotStyle& style, int plot);
+
 // A colour bar beside a field, as matplotlib's colorbar draws one: the
 // colormap's entries as a column, the first at the bottom, in a thin frame,
 // with outward ticks and their labels on its right and its label turned
@@ -118,6 +126,10 @@ std::vector<Tick> colour_bar_ticks(const ColourBar& bar, float height, const Plo
 // Throws std::invalid_argument unless low < high, both finite, and the
 // colormap has entries.
 void draw_colour_bar(Surface& surface, const Rect& field, const ColourBar& bar, const PlotStyle& style);
+
+// The text draw_colour_bar would draw beside `field`, as boxes on `page`,
+// the bar itself one of its panels; named " of panel N" for `panel`.
+void colour_bar_text(PageText& page, const Rect& field, const ColourBar& bar, const PlotStyle& style, int panel);
 
 // Frames for `count` plots side by side on a width x height page, like
 // matplotlib's subplots(1, count) with its default margins (style's left

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include <mutex>
@@ -308,6 +309,19 @@ const Font::Glyph& Font::glyph(std::uint32_t face, unsigned index) const {
     return f.glyphs.emplace(index, g).first->second;
 }
 
+Font::Ink Font::ink(std::uint32_t face, unsigned index) const {
+    Face& f = *faces_[face];
+    if (const auto found = f.inks.find(index); found != f.inks.end()) return found->second;
+    // glyph()'s hinting, without its bitmap.
+    if (const FT_Error error = FT_Load_Glyph(f.face, index, FT_LOAD_TARGET_LIGHT))
+        throw std::runtime_error("cannot load glyph " + std::to_string(index) + " of " + f.file.path + ": " +
+                                 freetype_error(error));
+    const FT_Glyph_Metrics& m = f.face->glyph->metrics;  // 26.6 fixed point, y up
+    const Ink ink{static_cast<float>(m.horiBearingX) / 64.0f, static_cast<float>(m.horiBearingX + m.width) / 64.0f,
+                  -static_cast<float>(m.horiBearingY) / 64.0f, static_cast<float>(m.height - m.horiBearingY) / 64.0f};
+    return f.inks.emplace(index, ink).first->second;
+}
+
 void Font::place(Face& f, Glyph& g, const unsigned char* rows, int pitch) const {
     Atlas& a = f.atlas;
     if (g.width + 2 * pad > a.width)
@@ -403,27 +417,66 @@ std::vector<std::string> wrap(const Font& font, std::string_view paragraph, floa
     return lines;
 }
 
-void Text::add(Font& font, std::string_view utf8, glm::vec2 position, const glm::vec4& colour, Align align,
-               Baseline baseline, float rotation_degrees, std::string_view language) {
-    Font::Shaped shaped = font.shape(utf8, language);
-    if (shaped.glyphs.empty()) return;
+namespace {
+
+// Where the pen starts, on the page, for a line `width` pixels wide
+// anchored at `position` by align and baseline and turned by `rotate`.
+glm::vec2 line_origin(const Font& font, float width, glm::vec2 position, Align align, Baseline baseline,
+                      const Rotation& rotate) {
     // The pen's start in the line's own frame (x along the baseline, y down), relative to the anchor.
     glm::vec2 start{0, 0};
-    if (align == Align::centre) start.x = -shaped.width / 2;
-    if (align == Align::right) start.x = -shaped.width;
+    if (align == Align::centre) start.x = -width / 2;
+    if (align == Align::right) start.x = -width;
     switch (baseline) {
         case Baseline::top: start.y = font.ascender(); break;
         case Baseline::middle: start.y = font.cap_height() / 2; break;
         case Baseline::baseline: break;
         case Baseline::bottom: start.y = font.descender(); break;
     }
-    const Rotation rotate(rotation_degrees);
     glm::vec2 origin = position + rotate(start);
     // Glyphs are hinted to whole pixels vertically: put the baseline on a
     // pixel edge too, or filtering blurs the crisp rows. Along the baseline
     // the pen keeps its fractional position, so spacing stays true.
     if (rotate.s == 0) origin.y = std::round(origin.y);
     if (rotate.c == 0) origin.x = std::round(origin.x);
+    return origin;
+}
+
+}  // namespace
+
+LineInk line_ink(const Font& font, std::string_view utf8, glm::vec2 position, Align align, Baseline baseline,
+                 float rotation_degrees, std::string_view language) {
+    const Font::Shaped shaped = font.shape(utf8, language);
+    const Rotation rotate(rotation_degrees);
+    const glm::vec2 origin = line_origin(font, shaped.width, position, align, baseline, rotate);
+    LineInk out{{position.x, position.y, 0, 0}, {}};
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    glm::vec2 all_lo{inf}, all_hi{-inf};
+    for (const Font::ShapedGlyph& g : shaped.glyphs) {
+        const Font::Ink ink = font.ink(g.face, g.index);
+        if (ink.empty()) continue;  // a space
+        // The ink box's corners in the line's own frame (y down), turned onto the page.
+        glm::vec2 lo{inf}, hi{-inf};
+        for (const glm::vec2 corner : {glm::vec2{ink.left, ink.top}, glm::vec2{ink.right, ink.top},
+                                       glm::vec2{ink.left, ink.bottom}, glm::vec2{ink.right, ink.bottom}}) {
+            const glm::vec2 p = origin + rotate(g.position + corner);
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+        out.glyphs.push_back({lo.x, lo.y, hi.x - lo.x, hi.y - lo.y});
+        all_lo = glm::min(all_lo, lo);
+        all_hi = glm::max(all_hi, hi);
+    }
+    if (!out.glyphs.empty()) out.box = {all_lo.x, all_lo.y, all_hi.x - all_lo.x, all_hi.y - all_lo.y};
+    return out;
+}
+
+void Text::add(Font& font, std::string_view utf8, glm::vec2 position, const glm::vec4& colour, Align align,
+               Baseline baseline, float rotation_degrees, std::string_view language) {
+    Font::Shaped shaped = font.shape(utf8, language);
+    if (shaped.glyphs.empty()) return;
+    const Rotation rotate(rotation_degrees);
+    const glm::vec2 origin = line_origin(font, shaped.width, position, align, baseline, rotate);
 
     for (const Font::ShapedGlyph& placed : shaped.glyphs) {
         const Font::Glyph& g = font.glyph(placed.face, placed.index);

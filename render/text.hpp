@@ -71,6 +71,15 @@ public:
     };
     Shaped shape(std::string_view utf8, std::string_view language = {}) const;
 
+    // A glyph's ink box from its origin, pixels, y down (a "p" has
+    // bottom > 0), hinted as it is drawn. Measured from its outline: no
+    // bitmap is made, no atlas changes.
+    struct Ink {
+        float left = 0, right = 0, top = 0, bottom = 0;
+        bool empty() const { return !(right > left && bottom > top); }
+    };
+    Ink ink(std::uint32_t face, unsigned index) const;
+
     // The faces shaped lines draw from: [0] is the font's own file, then
     // fallbacks in the order they were first needed.
     std::size_t face_count() const { return faces_.size(); }
@@ -102,6 +111,7 @@ private:
         FontFile file;
         FT_FaceRec_* face = nullptr;
         std::unordered_map<unsigned, Glyph> glyphs;  // by glyph index
+        std::unordered_map<unsigned, Ink> inks;      // by glyph index
         Atlas atlas;
     };
 
@@ -135,6 +145,20 @@ std::vector<std::string> wrap(const Font& font, std::string_view paragraph, floa
 // U+E000 (in "...")". By default the line goes to standard error behind
 // "figgen: warning: ".
 void set_missing_glyph_warning(std::function<void(const std::string&)> warn);
+
+// Where a line added to a Text with these arguments puts its ink: each
+// glyph's ink box (from its outline, hinted as drawn), the upright
+// rectangle around it when turned, and the box around them all. What a
+// reader sees as text running into text: a line's advance and the font's
+// ascender and descender leave room that most glyphs do not fill. Empty
+// (box.w = 0) for a line with no ink. Shapes the line and rasterises
+// nothing: a fit check leaves the glyph atlases as they were.
+struct LineInk {
+    Rect box;
+    std::vector<Rect> glyphs;
+};
+LineInk line_ink(const Font& font, std::string_view utf8, glm::vec2 position, Align align = Align::left,
+                 Baseline baseline = Baseline::baseline, float rotation_degrees = 0, std::string_view language = {});
 
 // A batch of strings, drawn with one draw call per font. The fonts must
 // outlive the batch's last draw().

@@ -6,8 +6,10 @@
 #include <thread>
 #include <cmath>
 
+#include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/field_stats.hpp"
+#include "scenes/panel_grid.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/figure_caption.hpp"
@@ -184,6 +186,17 @@ private:
 
     // The survey's plot above, the gallery below.
     FigureDrawing draw_figure(const render::Axes& plot, const Gallery& gallery) const {
+        require_text_fits(
+            d_, options_,
+            [&](const render::Rect& area) {
+                const float plot_height = std::round(area.h * 0.45f);
+                render::PageText page = plot_row_text({area.x, area.y, area.w, plot_height}, {plot}, plot_);
+                if (!gallery.panels.empty())
+                    page.add(field_panels_text({area.x, area.y + plot_height, area.w, area.h - plot_height},
+                                               gallery.panels, columns_, options_.scale));
+                return page;
+            },
+            plot_remedy);
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         return {width, height, false, [this, &plot, &gallery](render::Surface& surface) {
                     const float w = float(surface.width()), h = float(surface.height());

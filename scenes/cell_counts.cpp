@@ -86,8 +86,7 @@ public:
                                   {"state_sha256", state_hash(cells)}});
             progress.advance();
         }
-        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
-        out.figure(plot_figure(panels, width, height, plot_),
+        out.figure(plot_figure(panels, d_, options_, plot_),
                    {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
         progress.finish();
     }

@@ -46,24 +46,55 @@ int field_page_samples(const std::vector<FieldPanel>& panels, int width, int hei
     return 1;
 }
 
-void draw_field_panels(render::Surface& surface, const render::Rect& area, const std::vector<FieldPanel>& panels,
-                       int columns, double scale, LayerPasses passes) {
-    render::PanelRowStyle style = page_style(panels, scale);
+namespace {
+
+// Where draw_field_panels puts the panels in `area`, and the style that
+// places them (its gaps widened for colour bars).
+struct PanelPlaces {
+    render::PanelRowStyle style;
+    std::vector<render::Rect> rects;
     std::vector<std::string> titles;
-    for (const FieldPanel& p : panels) titles.push_back(p.title);
+};
+
+PanelPlaces place_panels(const render::Rect& area, const std::vector<FieldPanel>& panels, int columns,
+                         double scale) {
+    PanelPlaces places{page_style(panels, scale), {}, {}};
+    for (const FieldPanel& p : panels) places.titles.push_back(p.title);
     const int count = static_cast<int>(panels.size());
     // Colour bars: each panel's beside it, in room taken from the gaps and
     // the right margin (worked out for the panels as they would be without).
     const std::optional<render::ColourBar>& bar = panels.front().layers.front().colour_bar;
-    const render::PlotStyle bar_style = colour_bar_style(scale);
     render::Rect fit = area;
     if (bar) {
-        const render::Rect plain = render::panel_grid(area, count, columns, any_title(panels), style).front();
-        const float room = render::colour_bar_room(*bar, plain.w, plain.h, bar_style);
-        style.gap += room / style.scale;
+        const render::Rect plain = render::panel_grid(area, count, columns, any_title(panels), places.style).front();
+        const float room = render::colour_bar_room(*bar, plain.w, plain.h, colour_bar_style(scale));
+        places.style.gap += room / places.style.scale;
         fit.w = std::max(1.0f, fit.w - room);
     }
-    const auto rects = render::panel_grid(fit, count, columns, any_title(panels), style);
+    places.rects = render::panel_grid(fit, count, columns, any_title(panels), places.style);
+    return places;
+}
+
+}  // namespace
+
+render::PageText field_panels_text(const render::Rect& area, const std::vector<FieldPanel>& panels, int columns,
+                                   double scale) {
+    const PanelPlaces places = place_panels(area, panels, columns, scale);
+    const render::PanelRowStyle& style = places.style;
+    render::PageText page = render::page_text(render::grid_text(places.rects, places.titles, render::TitlePlace::above,
+                                                                std::round(style.title_size * style.scale),
+                                                                style.title_pad * style.scale));
+    for (std::size_t i = 0; i < panels.size(); ++i)
+        if (const auto& bar = panels[i].layers.front().colour_bar)
+            render::colour_bar_text(page, places.rects[i], *bar, colour_bar_style(scale), static_cast<int>(i) + 1);
+    return page;
+}
+
+void draw_field_panels(render::Surface& surface, const render::Rect& area, const std::vector<FieldPanel>& panels,
+                       int columns, double scale, LayerPasses passes) {
+    const PanelPlaces places = place_panels(area, panels, columns, scale);
+    const auto& rects = places.rects;
+    const render::PlotStyle bar_style = colour_bar_style(scale);
     for (std::size_t i = 0; i < panels.size(); ++i) {
         const std::vector<FieldLayer>& layers = panels[i].layers;
         if (passes == LayerPasses::paired && pairable(layers)) {
@@ -74,7 +105,7 @@ void draw_field_panels(render::Surface& surface, const render::Rect& area, const
         for (const FieldLayer& layer : layers)
             render::draw_field(surface, rects[i], layer.rows, layer.cols, layer.values, layer.style);
     }
-    render::draw_panel_decorations(surface, rects, titles, style);
+    render::draw_panel_decorations(surface, rects, places.titles, places.style);
     for (std::size_t i = 0; i < panels.size(); ++i)
         if (const auto& own = panels[i].layers.front().colour_bar)
             render::draw_colour_bar(surface, rects[i], *own, bar_style);
@@ -102,13 +133,11 @@ FigureDrawing field_figure(const std::vector<FieldPanel>& panels, const Descript
     const int width = figure_width(d, options), height = figure_height(d, options);
     const double scale = options.scale;
     const render::PanelRowStyle style = page_style(panels, scale);
-    std::vector<std::string> titles;
-    for (const FieldPanel& p : panels) titles.push_back(p.title);
     const bool titled = any_title(panels);
     const int count = static_cast<int>(panels.size());
     auto columns_in = [&](const render::Rect& area) { return figure_columns(d, area, count, titled, style); };
     require_text_fits(d, options, [&](const render::Rect& area) {
-        return titled_grid_text(area, titles, columns_in(area), titled, style);
+        return field_panels_text(area, panels, columns_in(area), scale);
     });
     const int columns = columns_in({0, 0, float(width), float(height)});
     return {width, height, false, [&panels, scale, columns](render::Surface& surface) {

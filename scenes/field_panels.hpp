@@ -95,6 +95,11 @@ enum class LayerPasses { each, paired };
 render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
                                 LayerPasses passes = LayerPasses::each);
 
+// The text draw_field_panels would draw: the titles and the colour bars'
+// tick labels and labels, for render::text_clash.
+render::PageText field_panels_text(const render::Rect& area, const std::vector<FieldPanel>& panels, int columns,
+                                   double scale);
+
 // What a figure's JSON says of its colour bar: its label, the values at its
 // ends, and its entries.
 nlohmann::json colour_bar_metadata(const render::ColourBar& bar);

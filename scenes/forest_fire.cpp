@@ -10,6 +10,7 @@
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/model_check.hpp"
+#include "scenes/panel_grid.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/step_runner.hpp"
@@ -179,6 +180,16 @@ private:
     // The forest's panels above, the counts and the dimension plots below.
     FigureDrawing draw_figure(const ForestHistory& history, const render::Axes& counts,
                               const render::Axes& dimension) const {
+        require_text_fits(
+            d_, options_,
+            [&](const render::Rect& area) {
+                const float top = std::round(area.h * 0.52f);
+                render::PageText page = field_panels_text({area.x, area.y, area.w, top}, history.panels,
+                                                          static_cast<int>(history.panels.size()), options_.scale);
+                page.add(plot_row_text({area.x, area.y + top, area.w, area.h - top}, {counts, dimension}, plot_));
+                return page;
+            },
+            plot_remedy);
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         return {width, height, false, [this, &history, &counts, &dimension](render::Surface& surface) {
                     const float w = float(surface.width()), h = float(surface.height());

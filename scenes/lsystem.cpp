@@ -252,7 +252,7 @@ public:
           min_width_(float(style_.number_in("min_width", 0.6, 0.0, 100.0) * options.scale)) {
         // The titles must fit before anything runs; the plants' shapes are
         // not known yet, so square panels stand in for them.
-        require_text_fits(d, options, [&](const render::Rect& area) { return title_layout(area, 1.0f); });
+        require_text_fits(d, options, [&](const render::Rect& area) { return render::page_text(title_layout(area, 1.0f)); });
     }
 
     // Each plant's segments, from the turtle and as lines to draw: per
@@ -280,7 +280,7 @@ public:
         row.scale = float(options_.scale);
         const Drawings drawings = draw_turtles(progress);
         row.aspect = panel_aspect(drawings);
-        require_text_fits(d_, options_, [&](const render::Rect& area) { return title_layout(area, row.aspect); });
+        require_text_fits(d_, options_, [&](const render::Rect& area) { return render::page_text(title_layout(area, row.aspect)); });
         const std::vector<render::Rect> rects = title_layout({0, 0, float(width), float(height)}, row.aspect).panels;
         render::Shapes shapes;
         const nlohmann::json panel_meta = add_plants(shapes, rects, drawings);

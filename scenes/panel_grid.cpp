@@ -22,7 +22,8 @@ render::GridText titled_grid_text(const render::Rect& area, const std::vector<st
 }
 
 void require_text_fits(const Description& d, const SceneOptions& options,
-                       const std::function<render::GridText(const render::Rect& area)>& layout_at) {
+                       const std::function<render::PageText(const render::Rect& area)>& layout_at,
+                       const std::string& remedy) {
     const int width = figure_width(d, options), height = figure_height(d, options);
     const render::Rect area{0, 0, float(width), float(height)};
     const std::string clash = render::text_clash(layout_at(area), area);
@@ -32,13 +33,13 @@ void require_text_fits(const Description& d, const SceneOptions& options,
         return layout_at(render::Rect{0, 0, float(w), float(std::max(1, h - band))});
     });
     const std::string size = "[" + std::to_string(d.width) + ", " + std::to_string(d.height) + "]";
-    std::string allowed = "a size at which the panels' titles fit: at " + std::to_string(width) + " x " +
+    std::string allowed = "a size at which the figure's text fits: at " + std::to_string(width) + " x " +
                           std::to_string(height + band) + " pixels " + clash;
     if (fits.width > 0) {
         const auto unscaled = [&](int pixels) { return std::to_string(int(std::ceil(pixels / options.scale))); };
         allowed += "; [" + unscaled(fits.width) + ", " + unscaled(fits.height) + "] or larger holds them";
     }
-    throw SettingError("figure.size", size, allowed + " (or set figure.columns, or shorten the titles)");
+    throw SettingError("figure.size", size, allowed + " (or " + remedy + ")");
 }
 
 }  // namespace scenes

@@ -6,6 +6,7 @@
 // refused with a size that holds it.
 
 #include <functional>
+#include <string>
 
 #include "render/layout.hpp"
 #include "scenes/scene.hpp"
@@ -18,9 +19,13 @@ int figure_columns(const Description& d, const render::Rect& area, int count, bo
 
 // Throws a SettingError for figure.size when the text `layout_at` places on
 // the figure's drawing area clashes, naming what clashes and a figure size
-// (at scale 1, the caption's band included) at which it fits.
+// (at scale 1, the caption's band included) at which it fits, then `remedy`
+// (what else would make it fit).
+inline constexpr const char* grid_remedy = "set figure.columns, or shorten the text";
+inline constexpr const char* plot_remedy = "set style.font_size and style.label_size smaller, or shorten the labels";
 void require_text_fits(const Description& d, const SceneOptions& options,
-                       const std::function<render::GridText(const render::Rect& area)>& layout_at);
+                       const std::function<render::PageText(const render::Rect& area)>& layout_at,
+                       const std::string& remedy = grid_remedy);
 
 // The titles above a panel_grid's panels (its room for titles kept when
 // `titled`, whatever the titles are).

@@ -124,8 +124,7 @@ public:
             {"p_c", p_c_},
             {"state_sha256", state_hash(plotted)},
         };
-        out.figure(plot_figure({phase_axes(sweep), walk_axes(walk)}, figure_width(d_, options_),
-                                 figure_height(d_, options_), plot_style_),
+        out.figure(plot_figure({phase_axes(sweep), walk_axes(walk)}, d_, options_, plot_style_),
                    meta);
         progress.finish();
     }

@@ -86,8 +86,7 @@ public:
             {"r", fit.r},
             {"state_sha256", state_hash(plotted)},
         };
-        out.figure(plot_figure({axes(c)}, figure_width(d_, options_),
-                                 figure_height(d_, options_), plot_style_),
+        out.figure(plot_figure({axes(c)}, d_, options_, plot_style_),
                    meta);
         progress.finish();
     }

@@ -215,8 +215,8 @@ public:
         const std::vector<Crossing> crossings = cross(sizes);
         const sim::ThresholdExtrapolation fit = extrapolate(sizes);
         out.figure(
-            plot_figure({curves_axes(sizes, ps), extrapolation_axes(sizes, crossings, fit)},
-                          figure_width(d_, options_), figure_height(d_, options_), plot_style_),
+            plot_figure({curves_axes(sizes, ps), extrapolation_axes(sizes, crossings, fit)}, d_, options_,
+                        plot_style_),
             metadata(sizes, ps, crossings, fit));
         progress.finish();
     }

@@ -118,7 +118,7 @@ public:
           line_width_(float(style_.number_in("line_width", 1.0, 0.0, 20.0) * options.scale)),
           row_(row_style(options.scale)) {
         refuse_steps(d, "each panel shows a whole flower (the film places the seeds one a step)", false);
-        require_text_fits(d, options, [&](const render::Rect& area) { return figure_layout(area); });
+        require_text_fits(d, options, [&](const render::Rect& area) { return render::page_text(figure_layout(area)); });
     }
 
     void render(Output& out) const override {

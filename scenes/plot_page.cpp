@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "render/colormap.hpp"
+#include "scenes/figure_caption.hpp"
+#include "scenes/panel_grid.hpp"
 
 namespace scenes {
 
@@ -37,7 +39,25 @@ void draw_plot_row(render::Surface& surface, const render::Rect& area, const std
     }
 }
 
-FigureDrawing plot_figure(std::vector<render::Axes> axes, int width, int height, const render::PlotStyle& style) {
+render::PageText plot_row_text(const render::Rect& area, const std::vector<render::Axes>& axes,
+                               const render::PlotStyle& style) {
+    const auto frames =
+        render::plot_row(static_cast<int>(area.w), static_cast<int>(area.h), static_cast<int>(axes.size()), style);
+    render::PageText page;
+    for (std::size_t i = 0; i < axes.size(); ++i) {
+        render::Rect frame = frames[i];
+        frame.x += area.x;
+        frame.y += area.y;
+        render::axes_text(page, frame, axes[i], style, axes.size() > 1 ? static_cast<int>(i) + 1 : 0);
+    }
+    return page;
+}
+
+FigureDrawing plot_figure(std::vector<render::Axes> axes, const Description& d, const SceneOptions& options,
+                          const render::PlotStyle& style) {
+    require_text_fits(
+        d, options, [&](const render::Rect& area) { return plot_row_text(area, axes, style); }, plot_remedy);
+    const int width = figure_width(d, options), height = figure_height(d, options);
     return {width, height, false, [axes = std::move(axes), style](render::Surface& surface) {
                 surface.background({1, 1, 1, 1});
                 draw_plot_row(surface, {0, 0, float(surface.width()), float(surface.height())}, axes, style);

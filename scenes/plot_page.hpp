@@ -11,6 +11,7 @@
 #include "render/canvas.hpp"
 #include "render/image.hpp"
 #include "scenes/output.hpp"
+#include "scenes/scene.hpp"
 #include "render/plot.hpp"
 
 namespace scenes {
@@ -24,12 +25,22 @@ std::vector<Key> with_plot_style_keys(std::vector<Key> keys);
 // tick and line; `font_size`, `label_size` and `bottom` override the defaults.
 render::PlotStyle read_plot_style(Settings& style, double output_scale);
 
-// A row of plots on a white width x height page (pixels, already scaled): the figure.
-FigureDrawing plot_figure(std::vector<render::Axes> axes, int width, int height, const render::PlotStyle& style);
+// A row of plots on a white page of the figure's size
+// (scenes/figure_caption.hpp): the figure. Throws a SettingError for
+// figure.size, with a size that holds it, when their text does not fit:
+// tick labels, axis labels and titles that overlap each other or a frame or
+// leave the page, legends and notes that leave their frames.
+FigureDrawing plot_figure(std::vector<render::Axes> axes, const Description& d, const SceneOptions& options,
+                          const render::PlotStyle& style);
 
 // The same into `area` of a surface being drawn.
 void draw_plot_row(render::Surface& surface, const render::Rect& area, const std::vector<render::Axes>& axes,
                    const render::PlotStyle& style);
+
+// The text draw_plot_row would draw, for render::text_clash: each plot's
+// frame and the boxes of its text (render::axes_text).
+render::PageText plot_row_text(const render::Rect& area, const std::vector<render::Axes>& axes,
+                               const render::PlotStyle& style);
 
 // A colour from [style] ("#rrggbb" or a name), opaque.
 glm::vec4 style_colour(Settings& style, const std::string& key, const std::string& fallback);

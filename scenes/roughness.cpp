@@ -208,8 +208,7 @@ public:
         growth.series.push_back(
             line_series(m.beta_t, beta_line, "fit, beta = " + format_fixed(beta.slope, 3), fit_colour, 2.2f, true));
         growth.notes.push_back({"KPZ: beta = 1/3", {0.62f, 0.10f}, render::Align::left});
-        out.figure(plot_figure({growth, scaling_axes(m, alpha)}, figure_width(d_, options_),
-                                 figure_height(d_, options_), plot_style_),
+        out.figure(plot_figure({growth, scaling_axes(m, alpha)}, d_, options_, plot_style_),
                    metadata(m, beta, alpha));
         progress.finish();
     }

@@ -124,7 +124,7 @@ public:
           caption_(style_.text("caption", "{label} {rule}")),
           plan_(plan_of(d, steps_)) {
         require_text_fits(d, options, [&](const render::Rect& area) {
-            return snowflake_layout(area, figure_captions(), figure_columns(area), options_.scale);
+            return render::page_text(snowflake_layout(area, figure_captions(), figure_columns(area), options_.scale));
         });
     }
 

@@ -77,8 +77,7 @@ public:
         const std::vector<double> ref_l = {1.0, double(steps_)};
         axes.series.push_back(line_series(ref_l, {filled, filled * steps_ * steps_}, "filled plane, D = 2",
                                           {0.6f, 0.6f, 0.6f, 1}, 1.0f, true));
-        out.figure(plot_figure({axes}, figure_width(d_, options_), figure_height(d_, options_),
-                                 plot_style_),
+        out.figure(plot_figure({axes}, d_, options_, plot_style_),
                    {{"params", params_.used()}, {"style", style_.used()}, {"fits", fits}});
         progress.finish();
     }

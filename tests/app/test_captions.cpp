@@ -90,16 +90,16 @@ TEST_CASE("a caption with a character no font has renders with a warning naming 
 
 TEST_CASE("the title as a caption wraps to the figure's width", "[cli][text]") {
     const fs::path out = testkit::fresh_dir("caption-title");
-    REQUIRE(testkit::figgen("render tc7-7 --set figure.caption=title --size 300x400 --out " + out.string()).status == 0);
-    const nlohmann::json caption = metadata(out / "tc7-7.json")["figure_caption"];
+    REQUIRE(testkit::figgen("render tc7-9 --set figure.caption=title --size 300x400 --out " + out.string()).status == 0);
+    const nlohmann::json caption = metadata(out / "tc7-9.json")["figure_caption"];
     REQUIRE(caption["lines"].size() >= 2);
     std::string joined;
     for (const auto& line : caption["lines"]) {
         if (!joined.empty()) joined.push_back(' ');
         joined.append(line.get<std::string>());
     }
-    CHECK(joined == metadata(out / "tc7-7.json")["title"]);
-    const render::Image png = render::read_png(out / "tc7-7.png").image;
+    CHECK(joined == metadata(out / "tc7-9.json")["title"]);
+    const render::Image png = render::read_png(out / "tc7-9.png").image;
     CHECK(png.height == 400);
 }
 

@@ -216,8 +216,12 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-2 --set style.a_alpha=2", "style.a_alpha = 2 is not allowed: a number from 0 to 1"},
         {render + "tc7-ex2 --set style.trees_colour=\\\"chartreuse-ish\\\"", "style.trees_colour = 'chartreuse-ish' is not allowed: #rrggbb or one of "},
         // titles and captions that would overlap
-        {render + "sf87-3 --size 333x111", "figure.size = [333, 111] is not allowed: a size at which the panels' titles fit: at 333 x 111 pixels the title of panel 1 "},
-        {render + "pl-lsys-gallery --size 300x300", "figure.size = [300, 300] is not allowed: a size at which the panels' titles fit: "},
+        {render + "sf87-3 --size 333x111", "figure.size = [333, 111] is not allowed: a size at which the figure's text fits: at 333 x 111 pixels the title of panel 1 "},
+        {render + "pl-lsys-gallery --size 300x300", "figure.size = [300, 300] is not allowed: a size at which the figure's text fits: "},
+        // The plots' own text: tick labels, legends, colour bars.
+        {render + "tc7-7 --size 333x111", "figure.size = [333, 111] is not allowed: a size at which the figure's text fits: at 333 x 111 pixels the y axis label of plot 1 [18, -19, 12 x 127] runs off the page; [628, 210] or larger holds them"},
+        {render + "tc7-9 --size 300x200", "figure.size = [300, 200] is not allowed: a size at which the figure's text fits: at 300 x 200 pixels the legend [114, 52, 127 x 99] runs out of the frame of the plot; [331, 221] or larger"},
+        {render + "bd-500 --size 333x111 --set particles=5000 --set width=100", "figure.size = [333, 111] is not allowed: a size at which the figure's text fits: at 333 x 111 pixels the colour bar's label of panel 1 [203, -19, 14 x 178] runs off the page"},
         {render + "tc7-1 --set figure.columns=0", "figure.columns = 0 is not allowed: an integer from 1 to 64"},
         // captions beneath the figure
         {render + "tc7-1 --set figure.caption=original", "figure.caption = \"original\" is not allowed: \"none\" or \"title\": the description has no original_caption"},
@@ -486,12 +490,39 @@ TEST_CASE("render --size sets the figure's pixels before --scale", "[cli][option
     CHECK(metadata(out / "tc7-1.json")["image"]["size"] == nlohmann::json({600, 400}));
 }
 
+TEST_CASE("a plot whose text does not fit is refused with a size at which it renders", "[cli][options]") {
+    const fs::path out = fresh_dir("plot-fit");
+    for (const char* id : {"tc7-7", "tc7-9", "sf87-dim"}) {
+        INFO(id);
+        const Run refused = figgen(std::string("render ") + id + " --format png --size 300x150 --out " + out.string());
+        REQUIRE(refused.status == 2);
+        CHECK(fs::is_empty(out));
+        // "...; [W, H] or larger holds them"
+        const std::size_t end = refused.output.find("] or larger holds them");
+        REQUIRE(end != std::string::npos);
+        const std::size_t start = refused.output.rfind('[', end);
+        int w = 0, h = 0;
+        REQUIRE(std::sscanf(refused.output.c_str() + start, "[%d, %d]", &w, &h) == 2);
+        CHECK(w > 300);
+        CHECK(h * 300 == Approx(w * 150).margin(300));  // the aspect asked for
+        REQUIRE(figgen(std::string("render ") + id + " --format png --size " + std::to_string(w) + "x" +
+                       std::to_string(h) + " --out " + out.string())
+                    .status == 0);
+        CHECK(render::read_png(out / (std::string(id) + ".png")).image.width == w);
+        fs::remove_all(out);
+        fs::create_directories(out);
+    }
+}
+
 TEST_CASE("a figure is the exact size asked for and only its film rounds to even as its JSON says", "[cli][options]") {
     const fs::path out = fresh_dir("exact-size");
     // The snowflakes' captions, a label each: their whole sentences do not fit beside each other at 333 px.
+    // The plots' text at half its size (a 50 dpi figure): at 100 dpi their tick labels crowd at 111 px.
     for (const char* id : {"tc7-7", "sf87-3", "pl-lsys-lycopodium"}) {
         INFO(id);
-        const std::string extra = std::string(id) == "sf87-3" ? " --set style.caption={label}" : "";
+        const std::string extra = std::string(id) == "sf87-3"  ? " --set style.caption={label}"
+                                  : std::string(id) == "tc7-7" ? " --set style.plot_scale=0.5"
+                                                               : "";
         REQUIRE(figgen(std::string("render ") + id + extra + " --format png,pdf --size 333x111 --out " + out.string())
                     .status == 0);
         const auto png = render::read_png(out / (std::string(id) + ".png")).image;

@@ -97,3 +97,29 @@ TEST_CASE("titles too long for their page are found and a page that holds them i
     for (int i = 0; i < 3; ++i)
         for (int j = i + 1; j < 3; ++j) CHECK(apart(roomy.titles[i], roomy.titles[j]));
 }
+
+TEST_CASE("page text clashes where glyphs overlap and where a text leaves its room", "[layout]") {
+    const Rect page{0, 0, 200, 100};
+    render::PageText text;
+    text.panels.push_back({{100, 10, 90, 80}, "the frame"});
+    // Two staircases of glyphs whose boxes overlap while no glyph of one meets a glyph of the other.
+    text.texts.push_back({{10, 10, 40, 40}, "the first", -1, {{10, 10, 10, 10}, {40, 40, 10, 10}}});
+    text.texts.push_back({{10, 10, 40, 40}, "the second", -1, {{40, 10, 10, 10}, {10, 40, 10, 10}}});
+    CHECK(render::text_clash(text, page).empty());
+    // A glyph of the second moved onto one of the first.
+    text.texts[1].parts[0] = {12, 12, 10, 10};
+    CHECK(render::text_clash(text, page) == "the first [10, 10, 40 x 40] overlaps the second");
+    text.texts[1].parts[0] = {40, 10, 10, 10};
+    // Half a pixel of overlap is rounding; more is not.
+    text.texts.push_back({{90.4f, 20, 10, 10}, "the third"});
+    CHECK(render::text_clash(text, page).empty());
+    text.texts.back().box.x = 91;
+    CHECK(render::text_clash(text, page) == "the third [91, 20, 10 x 10] overlaps the frame");
+    // A legend belongs inside its frame: in it, fine; sticking out, refused before any overlap is named.
+    text.texts.back() = {{120, 20, 40, 30}, "the legend", 0, {}};
+    CHECK(render::text_clash(text, page).empty());
+    text.texts.back().box.y = 70;
+    CHECK(render::text_clash(text, page) == "the legend [120, 70, 40 x 30] runs out of the frame");
+    text.texts.back().box = {180, 20, 30, 10};
+    CHECK(render::text_clash(text, page) == "the legend [180, 20, 30 x 10] runs off the page");
+}

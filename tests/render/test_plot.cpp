@@ -372,3 +372,104 @@ TEST_CASE("a polyline joins its segments without gaps", "[plot]") {
     CHECK(is_red(image, 60, 18));
     CHECK(is_red(image, 60, 22));
 }
+
+namespace {
+
+// A log-log plot like tc7-7's, with a title, both axis labels, a note and a legend.
+Axes labelled_axes() {
+    Axes axes;
+    axes.x_scale = axes.y_scale = Scale::log;
+    axes.x_range = std::pair{1.0, 1000.0};
+    axes.y_range = std::pair{1.0, 1e5};
+    axes.x_label = "Time Steps";
+    axes.y_label = "Number of Cells";
+    axes.title = "rule 20";
+    axes.legend = Legend::upper_left;
+    Series s;
+    s.label = "d=2";
+    axes.series = {s};
+    axes.notes = {{"slope 1.97", {0.55f, 0.1f}}};
+    return axes;
+}
+
+bool covers(const Rect& r, int x, int y, float margin) {
+    return x + 1 > r.x - margin && x < r.right() + margin && y + 1 > r.y - margin && y < r.bottom() + margin;
+}
+
+}  // namespace
+
+TEST_CASE("the text a plot's fit check reads is where the plot draws its text", "[plot][layout]") {
+    const Rect frame{90, 40, 420, 200};
+    const Axes axes = labelled_axes();
+    PageText page;
+    axes_text(page, frame, axes, PlotStyle{}, 0);
+    REQUIRE(page.panels.size() == 1);
+    CHECK(page.panels[0].what == "the frame of the plot");
+    // Every text by name: 4 x ticks (1 to 1000), 6 y ticks (1 to 1e5), two axis labels, the title, the note, the legend.
+    std::vector<std::string> names;
+    for (const PageText::Box& t : page.texts) names.push_back(t.what);
+    for (const char* name : {"the x tick label \"10⁰\"", "the x tick label \"10³\"", "the y tick label \"10⁵\"",
+                             "the x axis label", "the y axis label", "the title", "the note \"slope 1.97\"",
+                             "the legend"})
+        CHECK(std::count(names.begin(), names.end(), name) == 1);
+    CHECK(names.size() == 4 + 6 + 2 + 1 + 1 + 1);
+    CHECK(text_clash(page, {0, 0, 560, 300}).empty());
+
+    // Every pixel of ink outside the frame and its ticks lies in a text's box, and every text's box holds ink.
+    const Image image = plot(axes, frame, 560, 300);
+    const float tick = PlotStyle{}.major_tick + 2;
+    const Rect ticked{frame.x - tick, frame.y - 2, frame.w + tick + 2, frame.h + tick + 2};
+    int stray = 0;
+    std::vector<int> ink_in(page.texts.size(), 0);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            if (image.pixel(x, y)[0] > 200) continue;  // white or nearly
+            bool in_text = false;
+            for (std::size_t i = 0; i < page.texts.size(); ++i)
+                if (covers(page.texts[i].box, x, y, 1.0f)) in_text = true, ++ink_in[i];
+            if (!in_text && !covers(ticked, x, y, 0)) ++stray;
+        }
+    CHECK(stray == 0);
+    for (std::size_t i = 0; i < page.texts.size(); ++i) {
+        INFO(page.texts[i].what);
+        CHECK(ink_in[i] > 0);
+    }
+}
+
+TEST_CASE("a plot too small for its text clashes and the size that fits holds it", "[plot][layout]") {
+    const std::vector<Axes> row(3, labelled_axes());
+    auto row_text = [&](int w, int h) {
+        PageText page;
+        const auto frames = plot_row(w, h, 3, PlotStyle{});
+        for (int i = 0; i < 3; ++i) axes_text(page, frames[i], row[i], PlotStyle{}, i + 1);
+        return page;
+    };
+    const std::string clash = text_clash(row_text(333, 111), {0, 0, 333, 111});
+    CHECK_FALSE(clash.empty());
+    CHECK(clash.find(" of plot ") != std::string::npos);
+    const PageSize fits = size_that_fits(333, 111, row_text);
+    REQUIRE(fits.width > 333);
+    CHECK(fits.height * 333 == Approx(fits.width * 111).margin(333));
+    const PageText roomy = row_text(fits.width, fits.height);
+    CHECK(text_clash(roomy, {0, 0, float(fits.width), float(fits.height)}).empty());
+    // The last size short of it still clashes: the size named is the first that fits.
+    const int w = int(std::ceil(fits.width / 1.05)) - 1, h = int(std::ceil(fits.height / 1.05)) - 1;
+    CHECK_FALSE(text_clash(row_text(w, h), {0, 0, float(w), float(h)}).empty());
+}
+
+TEST_CASE("a colour bar's text is checked beside its field", "[plot][layout]") {
+    ColourBar bar;
+    bar.colormap = *find_colormap("viridis");
+    bar.low = 0, bar.high = 2000;
+    bar.label = "arrival time (monolayers)";
+    PageText page;
+    colour_bar_text(page, {20, 30, 200, 400}, bar, PlotStyle{}, 1);
+    REQUIRE(page.panels.size() == 1);
+    CHECK(page.panels[0].what == "the colour bar of panel 1");
+    CHECK(page.texts.back().what == "the colour bar's label of panel 1");
+    CHECK(text_clash(page, {0, 0, 500, 460}).empty());
+    // The page cut just right of the bar: its labels run off it.
+    const std::string clash = text_clash(page, {0, 0, page.panels[0].box.right() + 8, 460});
+    CHECK(clash.find("the colour bar's") == 0);
+    CHECK(clash.find("runs off the page") != std::string::npos);
+}

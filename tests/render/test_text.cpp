@@ -404,3 +404,41 @@ TEST_CASE("wrap breaks Latin between words and Chinese between characters", "[te
     const auto long_word = render::wrap(font, "a supercalifragilistic b", 60);
     CHECK(long_word == std::vector<std::string>{"a", "supercalifragilistic", "b"});
 }
+
+TEST_CASE("a line's ink boxes hold the pixels it draws upright and turned", "[text][layout]") {
+    for (const float rotation : {0.0f, 90.0f}) {
+        INFO("rotation " << rotation);
+        Font font(24);
+        const glm::vec2 at{60.3f, 100};
+        const render::LineInk line = render::line_ink(font, "Hyp 15, g", at, Align::centre, Baseline::middle, rotation);
+        REQUIRE(line.glyphs.size() == 7);  // the two spaces have no ink
+        const Image image = render_one(font, "Hyp 15, g", at, Align::centre, Baseline::middle, rotation, 200, 200);
+        const Ink drawn = ink(image, 96);  // the solid ink; its faint anti-aliased rim may spill a pixel
+        REQUIRE(!drawn.empty());
+        CHECK(drawn.left >= line.box.x - 1);
+        CHECK(drawn.right + 1 <= line.box.right() + 1);
+        CHECK(drawn.top >= line.box.y - 1);
+        CHECK(drawn.bottom + 1 <= line.box.bottom() + 1);
+        // Tight: the box is the ink's, within a pixel, not the line box with its accent room.
+        CHECK(line.box.x > drawn.left - 2);
+        CHECK(line.box.right() < drawn.right + 1 + 2);
+        CHECK(line.box.y > drawn.top - 2);
+        CHECK(line.box.bottom() < drawn.bottom + 1 + 2);
+        const float across = rotation == 0 ? line.box.h : line.box.w;
+        CHECK(across < font.ascender() - font.descender() - 4);
+        // Every dark pixel lies in one of the glyphs' boxes.
+        int outside = 0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                if (image.pixel(x, y)[0] > 96) continue;
+                bool in = false;
+                for (const render::Rect& g : line.glyphs)
+                    in = in || (x + 1 > g.x - 1 && x < g.right() + 1 && y + 1 > g.y - 1 && y < g.bottom() + 1);
+                outside += in ? 0 : 1;
+            }
+        CHECK(outside == 0);
+    }
+    Font font(24);
+    CHECK(render::line_ink(font, "   ", {10, 10}).box.w == 0);
+    CHECK(render::line_ink(font, "", {10, 10}).glyphs.empty());
+}
