@@ -123,7 +123,7 @@ PageText page_text(const GridText& grid) {
         page.panels.push_back({grid.panels[i], "panel " + std::to_string(i + 1)});
     for (std::size_t i = 0; i < grid.titles.size(); ++i) {
         const std::string what = "the title of panel " + std::to_string(i + 1);
-        if (i < grid.inks.size()) page.texts.push_back({grid.inks[i].box, what, -1, grid.inks[i].glyphs});
+        if (i < grid.inks.size()) page.texts.push_back({grid.inks[i].box, what, -1, grid.inks[i].glyphs, grid.inks[i].em});
         else page.texts.push_back({grid.titles[i], what});
     }
     return page;
@@ -142,11 +142,12 @@ std::string text_clash(const PageText& layout, const Rect& page) {
     };
     // A text's glyphs, or its box when it has none listed.
     auto parts = [](const PageText::Box& t) { return t.parts.empty() ? std::span<const Rect>(&t.box, 1) : std::span<const Rect>(t.parts); };
-    auto texts_clash = [&](const PageText::Box& a, const PageText::Box& b) {
-        if (!clash(a.box, b.box)) return false;
+    auto grown = [](const Rect& r, float by) { return Rect{r.x - by, r.y - by, r.w + 2 * by, r.h + 2 * by}; };
+    auto texts_clash = [&](const PageText::Box& a, const PageText::Box& b, float gap) {
+        if (!clash(grown(a.box, gap), b.box)) return false;
         for (const Rect& p : parts(a))
             for (const Rect& q : parts(b))
-                if (clash(p, q)) return true;
+                if (clash(grown(p, gap), q)) return true;
         return false;
     };
     auto clashes_panel = [&](const PageText::Box& t, const Rect& panel) {
@@ -169,7 +170,9 @@ std::string text_clash(const PageText& layout, const Rect& page) {
         if (t.box.w <= 0) continue;
         const std::string which = t.what + " " + box_text(t.box);
         for (std::size_t j = 0; j < layout.texts.size(); ++j)
-            if (j != i && texts_clash(t, layout.texts[j])) return which + " overlaps " + layout.texts[j].what;
+            if (j != i && texts_clash(t, layout.texts[j], text_gap * std::max(t.em, layout.texts[j].em)))
+                return which + (texts_clash(t, layout.texts[j], 0) ? " overlaps " : " is closer than a quarter em to ") +
+                       layout.texts[j].what;
         if (t.within < 0)
             for (const PageText::Box& panel : layout.panels)
                 if (clashes_panel(t, panel.box)) return which + " overlaps " + panel.what;

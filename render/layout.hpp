@@ -58,6 +58,7 @@ struct PageText {
         std::string what;  // "the title of panel 2", "the x tick label "0.5" of plot 1"
         int within = -1;   // the panel a text belongs inside (a legend, a note), -1: outside every panel
         std::vector<Rect> parts;  // a text's glyphs, all inside `box`; empty: the box is solid
+        float em = 0;             // a text's font size, pixels: it keeps text_gap of them from other texts
     };
     std::vector<Box> panels;
     std::vector<Box> texts;  // w = 0: none, never clashes
@@ -67,11 +68,16 @@ struct PageText {
 // A grid's titles as page text: "the title of panel N" over "panel N".
 PageText page_text(const GridText& grid);
 
+// The room two texts keep between their glyphs, in ems of the larger font:
+// a quarter, a little less than DejaVu Sans's space (0.32 em), so that two
+// titles side by side read as two, not as one ("step 1000step 3000").
+inline constexpr float text_gap = 0.25f;
+
 // What is wrong with the text of `layout` on `page`: a text that leaves the
-// page, overlaps another text, overlaps a panel, or (one that belongs
-// inside a panel) leaves its panel. Texts overlap where their glyphs' ink
-// boxes do (parts). Empty when it all fits. Boxes may touch; half a pixel
-// of overlap is rounding.
+// page, comes within text_gap of another text, overlaps a panel, or (one
+// that belongs inside a panel) leaves its panel. Texts are where their
+// glyphs' ink boxes are (parts). Empty when it all fits. Half a pixel of
+// overlap is rounding.
 std::string text_clash(const PageText& layout, const Rect& page);
 std::string text_clash(const GridText& layout, const Rect& page);
 // The smallest page, `width` x `height` enlarged by steps of 5% (its aspect

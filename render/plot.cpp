@@ -74,7 +74,7 @@ public:
     }
     // Names a text ("the x tick label "0.5"") for the check; `inside`: it belongs inside the plot's frame.
     void name(const LineInk& ink, const std::string& what, bool inside = false) {
-        if (!drawing()) page_->texts.push_back({ink.box, what + of_, inside ? panel_ : -1, ink.glyphs});
+        if (!drawing()) page_->texts.push_back({ink.box, what + of_, inside ? panel_ : -1, ink.glyphs, ink.em});
     }
     // Names a solid box (the legend's).
     void name(const Rect& box, const std::string& what, bool inside = false) { name(LineInk{box, {}}, what, inside); }
@@ -96,6 +96,7 @@ LineInk united(LineInk a, const LineInk& b) {
     const float x = std::min(a.box.x, b.box.x), y = std::min(a.box.y, b.box.y);
     a.box = {x, y, std::max(a.box.right(), b.box.right()) - x, std::max(a.box.bottom(), b.box.bottom()) - y};
     a.glyphs.insert(a.glyphs.end(), b.glyphs.begin(), b.glyphs.end());
+    a.em = std::max(a.em, b.em);
     return a;
 }
 
@@ -568,7 +569,7 @@ void draw_colour_bar(Surface& surface, const Rect& field, const ColourBar& bar, 
 }
 
 void colour_bar_text(PageText& page, const Rect& field, const ColourBar& bar, const PlotStyle& style, int panel) {
-    const std::string of = " of panel " + std::to_string(panel);
+    const std::string of = panel > 0 ? " of panel " + std::to_string(panel) : "";
     page.panels.push_back({bar_rect(field), "the colour bar" + of});
     TextSink text(page, static_cast<int>(page.panels.size()) - 1, of);
     lay_out_colour_bar(nullptr, text, field, bar, style);

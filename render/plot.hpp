@@ -128,7 +128,7 @@ std::vector<Tick> colour_bar_ticks(const ColourBar& bar, float height, const Plo
 void draw_colour_bar(Surface& surface, const Rect& field, const ColourBar& bar, const PlotStyle& style);
 
 // The text draw_colour_bar would draw beside `field`, as boxes on `page`,
-// the bar itself one of its panels; named " of panel N" for `panel`.
+// the bar itself one of its panels; named " of panel N" when `panel` > 0.
 void colour_bar_text(PageText& page, const Rect& field, const ColourBar& bar, const PlotStyle& style, int panel);
 
 // Frames for `count` plots side by side on a width x height page, like

@@ -449,7 +449,7 @@ LineInk line_ink(const Font& font, std::string_view utf8, glm::vec2 position, Al
     const Font::Shaped shaped = font.shape(utf8, language);
     const Rotation rotate(rotation_degrees);
     const glm::vec2 origin = line_origin(font, shaped.width, position, align, baseline, rotate);
-    LineInk out{{position.x, position.y, 0, 0}, {}};
+    LineInk out{{position.x, position.y, 0, 0}, {}, font.pixel_size()};
     constexpr float inf = std::numeric_limits<float>::infinity();
     glm::vec2 all_lo{inf}, all_hi{-inf};
     for (const Font::ShapedGlyph& g : shaped.glyphs) {

@@ -156,6 +156,7 @@ void set_missing_glyph_warning(std::function<void(const std::string&)> warn);
 struct LineInk {
     Rect box;
     std::vector<Rect> glyphs;
+    float em = 0;  // the font's size, pixels
 };
 LineInk line_ink(const Font& font, std::string_view utf8, glm::vec2 position, Align align = Align::left,
                  Baseline baseline = Baseline::baseline, float rotation_degrees = 0, std::string_view language = {});

@@ -18,6 +18,7 @@
 #include "scenes/field_spec.hpp"
 #include "scenes/field_stats.hpp"
 #include "scenes/model_check.hpp"
+#include "scenes/panel_grid.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/work_codec.hpp"
@@ -85,6 +86,17 @@ public:
           spec_(read_field_spec(style_, {render::colormap("Blues"), {}, {}, 1.0f, render::Sampling::smooth, true, ""})),
           plot_(read_plot_style(style_, options.scale)) {
         require_drawable(params_, "n", "each tile", atlas_.base.n, atlas_.base.n);
+        // Its axes span the atlas's (k, f) ranges, known before any tile runs.
+        require_text_fits(
+            d, options,
+            [&](const render::Rect& area) {
+                const render::Rect frame = map_frame(area);
+                render::PageText page;
+                render::axes_text(page, frame, map_axes(), plot_, 0);
+                if (const auto bar = colour_bar()) render::colour_bar_text(page, frame, *bar, plot_, 0);
+                return page;
+            },
+            plot_remedy);
     }
 
     // The starting A and B, each tile's B kept as floats and, while it is
@@ -272,18 +284,11 @@ private:
 
     void draw_map(render::Surface& canvas, const std::vector<sim::GrayScottAtlasTile>& tiles,
                   const std::vector<TileSummary>& summaries) const {
-        const int width = canvas.width(), height = canvas.height();
         const int columns = atlas_.columns, rows = atlas_.rows;
         canvas.background({1, 1, 1, 1});
-        // The plot frame, made square, holds the tiles; then the axes are drawn
-        // over it, and the colour bar beside it, the pair centred.
-        render::Rect frame = render::plot_row(width, height, 1, plot_)[0];
+        const render::Rect frame = map_frame({0, 0, float(canvas.width()), float(canvas.height())});
         const std::optional<render::ColourBar> bar = colour_bar();
-        float side = std::min(frame.w, frame.h);
-        const float room = bar ? render::colour_bar_room(*bar, side, side, plot_) : 0.0f;
-        side = std::max(1.0f, std::min(side, frame.w - room));
-        frame.x += (frame.w - side - room) / 2;
-        frame.w = frame.h = side;
+        const float side = frame.w;
         const float tw = side / float(columns), th = side / float(rows);
         std::vector<double> b;  // the tile's B as doubles, reused
         for (int r = 0; r < rows; ++r)
@@ -294,6 +299,27 @@ private:
                 render::draw_field(canvas, {frame.x + c * tw, frame.y + r * th, tw, th}, cells.rows(), cells.cols(), b,
                                    summaries[t].style);
             }
+        render::draw_axes(canvas, frame, map_axes(), plot_);
+        if (bar) render::draw_colour_bar(canvas, frame, *bar, plot_);
+    }
+
+    // The plot frame in `area`, made square, that holds the tiles: it and the
+    // colour bar beside it centred.
+    render::Rect map_frame(const render::Rect& area) const {
+        render::Rect frame = render::plot_row(static_cast<int>(area.w), static_cast<int>(area.h), 1, plot_)[0];
+        frame.x += area.x;
+        frame.y += area.y;
+        const std::optional<render::ColourBar> bar = colour_bar();
+        float side = std::min(frame.w, frame.h);
+        const float room = bar ? render::colour_bar_room(*bar, side, side, plot_) : 0.0f;
+        side = std::max(1.0f, std::min(side, frame.w - room));
+        frame.x += (frame.w - side - room) / 2;
+        frame.w = frame.h = side;
+        return frame;
+    }
+
+    // The axes drawn over the tiles: k along x, f up y.
+    render::Axes map_axes() const {
         render::Axes axes;
         axes.x_range = std::pair{atlas_.k_low, atlas_.k_high};
         axes.y_range = std::pair{atlas_.f_low, atlas_.f_high};
@@ -301,8 +327,7 @@ private:
         axes.y_label = "feed rate f";
         axes.title = "Gray-Scott B after " + std::to_string(atlas_.steps) + " steps, " +
                      std::to_string(atlas_.base.n) + "\u00b2 cells each";
-        render::draw_axes(canvas, frame, axes, plot_);
-        if (bar) render::draw_colour_bar(canvas, frame, *bar, plot_);
+        return axes;
     }
 
     // The colour bar, when [style] colour_bar: in B's units when vmin and vmax

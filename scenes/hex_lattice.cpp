@@ -5,6 +5,7 @@
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/figure_caption.hpp"
+#include "scenes/panel_grid.hpp"
 #include "render/hex_cells.hpp"
 #include "render/layout.hpp"
 #include "render/text.hpp"
@@ -53,9 +54,23 @@ struct Drawing {
     const float caption_band, half;
     render::Font label_font, caption_font;
     render::Text text;
+    render::PageText page;  // where the text went, for its fit check
     render::HexView view;
     std::vector<glm::ivec2> cells;  // filled with the scene's fill colour, under the rest
     render::Shapes fills, outlines;
+
+    // A shape text must keep clear of, or stay inside: its index on the page.
+    int shape(const render::Rect& where, std::string what) {
+        page.panels.push_back({where, std::move(what)});
+        return static_cast<int>(page.panels.size()) - 1;
+    }
+    // A line of text centred on `at`, inside shape `within` (-1: clear of every shape).
+    void label(render::Font& font, const std::string& line, glm::vec2 at, std::string what, int within = -1) {
+        const glm::vec4 black{0, 0, 0, 1};
+        text.add(font, line, at, black, render::Align::centre, render::Baseline::middle);
+        const render::LineInk ink = render::line_ink(font, line, at, render::Align::centre, render::Baseline::middle);
+        page.texts.push_back({ink.box, std::move(what), within, ink.glyphs, ink.em});
+    }
 };
 
 class HexLatticeScene : public SceneBase {
@@ -68,14 +83,19 @@ public:
           fill_(style_colour(style_, "fill_colour", "#dde8f3")),
           captions_(read_captions(style_)) {
         refuse_steps(d, "a schematic has no steps", true);
+        require_text_fits(d, options, [&](const render::Rect& area) {
+            Drawing draw(static_cast<int>(area.w), static_cast<int>(area.h), static_cast<float>(options.scale));
+            draw_row(draw);
+            draw_patch(draw);
+            return std::move(draw.page);
+        }, "shorten style.captions");
     }
 
     void render(Output& out) const override {
         Progress& progress = out.progress();
         progress.start(d_.id, 1);
-        const float s = static_cast<float>(options_.scale);
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
-        Drawing draw(width, height, s);
+        Drawing draw(width, height, static_cast<float>(options_.scale));
         const std::vector<double> row_state = draw_row(draw);
         const std::vector<double> patch_state = draw_patch(draw);
         const FigureDrawing figure{width, height, false, [this, &draw](render::Surface& surface) {
@@ -99,26 +119,24 @@ private:
     // Returns what it is drawn from: each cell's rect and whether it is named.
     std::vector<double> draw_row(Drawing& draw) const {
         const float s = draw.s, half = draw.half, height = float(draw.height);
-        const glm::vec4 black{0, 0, 0, 1};
         const float cell = std::min((half - 40 * s) / float(row_cells_), (height - draw.caption_band) / 3);
         const float row_y = (height - draw.caption_band) / 2 - cell / 2;
         const float row_x = (half - cell * float(row_cells_)) / 2;
         const int mid = row_cells_ / 2;
+        draw.shape({row_x, row_y, cell * float(row_cells_), cell}, "the row of cells of (a)");
         std::vector<double> row_state;
         for (int i = 0; i < row_cells_; ++i) {
             const render::Rect r{row_x + float(i) * cell, row_y, cell, cell};
             row_state.insert(row_state.end(), {r.x, r.y, r.w, r.h, double(std::abs(i - mid) <= 1)});
             if (std::abs(i - mid) <= 1) draw.fills.rect(r, fill_);
             draw.outlines.frame(r, 1.5f * s, line_);
-            if (std::abs(i - mid) <= 1)
-                draw.text.add(draw.label_font,
-                              i == mid  ? "i"
-                              : i < mid ? "i\u22121"
-                                        : "i+1",
-                              r.centre(), black, render::Align::centre, render::Baseline::middle);
+            if (std::abs(i - mid) <= 1) {
+                const std::string name = i == mid ? "i" : i < mid ? "i\u22121" : "i+1";
+                draw.label(draw.label_font, name, r.centre(), "the label " + name + " of (a)",
+                           draw.shape(r, "its cell"));
+            }
         }
-        draw.text.add(draw.caption_font, captions_[0], {half / 2, height - draw.caption_band / 2}, black,
-                      render::Align::centre, render::Baseline::middle);
+        draw.label(draw.caption_font, captions_[0], {half / 2, height - draw.caption_band / 2}, "the caption of (a)");
         return row_state;
     }
 
@@ -126,9 +144,9 @@ private:
     // what it is drawn from: the hex cells and their centres, the filled cells.
     std::vector<double> draw_patch(Drawing& draw) const {
         const float s = draw.s, half = draw.half, height = float(draw.height);
-        const glm::vec4 black{0, 0, 0, 1};
         const render::Rect patch{half + 20 * s, 20 * s, half - 40 * s, height - draw.caption_band - 30 * s};
         const auto view = render::fit_hex_view(patch, radius_);
+        draw.shape(patch, "the hexagons of (b)");
         // Neighbour k at 30 + 60 (k - 1) degrees, counter-clockwise from the right.
         const glm::ivec2 numbered[7] = {{0, 0}, {1, 0}, {0, 1}, {-1, 1}, {-1, 0}, {0, -1}, {1, -1}};
         std::vector<glm::ivec2> filled(std::begin(numbered), std::end(numbered));
@@ -143,11 +161,15 @@ private:
                     patch_state.insert(patch_state.end(), {double(q), double(r), centre.x, centre.y, view.size});
                 }
         for (const auto& c : filled) patch_state.insert(patch_state.end(), {double(c.x), double(c.y)});
-        for (int k = 0; k < 7; ++k)
-            draw.text.add(draw.label_font, std::to_string(k), render::hex_centre(view, numbered[k]), black,
-                          render::Align::centre, render::Baseline::middle);
-        draw.text.add(draw.caption_font, captions_[1], {half + half / 2, height - draw.caption_band / 2}, black,
-                      render::Align::centre, render::Baseline::middle);
+        for (int k = 0; k < 7; ++k) {
+            // The square inside the hexagon's inscribed circle (radius sqrt(3)/2 of its circumradius).
+            const glm::vec2 c = render::hex_centre(view, numbered[k]);
+            const float half_side = 0.8660254f * view.size / 1.4142136f;
+            const int inside = draw.shape({c.x - half_side, c.y - half_side, 2 * half_side, 2 * half_side}, "its hexagon");
+            draw.label(draw.label_font, std::to_string(k), c, "the label " + std::to_string(k) + " of (b)", inside);
+        }
+        draw.label(draw.caption_font, captions_[1], {half + half / 2, height - draw.caption_band / 2},
+                   "the caption of (b)");
         return patch_state;
     }
 

@@ -16,6 +16,7 @@
 #include "scenes/scene.hpp"
 #include "scenes/step_runner.hpp"
 #include "scenes/figure_caption.hpp"
+#include "scenes/panel_grid.hpp"
 #include "sim/check.hpp"
 #include "sim/lsystem.hpp"
 #include "sim/turtle.hpp"
@@ -269,6 +270,14 @@ public:
         plant.lo = glm::min(bounds_of_tubes.first, glm::vec3(bounds.lo));
         plant.hi = glm::max(bounds_of_tubes.second, glm::vec3(bounds.hi));
         require_framable(plant);
+        // The titles over the panels the plant's shape gives, before the film runs.
+        require_text_fits(d_, options_, [&](const render::Rect& area) {
+            render::PanelRowStyle style;
+            style.scale = float(options_.scale);
+            return render::page_text(render::grid_text(
+                panel_rects(plant, style, static_cast<int>(area.w), static_cast<int>(area.h)), titles(),
+                render::TitlePlace::above, std::round(style.title_size * style.scale), style.title_pad * style.scale));
+        }, "set fewer style.views");
 
         // The turntable: one turn around the vertical axis over the film.
         Description plan = d_;
@@ -372,14 +381,21 @@ private:
                     render::Font& font) const {
         canvas.background({1, 1, 1, 1});
         render::Text text;
+        const std::vector<std::string> title = titles();
         for (std::size_t i = 0; i < views_.size(); ++i) {
             render::draw_tubes(canvas, panels[i], plant.tubes, plant.facets, cameras[i], studio_light(cameras[i]),
                                sides_);
-            const std::string title = "azimuth " + format_fixed(views_[i], 0) + "\u00b0";
-            text.add(font, title, {panels[i].centre().x, panels[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
+            text.add(font, title[i], {panels[i].centre().x, panels[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
                      render::Align::centre, render::Baseline::baseline);
         }
         text.draw(canvas);
+    }
+
+    // Each panel's title: its azimuth.
+    std::vector<std::string> titles() const {
+        std::vector<std::string> out;
+        for (const double azimuth : views_) out.push_back("azimuth " + format_fixed(azimuth, 0) + "\u00b0");
+        return out;
     }
 
     const sim::LSystem system_;

@@ -222,6 +222,9 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-7 --size 333x111", "figure.size = [333, 111] is not allowed: a size at which the figure's text fits: at 333 x 111 pixels the y axis label of plot 1 [18, -19, 12 x 127] runs off the page; [628, 210] or larger holds them"},
         {render + "tc7-9 --size 300x200", "figure.size = [300, 200] is not allowed: a size at which the figure's text fits: at 300 x 200 pixels the legend [114, 52, 127 x 99] runs out of the frame of the plot; [331, 221] or larger"},
         {render + "bd-500 --size 333x111 --set particles=5000 --set width=100", "figure.size = [333, 111] is not allowed: a size at which the figure's text fits: at 333 x 111 pixels the colour bar's label of panel 1 [203, -19, 14 x 178] runs off the page"},
+        {render + "pl-lsys-3d --size 200x100", "at 200 x 100 pixels the title of panel 2 [92, 20, 113 x 14] runs off the page; [232, 116] or larger holds them (or set fewer style.views)"},
+        {render + "sf87-2 --size 333x111", "at 333 x 111 pixels the label i−1 of (a) [52, 29, 26 x 12] runs out of its cell; [570, 190] or larger holds them"},
+        {render + "gs-atlas --size 333x111", "at 333 x 111 pixels the title [-28, 8, 379 x 15] runs off the page; [1440, 480] or larger holds them"},
         {render + "tc7-1 --set figure.columns=0", "figure.columns = 0 is not allowed: an integer from 1 to 64"},
         // captions beneath the figure
         {render + "tc7-1 --set figure.caption=original", "figure.caption = \"original\" is not allowed: \"none\" or \"title\": the description has no original_caption"},
@@ -259,7 +262,9 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
 TEST_CASE("a bad setting found in phase 1 creates nothing, not even the output folder", "[cli]") {
     const fs::path parent = fresh_dir("phase1");
     const fs::path out = parent / "never-made";
-    for (const std::string set : {"style.sides=0 pl-lsys-3d", "p_c=1e308 tc7-phase"}) {
+    // The last two: text that does not fit, found before any model runs (the atlas's axes and the schematic).
+    for (const std::string set : {"style.sides=0 pl-lsys-3d", "p_c=1e308 tc7-phase", "n=64 gs-atlas --size 333x111",
+                                  "radius=2 sf87-2 --size 333x111"}) {
         INFO(set);
         const Run run = figgen("render --out " + out.string() + " --set " + set);
         CHECK(run.status == 2);

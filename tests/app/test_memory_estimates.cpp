@@ -154,7 +154,7 @@ TEST_CASE("memory estimates hold: peak RSS <= estimate <= 3 x peak, and --max-me
         {"tc7-ex2", "n 800, panels 1..3", "--no-video --set n=800 --set figure.panels=[1,2,3]"},
         {"gs-atlas", "12 x 12 tiles, 20 steps", "--no-video --scale 0.5 --set steps=20 --set tiles=[12,12]"},
         {"pc-threshold", "L 64 and 256, 200 samples", "--no-video --scale 0.5 --set sizes=[64,256] --set samples=200 --set samples_per_item=50"},
-        {"bd-500", "1M particles", "--no-video --scale 0.5 --set particles=1000000"},
+        {"bd-500", "1M particles, scale 0.6", "--no-video --scale 0.6 --set particles=1000000"},
         {"pl-lsys-lycopodium", "depth +3", "--no-video --set depth=6"},
         {"pl-lsys-3d", "depth +2", "--no-video --scale 0.5 --set depth=9"},
         {"pl-ifs-fern", "2M points", "--no-video --scale 0.5 --set points=2000000"},
