@@ -57,7 +57,7 @@ struct PageText {
         Rect box;
         std::string what;  // "the title of panel 2", "the x tick label "0.5" of plot 1"
         int within = -1;   // the panel a text belongs inside (a legend, a note), -1: outside every panel
-        std::vector<Rect> parts;  // a text's glyphs, all inside `box`; empty: the box is solid
+        std::vector<Rect> parts = {};  // a text's glyphs, all inside `box`; empty: the box is solid
         float em = 0;             // a text's font size, pixels: it keeps text_gap of them from other texts
     };
     std::vector<Box> panels;
