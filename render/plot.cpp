@@ -461,7 +461,8 @@ void axes_text(PageText& page, const Rect& frame, const Axes& axes, const PlotSt
     lay_out_axes(nullptr, text, frame, axes, style);
 }
 
-std::vector<Rect> plot_row(int width, int height, int count, const PlotStyle& style) {
+std::vector<Rect> plot_row(int width, int height, int count, const PlotStyle& style, float min_left,
+                           float min_gap) {
     if (count < 1) return {};
     const float s = style.scale, f = style.font_size * s, lf = style.label_size * s;
     const float tick_room = (style.major_tick + style.tick_pad) * s;
@@ -471,14 +472,14 @@ std::vector<Rect> plot_row(int width, int height, int count, const PlotStyle& st
     const float need_bottom = tick_room + f + style.label_pad * s + 1.2f * lf;
     const float need_top = style.title_pad * s + 1.2f * style.title_size * s;
     const float W = float(width), H = float(height);
-    const float left = std::max(style.left * W, need_left), right = std::max((1 - style.right) * W, 1.2f * f);
+    const float left = std::max({style.left * W, need_left, min_left}), right = std::max((1 - style.right) * W, 1.2f * f);
     const float top = std::max((1 - style.top) * H, need_top), bottom = std::max(style.bottom * H, need_bottom);
     const float n = float(count);
     // The gaps are wspace panel widths, or enough for the y tick labels.
     float w = (W - left - right) / (n + style.wspace * (n - 1));
     float gap = style.wspace * w;
-    if (count > 1 && gap < tick_room + 2.0f * f) {
-        gap = tick_room + 2.0f * f;
+    if (count > 1 && gap < std::max(tick_room + 2.0f * f, min_gap)) {
+        gap = std::max(tick_room + 2.0f * f, min_gap);
         w = (W - left - right - gap * (n - 1)) / n;
     }
     const float panel_w = std::max(1.0f, std::floor(w)), panel_h = std::max(1.0f, std::round(H - top - bottom));

@@ -135,7 +135,10 @@ void colour_bar_text(PageText& page, const Rect& field, const ColourBar& bar, co
 // matplotlib's subplots(1, count) with its default margins (style's left
 // 0.125, right 0.9, bottom 0.11, top 0.88, wspace 0.2), widened where the
 // page is too small to hold the tick labels, axis labels and title at style's
-// sizes. Whole pixels.
-std::vector<Rect> plot_row(int width, int height, int count, const PlotStyle& style);
+// sizes. Whole pixels. `min_left` and `min_gap` (pixels) widen the left
+// margin and the gaps between frames to at least that: the room a plot's
+// measured y tick labels and y label need (plot_page's plot_frames).
+std::vector<Rect> plot_row(int width, int height, int count, const PlotStyle& style, float min_left = 0,
+                           float min_gap = 0);
 
 }  // namespace render

@@ -27,29 +27,52 @@ render::PlotStyle read_plot_style(Settings& style, double output_scale) {
     return plot;
 }
 
+namespace {
+
+// The plots' frames in `area`: matplotlib's subplot margins, widened where a
+// plot's y tick labels and y label, as measured, need more room to the left
+// of its frame than the margin or the gap leaves (matplotlib's
+// constrained layout does the same), by half an em more than they need.
+std::vector<render::Rect> plot_frames(const render::Rect& area, const std::vector<render::Axes>& axes,
+                                      const render::PlotStyle& style) {
+    const int w = static_cast<int>(area.w), h = static_cast<int>(area.h), n = static_cast<int>(axes.size());
+    auto placed = [&](std::vector<render::Rect> frames) {
+        for (render::Rect& frame : frames) frame.x += area.x, frame.y += area.y;
+        return frames;
+    };
+    std::vector<render::Rect> frames = placed(render::plot_row(w, h, n, style));
+    // How far each plot's text reaches left of its frame.
+    std::vector<float> reach(axes.size(), 0.0f);
+    for (std::size_t i = 0; i < axes.size(); ++i) {
+        render::PageText page;
+        render::axes_text(page, frames[i], axes[i], style, 0);
+        for (const render::PageText::Box& t : page.texts)
+            if (t.within < 0 && t.box.w > 0 && t.box.right() <= frames[i].x + 1)
+                reach[i] = std::max(reach[i], frames[i].x - t.box.x);
+    }
+    const float pad = 0.5f * style.label_size * style.scale;
+    float min_left = 0, min_gap = 0;
+    if (!frames.empty() && reach[0] > frames[0].x - area.x) min_left = reach[0] + pad;
+    for (std::size_t i = 1; i < frames.size(); ++i)
+        if (reach[i] > frames[i].x - frames[i - 1].right()) min_gap = std::max(min_gap, reach[i] + pad);
+    if (min_left == 0 && min_gap == 0) return frames;
+    return placed(render::plot_row(w, h, n, style, min_left, min_gap));
+}
+
+}  // namespace
+
 void draw_plot_row(render::Surface& surface, const render::Rect& area, const std::vector<render::Axes>& axes,
                    const render::PlotStyle& style) {
-    const auto frames =
-        render::plot_row(static_cast<int>(area.w), static_cast<int>(area.h), static_cast<int>(axes.size()), style);
-    for (std::size_t i = 0; i < axes.size(); ++i) {
-        render::Rect frame = frames[i];
-        frame.x += area.x;
-        frame.y += area.y;
-        render::draw_axes(surface, frame, axes[i], style);
-    }
+    const auto frames = plot_frames(area, axes, style);
+    for (std::size_t i = 0; i < axes.size(); ++i) render::draw_axes(surface, frames[i], axes[i], style);
 }
 
 render::PageText plot_row_text(const render::Rect& area, const std::vector<render::Axes>& axes,
                                const render::PlotStyle& style) {
-    const auto frames =
-        render::plot_row(static_cast<int>(area.w), static_cast<int>(area.h), static_cast<int>(axes.size()), style);
+    const auto frames = plot_frames(area, axes, style);
     render::PageText page;
-    for (std::size_t i = 0; i < axes.size(); ++i) {
-        render::Rect frame = frames[i];
-        frame.x += area.x;
-        frame.y += area.y;
-        render::axes_text(page, frame, axes[i], style, axes.size() > 1 ? static_cast<int>(i) + 1 : 0);
-    }
+    for (std::size_t i = 0; i < axes.size(); ++i)
+        render::axes_text(page, frames[i], axes[i], style, axes.size() > 1 ? static_cast<int>(i) + 1 : 0);
     return page;
 }
 

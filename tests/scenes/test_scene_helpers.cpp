@@ -9,6 +9,7 @@
 #include "render/colormap.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/field_stats.hpp"
+#include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 
 TEST_CASE("every catalog description names a known scene", "[scenes]") {
@@ -87,4 +88,33 @@ TEST_CASE("a film's page of field panels takes one sample a pixel where its fram
     }
     render::Canvas one(240, 260, 1), four(240, 260, 4);
     CHECK(scenes::draw_field_panels(one, page, 0.5).rgba != scenes::draw_field_panels(four, page, 0.5).rgba);
+}
+
+TEST_CASE("plots side by side make room for their measured y tick labels", "[plot][layout]") {
+    // Two plots whose y tick labels ("0.5920") are wider than the gap matplotlib's fractions leave at 640 x 480.
+    render::Axes narrow, wide;
+    narrow.x_range = wide.x_range = std::pair{0.0, 1.0};
+    narrow.y_range = std::pair{0.0, 1.0};
+    wide.y_range = std::pair{0.5915, 0.5960};
+    wide.y_label = "estimate of p_c";
+    const render::PlotStyle style;
+    const render::Rect page{0, 0, 640, 480};
+    const auto plain = render::plot_row(640, 480, 2, style);
+    render::PageText crowded;
+    render::axes_text(crowded, plain[0], narrow, style, 1);
+    render::axes_text(crowded, plain[1], wide, style, 2);
+    const std::string clash = render::text_clash(crowded, page);
+    CHECK(clash.find("of plot 2") != std::string::npos);
+    CHECK(clash.find("overlaps the frame of plot 1") != std::string::npos);
+    // The page's own layout widens the gap: nothing clashes, and the frames stay on the page.
+    const render::PageText roomy = scenes::plot_row_text(page, {narrow, wide}, style);
+    CHECK(render::text_clash(roomy, page).empty());
+    REQUIRE(roomy.panels.size() == 2);
+    CHECK(roomy.panels[1].box.x - roomy.panels[0].box.right() > plain[1].x - plain[0].right());
+    CHECK(roomy.panels[1].box.right() <= 640);
+    // Plots whose labels fit keep matplotlib's fractions exactly.
+    const render::PageText same = scenes::plot_row_text(page, {narrow, narrow}, style);
+    CHECK(same.panels[0].box.x == plain[0].x);
+    CHECK(same.panels[1].box.x == plain[1].x);
+    CHECK(same.panels[1].box.w == plain[1].w);
 }
