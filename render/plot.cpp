@@ -54,15 +54,16 @@ struct TickFonts {
     float width(const TickLabel& l) const { return base.width(l.base) + script.width(l.exponent); }
 };
 
-// Where a plot's text goes: into a batch to draw, or, for the fit check,
-// only as named boxes on a PageText. Both take the same positions from the
-// same code, so the check sees what would be drawn.
+// Where a plot's shapes and text go: onto a surface, or, for the fit
+// check, only the text, as named boxes on a PageText. Both take the same
+// positions from the same code, so the check sees what would be drawn.
 class TextSink {
 public:
-    TextSink() = default;  // drawing
+    explicit TextSink(Surface& surface) : surface_(&surface) {}
     TextSink(PageText& page, int panel, std::string of) : page_(&page), panel_(panel), of_(std::move(of)) {}
 
-    bool drawing() const { return page_ == nullptr; }
+    bool drawing() const { return surface_ != nullptr; }
+    Surface* surface() const { return surface_; }
     // Adds a line (Text::add's arguments) and returns its ink.
     LineInk add(Font& font, std::string_view utf8, glm::vec2 at, const glm::vec4& colour, Align align = Align::left,
                 Baseline baseline = Baseline::baseline, float rotation = 0) {
@@ -78,11 +79,16 @@ public:
     }
     // Names a solid box (the legend's).
     void name(const Rect& box, const std::string& what, bool inside = false) { name(LineInk{box, {}}, what, inside); }
-    void draw(Surface* surface) const {
-        if (surface != nullptr) text_.draw(*surface);
+    // Draws `shapes`, then the text added since the last flush, over them.
+    void flush(const Shapes& shapes) {
+        if (!drawing()) return;
+        shapes.draw(*surface_);
+        text_.draw(*surface_);
+        text_.clear();
     }
 
 private:
+    Surface* surface_ = nullptr;
     Text text_;
     PageText* page_ = nullptr;
     int panel_ = -1;
@@ -299,7 +305,7 @@ void draw_data(Surface& surface, const Rect& frame, const Axes& axes, const Axis
 }
 
 // Spines, ticks, tick labels, axis labels, title and notes.
-void draw_decorations(Surface* surface, TextSink& text, const Rect& frame, const Axes& axes, const AxisMap& mx,
+void draw_decorations(TextSink& text, const Rect& frame, const Axes& axes, const AxisMap& mx,
                       const AxisMap& my, const PlotStyle& st) {
     const float s = st.scale;
     Font& tick_font = font_of_size(st.font_size * s);
@@ -372,8 +378,7 @@ void draw_decorations(Surface* surface, TextSink& text, const Rect& frame, const
         text.name(text.add(tick_font, n.text, {frame.x + n.at.x * frame.w, frame.bottom() - n.at.y * frame.h},
                            n.colour, n.align),
                   "the note \"" + n.text + "\"", true);
-    if (surface != nullptr) shapes.draw(*surface);
-    text.draw(surface);
+    text.flush(shapes);
 }
 
 // The outline of a rectangle with rounded corners, clockwise from the middle of its top edge.
@@ -395,7 +400,7 @@ std::vector<glm::vec2> rounded_rect(const Rect& r, float radius) {
 
 // matplotlib's legend: white at 0.8 alpha in a 0.8 grey rounded frame, half
 // an em from the axes' corner; rows of a 2 em line sample and the label.
-void draw_legend(Surface* surface, TextSink& text, const Rect& frame, const Axes& axes, const PlotStyle& st) {
+void draw_legend(TextSink& text, const Rect& frame, const Axes& axes, const PlotStyle& st) {
     std::vector<const Series*> entries;
     for (const Series& s : axes.series)
         if (!s.label.empty()) entries.push_back(&s);
@@ -430,35 +435,33 @@ void draw_legend(Surface* surface, TextSink& text, const Rect& frame, const Axes
             add_marker(shapes, {(x0 + x1) / 2, y}, s.marker_size * st.scale / 2, st.marker_edge * st.scale, s.colour);
         text.add(font, s.label, {x1 + 0.8f * f, baseline}, st.ink);
     }
-    shapes.draw(*surface);
-    text.draw(surface);
+    text.flush(shapes);
 }
 
-// draw_axes onto `surface`, or (null) its text into `text`'s page.
-void lay_out_axes(Surface* surface, TextSink& text, const Rect& frame, const Axes& axes, const PlotStyle& style) {
+// draw_axes through `text`: onto its surface, or its text onto its page.
+void lay_out_axes(TextSink& text, const Rect& frame, const Axes& axes, const PlotStyle& style) {
     if (!(frame.w > 0 && frame.h > 0)) return;
     const auto [x_lo, x_hi] = view_range(axes, true);
     const auto [y_lo, y_hi] = view_range(axes, false);
     const AxisMap mx{axes.x_scale, x_lo, x_hi, frame.x, frame.right()};
     const AxisMap my{axes.y_scale, y_lo, y_hi, frame.bottom(), frame.y};  // y up on the page
-    if (surface != nullptr) draw_data(*surface, frame, axes, mx, my, style);
-    draw_decorations(surface, text, frame, axes, mx, my, style);
-    TextSink legend_text = text.drawing() ? TextSink() : text;
-    draw_legend(surface, legend_text, frame, axes, style);
+    if (text.drawing()) draw_data(*text.surface(), frame, axes, mx, my, style);
+    draw_decorations(text, frame, axes, mx, my, style);
+    draw_legend(text, frame, axes, style);
 }
 
 }  // namespace
 
 void draw_axes(Surface& surface, const Rect& frame, const Axes& axes, const PlotStyle& style) {
-    TextSink text;
-    lay_out_axes(&surface, text, frame, axes, style);
+    TextSink text(surface);
+    lay_out_axes(text, frame, axes, style);
 }
 
 void axes_text(PageText& page, const Rect& frame, const Axes& axes, const PlotStyle& style, int plot) {
     const std::string name = plot > 0 ? "plot " + std::to_string(plot) : "the plot";
     page.panels.push_back({frame, "the frame of " + name});
     TextSink text(page, static_cast<int>(page.panels.size()) - 1, plot > 0 ? " of " + name : "");
-    lay_out_axes(nullptr, text, frame, axes, style);
+    lay_out_axes(text, frame, axes, style);
 }
 
 std::vector<Rect> plot_row(int width, int height, int count, const PlotStyle& style, float min_left,
@@ -523,20 +526,19 @@ float colour_bar_room(const ColourBar& bar, float field_width, float height, con
 
 namespace {
 
-// draw_colour_bar onto `surface`, or (null) its text into `text`'s page.
-void lay_out_colour_bar(Surface* surface, TextSink& text, const Rect& field, const ColourBar& bar,
-                        const PlotStyle& st) {
+// draw_colour_bar through `text`: onto its surface, or its text onto its page.
+void lay_out_colour_bar(TextSink& text, const Rect& field, const ColourBar& bar, const PlotStyle& st) {
     check_bar(bar);
     const float s = st.scale;
     const Rect r = bar_rect(field);
     Shapes shapes;
-    if (surface != nullptr) {
+    if (text.drawing()) {
         // The entries as a column of cells, top row the last entry.
         const int n = bar.colormap.size();
         std::vector<double> values(static_cast<std::size_t>(n));
         for (int i = 0; i < n; ++i) values[static_cast<std::size_t>(i)] = n - 1 - i + 0.5;
         const FieldStyle cells{&bar.colormap, 0.0, double(n), 1.0f, Sampling::nearest};
-        draw_field(*surface, r, n, 1, values, cells);
+        draw_field(*text.surface(), r, n, 1, values, cells);
         shapes.frame(r, st.spine_width * s, st.ink);
     }
     Font& tick_font = font_of_size(st.font_size * s);
@@ -558,22 +560,21 @@ void lay_out_colour_bar(Surface* surface, TextSink& text, const Rect& field, con
         text.name(text.add(label_font, bar.label, {x, r.centre().y}, st.ink, Align::centre, Baseline::top, 90),
                   "the colour bar's label");
     }
-    if (surface != nullptr) shapes.draw(*surface);
-    text.draw(surface);
+    text.flush(shapes);
 }
 
 }  // namespace
 
 void draw_colour_bar(Surface& surface, const Rect& field, const ColourBar& bar, const PlotStyle& st) {
-    TextSink text;
-    lay_out_colour_bar(&surface, text, field, bar, st);
+    TextSink text(surface);
+    lay_out_colour_bar(text, field, bar, st);
 }
 
 void colour_bar_text(PageText& page, const Rect& field, const ColourBar& bar, const PlotStyle& style, int panel) {
     const std::string of = panel > 0 ? " of panel " + std::to_string(panel) : "";
     page.panels.push_back({bar_rect(field), "the colour bar" + of});
     TextSink text(page, static_cast<int>(page.panels.size()) - 1, of);
-    lay_out_colour_bar(nullptr, text, field, bar, style);
+    lay_out_colour_bar(text, field, bar, style);
 }
 
 }  // namespace render
