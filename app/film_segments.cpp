@@ -99,6 +99,35 @@ nlohmann::json FilmSegments::run_item(int item) const {
     return out.result();
 }
 
+// The segment's steps, increasing within the film's window, and at most a
+// packet a frame, each with a frame of the segment and dts increasing
+// behind pts (what the muxer takes).
+void FilmSegments::check_result(int item, const nlohmann::json& r) const {
+    namespace rc = scenes::result_check;
+    const int frames = std::min(frames_, (item + 1) * per_segment_) - item * per_segment_;
+    const description::Animation& a = *d_.animation;
+    long long previous = -1;
+    for (const nlohmann::json& step : rc::array_of(rc::member(r, "steps"), "steps", frames)) {
+        const long long s = rc::integer_in(step, "steps", a.first, a.last);
+        if (s <= previous) throw std::invalid_argument("steps do not increase");
+        previous = s;
+    }
+    const nlohmann::json& packets = rc::array_of(rc::member(r, "packets"), "packets", -1);
+    if (packets.size() > static_cast<std::size_t>(frames))
+        throw std::invalid_argument("packets holds " + std::to_string(packets.size()) + " packets for " +
+                                    std::to_string(frames) + " frames");
+    long long last_dts = -frames - 1;
+    for (const nlohmann::json& p : packets) {
+        rc::array_of(p, "a packet", 4);
+        if (!p[0].is_binary()) throw std::invalid_argument("a packet holds no bytes");
+        const long long pts = rc::integer_in(p[1], "a packet's pts", 0, frames - 1);
+        const long long dts = rc::integer_in(p[2], "a packet's dts", -frames, pts);
+        if (dts <= last_dts) throw std::invalid_argument("the packets' dts do not increase");
+        last_dts = dts;
+        rc::boolean(p[3], "a packet's key flag");
+    }
+}
+
 // The film's bytes as require_disk bounds them (0.15 a pixel and frame), a
 // segment's share, and a packet's overhead a frame.
 double FilmSegments::item_bytes() const {

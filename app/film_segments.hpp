@@ -32,6 +32,7 @@ public:
     int item_count() const override;
     std::string item_name(int item) const override;  // "film frames 120 to 239"
     nlohmann::json run_item(int item) const override;
+    void check_result(int item, const nlohmann::json& result) const override;
     double item_bytes() const override;
     std::string depends_on() const override;
 

@@ -5,6 +5,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "app/bounded_json.hpp"
 #include "app/figure_lock.hpp"
 #include "app/version.hpp"
 #include "description/plain_name.hpp"
@@ -27,7 +29,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr const char* parts_format = "figgen-parts-1";
+constexpr const char* parts_format = "figgen-parts-2";
 constexpr std::size_t manifest_max_bytes = 64u << 20;
 
 std::string part_name(int item) {
@@ -47,7 +49,27 @@ json manifest_of(const description::Description& d, const scenes::WorkItems& ite
             {"items", names}};
 }
 
+std::string sha256_of(const std::string& text) { return render::sha256_hex(text.data(), text.size()); }
+
+// A part as Parts::load found it.
+struct Part {
+    enum class State { absent, sound, damaged };
+    State state = State::absent;
+    json result;          // sound: the item's result, checked
+    std::string problem;  // damaged: what is wrong, after "<folder>/item-000017.cbor (tile 17) "
+};
+
+// The manifest's value of `key` for a message: its JSON, shortened.
+std::string shown_value(const json& manifest, const char* key) {
+    const auto it = manifest.find(key);
+    return it == manifest.end() ? "none" : description::printable(it->dump(), 80);
+}
+
 // A figure's parts folder: its manifest and one file per finished item.
+// A part is the CBOR map {item, name, manifest_sha256, result_sha256,
+// result}: its result as CBOR bytes of their own and their SHA-256, so that
+// a part changed since it was written is told from one that was not; the
+// manifest's hash ties it to this figure, settings and figgen.
 class Parts {
 public:
     // The parts folder of `d` in `out`, made when missing. Parts of another
@@ -57,13 +79,14 @@ public:
         // Shards sharing an output folder may start together: one at a time checks the folder.
         const FigureLock turn(out, parts_name(d.id));
         Parts parts(render::Folder(out, parts_name(d.id)), items, manifest_of(d, items));
-        const std::optional<json> found = parts.read_manifest();
+        std::string problem;
+        const std::optional<json> found = parts.read_manifest(problem);
         if (found != parts.manifest_) {
-            // Whatever is there (parts of another manifest, or of none) is never used.
-            if (found)
-                std::fprintf(stderr,
-                             "figgen: %s: the parts in %s are of another description or figgen; computing anew\n",
-                             d.id.c_str(), description::printable(parts.folder_.path().string()).c_str());
+            // Whatever is there (parts of another manifest, of a damaged one, or of none) is never used.
+            if (found || !problem.empty())
+                std::fprintf(stderr, "figgen: %s: the parts in %s are of another description or figgen%s; computing anew\n",
+                             d.id.c_str(), description::printable(parts.folder_.path().string()).c_str(),
+                             problem.empty() ? "" : (" (its manifest " + problem + ")").c_str());
             render::remove_at(out, parts_name(d.id));
             parts.folder_ = render::Folder(out, parts_name(d.id));
             render::write_file_atomically(parts.folder_, "manifest.json", parts.manifest_.dump(1) + "\n",
@@ -73,53 +96,69 @@ public:
     }
 
     // The parts a merge was given with --from: the folder itself or the
-    // output folder that holds it; refused (UsageError) unless its manifest
-    // is this run's.
+    // output folder that holds it (a real folder there, not a symlink);
+    // refused (UsageError) unless its manifest is this run's.
     static Parts given(const std::filesystem::path& path, const description::Description& d,
                        const scenes::WorkItems& items) {
-        const std::string option = "--from " + path.string();
+        const std::string option = "--from " + description::printable(path.string());
+        const std::string allowed = "allowed: a parts folder (" + parts_name(d.id) +
+                                    ") or the --out folder of a render --shard that holds one";
         std::optional<render::Folder> folder;
         try {
             const render::Folder named(path);
-            folder = render::read_file_at(named, "manifest.json", manifest_max_bytes)
-                         ? named
-                         : render::Folder(path / parts_name(d.id));
+            struct stat st {};
+            if (::fstatat(named.fd(), "manifest.json", &st, AT_SYMLINK_NOFOLLOW) == 0)
+                folder = named;  // a parts folder: its manifest is read (and refused) below
+            else
+                folder = render::Folder::inside(named, parts_name(d.id));
         } catch (const std::runtime_error& e) {
-            throw UsageError(option + ": " + e.what() + "; allowed: a parts folder (" + parts_name(d.id) +
-                             ") or the --out folder of a render --shard that holds one");
+            throw UsageError(option + ": " + e.what() + "; " + allowed);
         }
+        if (!folder)
+            throw UsageError(option + " holds no parts manifest and no folder " + parts_name(d.id) +
+                             " (a symlink is not followed); " + allowed);
         Parts parts(*folder, items, manifest_of(d, items));
-        const std::optional<json> found = parts.read_manifest();
+        std::string problem;
+        const std::optional<json> found = parts.read_manifest(problem);
+        if (!problem.empty())
+            throw UsageError(option + ": its parts manifest (manifest.json) " + problem + "; allowed: the " +
+                             parts_name(d.id) + " folder a render --shard wrote");
         if (!found)
             throw UsageError(option + " has no parts manifest (manifest.json); allowed: the " + parts_name(d.id) +
                              " folder a render --shard wrote");
-        for (const char* key : {"format", "figure", "figgen", "description_sha256", "items"})
-            if (found->value(key, json()) != parts.manifest_[key])
+        for (const char* key : {"format", "figure", "figgen", "description_sha256", "items"}) {
+            const auto it = found->find(key);
+            if (it == found->end() || *it != parts.manifest_[key])
                 throw UsageError(option + ": its parts are of another " +
                                  (std::string(key) == "figure"               ? "figure"
                                   : std::string(key) == "figgen"             ? "figgen version"
                                   : std::string(key) == "description_sha256" ? "description, seed or --set"
+                                  : std::string(key) == "format"             ? "format"
                                                                              : "item list") +
-                                 " (manifest " + key + " " + description::printable(found->value(key, json()).dump()) +
-                                 ", this run's " + description::printable(parts.manifest_[key].dump()) +
-                                 "); allowed: parts of this same figure, settings and figgen");
+                                 " (manifest " + key + " " + shown_value(*found, key) + ", this run's " +
+                                 shown_value(parts.manifest_, key) + "); allowed: parts of this same figure, settings and figgen");
+        }
         return parts;
     }
 
-    // Item `item`'s result if its part is here and sound; a part that does
-    // not decode, or is of another item, is left out (computed again).
-    std::optional<json> load(int item) const {
+    // Item `item`'s part: absent, sound (its result checked by the scene)
+    // or damaged (and why).
+    Part load(int item) const {
+        if (!has(item)) return {};
+        const auto damaged = [](std::string problem) { return Part{Part::State::damaged, json(), std::move(problem)}; };
         const std::optional<std::string> bytes =
             render::read_file_at(folder_, part_name(item), static_cast<std::size_t>(max_part_bytes_));
-        if (!bytes) return std::nullopt;
-        const json part = json::from_cbor(*bytes, true, false);
-        if (part.is_discarded() || !part.is_object() || part.value("item", -1) != item ||
-            part.value("name", std::string()) != items_.item_name(item) || !part.contains("result"))
-            return std::nullopt;
-        return part["result"];
+        if (!bytes)
+            return damaged("cannot be read or holds more than the " + std::to_string(std::llround(max_part_bytes_)) +
+                           " bytes its item's result takes");
+        try {
+            return {Part::State::sound, result_of_part(*bytes, item, items_, manifest_sha256_), {}};
+        } catch (const MalformedData& e) {
+            return damaged(e.what());
+        }
     }
 
-    // Whether item `item`'s part is here (not yet whether it decodes).
+    // Whether a regular file stands at item `item`'s part (not yet whether it is sound).
     bool has(int item) const {
         struct stat st {};
         return ::fstatat(folder_.fd(), part_name(item).c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode);
@@ -128,10 +167,13 @@ public:
     void store(int item, const json& result) const {
         // Put in place at once, not with the figure's files: a run killed
         // before the figure is written keeps it.
-        const std::vector<std::uint8_t> bytes =
-            json::to_cbor({{"item", item}, {"name", items_.item_name(item)}, {"result", result}});
-        render::write_file_atomically(folder_, part_name(item), std::string(bytes.begin(), bytes.end()),
+        render::write_file_atomically(folder_, part_name(item), part_bytes(item, result, items_, manifest_sha256_),
                                       render::AtomicFile::Commit::now);
+    }
+
+    // "<folder>/item-000017.cbor (tile 17)": what messages call a part.
+    std::string named(int item) const {
+        return description::printable((folder_ / part_name(item)).string()) + " (" + items_.item_name(item) + ")";
     }
 
     const render::Folder& folder() const { return folder_; }
@@ -141,21 +183,44 @@ private:
         : folder_(std::move(folder)),
           items_(items),
           manifest_(std::move(manifest)),
+          manifest_sha256_(sha256_of(manifest_.dump())),
           max_part_bytes_(items.item_bytes() + 65536) {}
 
-    std::optional<json> read_manifest() const {
+    // The manifest, none when there is none; `problem` says why one that is
+    // there cannot be read.
+    std::optional<json> read_manifest(std::string& problem) const {
+        struct stat st {};
+        if (::fstatat(folder_.fd(), "manifest.json", &st, AT_SYMLINK_NOFOLLOW) != 0) return std::nullopt;
         const std::optional<std::string> text = render::read_file_at(folder_, "manifest.json", manifest_max_bytes);
-        if (!text) return std::nullopt;
-        json m = json::parse(*text, nullptr, false);
-        if (m.is_discarded()) return std::nullopt;
-        return m;
+        if (!text) {
+            problem = "is not a regular file of at most " + std::to_string(manifest_max_bytes >> 20) + " MiB";
+            return std::nullopt;
+        }
+        try {
+            return app::json_bounded(*text);
+        } catch (const MalformedData& e) {
+            problem = e.what();
+            return std::nullopt;
+        }
     }
 
     render::Folder folder_;
     const scenes::WorkItems& items_;
     json manifest_;
+    std::string manifest_sha256_;
     double max_part_bytes_;
 };
+
+// A resume's use of item `item`'s part: its result when sound; a damaged
+// part is said once and computed again (its new part replaces it).
+std::optional<json> kept_result(const Parts& parts, const std::string& id, int item) {
+    Part part = parts.load(item);
+    if (part.state == Part::State::sound) return std::move(part.result);
+    if (part.state == Part::State::damaged)
+        std::fprintf(stderr, "figgen: %s: the part %s %s; computing it again\n", id.c_str(), parts.named(item).c_str(),
+                     part.problem.c_str());
+    return std::nullopt;
+}
 
 // Runs one item; a failure becomes a message naming it.
 json run_one(const description::Description& d, const scenes::WorkItems& items, int item) {
@@ -205,7 +270,7 @@ Cluster::Bytes cbor(const json& j) {
     return json::to_cbor(j);
 }
 json decoded(const Cluster::Bytes& bytes) {
-    return json::from_cbor(bytes);
+    return app::cbor_bounded(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 // The items of `missing` that rank `rank` of `size` runs under the fixed schedule.
@@ -217,6 +282,53 @@ std::vector<int> fixed_share(const std::vector<int>& missing, int rank, int size
 }
 
 }  // namespace
+
+json result_of_part(std::string_view bytes, int item, const scenes::WorkItems& items,
+                    const std::string& manifest_sha256) {
+    const json part = cbor_bounded(bytes);
+    if (!part.is_object()) throw MalformedData("is not a map of keys");
+    const auto field = [&](const char* key) -> const json* {
+        const auto it = part.find(key);
+        return it == part.end() ? nullptr : &*it;
+    };
+    const json *index = field("item"), *name = field("name"), *manifest = field("manifest_sha256"),
+               *hash = field("result_sha256"), *result = field("result");
+    if (!index || !index->is_number_unsigned() || index->get<std::uint64_t>() != static_cast<std::uint64_t>(item))
+        throw MalformedData("is not the part of item " + std::to_string(item));
+    if (!name || *name != items.item_name(item)) throw MalformedData("is named for another item");
+    if (!manifest || *manifest != manifest_sha256)
+        throw MalformedData("was written for another manifest (figure, settings or figgen)");
+    if (!result || !result->is_binary() || !hash || !hash->is_string())
+        throw MalformedData("lacks its result or the result's SHA-256");
+    const std::vector<std::uint8_t>& result_bytes = result->get_binary();
+    if (render::sha256_hex(result_bytes.data(), result_bytes.size()) != hash->get_ref<const std::string&>())
+        throw MalformedData("has a result that does not match its SHA-256 (changed since it was written)");
+    json decoded;
+    try {
+        decoded = cbor_bounded(std::string_view(reinterpret_cast<const char*>(result_bytes.data()), result_bytes.size()));
+    } catch (const MalformedData& e) {
+        throw MalformedData("has a result that " + std::string(e.what()));
+    }
+    try {
+        items.check_result(item, decoded);
+    } catch (const std::invalid_argument& e) {
+        throw MalformedData("has a result its item cannot give: " + std::string(e.what()));
+    }
+    return decoded;
+}
+
+std::string part_bytes(int item, const json& result, const scenes::WorkItems& items,
+                       const std::string& manifest_sha256) {
+    std::vector<std::uint8_t> result_bytes = json::to_cbor(result);
+    const std::string hash = render::sha256_hex(result_bytes.data(), result_bytes.size());
+    // Moved, not copied: a result is as many copies of its numbers as the memory estimates count.
+    const std::vector<std::uint8_t> bytes = json::to_cbor({{"item", item},
+                                                           {"name", items.item_name(item)},
+                                                           {"manifest_sha256", manifest_sha256},
+                                                           {"result_sha256", hash},
+                                                           {"result", json::binary(std::move(result_bytes))}});
+    return std::string(bytes.begin(), bytes.end());
+}
 
 std::string parts_name(const std::string& id) {
     return id + ".parts";
@@ -256,20 +368,26 @@ std::vector<json> run_work(const description::Description& d, const scenes::Work
         // Every --from folder's parts; the first folder holding an item gives it.
         for (const std::filesystem::path& from : options.merge_from) {
             const Parts parts = Parts::given(from, d, items);
-            for (int i = 0; i < count; ++i)
-                if (!results[i]) results[i] = parts.load(i);
+            for (int i = 0; i < count; ++i) {
+                if (results[i]) continue;
+                Part part = parts.load(i);
+                if (part.state == Part::State::damaged)
+                    throw UsageError("--from: the part " + parts.named(i) + " " + part.problem +
+                                     "; allowed: the parts a render --shard of this figure wrote, unchanged "
+                                     "(render that shard again)");
+                if (part.state == Part::State::sound) results[i] = std::move(part.result);
+            }
         }
         for (int i = 0; i < count; ++i)
             if (!results[i])
-                throw std::runtime_error("--from: " + d.id + "'s part of " + items.item_name(i) +
-                                         " does not decode as this figure's (damaged or changed since it was "
-                                         "written): render that shard again");
+                throw UsageError("--from: " + d.id + "'s parts lack " + items.item_name(i) +
+                                 "; allowed: the parts of every shard (render --shard K/N for each K of N)");
         progress.advance(count);
     } else {
         const Parts parts = Parts::in_output(folder, d, items);
         std::vector<int> missing;
         for (int i = 0; i < count; ++i) {
-            results[i] = parts.load(i);
+            results[i] = kept_result(parts, d.id, i);
             if (results[i])
                 progress.advance();
             else
@@ -369,7 +487,7 @@ int run_shard(const description::Description& d, const scenes::WorkItems& items,
     const Parts parts = Parts::in_output(folder, d, items);
     std::vector<int> missing;
     for (int i = options.shard - 1; i < items.item_count(); i += options.shards)
-        if (!parts.load(i)) missing.push_back(i);
+        if (!kept_result(parts, d.id, i)) missing.push_back(i);
     progress.start(d.id + " shard " + std::to_string(options.shard) + "/" + std::to_string(options.shards),
                    static_cast<long long>(missing.size()));
     std::atomic<std::size_t> cursor{0};

@@ -8,7 +8,8 @@
 //   manifest.json       figgen's version, the figure, the hash of what the
 //                       items depend on (scene, seed, [params]) and the
 //                       items' names;
-//   item-000017.cbor    item 17's result (CBOR), with its index and name.
+//   item-000017.cbor    item 17's result (CBOR), with its index, name, the
+//                       manifest's SHA-256 and the result's (result_of_part).
 // A run that finds parts with the same manifest computes only the items
 // that are missing (a resume); parts with another manifest are never used.
 // A render removes the folder once the figure is in place; a shard keeps it.
@@ -16,8 +17,10 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "app/bounded_json.hpp"
 #include "app/cluster.hpp"
 #include "description/description.hpp"
 #include "render/atomic_file.hpp"
@@ -43,6 +46,18 @@ struct WorkOptions {
 
 // "gs-atlas.parts"
 std::string parts_name(const std::string& id);
+
+// Item `item`'s result from the bytes of its part, as a merge or a resume
+// reads it: a CBOR map {item, name, manifest_sha256, result_sha256, result}
+// of this item, of the manifest whose SHA-256 is `manifest_sha256`, whose
+// result (CBOR bytes of their own) matches its SHA-256 and passes
+// items.check_result. Throws app::MalformedData saying what is wrong, in
+// words that follow the part's name.
+nlohmann::json result_of_part(std::string_view bytes, int item, const scenes::WorkItems& items,
+                              const std::string& manifest_sha256);
+// The bytes of item `item`'s part holding `result` (what a run stores).
+std::string part_bytes(int item, const nlohmann::json& result, const scenes::WorkItems& items,
+                       const std::string& manifest_sha256);
 // The hex SHA-256 of what the items' results depend on: the scene, the
 // seed, the [params] as read, figgen's version and items.depends_on().
 std::string work_hash(const description::Description& d, const scenes::WorkItems& items);

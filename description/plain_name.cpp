@@ -51,10 +51,14 @@ bool is_bidi_control(std::uint32_t code) {
 
 }  // namespace
 
-std::string printable(std::string_view text) {
+std::string printable(std::string_view text, std::size_t most) {
     std::string shown;
     char escape[16];
     for (std::size_t at = 0; at < text.size();) {
+        if (shown.size() >= most) {
+            shown += "... (" + std::to_string(text.size()) + " bytes in all)";
+            break;
+        }
         std::uint32_t code = 0;
         const std::size_t length = decode_utf8(text, at, code);
         if (length == 0) {

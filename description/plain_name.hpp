@@ -26,6 +26,9 @@ bool is_language_tag(std::string_view tag);
 // bidirectional controls (U+202A..U+202E, U+2066..U+2069, U+200E, U+200F,
 // U+061C) and invalid UTF-8 are written as escapes (\n, \x00, \u202E), so a
 // hostile name can neither break the line nor reorder what a terminal shows.
-std::string printable(std::string_view text);
+// What is shown stops after about `most` bytes, with the text's length, so
+// a 10 MB value never makes a 10 MB message.
+inline constexpr std::size_t printable_most = 400;
+std::string printable(std::string_view text, std::size_t most = printable_most);
 
 }  // namespace description

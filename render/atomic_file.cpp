@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
@@ -196,6 +197,12 @@ AtomicFile::AtomicFile(Folder folder, std::string name, Commit when)
     enlist(folder_, temp_);
 }
 
+std::optional<Folder> Folder::inside(const Folder& parent, const std::string& name) {
+    const int fd = ::openat(parent.fd(), name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) return std::nullopt;
+    return Folder(fd, parent / name);
+}
+
 Folder Folder::of(const std::filesystem::path& path) {
     const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
     const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
@@ -331,11 +338,13 @@ int remove_stale_temporaries(const Folder& folder, const std::vector<std::string
 }
 
 std::optional<std::string> read_file_at(const Folder& folder, const std::string& name, std::size_t max_bytes) {
-    const int fd = ::openat(folder.fd(), name.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    // O_NONBLOCK: a FIFO standing at the name would block the open itself
+    // until a writer came; it is refused by fstat like any other non-file.
+    const int fd = ::openat(folder.fd(), name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) return std::nullopt;
     struct stat st {};
     std::optional<std::string> text;
-    if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+    if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && static_cast<std::uintmax_t>(st.st_size) <= max_bytes) {
         text.emplace();
         char chunk[1 << 16];
         ssize_t n = 0;

@@ -36,6 +36,10 @@ public:
     Folder(const Folder& parent, const std::string& name);
     // The folder that file `path` is (to be) in, opened; the error names `path`.
     static Folder of(const std::filesystem::path& path);
+    // The existing subfolder `name` of `parent`, for reading: none when
+    // nothing is there or what is there is not a folder (a symlink to one
+    // is not followed).
+    static std::optional<Folder> inside(const Folder& parent, const std::string& name);
 
     int fd() const { return handle_->fd; }
     const std::filesystem::path& path() const { return path_; }

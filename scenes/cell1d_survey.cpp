@@ -9,6 +9,7 @@
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/field_stats.hpp"
+#include "scenes/work_codec.hpp"
 #include "scenes/panel_grid.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
@@ -111,6 +112,14 @@ public:
         for (int i = fit_from_; i < n_; ++i) steps.push_back(i);
         return {{"slope_zero", slope_of(rule, n_, sim::Boundary::zero, steps, fit_from_)},
                 {"slope_wrap", slope_of(rule, n_, sim::Boundary::wrap, steps, fit_from_)}};
+    }
+
+    // Two slopes of a log-log fit: finite numbers.
+    void check_result(int, const nlohmann::json& r) const override {
+        namespace rc = result_check;
+        const double huge = std::numeric_limits<double>::max();
+        rc::number_in(rc::member(r, "slope_zero"), "slope_zero", -huge, huge);
+        rc::number_in(rc::member(r, "slope_wrap"), "slope_wrap", -huge, huge);
     }
 
     void render(Output& out) const override {

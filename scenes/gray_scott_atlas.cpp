@@ -140,6 +140,28 @@ public:
         return {{"tile", tile}, {"b", binary_of<double>(sim::gray_scott_atlas_double_b(atlas_, begin, tile).cells())}};
     }
 
+    // A tile's rates are its index's, its B within the health bound every
+    // finished run keeps; a tile in double is the one its index names.
+    void check_result(int item, const nlohmann::json& r) const override {
+        namespace rc = result_check;
+        const std::size_t cells = static_cast<std::size_t>(atlas_.base.n) * atlas_.base.n;
+        const double bound = sim::gray_scott_atlas_health_bound;
+        if (item < tile_count()) {
+            const auto [f, k] = sim::gray_scott_atlas_rates(atlas_, item);
+            if (rc::member(r, "f") != f || rc::member(r, "k") != k)
+                throw std::invalid_argument("its rates are not tile " + std::to_string(item) + "'s (f = " +
+                                            rc::quoted(f) + ", k = " + rc::quoted(k) + ")");
+            rc::integer_in(rc::member(r, "stopped_at"), "stopped_at", 0, atlas_.steps);
+            rc::one_of(rc::member(r, "stop"), "stop", {"ran", "b_gone", "fixed_point"});
+            rc::values_in<float>(rc::member(r, "b"), "b", cells, -bound, bound);
+            return;
+        }
+        const int tile = sim::float_error_tiles(atlas_).at(static_cast<std::size_t>(item - tile_count()));
+        if (rc::integer_in(rc::member(r, "tile"), "tile", 0, tile_count() - 1) != tile)
+            throw std::invalid_argument("it is the double run of another tile than " + std::to_string(tile));
+        rc::values_in<double>(rc::member(r, "b"), "b", cells, -bound, bound);
+    }
+
     void render(Output& out) const override {
         Progress& progress = out.progress();
         progress.start(d_.id, item_count());

@@ -8,6 +8,7 @@
 #include "scenes/field_stats.hpp"
 #include "scenes/percolation_common.hpp"
 #include "scenes/plot_page.hpp"
+#include "scenes/work_codec.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/figure_caption.hpp"
 
@@ -103,6 +104,18 @@ public:
         int percolating = 0;
         for (int t = 0; t < trials_; ++t) percolating += test_perc(n_, qs_[item], rng).percolates;
         return {{"percolating", percolating}};
+    }
+
+    // A count of percolating trials of this q, or the walk: its start and a
+    // q a run, each a probability.
+    void check_result(int item, const nlohmann::json& r) const override {
+        namespace rc = result_check;
+        if (item < walk_item()) {
+            rc::integer_in(rc::member(r, "percolating"), "percolating", 0, trials_);
+            return;
+        }
+        for (const nlohmann::json& q : rc::array_of(rc::member(r, "walk"), "walk", iterations_ + 1LL))
+            rc::number_in(q, "walk", 0, 1);
     }
 
     void render(Output& out) const override {

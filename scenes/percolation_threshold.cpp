@@ -198,6 +198,15 @@ public:
         return {{"horizontal", binary_of<std::uint32_t>(horizontal)}, {"vertical", binary_of<std::uint32_t>(vertical)}};
     }
 
+    // Each sample wrapped after occupying 1 to L^2 sites, each way.
+    void check_result(int item, const nlohmann::json& r) const override {
+        namespace rc = result_check;
+        const double sites = double(size_of(item)) * size_of(item);
+        const std::size_t count = static_cast<std::size_t>(samples_in(item));
+        rc::values_in<std::uint32_t>(rc::member(r, "horizontal"), "horizontal", count, 1, sites);
+        rc::values_in<std::uint32_t>(rc::member(r, "vertical"), "vertical", count, 1, sites);
+    }
+
     void render(Output& out) const override {
         Progress& progress = out.progress();
         progress.start(d_.id, item_count());

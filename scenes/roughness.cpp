@@ -185,6 +185,43 @@ public:
                                                             d_.seed + static_cast<std::uint64_t>(item), rule_));
     }
 
+    // An ensemble of this L and runs, its times increasing up to the stop
+    // within the run's length, every W and statistic finite (z may be
+    // infinite: a difference without spread).
+    void check_result(int item, const nlohmann::json& r) const override {
+        namespace rc = result_check;
+        const int L = widths_[static_cast<std::size_t>(item)];
+        const double max_time = run_length(L);
+        if (rc::integer_in(rc::member(r, "width"), "width", 1, 10000000) != L)
+            throw std::invalid_argument("it is the ensemble of another L than " + std::to_string(L));
+        for (const nlohmann::json& s : rc::array_of(rc::member(r, "seeds"), "seeds", seeds_))
+            if (!s.is_number_unsigned()) throw std::invalid_argument("seeds holds a value that is not a seed");
+        const nlohmann::json& t = rc::member(r, "times");
+        const std::size_t samples = t.is_binary() ? t.get_binary().size() / sizeof(double) : 0;
+        if (samples == 0) throw std::invalid_argument("times holds no sampled time");
+        const std::vector<double> times = rc::values_in<double>(t, "times", samples, 0, max_time);
+        for (std::size_t k = 1; k < times.size(); ++k)
+            if (!(times[k] > times[k - 1])) throw std::invalid_argument("times do not increase at " + std::to_string(k));
+        for (const nlohmann::json& run : rc::array_of(rc::member(r, "w"), "w", seeds_))
+            rc::values_in<double>(run, "w", samples, 0, std::numeric_limits<double>::max());
+        rc::boolean(rc::member(r, "saturated"), "saturated");
+        if (rc::number_in(rc::member(r, "stop_time"), "stop_time", 0, max_time) != times.back())
+            throw std::invalid_argument("stop_time is not the last sampled time");
+        rc::number_in(rc::member(r, "agreeing_since"), "agreeing_since", -1, max_time);
+        const nlohmann::json& c = rc::array_of(rc::member(r, "check"), "check", 11);
+        const double huge = std::numeric_limits<double>::max();
+        rc::boolean(c[0], "check.compared");
+        rc::integer_in(c[1], "check.previous_samples", 0, static_cast<long long>(samples));
+        rc::integer_in(c[2], "check.last_samples", 0, static_cast<long long>(samples));
+        for (int i : {3, 5}) rc::number_in(c[i], "check.mean", 0, huge);
+        for (int i : {4, 6, 8}) rc::number_in(c[i], "check.sem", 0, huge);
+        rc::number_in(c[7], "check.difference", -huge, huge);
+        if (!c[9].is_number() || std::isnan(c[9].get<double>())) throw std::invalid_argument("check.z is not a number");
+        rc::boolean(c[10], "check.agree");
+        rc::number_in(rc::member(r, "saturated_w"), "saturated_w", 0, huge);
+        rc::number_in(rc::member(r, "saturated_w_sem"), "saturated_w_sem", 0, huge);
+    }
+
     void render(Output& out) const override {
         Progress& progress = out.progress();
         progress.start(d_.id, static_cast<long long>(widths_.size()));

@@ -25,6 +25,13 @@ public:
     // thread, several at once. Throws std::runtime_error when its model
     // fails (the message says why; the caller adds the item's name).
     virtual nlohmann::json run_item(int item) const = 0;
+    // Checks a result of item `item` read back from a part (a merge or a
+    // resume reads parts that anyone could have edited): every key run_item
+    // writes is there with its type, every count is the item's, every number
+    // is finite and within what the item's run can give. Throws
+    // std::invalid_argument saying what is wrong ("b holds -1e+30, outside
+    // [-10, 10]"); a result that passes can be drawn without a crash.
+    virtual void check_result(int item, const nlohmann::json& result) const = 0;
     // At most how many bytes an item's result takes stored (CBOR), for the
     // disk estimate of the parts kept for a resume.
     virtual double item_bytes() const = 0;

@@ -30,7 +30,7 @@ std::string rate(double value) {
 // The health check every 1000 steps and at the end, as the stepping scenes
 // make it at every step: A and B live in [0, 1].
 constexpr int health_every = 1000;
-constexpr double health_bound = 10.0;
+constexpr double health_bound = gray_scott_atlas_health_bound;
 
 bool healthy(const GrayScottKernel<float>& kernel) {
     return kernel.within(health_bound);

@@ -48,6 +48,10 @@ struct GrayScottAtlasTile {
 // two steps of a 128^2 run, so 100 adds ~2% and stops at most 99 steps late.
 inline constexpr int gray_scott_atlas_stop_check = 100;
 
+// A finished run's A and B lie within [-bound, bound]: a run that leaves it
+// is refused as unstable (see run_gray_scott_atlas).
+inline constexpr double gray_scott_atlas_health_bound = 10.0;
+
 // Runs every tile, in row-major order from the top row down: f rises
 // upwards (the top row has the largest f), k to the right. Every run starts
 // from the same GrayScott(base, Random(seed)) state. The runs go across the

@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <string_view>
 
+#include "app/bounded_json.hpp"
+#include "app/work.hpp"
+#include "description/catalog.hpp"
 #include "description/description.hpp"
 #include "description/plain_name.hpp"
 #include "scenes/scene.hpp"
@@ -149,6 +153,67 @@ Outcome lsystem(const std::uint8_t* data, std::size_t size) {
     return Outcome::accepted;
 }
 
+namespace {
+
+// A figure with work items, made small, and its scene (read once).
+struct WorkFigure {
+    description::Description d;
+    std::unique_ptr<scenes::Scene> scene;
+};
+
+const std::vector<WorkFigure>& work_figures() {
+    static const std::vector<WorkFigure> all = [] {
+        const std::vector<std::pair<std::string, std::vector<std::string>>> small = {
+            {"tc7-phase", {"trials=10", "walk_iterations=5", "qs=[0.5, 0.6, 0.05]"}},
+            {"gs-atlas", {"tiles=[3, 2]", "steps=100", "n=16"}},
+            {"bd-roughness", {"widths=[20, 40]", "seeds=2"}},
+            {"pc-threshold", {"sizes=[8, 16]", "samples=40", "samples_per_item=20"}},
+            {"tc7-ex1", {"n=40", "gallery_steps=15"}},
+        };
+        std::vector<WorkFigure> figures;
+        for (const auto& [id, overrides] : small) {
+            WorkFigure f{description::load_description(description::resolve_figure(id), overrides), nullptr};
+            f.scene = scenes::read_scene(f.d, scenes::SceneOptions{0.3, false});
+            if (!f.scene->work()) throw std::logic_error(id + " has no work items");
+            figures.push_back(std::move(f));
+        }
+        return figures;
+    }();
+    return all;
+}
+
+}  // namespace
+
+Outcome parts(const std::uint8_t* data, std::size_t size) {
+    if (size < 3) return Outcome::refused;
+    const int mode = data[0] % 3;
+    const WorkFigure& figure = work_figures()[data[1] % work_figures().size()];
+    const scenes::WorkItems& items = *figure.scene->work();
+    const int item = data[2] % items.item_count();
+    const std::string_view rest = text_of(data + 3, size - 3);
+    const std::string manifest = std::string(64, '0');  // a manifest's SHA-256, as the parts hold it
+    try {
+        if (mode == 0) {
+            // A manifest: read, then its values shown as a refusal shows them.
+            const nlohmann::json m = app::json_bounded(rest);
+            if (m.is_object())
+                for (const auto& [key, value] : m.items()) require_one_clean_line(description::printable(value.dump(), 80));
+            return Outcome::accepted;
+        }
+        std::string bytes(rest);
+        if (mode == 2) {
+            // The bytes as a result, in a part with its true hash: the scene's check decides.
+            const nlohmann::json result = app::cbor_bounded(rest);
+            bytes = app::part_bytes(item, result, items, manifest);
+        }
+        (void)app::result_of_part(bytes, item, items, manifest);
+        return Outcome::accepted;
+    } catch (const app::MalformedData& e) {
+        require_one_clean_line(e.what());
+        return Outcome::refused;
+    }
+}
+
 const std::vector<Target>& targets() {
     static const std::vector<Target> all = {
         {"description", description},
@@ -156,6 +221,7 @@ const std::vector<Target>& targets() {
         {"snowflake_rule", snowflake_rule},
         {"lsystem", lsystem},
         {"output_name", output_name},
+        {"parts", parts},
     };
     return all;
 }

@@ -37,6 +37,16 @@ Outcome lsystem(const std::uint8_t* data, std::size_t size);
 // figgen prints it, is one line without control or bidirectional characters.
 Outcome output_name(const std::uint8_t* data, std::size_t size);
 
+// A work item's part or a parts manifest, as merge and resume read them. The
+// first byte picks what the rest is: a manifest's text (app::json_bounded,
+// then its values shown as a refusal shows them), a part's bytes whole
+// (app::result_of_part), or a result that is put in a part with its true
+// hash, so that the scene's check_result is reached; the second byte picks
+// a small figure with work items (tc7-phase, gs-atlas, bd-roughness,
+// pc-threshold, tc7-ex1), the third its item. Refused: app::MalformedData,
+// in one clean line.
+Outcome parts(const std::uint8_t* data, std::size_t size);
+
 struct Target {
     const char* name;  // the folder under tests/fuzz/corpus/ and regressions/
     Outcome (*entry)(const std::uint8_t*, std::size_t);
