@@ -34,6 +34,12 @@ int launcher_rank() {
     return environment_int("OMPI_COMM_WORLD_RANK", environment_int("PMIX_RANK", 0));
 }
 
+bool rank_zero_reports() {
+    const int rank = launcher_rank();
+    const char* space = std::getenv("PMIX_NAMESPACE");
+    return rank != 0 && space && *space && environment_int("PMIX_RANK", -1) == rank;
+}
+
 int launcher_local_size() {
     return std::max(1, environment_int("OMPI_COMM_WORLD_LOCAL_SIZE", 1));
 }

@@ -19,6 +19,12 @@ bool launched_by_mpi();
 // This process's rank as the launcher's environment gives it (0 when not
 // launched by one): for messages before the job is joined.
 int launcher_rank();
+// Whether another process, rank 0 of a real launch, says what every rank
+// found in the inputs: this rank is not 0 and the launcher's environment is
+// whole (a PMIx namespace, and PMIx's rank agreeing with Open MPI's). A
+// faked or partial environment (OMPI_COMM_WORLD_RANK=1 alone) has no rank 0
+// to say it, so the process says it itself.
+bool rank_zero_reports();
 // How many ranks the launcher started on this node (1 when not launched by one).
 int launcher_local_size();
 

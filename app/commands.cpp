@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <memory>
 #include <thread>
 #ifdef _OPENMP
@@ -25,6 +26,7 @@
 #include "app/work.hpp"
 #include "description/catalog.hpp"
 #include "description/description.hpp"
+#include "description/integer_text.hpp"
 #include "description/plain_name.hpp"
 #include "render/gl_context.hpp"
 #include "render/media.hpp"
@@ -66,6 +68,24 @@ std::uint64_t parse_size(const std::string& option, const std::string& text) {
     return static_cast<std::uint64_t>(bytes);
 }
 
+namespace {
+
+// CLI11's check that an option's text is an integer of [low, high] as
+// description::integer_text reads it: applied to the text before CLI11
+// converts it, so " 4" and "4294967297" are refused, never trimmed or wrapped.
+CLI::Validator integer_in(long long low, long long high) {
+    const std::string allowed = "an integer from " + std::to_string(low) + " to " + std::to_string(high);
+    return CLI::Validator(
+        [=](std::string& text) {
+            return description::integer_text(text, low, high)
+                       ? std::string()
+                       : description::printable(text, 40) + " is not allowed: use " + allowed;
+        },
+        "INT in [" + std::to_string(low) + " - " + std::to_string(high) + "]");
+}
+
+}  // namespace
+
 ListCommand::ListCommand(CLI::App& parent) {
     app = parent.add_subcommand("list", "List the figure ids and titles of the catalog");
 }
@@ -104,8 +124,8 @@ ThumbnailsCommand::ThumbnailsCommand(CLI::App& parent) {
     app = parent.add_subcommand("thumbnails", "Write small copies of the figures rendered in a folder");
     app->add_option("--from", from, "The folder of rendered figures")->capture_default_str();
     app->add_option("--to", to, "Where the thumbnails go")->capture_default_str();
-    app->add_option("--width", width, "Largest width in pixels")->capture_default_str()->check(CLI::Range(8, 2048));
-    app->add_option("--height", height, "Largest height in pixels")->capture_default_str()->check(CLI::Range(8, 2048));
+    app->add_option("--width", width, "Largest width in pixels")->capture_default_str()->check(integer_in(8, 2048));
+    app->add_option("--height", height, "Largest height in pixels")->capture_default_str()->check(integer_in(8, 2048));
 }
 
 int ThumbnailsCommand::run() {
@@ -136,7 +156,8 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
         ->check(CLI::IsMember({"dynamic", "static"}));
     app->add_option("--threads", threads,
                     "Threads per process for work items, OpenMP and llvmpipe (1..1024; default: the cores, or "
-                    "under mpirun the cores per rank of the node)");
+                    "under mpirun the cores per rank of the node)")
+        ->check(integer_in(1, 1024));
     app->add_option("--gl", gl,
                     "Where GL comes from: auto (EGL's surfaceless platform on llvmpipe, else OSMesa), osmesa, egl "
                     "(EGL surfaceless: llvmpipe, or the GPU Mesa finds) or egl-device (EGL's device platform: a "
@@ -144,13 +165,13 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
         ->capture_default_str();
     app->add_option("--gl-device", gl_device, "With --gl egl-device: which device (0.., in EGL's order)")
         ->capture_default_str()
-        ->check(CLI::Range(0, 1023));
+        ->check(integer_in(0, 1023));
     app->add_option("figures", targets, "Figure ids (see `figgen list`) or .toml description files")->required();
     app->add_option("--out", out_dir, "Output folder, created if missing")->capture_default_str();
     app->add_option("--set", overrides,
                     "Override a value: key=value for [params], section.key=value (style, figure, animation), or "
                     "id=NAME, title=TEXT");
-    app->add_option("--seed", seed, "Seed of the random generator (0..2^63-1)");
+    app->add_option("--seed", seed, "Seed of the random generator (0..2^63-1)")->check(integer_in(0, INT64_MAX));
     app->add_option("--scale", scale, "Scale every pixel size by X (0.1..8)")->capture_default_str();
     app->add_option("--max-memory", max_memory, "Refuse a figure whose estimated memory exceeds SIZE (e.g. 512M, 8G)")
         ->capture_default_str();
@@ -159,7 +180,7 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
     app->add_flag("--no-video", no_video, "Do not write the MP4 animation (as --format png)");
     app->add_flag("--frames", frames, "Also write the animation as a PNG sequence");
     app->add_option("--size", size, "The figure's size in pixels before --scale, WxH (e.g. 1200x600)");
-    app->add_option("--fps", fps, "Frames per second of the animation (1..120)");
+    app->add_option("--fps", fps, "Frames per second of the animation (1..120)")->check(integer_in(1, 120));
     app->add_option("--cmap", cmap,
                     "Colormap of a field figure's fields: viridis, inferno, magma, plasma, cividis, Reds, Blues or "
                     "Greens");
@@ -192,15 +213,11 @@ int default_threads() {
 OutputOptions output_options(const RenderCommand& c) {
     if (!(c.scale >= 0.1 && c.scale <= 8.0))  // also false for NaN
         throw UsageError("--scale " + description::shown(c.scale) + " is not allowed: use a number from 0.1 to 8");
-    if (c.seed && *c.seed > static_cast<std::uint64_t>(INT64_MAX))
-        throw UsageError("--seed is not allowed: use 0..2^63-1");  // the value as parsed can differ from the one typed
     std::string formats;
     for (const std::string& f : c.formats) formats += (formats.empty() ? "" : ",") + f;
     if (!c.formats.empty() && (c.no_video || c.frames))
         throw UsageError("--format " + formats + " is not allowed with --no-video or --frames: use one");
     const auto named = [&](const char* f) { return std::find(c.formats.begin(), c.formats.end(), f) != c.formats.end(); };
-    if (c.fps && !(*c.fps >= 1 && *c.fps <= 120))
-        throw UsageError("--fps " + std::to_string(*c.fps) + " is not allowed: use 1..120 frames per second");
     if (c.out_dir.empty()) throw UsageError("--out is empty: give the folder the figures go into, e.g. --out out");
     OutputOptions options;
     options.dir = c.out_dir;
@@ -214,20 +231,22 @@ OutputOptions output_options(const RenderCommand& c) {
     options.transparent = c.transparent;
     options.max_memory = parse_size("--max-memory", c.max_memory);
     options.max_disk = parse_size("--max-disk", c.max_disk);
-    if (c.threads && !(*c.threads >= 1 && *c.threads <= 1024))
-        throw UsageError("--threads " + std::to_string(*c.threads) + " is not allowed: use 1..1024");
     options.work.threads = c.threads.value_or(default_threads());
     options.work.schedule = c.schedule == "static" ? Schedule::fixed : Schedule::dynamic;
     for (const std::string& from : c.from) options.work.merge_from.emplace_back(from);
     if (!c.shard.empty()) {
-        int k = 0, n = 0;
-        char rest = 0;
-        if (std::sscanf(c.shard.c_str(), "%d/%d%c", &k, &n, &rest) != 2 || n < 1 || n > 1000000 || k < 1 || k > n)
-            throw UsageError("--shard " + c.shard + " is not allowed: use K/N with 1 <= K <= N <= 1000000, e.g. 2/8");
-        options.work.shard = k;
-        options.work.shards = n;
+        const std::size_t slash = c.shard.find('/');
+        const std::optional<long long> n =
+            slash == std::string::npos ? std::nullopt : description::integer_text(c.shard.substr(slash + 1), 1, 1000000);
+        const std::optional<long long> k =
+            n ? description::integer_text(c.shard.substr(0, slash), 1, *n) : std::nullopt;
+        if (!k)
+            throw UsageError("--shard " + description::printable(c.shard, 40) +
+                             " is not allowed: use K/N with 1 <= K <= N <= 1000000, two integers, e.g. 2/8");
+        options.work.shard = static_cast<int>(*k);
+        options.work.shards = static_cast<int>(*n);
         if (launched_by_mpi())
-            throw UsageError("--shard " + c.shard + " is not allowed under mpirun: use one or the other");
+            throw UsageError("--shard " + description::printable(c.shard, 40) + " is not allowed under mpirun: use one or the other");
     }
     if (!c.from.empty() && launched_by_mpi())
         throw UsageError("figgen merge is not allowed under mpirun: run it as one process");
@@ -247,11 +266,13 @@ void apply_threads(const RenderCommand& c, int threads) {
 std::vector<std::string> overrides_of(const RenderCommand& c) {
     std::vector<std::string> overrides = c.overrides;
     if (c.size.empty()) return overrides;
-    int w = 0, h = 0;
-    char rest = 0;
-    if (std::sscanf(c.size.c_str(), "%dx%d%c", &w, &h, &rest) != 2 || w < 2 || h < 2 || w > 16384 || h > 16384)
-        throw UsageError("--size " + c.size + " is not allowed: use WIDTHxHEIGHT, each 2..16384, e.g. 1200x600");
-    overrides.push_back("figure.size=[" + std::to_string(w) + "," + std::to_string(h) + "]");
+    const std::size_t x = c.size.find('x');
+    const std::optional<long long> w = x == std::string::npos ? std::nullopt : description::integer_text(c.size.substr(0, x), 2, 16384);
+    const std::optional<long long> h = w ? description::integer_text(c.size.substr(x + 1), 2, 16384) : std::nullopt;
+    if (!h)
+        throw UsageError("--size " + description::printable(c.size, 40) +
+                         " is not allowed: use WIDTHxHEIGHT, each 2..16384, e.g. 1200x600");
+    overrides.push_back("figure.size=[" + std::to_string(*w) + "," + std::to_string(*h) + "]");
     return overrides;
 }
 

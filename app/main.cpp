@@ -78,7 +78,7 @@ int run_command(int argc, char** argv) {
     if (is_unknown_command(argc, argv, commands)) {
         std::string allowed;
         for (const app::Command* c : commands) allowed += (allowed.empty() ? "" : ", ") + c->app->get_name();
-        app::say("error", std::string("unknown command '") + argv[1] + "'; allowed: " + allowed + "; see figgen --help");
+        app::say("error", "unknown command '" + description::printable(argv[1]) + "'; allowed: " + allowed + "; see figgen --help");
         return app::exit_usage_error;
     }
     try {
@@ -94,7 +94,7 @@ int run_command(int argc, char** argv) {
         return app::exit_usage_error;
     } catch (const description::UsageError& e) {
         // Under mpirun every rank reads the same inputs: rank 0 says it for all.
-        if (app::launcher_rank() == 0) app::say("error", e.what());
+        if (!app::rank_zero_reports()) app::say("error", e.what());
         return app::exit_usage_error;
     } catch (const app::InternalError& e) {
         app::say("internal error", e.what());

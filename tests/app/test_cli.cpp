@@ -78,8 +78,8 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-1 --scale 0", "--scale 0 is not allowed"},
         {render + "tc7-1 --scale 100", "--scale 100 is not allowed"},
         {render + "tc7-1 --seed -5", "--seed"},
-        {render + "tc7-1 --seed abc", "--seed = abc"},
-        {render + "tc7-1 --seed 99999999999999999999", "--seed is not allowed: use 0..2^63-1"},
+        {render + "tc7-1 --seed abc", "--seed: abc is not allowed: use an integer from 0 to 9223372036854775807"},
+        {render + "tc7-1 --seed 99999999999999999999", "--seed: 99999999999999999999 is not allowed: use an integer from 0 to 9223372036854775807"},
         {render + "tc7-1 --max-memory 10q", "--max-memory 10q is not allowed: use a size from 1 byte to 1 PiB"},
         {render + "tc7-1 --max-memory 0", "--max-memory 0 is not allowed: use a size from 1 byte to 1 PiB"},
         {render + "tc7-1 --max-memory -1", "--max-memory -1 is not allowed: use a size from 1 byte to 1 PiB"},
@@ -96,7 +96,7 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "/nonexistent/my.toml", "figure file /nonexistent/my.toml does not exist"},
         {render + "tc7-1 --size 10by20", "--size 10by20 is not allowed: use WIDTHxHEIGHT, each 2..16384"},
         {render + "tc7-1 --size 1x5", "--size 1x5 is not allowed"},
-        {render + "tc7-1 --fps 0", "--fps 0 is not allowed: use 1..120 frames per second"},
+        {render + "tc7-1 --fps 0", "--fps: 0 is not allowed: use an integer from 1 to 120"},
         {render + "tc7-9 --fps 5", "--fps: none of the figures named has an animation"},
         {render + "tc7-1 --cmap jet", "--cmap jet is not allowed: use one of Reds, Blues, Greens, viridis, inferno, magma, plasma, cividis"},
         {render + "tc7-9 --cmap viridis", "--cmap: tc7-9 (scene percolation_scaling) draws no field to colour; the field scenes are diffusion, "},
@@ -272,6 +272,25 @@ TEST_CASE("a bad setting found in phase 1 creates nothing, not even the output f
         CHECK_FALSE(fs::exists(out));
     }
     CHECK(fs::is_empty(parent));
+}
+
+TEST_CASE("a refused input is said by every process that has no rank 0 to say it", "[cli][cluster]") {
+    const fs::path out = fresh_dir("faked-mpi") / "never-made";
+    // Rank 1 of a real launch (PMIx's namespace and rank agreeing): rank 0 says it, this rank keeps quiet.
+    const Run launched = testkit::figgen_env("OMPI_COMM_WORLD_SIZE=4 OMPI_COMM_WORLD_RANK=1 PMIX_RANK=1 PMIX_NAMESPACE=job7",
+                                             "render no-such-figure --out " + out.string());
+    CHECK(launched.status == 2);
+    CHECK(launched.output.empty());
+    // Open MPI's variables alone, or a PMIx rank that disagrees: no launcher around it, so it says it itself.
+    for (const std::string env : {"OMPI_COMM_WORLD_SIZE=4 OMPI_COMM_WORLD_RANK=1",
+                                  "OMPI_COMM_WORLD_SIZE=4 OMPI_COMM_WORLD_RANK=1 PMIX_RANK=2 PMIX_NAMESPACE=job7"}) {
+        INFO(env);
+        const Run faked = testkit::figgen_env(env, "render no-such-figure --out " + out.string());
+        CHECK(faked.status == 2);
+        CHECK(faked.lines() == 1);
+        CHECK(faked.output.find("figgen: error: unknown figure id 'no-such-figure'") == 0);
+    }
+    CHECK_FALSE(fs::exists(out));
 }
 
 TEST_CASE("a malformed description names the file and line", "[cli]") {
