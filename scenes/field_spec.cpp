@@ -1,6 +1,7 @@
 #include "scenes/field_spec.hpp"
 
 #include <algorithm>
+#include <optional>
 
 namespace scenes {
 
@@ -20,6 +21,7 @@ std::vector<Key> field_spec_keys(const std::string& prefix) {
 namespace {
 
 render::Colormap read_colormap(Settings& style, const FieldSpec& defaults, const std::string& prefix) {
+    std::optional<render::Colormap> listed;
     if (style.has(prefix + "colours")) {
         std::vector<glm::vec3> colours;
         for (const std::string& c : style.texts(prefix + "colours", {})) {
@@ -29,14 +31,25 @@ render::Colormap read_colormap(Settings& style, const FieldSpec& defaults, const
             colours.push_back(*colour);
         }
         if (colours.empty() || colours.size() > 4096) style.refuse(prefix + "colours", "1 to 4096 colours");
-        return render::listed_colormap("listed", colours);
+        listed = render::listed_colormap("listed", colours);
     }
-    const std::string name = style.text(prefix + "colormap", defaults.colormap.name);
-    if (const render::Colormap* map = render::find_colormap(name)) return *map;
-    if (name == defaults.colormap.name) return defaults.colormap;  // a scene's own listed map
-    std::string allowed;
-    for (const auto& n : render::colormap_names()) allowed += (allowed.empty() ? "" : ", ") + n;
-    style.refuse(prefix + "colormap", "one of " + allowed);
+    // Read whenever given, so that a bad name is refused beside colours too.
+    if (!listed || style.has(prefix + "colormap")) {
+        const std::string name = style.text(prefix + "colormap", defaults.colormap.name);
+        const render::Colormap* map = render::find_colormap(name);
+        if (!map && name != defaults.colormap.name) {  // not a scene's own listed map either
+            std::string allowed;
+            for (const auto& n : render::colormap_names()) allowed += (allowed.empty() ? "" : ", ") + n;
+            style.refuse(prefix + "colormap", "one of " + allowed);
+        }
+        // One of the two: a colormap given beside colours would be ignored in silence.
+        if (listed)
+            style.refuse(prefix + "colormap", "no colormap where " + prefix +
+                                                   "colours gives the colours: give one of the two (--cmap replaces "
+                                                   "colours)");
+        return map ? *map : defaults.colormap;
+    }
+    return *listed;
 }
 
 }  // namespace

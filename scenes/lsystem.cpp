@@ -76,11 +76,25 @@ struct Plant {
 // written: "depth" or "plants[2].depth".
 class PlantKeys {
 public:
-    PlantKeys(const toml::table& own, Settings& shared, std::size_t index)
-        : where_("plants[" + std::to_string(index) + "]"), own_("params." + where_, own, plant_keys), shared_(shared) {}
+    // `own_first`: the plant's own keys win, to check the values that
+    // [params] overrides (see check_overridden).
+    PlantKeys(const toml::table& own, Settings& shared, std::size_t index, bool own_first = false)
+        : where_("plants[" + std::to_string(index) + "]"),
+          own_("params." + where_, own, plant_keys),
+          shared_(shared),
+          own_first_(own_first) {}
 
     // The section that gives `key` (not "title", which only a plant has).
-    Settings& from(const std::string& key) { return shared_.has(key) ? shared_ : own_; }
+    Settings& from(const std::string& key) {
+        if (own_first_) return own_.has(key) ? own_ : shared_;
+        return shared_.has(key) ? shared_ : own_;
+    }
+    // Whether [params] gives a key that the plant's own table gives too.
+    bool overridden() const {
+        for (const Key& k : plant_keys)
+            if (k.name != "title" && shared_.has(k.name) && own_.has(k.name)) return true;
+        return false;
+    }
     Settings& own() { return own_; }
     std::string text(const std::string& key, const std::string& fallback) { return from(key).text(key, fallback); }
     double number(const std::string& key, double fallback) { return from(key).number(key, fallback); }
@@ -94,13 +108,16 @@ public:
     }
     // `key` as [params] names it, "depth" or "plants[2].depth"; `key` may carry an index ("rules[1]").
     std::string written_key(const std::string& key) const {
-        return shared_.has(key.substr(0, key.find('['))) ? key : where_ + "." + key;
+        const std::string name = key.substr(0, key.find('['));
+        const bool shared = own_first_ ? !own_.has(name) && shared_.has(name) : shared_.has(name);
+        return shared ? key : where_ + "." + key;
     }
 
 private:
     std::string where_;
     Settings own_;
     Settings& shared_;
+    bool own_first_;
 };
 
 // The rules, a single "rule" replacing the list; `names` gets the key that gave each, for the parser's messages.
@@ -171,19 +188,38 @@ bool read_choice(PlantKeys& keys, const std::string& key, const std::string& fal
                               symbols + "\"; move = \"...\" for those that move without drawing)");
 }
 
-Plant read_plant(const toml::table& own, Settings& shared, std::size_t index) {
-    PlantKeys keys(own, shared, index);
-    Plant p;
-    p.title = keys.own().text("title", "");
+// The plant's system, depth, turtle and reading from `keys`, each checked.
+void read_checked(PlantKeys& keys, Plant& p, std::vector<std::string>& rules) {
     KeyNames names;
-    const std::vector<std::string> rules = read_rules(keys, names);
+    rules = read_rules(keys, names);
     const std::string axiom = keys.text("axiom", "F");
     names.push_back({"axiom", "axiom"});
     keys.check([&] { p.system = sim::LSystem::parse(axiom, rules); }, names);
     p.depth = read_depth(keys);
     p.turtle = read_turtle(keys, read_choice(keys, "plus", "right", "left", "right"));
-    p.turtle.segment_budget = plant_segment_budget;
     p.article = read_choice(keys, "reading", "rewrite", "article", "rewrite");
+}
+
+// A plant's own values that [params] overrides (--set depth=5 sets every
+// plant's) are drawn by no one, but checked all the same: read again with the
+// plant's own keys first, so a bad one is refused naming plants[i].key.
+void check_overridden(const toml::table& own, const Settings& shared, std::size_t index) {
+    Settings unrecorded = shared;  // what this reads is no figure's setting: the metadata keeps to shared's
+    PlantKeys own_first(own, unrecorded, index, true);
+    if (!own_first.overridden()) return;
+    Plant unused;
+    std::vector<std::string> rules;
+    read_checked(own_first, unused, rules);
+}
+
+Plant read_plant(const toml::table& own, Settings& shared, std::size_t index) {
+    check_overridden(own, shared, index);
+    PlantKeys keys(own, shared, index);
+    Plant p;
+    p.title = keys.own().text("title", "");
+    std::vector<std::string> rules;
+    read_checked(keys, p, rules);
+    p.turtle.segment_budget = plant_segment_budget;
     p.segments = sim::segment_count(p.system, p.depth, p.article, p.turtle.draw);
     if (p.segments == 0) refuse_drawing_nothing(keys, p);
     // The turtle's own refusal (sim/turtle.cpp), here in phase 1, naming the key.
