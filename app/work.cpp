@@ -211,6 +211,12 @@ private:
     double max_part_bytes_;
 };
 
+// What a merge says of a damaged part (bad input: exit 2).
+UsageError damaged_part(const Parts& parts, int item, const Part& part) {
+    return UsageError("--from: the part " + parts.named(item) + " " + part.problem +
+                      "; allowed: the parts a render --shard of this figure wrote, unchanged (render that shard again)");
+}
+
 // A resume's use of item `item`'s part: its result when sound; a damaged
 // part is said once and computed again (its new part replaces it).
 std::optional<json> kept_result(const Parts& parts, const std::string& id, int item) {
@@ -348,7 +354,15 @@ void check_merge_sources(const description::Description& d, const scenes::WorkIt
     std::vector<bool> present(static_cast<std::size_t>(count));
     for (const std::filesystem::path& from : options.merge_from) {
         const Parts parts = Parts::given(from, d, items);
-        for (int i = 0; i < count; ++i) present[i] = present[i] || parts.has(i);
+        // Each part is read and checked here, before anything is created,
+        // and read again when the figure is drawn (holding every figure's
+        // results from now until then would cost more than the estimates count).
+        for (int i = 0; i < count; ++i) {
+            if (present[i] || !parts.has(i)) continue;
+            const Part part = parts.load(i);
+            if (part.state == Part::State::damaged) throw damaged_part(parts, i, part);
+            present[i] = true;
+        }
     }
     std::string missing;
     int shown = 0, absent = 0;
@@ -371,10 +385,7 @@ std::vector<json> run_work(const description::Description& d, const scenes::Work
             for (int i = 0; i < count; ++i) {
                 if (results[i]) continue;
                 Part part = parts.load(i);
-                if (part.state == Part::State::damaged)
-                    throw UsageError("--from: the part " + parts.named(i) + " " + part.problem +
-                                     "; allowed: the parts a render --shard of this figure wrote, unchanged "
-                                     "(render that shard again)");
+                if (part.state == Part::State::damaged) throw damaged_part(parts, i, part);
                 if (part.state == Part::State::sound) results[i] = std::move(part.result);
             }
         }
