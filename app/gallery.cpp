@@ -57,8 +57,8 @@ constexpr double png_bytes_per_pixel = 4.5;
 // at 2400 x 2400).
 constexpr double film_bytes_per_pixel = 48.0;
 constexpr unsigned poster_threads = 8;
-// A preview's canvas (thumbnails): libwebp's two canvases (the frame shown
-// and the one before it), the frame being decoded, and our copy of it.
+// A preview's canvas: libwebp's two canvases (the frame shown and the one
+// before it), the frame being decoded, and our copy of it.
 constexpr double webp_bytes_per_pixel = 16.0;
 
 // The most pixels an image may claim under `max_memory`, at `bytes_per_pixel`.
@@ -240,6 +240,12 @@ article .id { font-family: "DejaVu Sans Mono", monospace; font-size: 0.85rem; co
 article .source { margin: 0.2rem 0 0.6rem; color: var(--muted); font-size: 0.9rem; }
 img, video { display: block; max-width: 100%; height: auto; border: 1px solid var(--line); background: #fff; }
 video { margin-top: 0.6rem; max-height: 420px; width: auto; }
+details.film { margin-top: 0.6rem; font-size: inherit; }
+details.film > summary { list-style: none; color: inherit; }
+details.film > summary::-webkit-details-marker { display: none; }
+details.film > summary span { display: block; font-size: 0.85rem; color: var(--muted); }
+details.film[open] > summary img { display: none; }
+details.film video { margin-top: 0.2rem; }
 .refused { color: #8a1c1c; font-size: 0.9rem; overflow-wrap: anywhere; }
 .links { margin: 0.5rem 0; font-size: 0.9rem; }
 .links a { margin-right: 1rem; }
@@ -422,16 +428,47 @@ std::string png_text(const render::Folder& folder, const std::string& name, cons
     return "";
 }
 
+// The card's animated preview, where the figure's ID.webp is in the folder
+// (its name is never taken from the metadata): an <img> of the size its
+// header gives, or "" for none (also for a file that is not a WebP, and for
+// one whose header claims more than --max-memory allows, which `refused`
+// then says).
+std::string preview_html(const Folders& folders, std::uint64_t max_memory, const std::string& id,
+                         const std::string& title, std::string& refused) {
+    const std::string preview = id + ".webp";
+    if (!is_file_in(folders.figures, preview)) return "";
+    try {
+        const render::PreviewInfo canvas = render::preview_canvas(folders.figures, preview);
+        const std::uint64_t pixels =
+            static_cast<std::uint64_t>(canvas.width) * static_cast<std::uint64_t>(canvas.height);
+        const std::uint64_t allowed = max_pixels(max_memory, webp_bytes_per_pixel);
+        if (pixels > allowed) {
+            refused = refusal(preview,
+                              render::ImageTooLarge(preview, static_cast<std::uint64_t>(canvas.width),
+                                                    static_cast<std::uint64_t>(canvas.height), allowed),
+                              max_memory, webp_bytes_per_pixel);
+            return "";
+        }
+        return "<img class=\"preview\" src=\"" + escape(preview) + "\" width=\"" + std::to_string(canvas.width) +
+               "\" height=\"" + std::to_string(canvas.height) + "\" alt=\"" + escape(title) +
+               " (animated preview; open to play the film)\">";
+    } catch (const std::runtime_error&) {
+        return "";
+    }
+}
+
 // The card's <video>, where the figure's film ID.mp4 is in the folder (its
 // name is never taken from the metadata). Its poster, posters/ID.png, is the
 // frame the description named (animation.poster: the metadata gives its
 // index), else the film's last frame, decoded from the MP4: what the film is
 // about, where the first frame (what a browser shows by itself) is often
 // nearly empty. A poster that cannot be decoded (a hand-edited metadata that
-// promises more frames than the film has) is left out. A film whose header
-// claims frames of more pixels than --max-memory allows is not decoded, and
-// the card says so in its place. Returns the film's file name, or "" for
-// none.
+// promises more frames than the film has) is left out. Where the film has
+// its animated preview ID.webp, the card shows the preview until the film
+// is opened to play (a <details> whose summary is the preview), the poster
+// frame then being the <video>'s poster. A film whose header claims frames
+// of more pixels than --max-memory allows is not decoded, and the card says
+// so in its place. Returns the film's file name, or "" for none.
 std::string film_html(const Folders& folders, std::uint64_t max_memory, const std::string& id, const std::string& title,
                       const nlohmann::json& meta, std::ostringstream& card) {
     const std::string movie = id + ".mp4";
@@ -464,12 +501,19 @@ std::string film_html(const Folders& folders, std::uint64_t max_memory, const st
         return "";
     } catch (const std::exception&) {
     }
+    std::string refused;
+    const std::string preview = preview_html(folders, max_memory, id, title, refused);
+    if (!refused.empty()) card << "<p class=\"refused\">" << escape(refused) << "</p>\n";
+    if (!preview.empty())
+        card << "<details class=\"film\"><summary>" << preview << "<span>&#9654; play the film (" << frames
+             << " frames at " << fps << " fps)</span></summary>\n";
     card << "<video controls preload=\"metadata\" src=\"" << escape(movie) << "\"";
     if (!poster.empty()) card << " poster=\"" << escape(poster) << "\"";
     card << " width=\"" << width << "\" height=\"" << height << "\" data-width=\"" << width
          << "\" data-height=\"" << height << "\" data-frames=\"" << frames << "\" data-fps=\"" << fps
          << "\" data-poster-frame=\"" << poster_frame << "\" data-poster-width=\"" << width
          << "\" data-poster-height=\"" << height << "\"></video>\n";
+    if (!preview.empty()) card << "</details>\n";
     return movie;
 }
 

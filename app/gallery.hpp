@@ -23,7 +23,9 @@ namespace app {
 // out, and counted in the page's header), then every other DIR/ID.json that
 // figgen wrote (its "id" is ID and it has "figgen_version") with its
 // DIR/ID.png, and writes DIR/index.html, the thumbnails and the posters,
-// each atomically. An image whose header claims more pixels than `max_memory`
+// each atomically. A film's card shows its animated preview DIR/ID.webp
+// until the film is opened to play, the poster frame being the <video>'s
+// poster. An image whose header claims more pixels than `max_memory`
 // (--max-memory) allows for decoding it is not decoded: its card says why.
 // Every JSON is read with a size and a depth limit. Returns the number of
 // figures shown.

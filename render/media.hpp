@@ -21,7 +21,7 @@
 namespace render::media {
 
 // Bumped whenever Api or Encoder change: a module of another build is refused.
-constexpr int api_version = 5;
+constexpr int api_version = 6;
 
 using Packet = VideoPacket;
 
@@ -90,6 +90,8 @@ struct Api {
     // ImageTooLarge before any frame is decoded.
     Image (*decode_film_frame)(int fd, const std::filesystem::path& shown, int index, int threads,
                                std::uint64_t max_pixels);
+    // The canvas size of the WebP on `fd`, from its header alone.
+    PreviewInfo (*webp_canvas)(int fd, const std::filesystem::path& shown);
 };
 
 // The module's functions, opening it on the first call (std::runtime_error

@@ -222,6 +222,11 @@ PreviewInfo write_preview_thumbnail(const Folder& source, const std::string& sou
     return info;
 }
 
+PreviewInfo preview_canvas(const Folder& folder, const std::string& name) {
+    const ReadOnly in(folder, name);
+    return media::api().webp_canvas(in.fd, in.shown);
+}
+
 VideoInfo probe_video(const std::filesystem::path& path) {
     return media::api().probe_video(path);
 }

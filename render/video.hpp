@@ -193,6 +193,9 @@ Image decode_preview_frame(const std::filesystem::path& path, int index);
 PreviewInfo write_preview_thumbnail(const Folder& source, const std::string& source_name, const Folder& folder,
                                     const std::string& name, const PreviewOptions& options,
                                     std::uint64_t max_pixels = any_pixels);
+// The canvas size (width, height) of the WebP folder/name as its header
+// says, nothing decoded; a regular file there, as above.
+PreviewInfo preview_canvas(const Folder& folder, const std::string& name);
 
 // Decodes frame `index` (0-based, display order) back to RGBA on `threads`
 // decoder threads (0: as many as FFmpeg sees cores; the pixels do not depend

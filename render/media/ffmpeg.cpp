@@ -754,7 +754,7 @@ PreviewInfo write_preview_thumbnail(int fd, const std::filesystem::path& shown, 
 const Api functions{api_version,  open_encoder,      open_segment,  probe_video,
                     decode_frame, scale,             write_preview, probe_webp,
                     write_webm,   decode_webp_frame, write_preview_thumbnail,
-                    decode_film_frame};
+                    decode_film_frame, webp_canvas};
 
 }  // namespace
 }  // namespace render::media

@@ -232,6 +232,24 @@ std::vector<Image> decode_webp_frames(int fd, const std::filesystem::path& shown
     return frames;
 }
 
+PreviewInfo webp_canvas(int fd, const std::filesystem::path& shown) {
+    // The RIFF header and the first chunk (VP8X for an animation, VP8 or
+    // VP8L for a still) are all WebPGetFeatures needs.
+    std::uint8_t head[64];
+    ssize_t n = 0;
+    do n = ::pread(fd, head, sizeof head, 0);
+    while (n < 0 && errno == EINTR);
+    if (n < 0) throw std::runtime_error("cannot read " + shown.string() + ": " + std::strerror(errno));
+    WebPBitstreamFeatures features;
+    const VP8StatusCode status = WebPGetFeatures(head, static_cast<std::size_t>(n), &features);
+    if (status != VP8_STATUS_OK || features.width < 1 || features.height < 1)
+        throw std::runtime_error("cannot read " + shown.string() + ": not a WebP libwebp can read");
+    PreviewInfo info;
+    info.width = features.width;
+    info.height = features.height;
+    return info;
+}
+
 Image decode_webp_frame(const std::filesystem::path& path, int index) {
     Animation animation(path);
     int end_ms = 0;

@@ -29,6 +29,10 @@ Image decode_webp_frame(const std::filesystem::path& path, int index);
 // over max_webp_bytes is refused. Errors name `shown`.
 std::vector<Image> decode_webp_frames(int fd, const std::filesystem::path& shown, std::uint64_t max_pixels,
                                       int max_frames, const std::function<Image(const Image&)>& keep, int& duration_ms);
+// The canvas size of the WebP on `fd` as its header says (libwebp's
+// WebPGetFeatures on the file's first bytes; nothing decoded): width and
+// height in a PreviewInfo, frames left 0.
+PreviewInfo webp_canvas(int fd, const std::filesystem::path& shown);
 
 // The largest WebP read: figgen's previews are at most 2 MiB.
 constexpr std::size_t max_webp_bytes = 64u << 20;

@@ -112,13 +112,14 @@ testkit::Run figgen_in_time(const std::string& args) {
 
 }  // namespace
 
-TEST_CASE("gallery refuses a PNG and a film whose headers claim too many pixels, card by card",
+TEST_CASE("gallery refuses a PNG, a film and a preview whose headers claim too many pixels, card by card",
           "[gallery][cli][bounds]") {
     const fs::path out = rendered_copy("gallery-bombs");
     // tc7-9's PNG claims 20000 x 20000 (1.6 GB of RGBA; the file is a few KB).
     claim_png_size(out / "tc7-9.png", 20000, 20000);
-    // tc7-1's film claims 20000 x 20000 frames.
+    // tc7-1's film claims 20000 x 20000 frames, its preview a 16000 x 16000 canvas.
     claim_mp4_size(out / "tc7-1.mp4", 20000, 20000);
+    claim_webp_size(out / "tc7-1.webp", 16000, 16000);
     fs::remove_all(out / "posters");  // no poster kept from before: the film must be read
     const testkit::Run run = figgen_in_time("gallery --out " + out.string());
     INFO(run.output);
@@ -143,6 +144,20 @@ TEST_CASE("gallery refuses a PNG and a film whose headers claim too many pixels,
                                      "pixels"));
     CHECK(film.find("<video") == std::string::npos);
     CHECK_FALSE(fs::exists(out / "posters" / "tc7-1.png"));
+
+    // The film honest again, its preview still lying: the film is shown
+    // with its poster frame, the preview refused in its card.
+    fs::copy_file(rendered() / "tc7-1.mp4", out / "tc7-1.mp4", fs::copy_options::overwrite_existing);
+    const testkit::Run again = figgen_in_time("gallery --out " + out.string());
+    INFO(again.output);
+    REQUIRE(again.status == 0);
+    const std::string second = card_of(slurp(out / "index.html"), "tc7-1");
+    CHECK_THAT(second,
+               Catch::Contains("<video controls preload=\"metadata\" src=\"tc7-1.mp4\" poster=\"posters/tc7-1.png\""));
+    CHECK_THAT(second,
+               Catch::Contains("<p class=\"refused\">tc7-1.webp is not decoded: its header claims 16000 x 16000 "
+                               "pixels"));
+    CHECK(second.find("img class=\"preview\"") == std::string::npos);
 }
 
 TEST_CASE("gallery and thumbnails take --max-memory and hold an image's header to it", "[gallery][cli][bounds]") {
