@@ -84,6 +84,11 @@ CLI::Validator integer_in(long long low, long long high) {
         "INT in [" + std::to_string(low) + " - " + std::to_string(high) + "]");
 }
 
+// --max-memory, one option for every command that takes it; its value is read by parse_size.
+void add_max_memory(CLI::App& command, std::string& size, const std::string& meaning) {
+    command.add_option("--max-memory", size, meaning + " (e.g. 512M, 8G)")->capture_default_str();
+}
+
 }  // namespace
 
 ListCommand::ListCommand(CLI::App& parent) {
@@ -111,11 +116,13 @@ int DescribeCommand::run() {
 GalleryCommand::GalleryCommand(CLI::App& parent) {
     app = parent.add_subcommand("gallery", "Write DIR/index.html showing the figures rendered in DIR");
     app->add_option("--out", dir, "The folder of rendered figures")->capture_default_str();
+    add_max_memory(*app, max_memory, "Decode no image whose header claims more than SIZE of memory: its card says why");
 }
 
 int GalleryCommand::run() {
+    const std::uint64_t memory = parse_size("--max-memory", max_memory);
     if (!std::filesystem::is_directory(dir)) throw UsageError("--out " + dir + " is not a folder of rendered figures");
-    const int shown = write_gallery(dir);
+    const int shown = write_gallery(dir, memory);
     std::printf("%s/index.html: %d figures\n", dir.c_str(), shown);
     return 0;
 }
@@ -126,14 +133,21 @@ ThumbnailsCommand::ThumbnailsCommand(CLI::App& parent) {
     app->add_option("--to", to, "Where the thumbnails go")->capture_default_str();
     app->add_option("--width", width, "Largest width in pixels")->capture_default_str()->check(integer_in(8, 2048));
     app->add_option("--height", height, "Largest height in pixels")->capture_default_str()->check(integer_in(8, 2048));
+    add_max_memory(*app, max_memory,
+                   "Decode no image whose header claims more than SIZE of memory: it is named and the others made");
 }
 
 int ThumbnailsCommand::run() {
+    const std::uint64_t memory = parse_size("--max-memory", max_memory);
     if (!std::filesystem::is_directory(from))
         throw UsageError("--from " + from + " is not a folder of rendered figures");
-    const int written = write_thumbnails(from, to, width, height);
-    std::printf("%s: %d thumbnails\n", to.c_str(), written);
-    return 0;
+    const ThumbnailsWritten made = write_thumbnails(from, to, width, height, memory);
+    std::printf("%s: %d thumbnails\n", to.c_str(), made.written);
+    if (made.refused.empty()) return 0;
+    // Each file refused on a line of its own, the others written: the
+    // README's grid would show an old thumbnail, so the run fails.
+    for (const std::string& line : made.refused) say("error", line);
+    return exit_usage_error;
 }
 
 RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
@@ -173,8 +187,7 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
                     "id=NAME, title=TEXT");
     app->add_option("--seed", seed, "Seed of the random generator (0..2^63-1)")->check(integer_in(0, INT64_MAX));
     app->add_option("--scale", scale, "Scale every pixel size by X (0.1..8)")->capture_default_str();
-    app->add_option("--max-memory", max_memory, "Refuse a figure whose estimated memory exceeds SIZE (e.g. 512M, 8G)")
-        ->capture_default_str();
+    add_max_memory(*app, max_memory, "Refuse a figure whose estimated memory exceeds SIZE");
     app->add_option("--max-disk", max_disk, "Refuse a figure whose outputs would exceed SIZE (e.g. 100M, 8G)")
         ->capture_default_str();
     app->add_flag("--no-video", no_video, "Do not write the MP4 animation (as --format png)");

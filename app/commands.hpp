@@ -49,10 +49,17 @@ struct DescribeCommand : Command {
     std::string target;
 };
 
+// The gallery and the thumbnails decode images that anyone may have put in
+// the folder: --max-memory (as render's, read by parse_size) bounds what an
+// image's header may claim. 1 GiB holds every figure, poster and preview
+// the catalog renders many times over, and refuses a PNG of 20000 x 20000.
+constexpr const char* image_reading_max_memory = "1G";
+
 struct GalleryCommand : Command {
     explicit GalleryCommand(CLI::App& parent);
     int run() override;
     std::string dir = "out";
+    std::string max_memory = image_reading_max_memory;
 };
 
 struct ThumbnailsCommand : Command {
@@ -60,6 +67,7 @@ struct ThumbnailsCommand : Command {
     int run() override;
     std::string from = "out", to = "docs/thumbs";
     int width = 240, height = 180;
+    std::string max_memory = image_reading_max_memory;
 };
 
 // figgen render, and figgen merge (the same options and --from): a merge

@@ -12,12 +12,15 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "app/bounded_json.hpp"
+#include "app/key_numbers.hpp"
+#include "app/outputs.hpp"
+#include "app/version.hpp"
 #include "description/catalog.hpp"
 #include "description/plain_name.hpp"
-#include "app/key_numbers.hpp"
-#include "app/version.hpp"
 #include "render/atomic_file.hpp"
 #include "render/png_io.hpp"
 #include "render/thumbnail.hpp"
@@ -36,6 +39,44 @@ constexpr std::size_t max_other_figures = 1000;
 struct Folders {
     render::Folder figures, thumbs, posters;
 };
+
+// What decoding an image takes, to keep it within --max-memory: the
+// program itself (figgen with FFmpeg's and libwebp's libraries loaded),
+// and bytes a pixel of the size the image's header claims. Measured with
+// /usr/bin/time -v (maximum resident set size) on `figgen gallery`: a
+// gallery of tc7-1 (with its film) and tc7-9 at half size peaks at 44 MB.
+constexpr double program_bytes = 64.0 * 1024 * 1024;
+// A PNG: its RGBA pixels, and libswscale's rows as it scales them down
+// (measured: 47.6 MB for a 2000 x 2000 PNG, 173.9 MB for 6000 x 6000, 4.04
+// bytes a pixel between them).
+constexpr double png_bytes_per_pixel = 4.5;
+// A film's poster frame: the decoder's frames (H.264 keeps up to 16 for
+// reference, and one a decoding thread, of which there are at most
+// poster_threads), each 1.5 bytes a pixel in YUV 4:2:0, and the frame in
+// RGBA: (16 + 8 + 2) * 1.5 + 4 and libswscale's rows. tc7-1's x264 film
+// measured 18 bytes a pixel on 2 threads (53.7 MB at 800 x 800, 143.6 MB
+// at 2400 x 2400).
+constexpr double film_bytes_per_pixel = 48.0;
+constexpr unsigned poster_threads = 8;
+// A preview's canvas: libwebp's two canvases (the frame shown and the one
+// before it), the frame being decoded, and our copy of it.
+constexpr double webp_bytes_per_pixel = 16.0;
+
+// The most pixels an image may claim under `max_memory`, at `bytes_per_pixel`.
+std::uint64_t max_pixels(std::uint64_t max_memory, double bytes_per_pixel) {
+    const double room = static_cast<double>(max_memory) - program_bytes;
+    return room <= 0 ? 0 : static_cast<std::uint64_t>(room / bytes_per_pixel);
+}
+
+// Why `file` was not read: one line with the size its header claims and
+// the memory that would take.
+std::string refusal(const std::string& file, const render::ImageTooLarge& e, std::uint64_t max_memory,
+                    double bytes_per_pixel) {
+    const double needs = program_bytes + bytes_per_pixel * static_cast<double>(e.width) * static_cast<double>(e.height);
+    return file + " is not decoded: its header claims " + std::to_string(e.width) + " x " + std::to_string(e.height) +
+           " pixels, which would take about " + format_bytes(needs) + " to decode, more than --max-memory " +
+           format_bytes(static_cast<double>(max_memory));
+}
 
 std::string escape(const std::string& text) {
     std::string out;
@@ -200,6 +241,13 @@ article .id { font-family: "DejaVu Sans Mono", monospace; font-size: 0.85rem; co
 article .source { margin: 0.2rem 0 0.6rem; color: var(--muted); font-size: 0.9rem; }
 img, video { display: block; max-width: 100%; height: auto; border: 1px solid var(--line); background: #fff; }
 video { margin-top: 0.6rem; max-height: 420px; width: auto; }
+details.film { margin-top: 0.6rem; font-size: inherit; }
+details.film > summary { list-style: none; color: inherit; }
+details.film > summary::-webkit-details-marker { display: none; }
+details.film > summary span { display: block; font-size: 0.85rem; color: var(--muted); }
+details.film[open] > summary img { display: none; }
+details.film video { margin-top: 0.2rem; }
+.refused { color: #8a1c1c; font-size: 0.9rem; overflow-wrap: anywhere; }
 .links { margin: 0.5rem 0; font-size: 0.9rem; }
 .links a { margin-right: 1rem; }
 details { margin-top: 0.4rem; font-size: 0.85rem; }
@@ -227,12 +275,45 @@ bool is_file_in(const render::Folder& folder, const std::string& name) {
     return ::fstatat(folder.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode);
 }
 
-// The metadata folder/name, read without following a symlink; null when it
-// is not there or not JSON.
-nlohmann::json read_metadata(const render::Folder& folder, const std::string& name) {
-    const std::optional<std::string> text = render::read_file_at(folder, name, 16u << 20);
-    if (!text) return nullptr;
-    return nlohmann::json::parse(*text, nullptr, false);  // discarded (not an exception) when malformed
+// A figure's metadata is at most 16 MiB and nests at most 64 levels (the
+// catalog's nest 5): the parser stops deeper, so that a hand-made JSON of a
+// million nested `[` is refused as it is read, never walked, copied or
+// dumped by recursion.
+constexpr std::size_t max_metadata_bytes = 16u << 20;
+constexpr int max_metadata_depth = most_nesting;
+
+// Whether something other than a regular file (a FIFO, a folder, a
+// symlink) stands at `name` in `folder`.
+bool is_other_than_file(const render::Folder& folder, const std::string& name) {
+    struct stat st {};
+    return ::fstatat(folder.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && !S_ISREG(st.st_mode);
+}
+
+// The metadata folder/name, read as a regular file (no symlink followed, no
+// FIFO waited on); null when it is not there or is not JSON, and also when
+// it is not a regular file, is too large or nests too deep, which
+// `problem` then says.
+nlohmann::json read_metadata(const render::Folder& folder, const std::string& name, std::string* problem = nullptr) {
+    const auto refused = [&](const std::string& why) {
+        if (problem) *problem = name + " " + why;
+        return nullptr;
+    };
+    struct stat st {};
+    if (::fstatat(folder.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0) return nullptr;  // not there
+    if (!S_ISREG(st.st_mode)) return refused("is not a regular file");
+    if (st.st_size > static_cast<off_t>(max_metadata_bytes))
+        return refused("holds more than " + std::to_string(max_metadata_bytes >> 20) + " MiB");
+    // Read through a descriptor checked again: the name may have changed since.
+    const std::optional<std::string> text = render::read_file_at(folder, name, max_metadata_bytes);
+    if (!text)
+        return refused("could not be read as a regular file of at most " + std::to_string(max_metadata_bytes >> 20) +
+                       " MiB");
+    try {
+        return json_bounded(*text, max_metadata_depth);
+    } catch (const MalformedData& e) {
+        if (std::string_view(e.what()).rfind("nests", 0) == 0) return refused(e.what());
+        return nlohmann::json(nlohmann::json::value_t::discarded);  // not JSON: as before, no card data
+    }
 }
 
 // The figures in the folder that are not the catalog's: every ID.json
@@ -240,7 +321,8 @@ nlohmann::json read_metadata(const render::Folder& folder, const std::string& na
 // which names the figgen that wrote it) beside its ID.png, in name order.
 // Names come from the folder's listing, never from a JSON; symlinks are
 // passed over, as everywhere in the gallery.
-std::vector<std::string> figures_outside(const render::Folder& folder, const std::vector<std::string>& catalog) {
+std::vector<std::string> figures_outside(const render::Folder& folder, const std::vector<std::string>& catalog,
+                                         std::vector<std::string>& unreadable) {
     std::vector<std::string> ids;
     const int fd = ::openat(folder.fd(), ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd < 0) return ids;
@@ -261,7 +343,9 @@ std::vector<std::string> figures_outside(const render::Folder& folder, const std
     ::closedir(listing);
     std::sort(ids.begin(), ids.end());
     std::erase_if(ids, [&](const std::string& id) {
-        const nlohmann::json meta = read_metadata(folder, id + ".json");
+        std::string problem;
+        const nlohmann::json meta = read_metadata(folder, id + ".json", &problem);
+        if (!problem.empty()) unreadable.push_back(id + ": " + problem);
         return !(meta.is_object() && text_of(meta, "id", "") == id && !text_of(meta, "figgen_version", "").empty());
     });
     return ids;
@@ -269,14 +353,28 @@ std::vector<std::string> figures_outside(const render::Folder& folder, const std
 
 }  // namespace
 
-int write_thumbnails(const std::filesystem::path& from, const std::filesystem::path& to, int max_width,
-                     int max_height) {
+ThumbnailsWritten write_thumbnails(const std::filesystem::path& from, const std::filesystem::path& to, int max_width,
+                                   int max_height, std::uint64_t max_memory) {
     const render::Folder source(from), target(to, true);
-    int written = 0;
+    ThumbnailsWritten made;
+    // A file that cannot be read is named and passed over; the error
+    // names the file and says why (not a regular file, not an image, or a
+    // header claiming more than --max-memory allows).
+    const auto refused = [&](const std::string& name, const std::exception& e) {
+        const auto* large = dynamic_cast<const render::ImageTooLarge*>(&e);
+        const double per_pixel = name.ends_with(".webp") ? webp_bytes_per_pixel : png_bytes_per_pixel;
+        made.refused.push_back(large ? refusal((source / name).string(), *large, max_memory, per_pixel) : e.what());
+    };
     for (const auto& file : catalog_files()) {
         const std::string id = file.stem().string();
         if (!is_file_in(source, id + ".png")) continue;
-        const render::PngFile png = render::read_png(source, id + ".png");
+        render::PngFile png;
+        try {
+            png = render::read_png(source, id + ".png", max_pixels(max_memory, png_bytes_per_pixel));
+        } catch (const std::runtime_error& e) {
+            refused(id + ".png", e);
+            continue;
+        }
         std::string title = id;
         for (const auto& [key, value] : png.text)
             if (key == "Title") title = value;
@@ -291,11 +389,16 @@ int write_thumbnails(const std::filesystem::path& from, const std::filesystem::p
             small.max_height = max_height;
             small.max_frames = 24;
             small.max_bytes = 400u << 10;
-            render::write_preview_thumbnail(source / (id + ".webp"), target, id + ".webp", small);
+            try {
+                render::write_preview_thumbnail(source, id + ".webp", target, id + ".webp", small,
+                                                max_pixels(max_memory, webp_bytes_per_pixel));
+            } catch (const std::runtime_error& e) {
+                refused(id + ".webp", e);
+            }
         }
-        ++written;
+        ++made.written;
     }
-    return written;
+    return made;
 }
 
 namespace {
@@ -310,14 +413,45 @@ std::string film_identity(const render::Folder& folder, const std::string& movie
            std::to_string(st.st_mtim.tv_nsec);
 }
 
-// The PNG's tEXt `key`, or "" (also for a PNG that cannot be read).
-std::string png_text(const render::Folder& folder, const std::string& name, const std::string& key) {
+// The PNG's tEXt `key`, or "" (also for a PNG that cannot be read, or
+// whose header claims more than `max_pixels`).
+std::string png_text(const render::Folder& folder, const std::string& name, const std::string& key,
+                     std::uint64_t max_pixels) {
     try {
-        for (const auto& [k, value] : render::read_png(folder, name).text)
+        for (const auto& [k, value] : render::read_png(folder, name, max_pixels).text)
             if (k == key) return value;
     } catch (const std::exception&) {
     }
     return "";
+}
+
+// The card's animated preview, where the figure's ID.webp is in the folder
+// (its name is never taken from the metadata): an <img> of the size its
+// header gives, or "" for none (also for a file that is not a WebP, and for
+// one whose header claims more than --max-memory allows, which `refused`
+// then says).
+std::string preview_html(const Folders& folders, std::uint64_t max_memory, const std::string& id,
+                         const std::string& title, std::string& refused) {
+    const std::string preview = id + ".webp";
+    if (!is_file_in(folders.figures, preview)) return "";
+    try {
+        const render::PreviewInfo canvas = render::preview_canvas(folders.figures, preview);
+        const std::uint64_t pixels =
+            static_cast<std::uint64_t>(canvas.width) * static_cast<std::uint64_t>(canvas.height);
+        const std::uint64_t allowed = max_pixels(max_memory, webp_bytes_per_pixel);
+        if (pixels > allowed) {
+            refused = refusal(preview,
+                              render::ImageTooLarge(preview, static_cast<std::uint64_t>(canvas.width),
+                                                    static_cast<std::uint64_t>(canvas.height), allowed),
+                              max_memory, webp_bytes_per_pixel);
+            return "";
+        }
+        return "<img class=\"preview\" src=\"" + escape(preview) + "\" width=\"" + std::to_string(canvas.width) +
+               "\" height=\"" + std::to_string(canvas.height) + "\" alt=\"" + escape(title) +
+               " (animated preview; open to play the film)\">";
+    } catch (const std::runtime_error&) {
+        return "";
+    }
 }
 
 // The card's <video>, where the figure's film ID.mp4 is in the folder (its
@@ -326,9 +460,13 @@ std::string png_text(const render::Folder& folder, const std::string& name, cons
 // index), else the film's last frame, decoded from the MP4: what the film is
 // about, where the first frame (what a browser shows by itself) is often
 // nearly empty. A poster that cannot be decoded (a hand-edited metadata that
-// promises more frames than the film has) is left out. Returns the film's
-// file name, or "" for none.
-std::string film_html(const Folders& folders, const std::string& id, const std::string& title,
+// promises more frames than the film has) is left out. Where the film has
+// its animated preview ID.webp, the card shows the preview until the film
+// is opened to play (a <details> whose summary is the preview), the poster
+// frame then being the <video>'s poster. A film whose header claims frames
+// of more pixels than --max-memory allows is not decoded, and the card says
+// so in its place. Returns the film's file name, or "" for none.
+std::string film_html(const Folders& folders, std::uint64_t max_memory, const std::string& id, const std::string& title,
                       const nlohmann::json& meta, std::ostringstream& card) {
     const std::string movie = id + ".mp4";
     const nlohmann::json& film = member(meta, "animation");
@@ -346,21 +484,33 @@ std::string film_html(const Folders& folders, const std::string& id, const std::
         // frame is most of the gallery's time.
         const std::string source = film_identity(folders.figures, movie, poster_frame);
         if (source.empty() || !is_file_in(folders.posters, id + ".png") ||
-            png_text(folders.posters, id + ".png", "Source") != source) {
-            const render::Image frame = render::decode_frame(folders.figures / movie, poster_frame, 0);
+            png_text(folders.posters, id + ".png", "Source", max_pixels(max_memory, png_bytes_per_pixel)) != source) {
+            const int threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, poster_threads));
+            const render::Image frame = render::decode_frame(folders.figures, movie, poster_frame, threads,
+                                                             max_pixels(max_memory, film_bytes_per_pixel));
             render::write_png(folders.posters, id + ".png", frame,
                               {{"Title", title + " (frame " + std::to_string(poster_frame) + " of " + movie + ")"},
                                {"Source", source}});
         }
         poster = "posters/" + id + ".png";
+    } catch (const render::ImageTooLarge& e) {
+        card << "<p class=\"refused\">" << escape(refusal(movie, e, max_memory, film_bytes_per_pixel)) << "</p>\n";
+        return "";
     } catch (const std::exception&) {
     }
+    std::string refused;
+    const std::string preview = preview_html(folders, max_memory, id, title, refused);
+    if (!refused.empty()) card << "<p class=\"refused\">" << escape(refused) << "</p>\n";
+    if (!preview.empty())
+        card << "<details class=\"film\"><summary>" << preview << "<span>&#9654; play the film (" << frames
+             << " frames at " << fps << " fps)</span></summary>\n";
     card << "<video controls preload=\"metadata\" src=\"" << escape(movie) << "\"";
     if (!poster.empty()) card << " poster=\"" << escape(poster) << "\"";
     card << " width=\"" << width << "\" height=\"" << height << "\" data-width=\"" << width
          << "\" data-height=\"" << height << "\" data-frames=\"" << frames << "\" data-fps=\"" << fps
          << "\" data-poster-frame=\"" << poster_frame << "\" data-poster-width=\"" << width
          << "\" data-poster-height=\"" << height << "\"></video>\n";
+    if (!preview.empty()) card << "</details>\n";
     return movie;
 }
 
@@ -427,20 +577,28 @@ void details_html(const render::Folder& figures, const std::string& id, const st
         card << "<details><summary>notes</summary><p>" << escape(text_of(meta, "caption", "")) << "</p></details>\n";
 }
 
-// One figure's card; writes its thumbnail (and poster).
-std::string card_html(const Folders& folders, const std::string& id, const nlohmann::json& meta) {
+// One figure's card; writes its thumbnail (and poster). A PNG whose header
+// claims more pixels than --max-memory allows is not decoded: the card
+// says why in the thumbnail's place.
+std::string card_html(const Folders& folders, std::uint64_t max_memory, const std::string& id,
+                      const nlohmann::json& meta) {
     const std::string title = text_of(meta, "title", id);
-    const render::Image thumb =
-        render::thumbnail(render::read_png(folders.figures, id + ".png").image, thumb_width, thumb_height);
-    render::write_png(folders.thumbs, id + ".png", thumb, {{"Title", title}});
     std::ostringstream card;
     card << "<article id=\"" << escape(id) << "\">\n"
          << "<h2>" << escape(title) << "</h2>\n"
          << "<div class=\"id\">" << escape(id) << "</div>\n"
-         << "<p class=\"source\">" << escape(text_of(meta, "source", "")) << "</p>\n"
-         << "<a href=\"" << escape(id) << ".png\"><img src=\"thumbs/" << escape(id) << ".png\" width=\""
-         << thumb.width << "\" height=\"" << thumb.height << "\" alt=\"" << escape(title) << "\"></a>\n";
-    const std::string movie = film_html(folders, id, title, meta, card);
+         << "<p class=\"source\">" << escape(text_of(meta, "source", "")) << "</p>\n";
+    try {
+        const render::Image thumb = render::thumbnail(
+            render::read_png(folders.figures, id + ".png", max_pixels(max_memory, png_bytes_per_pixel)).image,
+            thumb_width, thumb_height);
+        render::write_png(folders.thumbs, id + ".png", thumb, {{"Title", title}});
+        card << "<a href=\"" << escape(id) << ".png\"><img src=\"thumbs/" << escape(id) << ".png\" width=\""
+             << thumb.width << "\" height=\"" << thumb.height << "\" alt=\"" << escape(title) << "\"></a>\n";
+    } catch (const render::ImageTooLarge& e) {
+        card << "<p class=\"refused\">" << escape(refusal(id + ".png", e, max_memory, png_bytes_per_pixel)) << "</p>\n";
+    }
+    const std::string movie = film_html(folders, max_memory, id, title, meta, card);
     details_html(folders.figures, id, movie, meta, card);
     card << "</article>\n";
     return card.str();
@@ -464,7 +622,7 @@ std::string page_html(const std::string& cards, int shown, int missing, int othe
 
 }  // namespace
 
-int write_gallery(const std::filesystem::path& dir) {
+int write_gallery(const std::filesystem::path& dir, std::uint64_t max_memory) {
     const render::Folder figures(dir);
     const Folders folders{figures, render::Folder(figures, "thumbs"), render::Folder(figures, "posters")};
     std::string cards;
@@ -474,7 +632,7 @@ int write_gallery(const std::filesystem::path& dir) {
     // one) is named in the header instead of stopping the gallery.
     const auto show = [&](const std::string& id, const nlohmann::json& meta) {
         try {
-            cards += card_html(folders, id, meta);
+            cards += card_html(folders, max_memory, id, meta);
             ++shown;
         } catch (const std::exception& e) {
             unreadable.push_back(id + ": " + e.what());
@@ -484,7 +642,11 @@ int write_gallery(const std::filesystem::path& dir) {
     for (const auto& file : catalog_files()) {
         const std::string id = file.stem().string();
         catalog.push_back(id);
-        const nlohmann::json meta = read_metadata(figures, id + ".json");
+        std::string problem;
+        const nlohmann::json meta = read_metadata(figures, id + ".json", &problem);
+        if (!problem.empty()) unreadable.push_back(id + ": " + problem);
+        if (meta.is_object() && is_other_than_file(figures, id + ".png"))
+            unreadable.push_back(id + ": " + id + ".png is not a regular file");
         if (!meta.is_object() || !is_file_in(figures, id + ".png")) {
             ++missing;
             continue;
@@ -492,7 +654,7 @@ int write_gallery(const std::filesystem::path& dir) {
         show(id, meta);
     }
     int others = 0;
-    for (const std::string& id : figures_outside(figures, catalog)) {
+    for (const std::string& id : figures_outside(figures, catalog, unreadable)) {
         show(id, read_metadata(figures, id + ".json"));
         ++others;
     }

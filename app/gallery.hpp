@@ -12,7 +12,10 @@
 // (never a symlink) named by the catalog or the folder's listing, never a
 // name taken from a JSON, and escapes every text it shows.
 
+#include <cstdint>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace app {
 
@@ -20,13 +23,25 @@ namespace app {
 // out, and counted in the page's header), then every other DIR/ID.json that
 // figgen wrote (its "id" is ID and it has "figgen_version") with its
 // DIR/ID.png, and writes DIR/index.html, the thumbnails and the posters,
-// each atomically. Returns the number of figures shown.
-int write_gallery(const std::filesystem::path& dir);
+// each atomically. A film's card shows its animated preview DIR/ID.webp
+// until the film is opened to play, the poster frame being the <video>'s
+// poster. An image whose header claims more pixels than `max_memory`
+// (--max-memory) allows for decoding it is not decoded: its card says why.
+// Every JSON is read with a size and a depth limit. Returns the number of
+// figures shown.
+int write_gallery(const std::filesystem::path& dir, std::uint64_t max_memory);
+
+struct ThumbnailsWritten {
+    int written = 0;                   // TO/ID.png files written
+    std::vector<std::string> refused;  // one line each: the file and why it was not read
+};
 
 // TO/ID.png for every DIR/ID.png of the catalog's ids, scaled to fit
-// max_width x max_height (the README's grid: `make readme-thumbnails`).
-// Returns how many were written.
-int write_thumbnails(const std::filesystem::path& from, const std::filesystem::path& to, int max_width,
-                     int max_height);
+// max_width x max_height (the README's grid: `make readme-thumbnails`),
+// and TO/ID.webp for its film's preview DIR/ID.webp. A file that cannot be
+// read (not a regular file, not an image, or a header claiming more pixels
+// than `max_memory` allows) is refused, and the others are still written.
+ThumbnailsWritten write_thumbnails(const std::filesystem::path& from, const std::filesystem::path& to, int max_width,
+                                   int max_height, std::uint64_t max_memory);
 
 }  // namespace app

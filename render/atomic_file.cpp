@@ -337,14 +337,35 @@ int remove_stale_temporaries(const Folder& folder, const std::vector<std::string
     return removed;
 }
 
-std::optional<std::string> read_file_at(const Folder& folder, const std::string& name, std::size_t max_bytes) {
-    // O_NONBLOCK: a FIFO standing at the name would block the open itself
-    // until a writer came; it is refused by fstat like any other non-file.
+int open_regular_at(const Folder& folder, const std::string& name) {
     const int fd = ::openat(folder.fd(), name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0) return std::nullopt;
+    if (fd < 0) return -1;
     struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        const int reason = st.st_mode == 0 ? errno : EINVAL;  // fstat's error, or not a regular file
+        ::close(fd);
+        errno = reason;
+        return -1;
+    }
+    // A regular file never blocks; readers that poll would be surprised by O_NONBLOCK.
+    const int flags = ::fcntl(fd, F_GETFL);
+    if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+    return fd;
+}
+
+std::string not_opened_reason(int err) {
+    if (err == EINVAL) return "it is not a regular file";
+    if (err == ELOOP) return "it is a symlink, which is not followed";
+    return std::strerror(err);
+}
+
+std::optional<std::string> read_file_at(const Folder& folder, const std::string& name, std::size_t max_bytes) {
+    const int fd = open_regular_at(folder, name);
+    if (fd < 0) return std::nullopt;
     std::optional<std::string> text;
-    if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && static_cast<std::uintmax_t>(st.st_size) <= max_bytes) {
+    struct stat st {};
+    // A file larger than asked is refused before anything is read or allocated.
+    if (::fstat(fd, &st) == 0 && static_cast<std::uintmax_t>(st.st_size) <= max_bytes) {
         text.emplace();
         char chunk[1 << 16];
         ssize_t n = 0;

@@ -153,8 +153,19 @@ int remove_stale_temporaries(const Folder& folder, const std::vector<std::string
 // in it, never following a symlink. Returns false if nothing was there.
 bool remove_at(const Folder& folder, const std::string& name);
 
+// folder/name opened for reading only if it is a regular file of its own:
+// never through a symlink (O_NOFOLLOW), and without waiting on a FIFO or a
+// device (O_NONBLOCK, then fstat on the descriptor), so a FIFO planted at a
+// name cannot hang the reader. Returns the descriptor (close-on-exec,
+// blocking again), or -1 with errno set (ELOOP for a symlink, EINVAL for
+// what is not a regular file).
+int open_regular_at(const Folder& folder, const std::string& name);
+// Why open_regular_at failed with `err`, in words ("it is not a regular file").
+std::string not_opened_reason(int err);
+
 // The regular file folder/name, read without following a symlink; none when
-// it is not there, cannot be read or holds more than `max_bytes`.
+// it is not there, is not a regular file, cannot be read or holds more than
+// `max_bytes`.
 std::optional<std::string> read_file_at(const Folder& folder, const std::string& name, std::size_t max_bytes);
 
 // Writes bytes to folder/name atomically; throws std::runtime_error naming

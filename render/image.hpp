@@ -3,6 +3,9 @@
 // back and what the PNG and MP4 sinks take.
 
 #include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace render {
@@ -17,6 +20,25 @@ struct Image {
 
     std::uint8_t* pixel(int x, int y) { return &rgba[(static_cast<std::size_t>(y) * width + x) * 4]; }
     const std::uint8_t* pixel(int x, int y) const { return &rgba[(static_cast<std::size_t>(y) * width + x) * 4]; }
+};
+
+// No limit on the pixels a reader may decode.
+constexpr std::uint64_t any_pixels = std::numeric_limits<std::uint64_t>::max();
+
+// An image (a PNG, a film's frames, a WebP's canvas) refused before it is
+// decoded: its header claims more pixels than the reader was allowed, so
+// a few bytes of header cannot make the reader allocate gigabytes.
+struct ImageTooLarge : std::runtime_error {
+    ImageTooLarge(const std::string& file, std::uint64_t claimed_width, std::uint64_t claimed_height,
+                  std::uint64_t allowed)
+        : std::runtime_error("cannot read " + file + ": its header claims " + std::to_string(claimed_width) + " x " +
+                             std::to_string(claimed_height) + " pixels, more than the " + std::to_string(allowed) +
+                             " allowed"),
+          width(claimed_width),
+          height(claimed_height),
+          max_pixels(allowed) {}
+    std::uint64_t width, height;  // what the header claims
+    std::uint64_t max_pixels;     // what the reader allowed
 };
 
 }  // namespace render

@@ -21,7 +21,7 @@
 namespace render::media {
 
 // Bumped whenever Api or Encoder change: a module of another build is refused.
-constexpr int api_version = 4;
+constexpr int api_version = 6;
 
 using Packet = VideoPacket;
 
@@ -76,11 +76,22 @@ struct Api {
     std::uint64_t (*write_webm)(int fd, const std::filesystem::path& shown, int film_fd, int fps,
                                 const WebmOptions& options);
     Image (*decode_preview_frame)(const std::filesystem::path& path, int index);
-    // A smaller copy of the preview at `path`, on `fd`: its frames (at most
-    // options.max_frames of them, evenly spread) scaled to fit
-    // options.max_width x max_height, over the same duration.
-    PreviewInfo (*write_preview_thumbnail)(int fd, const std::filesystem::path& shown, const std::filesystem::path& path,
+    // A smaller copy of the preview on `source_fd` (errors name `source`),
+    // on `fd`: its frames (at most options.max_frames of them, evenly
+    // spread) scaled to fit options.max_width x max_height, over the same
+    // duration. A canvas of more than `max_pixels` is refused from its header
+    // (ImageTooLarge).
+    PreviewInfo (*write_preview_thumbnail)(int fd, const std::filesystem::path& shown, int source_fd,
+                                           const std::filesystem::path& source, std::uint64_t max_pixels,
                                            const PreviewOptions& options);
+    // Frame `index` of the film on `fd` (read from its start, never closed
+    // here; errors name `shown`), as decode_frame. A video stream whose
+    // header claims frames of more than `max_pixels` pixels throws
+    // ImageTooLarge before any frame is decoded.
+    Image (*decode_film_frame)(int fd, const std::filesystem::path& shown, int index, int threads,
+                               std::uint64_t max_pixels);
+    // The canvas size of the WebP on `fd`, from its header alone.
+    PreviewInfo (*webp_canvas)(int fd, const std::filesystem::path& shown);
 };
 
 // The module's functions, opening it on the first call (std::runtime_error

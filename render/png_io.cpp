@@ -127,9 +127,16 @@ int choose_filters(png_bytep* rows, int width, int height, const Settings& setti
     return choice;
 }
 
-// Decodes `in` into `result` (8-bit RGBA whatever the stored format). Like
-// encode(), free of objects with destructors between setjmp and longjmp.
-bool decode(std::FILE* in, PngFile& result, ErrorState& state) {
+// What the header of a PNG refused for its size claims.
+struct Claimed {
+    std::uint64_t width = 0, height = 0;
+};
+
+// Decodes `in` into `result` (8-bit RGBA whatever the stored format), or
+// stops after the header when it claims more than `max_pixels` (returns
+// false with `too_large` filled in). Like encode(), free of objects with
+// destructors between setjmp and longjmp.
+bool decode(std::FILE* in, PngFile& result, ErrorState& state, std::uint64_t max_pixels, Claimed& too_large) {
     png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, on_error, on_warning);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (!info) {
@@ -143,6 +150,13 @@ bool decode(std::FILE* in, PngFile& result, ErrorState& state) {
     }
     png_init_io(png, in);
     png_read_info(png, info);
+    const std::uint64_t claimed_width = png_get_image_width(png, info),
+                        claimed_height = png_get_image_height(png, info);
+    if (claimed_width * claimed_height > max_pixels) {  // both below 2^31 (libpng checks): no overflow
+        too_large = {claimed_width, claimed_height};
+        png_destroy_read_struct(&png, &info, nullptr);
+        return false;
+    }
     png_set_expand(png);
     png_set_strip_16(png);
     png_set_gray_to_rgb(png);
@@ -222,26 +236,29 @@ void write_png(const std::filesystem::path& path, const Image& image, const Text
 
 namespace {
 
-PngFile read_png_from(std::FILE* stream, const std::filesystem::path& path) {
+PngFile read_png_from(std::FILE* stream, const std::filesystem::path& path, std::uint64_t max_pixels = any_pixels) {
     File in(stream);
     PngFile result;
     ErrorState state;
-    if (!decode(in.get(), result, state))
+    Claimed claimed;
+    if (!decode(in.get(), result, state, max_pixels, claimed)) {
+        if (claimed.width > 0) throw ImageTooLarge(path.string(), claimed.width, claimed.height, max_pixels);
         throw std::runtime_error("cannot read " + path.string() + ": " + state.message);
+    }
     return result;
 }
 
 }  // namespace
 
-PngFile read_png(const Folder& folder, const std::string& name) {
-    const int fd = ::openat(folder.fd(), name.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
-    if (fd < 0) throw std::runtime_error("cannot read " + (folder / name).string() + ": " + std::strerror(errno));
+PngFile read_png(const Folder& folder, const std::string& name, std::uint64_t max_pixels) {
+    const int fd = open_regular_at(folder, name);
+    if (fd < 0) throw std::runtime_error("cannot read " + (folder / name).string() + ": " + not_opened_reason(errno));
     std::FILE* stream = ::fdopen(fd, "rb");
     if (!stream) {
         ::close(fd);
         throw std::runtime_error("cannot read " + (folder / name).string() + ": " + std::strerror(errno));
     }
-    return read_png_from(stream, folder / name);
+    return read_png_from(stream, folder / name, max_pixels);
 }
 
 PngFile read_png(const std::filesystem::path& path) {

@@ -35,7 +35,10 @@ struct PngFile {
     TextChunks text;  // tEXt/zTXt/iTXt chunks in file order
 };
 PngFile read_png(const std::filesystem::path& path);
-// folder/name, which must be a file there: a symlink is not followed.
-PngFile read_png(const Folder& folder, const std::string& name);
+// folder/name, which must be a regular file there (a symlink is not
+// followed, a FIFO not waited on). An image whose header (png_read_info)
+// claims more than `max_pixels` pixels throws ImageTooLarge before any
+// pixel is allocated.
+PngFile read_png(const Folder& folder, const std::string& name, std::uint64_t max_pixels = any_pixels);
 
 }  // namespace render

@@ -1,8 +1,10 @@
 #include "render/video.hpp"
 
-#include <optional>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -58,6 +60,19 @@ void check_frame(const Image& frame, int width, int height) {
                                     std::to_string(frame.height) + ", expected " + std::to_string(width) + "x" +
                                     std::to_string(height) + " RGBA");
 }
+
+// A file read by the media module: folder/name opened here, a regular file
+// (open_regular_at), and handed over as its descriptor.
+struct ReadOnly {
+    ReadOnly(const Folder& folder, const std::string& name) : shown(folder / name), fd(open_regular_at(folder, name)) {
+        if (fd < 0) throw std::runtime_error("cannot read " + shown.string() + ": " + not_opened_reason(errno));
+    }
+    ~ReadOnly() { ::close(fd); }
+    ReadOnly(const ReadOnly&) = delete;
+    ReadOnly& operator=(const ReadOnly&) = delete;
+    std::filesystem::path shown;
+    int fd;
+};
 
 void check_preview(const PreviewOptions& options) {
     if (options.max_width < 1 || options.max_height < 1 || options.max_frames < 1 || !(options.max_seconds > 0) ||
@@ -196,13 +211,20 @@ Image decode_preview_frame(const std::filesystem::path& path, int index) {
     return media::api().decode_preview_frame(path, index);
 }
 
-PreviewInfo write_preview_thumbnail(const std::filesystem::path& path, const Folder& folder, const std::string& name,
-                                    const PreviewOptions& options) {
+PreviewInfo write_preview_thumbnail(const Folder& source, const std::string& source_name, const Folder& folder,
+                                    const std::string& name, const PreviewOptions& options, std::uint64_t max_pixels) {
     check_preview(options);
+    const ReadOnly in(source, source_name);
     AtomicFile file(folder, name);
-    const PreviewInfo info = media::api().write_preview_thumbnail(file.fd(), folder / name, path, options);
+    const PreviewInfo info =
+        media::api().write_preview_thumbnail(file.fd(), folder / name, in.fd, in.shown, max_pixels, options);
     file.commit();
     return info;
+}
+
+PreviewInfo preview_canvas(const Folder& folder, const std::string& name) {
+    const ReadOnly in(folder, name);
+    return media::api().webp_canvas(in.fd, in.shown);
 }
 
 VideoInfo probe_video(const std::filesystem::path& path) {
@@ -213,6 +235,13 @@ Image decode_frame(const std::filesystem::path& path, int index, int threads) {
     if (index < 0) throw std::out_of_range("video frame index " + std::to_string(index) + " is negative");
     if (threads < 0) throw std::invalid_argument("decoder threads " + std::to_string(threads) + " is negative");
     return media::api().decode_frame(path, index, threads);
+}
+
+Image decode_frame(const Folder& folder, const std::string& name, int index, int threads, std::uint64_t max_pixels) {
+    if (index < 0) throw std::out_of_range("video frame index " + std::to_string(index) + " is negative");
+    if (threads < 0) throw std::invalid_argument("decoder threads " + std::to_string(threads) + " is negative");
+    const ReadOnly in(folder, name);
+    return media::api().decode_film_frame(in.fd, in.shown, index, threads, max_pixels);
 }
 
 }  // namespace render

@@ -184,15 +184,27 @@ VideoInfo probe_video(const std::filesystem::path& path);
 // std::runtime_error naming the path when they cannot.
 PreviewInfo probe_preview(const std::filesystem::path& path);
 Image decode_preview_frame(const std::filesystem::path& path, int index);
-// folder/name, a smaller copy of the preview at `path` (a thumbnail for a
-// page such as the README): at most options.max_frames of its frames,
-// scaled to fit options.max_width x max_height, over the same duration.
-PreviewInfo write_preview_thumbnail(const std::filesystem::path& path, const Folder& folder, const std::string& name,
-                                    const PreviewOptions& options);
+// folder/name, a smaller copy of the preview source/source_name, a regular
+// file there (no symlink followed, no FIFO waited on), for a page such as
+// the README: at most options.max_frames of its frames, scaled to fit
+// options.max_width x max_height, over the same duration. Only the frames
+// kept are held. A canvas whose header claims more than `max_pixels` throws
+// ImageTooLarge before anything is decoded.
+PreviewInfo write_preview_thumbnail(const Folder& source, const std::string& source_name, const Folder& folder,
+                                    const std::string& name, const PreviewOptions& options,
+                                    std::uint64_t max_pixels = any_pixels);
+// The canvas size (width, height) of the WebP folder/name as its header
+// says, nothing decoded; a regular file there, as above.
+PreviewInfo preview_canvas(const Folder& folder, const std::string& name);
 
 // Decodes frame `index` (0-based, display order) back to RGBA on `threads`
 // decoder threads (0: as many as FFmpeg sees cores; the pixels do not depend
 // on it); throws std::out_of_range when the video has fewer frames.
 Image decode_frame(const std::filesystem::path& path, int index, int threads = 1);
+// The same for folder/name, a regular file there (no symlink followed, no
+// FIFO waited on, and libavformat reads the descriptor checked, never the
+// path). A film whose header claims frames of more than `max_pixels` pixels
+// throws ImageTooLarge before any frame is decoded.
+Image decode_frame(const Folder& folder, const std::string& name, int index, int threads, std::uint64_t max_pixels);
 
 }  // namespace render

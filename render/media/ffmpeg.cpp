@@ -2,6 +2,7 @@
 // Opened by the program when it first encodes, decodes or scales; links
 // libavcodec, libavformat, libavutil and libswscale, and nothing of figgen's
 // own libraries (the program's AtomicFile opens the files it writes).
+#include <malloc.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -10,10 +11,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <malloc.h>
 #include <mutex>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "render/media.hpp"
 #include "render/media/webp.hpp"
@@ -478,8 +479,13 @@ public:
         open_stream(threads);
     }
 
-    // The file on `fd` (read from its start, never closed here); `shown` is what errors name.
-    Decoder(int fd, const std::filesystem::path& shown, int threads) : path_(shown) {
+    // The file on `fd` (read from its start, never closed here); `shown` is
+    // what errors name. A video stream whose parameters (the container's
+    // header, read before any frame is decoded) claim more than
+    // `max_pixels` a frame throws ImageTooLarge; libavcodec is held to the
+    // same bound (max_pixels) should the stream itself claim more.
+    Decoder(int fd, const std::filesystem::path& shown, int threads, std::uint64_t max_pixels = any_pixels)
+        : path_(shown), max_pixels_(max_pixels) {
         quiet_ffmpeg();
         AVFormatContext* format = avformat_alloc_context();
         if (!format) check(AVERROR(ENOMEM), "opening the file");
@@ -538,7 +544,16 @@ public:
 private:
     void open_stream(int threads) {
         AVFormatContext* format = format_.get();
-        check(avformat_find_stream_info(format, nullptr), "reading the stream info");
+        refuse_large_streams();
+        // avformat_find_stream_info decodes a few frames with decoders of its
+        // own: each gets the same bound.
+        std::vector<AVDictionary*> limits(format->nb_streams, nullptr);
+        if (max_pixels_ != any_pixels)
+            for (AVDictionary*& limit : limits) av_dict_set_int(&limit, "max_pixels", pixel_limit(), 0);
+        const int found = avformat_find_stream_info(format, limits.empty() ? nullptr : limits.data());
+        for (AVDictionary*& limit : limits) av_dict_free(&limit);
+        check(found, "reading the stream info");
+        refuse_large_streams();
         const AVCodec* codec = nullptr;
         stream_index_ =
             check(av_find_best_stream(format, AVMEDIA_TYPE_VIDEO, -1, -1, &codec, 0), "finding a video stream");
@@ -548,10 +563,29 @@ private:
         if (!codec_ || !frame_ || !packet_) check(AVERROR(ENOMEM), "allocating the decoder");
         check(avcodec_parameters_to_context(codec_.get(), stream()->codecpar), "configuring the decoder");
         codec_->thread_count = threads;
+        if (max_pixels_ != any_pixels) codec_->max_pixels = pixel_limit();
         check(avcodec_open2(codec_.get(), codec, nullptr), "opening the decoder");
     }
 
+    // libavcodec's max_pixels is an int64 option.
+    std::int64_t pixel_limit() const {
+        return static_cast<std::int64_t>(std::min<std::uint64_t>(max_pixels_, INT64_MAX));
+    }
+
+    // What the header says of every video stream's frame size, checked
+    // before anything is decoded.
+    void refuse_large_streams() const {
+        for (unsigned i = 0; i < format_->nb_streams; ++i) {
+            const AVCodecParameters& p = *format_->streams[i]->codecpar;
+            if (p.codec_type != AVMEDIA_TYPE_VIDEO || p.width <= 0 || p.height <= 0) continue;
+            const std::uint64_t width = static_cast<std::uint64_t>(p.width),
+                                height = static_cast<std::uint64_t>(p.height);
+            if (width * height > max_pixels_) throw ImageTooLarge(path_.string(), width, height, max_pixels_);
+        }
+    }
+
     std::filesystem::path path_;
+    std::uint64_t max_pixels_ = any_pixels;
     AVIOContext* own_io_ = nullptr;  // the custom I/O on a descriptor, if any
     InputPtr format_;
     CodecPtr codec_;
@@ -616,6 +650,18 @@ Image decode_frame(const std::filesystem::path& path, int index, int threads) {
         frame = decoder.next();
         if (!frame)
             throw std::out_of_range(path.string() + " has " + std::to_string(i) + " frames, no frame " +
+                                    std::to_string(index));
+    }
+    return to_rgba(decoder, frame);
+}
+
+Image decode_film_frame(int fd, const std::filesystem::path& shown, int index, int threads, std::uint64_t max_pixels) {
+    Decoder decoder(fd, shown, threads, max_pixels);
+    const AVFrame* frame = nullptr;
+    for (int i = 0; i <= index; ++i) {
+        frame = decoder.next();
+        if (!frame)
+            throw std::out_of_range(shown.string() + " has " + std::to_string(i) + " frames, no frame " +
                                     std::to_string(index));
     }
     return to_rgba(decoder, frame);
@@ -692,25 +738,23 @@ std::uint64_t write_webm(int fd, const std::filesystem::path& shown, int film_fd
     return static_cast<std::uint64_t>(st.st_size);
 }
 
-PreviewInfo write_preview_thumbnail(int fd, const std::filesystem::path& shown, const std::filesystem::path& path,
+PreviewInfo write_preview_thumbnail(int fd, const std::filesystem::path& shown, int source_fd,
+                                    const std::filesystem::path& source, std::uint64_t max_pixels,
                                     const PreviewOptions& options) {
+    // Only the frames kept are held, each scaled as it is decoded: the
+    // memory is the decoder's canvas and the small frames, whatever the
+    // number of frames.
     int duration_ms = 0;
-    const std::vector<Image> all = decode_webp(path, duration_ms);
-    if (all.empty()) throw std::runtime_error("cannot read " + path.string() + ": it has no frames");
-    const int total = static_cast<int>(all.size());
-    const int kept = std::min(options.max_frames, total);
-    std::vector<Image> frames;
-    for (int k = 0; k < kept; ++k) {
-        const int index =
-            kept == 1 ? total - 1 : static_cast<int>(std::lround(double(k) * (total - 1) / (kept - 1)));
-        frames.push_back(fitted(all[static_cast<std::size_t>(index)], options));
-    }
+    const std::vector<Image> frames = decode_webp_frames(
+        source_fd, source, max_pixels, options.max_frames, [&](const Image& frame) { return fitted(frame, options); },
+        duration_ms);
     return write_webp(fd, shown, frames, duration_ms / 1000.0, options);
 }
 
-const Api functions{api_version,  open_encoder,      open_segment, probe_video,
+const Api functions{api_version,  open_encoder,      open_segment,  probe_video,
                     decode_frame, scale,             write_preview, probe_webp,
-                    write_webm,   decode_webp_frame, write_preview_thumbnail};
+                    write_webm,   decode_webp_frame, write_preview_thumbnail,
+                    decode_film_frame, webp_canvas};
 
 }  // namespace
 }  // namespace render::media

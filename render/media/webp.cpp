@@ -1,6 +1,10 @@
 #include "render/media/webp.hpp"
 
 #include <unistd.h>
+#include <webp/decode.h>
+#include <webp/demux.h>
+#include <webp/encode.h>
+#include <webp/mux.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -11,10 +15,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-
-#include <webp/demux.h>
-#include <webp/encode.h>
-#include <webp/mux.h>
+#include <utility>
 
 namespace render::media {
 namespace {
@@ -86,10 +87,38 @@ std::vector<std::uint8_t> read_all(const std::filesystem::path& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// The bytes of the file on `fd`, from its start, at most max_webp_bytes.
+std::vector<std::uint8_t> read_fd(int fd, const std::filesystem::path& shown) {
+    std::vector<std::uint8_t> bytes;
+    std::uint8_t chunk[1 << 16];
+    for (off_t at = 0;;) {
+        const ssize_t n = ::pread(fd, chunk, sizeof chunk, at);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw std::runtime_error("cannot read " + shown.string() + ": " + std::strerror(errno));
+        if (n == 0) return bytes;
+        if (bytes.size() + static_cast<std::size_t>(n) > max_webp_bytes)
+            throw std::runtime_error("cannot read " + shown.string() + ": it holds more than " +
+                                     std::to_string(max_webp_bytes >> 20) + " MiB, more than any preview");
+        bytes.insert(bytes.end(), chunk, chunk + n);
+        at += n;
+    }
+}
+
 // libwebp's animation decoder over the file's bytes, in RGBA.
 class Animation {
 public:
-    explicit Animation(const std::filesystem::path& path) : path_(path), bytes_(read_all(path)) {
+    explicit Animation(const std::filesystem::path& path) : Animation(path, read_all(path), any_pixels) {}
+    // The bytes of the file `shown`; a canvas of more than `max_pixels` is
+    // refused (ImageTooLarge) from its header, before the decoder
+    // allocates it.
+    Animation(const std::filesystem::path& shown, std::vector<std::uint8_t> bytes, std::uint64_t max_pixels)
+        : path_(shown), bytes_(std::move(bytes)) {
+        WebPBitstreamFeatures features;
+        if (WebPGetFeatures(bytes_.data(), bytes_.size(), &features) != VP8_STATUS_OK)
+            fail_read("not a WebP libwebp can read");
+        const std::uint64_t width = static_cast<std::uint64_t>(features.width),
+                            height = static_cast<std::uint64_t>(features.height);
+        if (width * height > max_pixels) throw ImageTooLarge(path_.string(), width, height, max_pixels);
         WebPAnimDecoderOptions options;
         if (!WebPAnimDecoderOptionsInit(&options)) fail_read("libwebp's version does not match its headers");
         options.color_mode = MODE_RGBA;
@@ -177,17 +206,48 @@ PreviewInfo probe_webp(const std::filesystem::path& path) {
     return info;
 }
 
-std::vector<Image> decode_webp(const std::filesystem::path& path, int& duration_ms) {
-    Animation animation(path);
-    std::vector<Image> frames;
-    const int width = static_cast<int>(animation.info().canvas_width);
-    const int height = static_cast<int>(animation.info().canvas_height);
-    while (const std::uint8_t* pixels = animation.next(duration_ms)) {
-        Image image(width, height);
-        std::memcpy(image.rgba.data(), pixels, image.rgba.size());
-        frames.push_back(std::move(image));
+std::vector<Image> decode_webp_frames(int fd, const std::filesystem::path& shown, std::uint64_t max_pixels,
+                                      int max_frames, const std::function<Image(const Image&)>& keep,
+                                      int& duration_ms) {
+    Animation animation(shown, read_fd(fd, shown), max_pixels);
+    const int total = static_cast<int>(animation.info().frame_count);
+    if (total < 1) throw std::runtime_error("cannot read " + shown.string() + ": it has no frames");
+    const int kept = std::min(std::max(1, max_frames), total);
+    std::vector<int> wanted;  // in order; a short animation repeats no frame
+    for (int k = 0; k < kept; ++k) {
+        const int index = kept == 1 ? total - 1 : static_cast<int>(std::lround(double(k) * (total - 1) / (kept - 1)));
+        if (wanted.empty() || wanted.back() != index) wanted.push_back(index);
     }
+    Image canvas(static_cast<int>(animation.info().canvas_width), static_cast<int>(animation.info().canvas_height));
+    std::vector<Image> frames;
+    std::size_t next = 0;
+    for (int i = 0; const std::uint8_t* pixels = animation.next(duration_ms); ++i) {
+        if (next < wanted.size() && wanted[next] == i) {
+            std::memcpy(canvas.rgba.data(), pixels, canvas.rgba.size());
+            frames.push_back(keep(canvas));
+            ++next;
+        }
+    }
+    if (frames.empty()) throw std::runtime_error("cannot read " + shown.string() + ": it has no frames");
     return frames;
+}
+
+PreviewInfo webp_canvas(int fd, const std::filesystem::path& shown) {
+    // The RIFF header and the first chunk (VP8X for an animation, VP8 or
+    // VP8L for a still) are all WebPGetFeatures needs.
+    std::uint8_t head[64];
+    ssize_t n = 0;
+    do n = ::pread(fd, head, sizeof head, 0);
+    while (n < 0 && errno == EINTR);
+    if (n < 0) throw std::runtime_error("cannot read " + shown.string() + ": " + std::strerror(errno));
+    WebPBitstreamFeatures features;
+    const VP8StatusCode status = WebPGetFeatures(head, static_cast<std::size_t>(n), &features);
+    if (status != VP8_STATUS_OK || features.width < 1 || features.height < 1)
+        throw std::runtime_error("cannot read " + shown.string() + ": not a WebP libwebp can read");
+    PreviewInfo info;
+    info.width = features.width;
+    info.height = features.height;
+    return info;
 }
 
 Image decode_webp_frame(const std::filesystem::path& path, int index) {

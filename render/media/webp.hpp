@@ -2,7 +2,9 @@
 // Inside the media module: animated WebP through libwebp (WebPAnimEncoder,
 // WebPAnimDecoder), for films' previews.
 
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <vector>
 
 #include "render/image.hpp"
@@ -17,8 +19,22 @@ namespace render::media {
 PreviewInfo write_webp(int fd, const std::filesystem::path& shown, const std::vector<Image>& frames, double seconds,
                        const PreviewOptions& options);
 PreviewInfo probe_webp(const std::filesystem::path& path);
-// Every frame of the animated WebP at `path`, and how long one loop lasts.
-std::vector<Image> decode_webp(const std::filesystem::path& path, int& duration_ms);
 Image decode_webp_frame(const std::filesystem::path& path, int index);
+
+// At most `max_frames` frames of the animated WebP on `fd` (read from its
+// start, never closed here), evenly spread, first and last included, each
+// passed through `keep` as it is decoded (so only what `keep` returns is
+// held), and how long one loop lasts. A canvas whose header claims more
+// than `max_pixels` throws ImageTooLarge before the decoder is made; a file
+// over max_webp_bytes is refused. Errors name `shown`.
+std::vector<Image> decode_webp_frames(int fd, const std::filesystem::path& shown, std::uint64_t max_pixels,
+                                      int max_frames, const std::function<Image(const Image&)>& keep, int& duration_ms);
+// The canvas size of the WebP on `fd` as its header says (libwebp's
+// WebPGetFeatures on the file's first bytes; nothing decoded): width and
+// height in a PreviewInfo, frames left 0.
+PreviewInfo webp_canvas(int fd, const std::filesystem::path& shown);
+
+// The largest WebP read: figgen's previews are at most 2 MiB.
+constexpr std::size_t max_webp_bytes = 64u << 20;
 
 }  // namespace render::media

@@ -101,6 +101,22 @@ TEST_CASE("figgen gallery shows every rendered figure with thumbnail, film, para
     CHECK_THAT(page, Catch::Contains("data-frames=\"" + std::to_string(film["frames"].get<int>()) + "\""));
     CHECK_THAT(page, Catch::Contains("data-poster-frame=\"" + std::to_string(poster_frame) + "\""));
     CHECK(count(page, "<video ") == 1);
+    // The film's card shows its animated preview (issue "Publication and web
+    // outputs") until the film is opened to play: the preview at the size
+    // its header and metadata give, as the summary of a <details> that
+    // holds the <video>, whose poster stays the poster frame.
+    const render::PreviewInfo preview = render::probe_preview(out / "tc7-1.webp");
+    CHECK(film["preview"]["file"] == "tc7-1.webp");
+    CHECK(film["preview"]["size"] == nlohmann::json::array({preview.width, preview.height}));
+    CHECK(preview.frames > 1);
+    const auto opened =
+        page.find("<details class=\"film\"><summary><img class=\"preview\" src=\"tc7-1.webp\" width=\"" +
+                  std::to_string(preview.width) + "\" height=\"" + std::to_string(preview.height) + "\"");
+    REQUIRE(opened != std::string::npos);
+    const auto video = page.find("<video ", opened), closed = page.find("</details>", opened);
+    CHECK(video < closed);
+    CHECK(page.find("</summary>", opened) < video);
+    CHECK(count(page, "class=\"preview\"") == 1);  // tc7-9 has no film, no preview
     // Source, seed, parameters and the numbers computed.
     CHECK_THAT(page, Catch::Contains("Think Complexity"));
     CHECK_THAT(page, Catch::Contains("<tr><th>seed</th><td>4</td></tr>"));

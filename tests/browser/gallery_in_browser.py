@@ -14,7 +14,9 @@ figure whose ID.json is in the folder. Either way it serves the folder on
 size > 0, the size in its tag), every video has loaded its metadata
 (duration > 0, the frame count over the fps of its metadata, its size),
 has its poster (the frame its description names, else its last, at its
-size) and seeks to its last frame,
+size) and seeks to its last frame, every film's card shows the film's
+animated preview (ID.webp, at its metadata's size, looping) in the film's
+place until the film is opened to play, and then the film with its poster,
 nothing was logged to the console, and a phone-wide
 window with every card's details open needs no sideways scrolling; then
 that each figure's SVG (the --figgen run writes them) opens on its own as
@@ -127,6 +129,81 @@ def wait_for(driver, script, seconds=30):
     return False
 
 
+# What shows in each film's place before and after it is opened: for every
+# <video>, its card's preview image (src, loaded, natural size, whether it
+# is animated, shown) and whether the video is shown.
+FILM_PLACES = """
+return [...document.querySelectorAll('video')].map(v => {
+  const card = v.closest('article'), preview = card.querySelector('img.preview');
+  // Rendered for the visitor: laid out, and not inside a closed <details>
+  // (whose content Chromium skips as content-visibility: hidden).
+  const shown = e => !!e && e.getBoundingClientRect().width > 0 && e.getBoundingClientRect().height > 0
+                     && (!e.checkVisibility || e.checkVisibility({checkVisibilityCSS: true}))
+                     && !e.closest('details:not([open]) > :not(summary)');
+  return [v.getAttribute('src'), preview ? preview.getAttribute('src') : null,
+          preview ? preview.complete : false, preview ? preview.naturalWidth : 0,
+          preview ? preview.naturalHeight : 0, shown(preview), shown(v),
+          v.closest('details.film') !== null];
+});"""
+
+
+def film_previews(driver, films):
+    """Failures of the films' previews on the page, as a visitor sees them
+    and after opening each film; leaves every film closed again."""
+    failures = []
+    wait_for(driver, "return [...document.querySelectorAll('img.preview')].every(i => i.complete)", seconds=10)
+    before = driver.execute_script(FILM_PLACES)
+    if len(before) != len(films):
+        failures.append("%d films on the page, expected %d" % (len(before), len(films)))
+    for src, preview, complete, width, height, preview_shown, video_shown, in_details in before:
+        film = films.get(src)
+        if film is None:
+            continue
+        expected = film.get("preview", {})
+        if preview is None:
+            failures.append("video %s: its card shows no animated preview" % src)
+        elif preview != expected.get("file"):
+            failures.append("video %s: its card's preview is %s, its metadata names %s" % (src, preview,
+                                                                                         expected.get("file")))
+        elif not complete or width <= 0:
+            failures.append("video %s: its preview %s did not load" % (src, preview))
+        elif [width, height] != expected.get("size"):
+            failures.append("video %s: its preview %s is %dx%d, its metadata says %s" % (src, preview, width, height,
+                                                                                       expected.get("size")))
+        elif not preview_shown or video_shown or not in_details:
+            failures.append("video %s: before it is played its card should show the preview %s, not the film "
+                            "(preview shown: %s, film shown: %s)" % (src, preview, preview_shown, video_shown))
+    # The preview is an animation (more than one frame) as figgen wrote it:
+    # its frames in the metadata, and what the browser decodes (ImageDecoder
+    # where the browser has it) agree.
+    driver.set_script_timeout(30)
+    counts = driver.execute_async_script(
+        "const done = arguments[arguments.length - 1];"
+        "if (typeof ImageDecoder === 'undefined') { done(null); return; }"
+        "Promise.all([...document.querySelectorAll('img.preview')].map(i => fetch(i.src).then(r => r.arrayBuffer())"
+        ".then(data => { const d = new ImageDecoder({data, type: 'image/webp'});"
+        " return Promise.all([d.tracks.ready, d.completed]).then(() => [i.getAttribute('src'),"
+        " d.tracks.selectedTrack.frameCount, d.tracks.selectedTrack.animated]); })"
+        ".catch(e => [i.getAttribute('src'), -1, String(e)])))"
+        ".then(done);")
+    by_file = {film.get("preview", {}).get("file"): film for film in films.values()}
+    for preview, frames, animated in counts or []:
+        film = by_file.get(preview)
+        if film is None:
+            failures.append("preview %s is not the preview of any film's metadata" % preview)
+        elif frames != film["preview"]["frames"] or animated is not True:
+            failures.append("preview %s: the browser decodes %s frames (animated: %s), its metadata says %d"
+                            % (preview, frames, animated, film["preview"]["frames"]))
+    # Opened to play: the film is shown, the preview is not.
+    driver.execute_script("document.querySelectorAll('details.film').forEach(d => d.open = true);")
+    for src, preview, _, _, _, preview_shown, video_shown, _ in driver.execute_script(FILM_PLACES):
+        if src in films and (preview_shown or not video_shown):
+            failures.append("video %s: opened to play, its card should show the film, not the preview %s "
+                            "(preview shown: %s, film shown: %s)" % (src, preview, preview_shown, video_shown))
+    driver.execute_script("document.querySelectorAll('details.film').forEach(d => d.open = false);")
+    return failures
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--figgen", help="render a few figures with this figgen, then check their gallery")
@@ -165,12 +242,14 @@ def main():
     try:
         driver.get(url)
         wait_for(driver, "return document.readyState === 'complete'")
-        # Every image decoded; its natural size is the one its tag gives.
+        # Every image decoded (thumbnails and the films' previews); its
+        # natural size is the one its tag gives.
         images = driver.execute_script(
             "return [...document.images].map(i => [i.getAttribute('src'), i.complete, i.naturalWidth,"
             " i.naturalHeight, +i.getAttribute('width'), +i.getAttribute('height')]);")
-        if len(images) != len(figures):
-            failures.append("%d images on the page, expected %d" % (len(images), len(figures)))
+        thumbnails = [i for i in images if i[0].startswith("thumbs/")]
+        if len(thumbnails) != len(figures):
+            failures.append("%d thumbnails on the page, expected %d" % (len(thumbnails), len(figures)))
         for src, complete, width, height, tag_width, tag_height in images:
             if not complete or width <= 0:
                 failures.append("image %s did not load" % src)
@@ -213,16 +292,24 @@ def main():
             " image.src = v.poster; }))).then(done);")
         for src, poster, width, height, tagged in posters:
             film = films.get(src, {"size": None})
-            expected = film.get("preview", {}).get("size") if poster.endswith(".webp") else film["size"]
-            if not poster or width <= 0:
+            expected = film["size"]
+            if not poster or not poster.startswith("posters/"):
+                failures.append("video %s: its poster is %s, not the poster frame posters/ID.png" % (src, poster))
+            elif width <= 0:
                 failures.append("video %s: its poster %s did not load" % (src, poster))
             elif [width, height] != expected or [width, height] != tagged:
                 failures.append("video %s: its poster %s is %dx%d, its tag says %s, its metadata %s"
                                 % (src, poster, width, height, tagged, expected))
+        # Every film's card shows its animated preview where the film is,
+        # until the film is opened to play: the preview loaded at the size
+        # its metadata gives, animated, shown, and the <video> not shown
+        # yet; once opened, the <video> is shown (with its poster frame) and
+        # the preview is not.
+        failures += film_previews(driver, films)
         # The whole page in one picture: a window as tall as the page, every
-        # card's parameters, numbers and notes open, every video showing its
-        # poster as a visitor first sees it.
-        driver.execute_script("document.querySelectorAll('details').forEach(d => d.open = true);")
+        # card's parameters, numbers and notes open, every film showing its
+        # preview as a visitor first sees it.
+        driver.execute_script("document.querySelectorAll('details:not(.film)').forEach(d => d.open = true);")
         driver.set_window_size(1280, 600)
         height, chrome = driver.execute_script(
             "return [document.documentElement.scrollHeight, window.outerHeight - window.innerHeight];")
@@ -230,6 +317,7 @@ def main():
         time.sleep(0.5)
         driver.save_screenshot(args.screenshot)
         # Seeking to the end checks the film is seekable (its index is good).
+        driver.execute_script("document.querySelectorAll('details.film').forEach(d => d.open = true);")
         driver.execute_script("document.querySelectorAll('video').forEach(v => {"
                               " v.preload = 'auto'; v.currentTime = Math.max(0, v.duration - 0.05); });")
         wait_for(driver, "return [...document.querySelectorAll('video')].every(v => (v.readyState >= 2"
