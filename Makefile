@@ -70,7 +70,7 @@ test-sanitize: deps
 # is written to build-fuzz/crashes/TARGET/ and stops the run.
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_SECONDS ?= 600
-FUZZ_TARGETS ?= description set snowflake_rule lsystem output_name parts
+FUZZ_TARGETS ?= description set snowflake_rule lsystem output_name parts caption_text
 fuzz:
 	@scripts/deps.sh fuzz
 	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFIGGEN_FUZZ=ON

@@ -114,8 +114,8 @@ namespace {
 
 std::pair<int, int> size_pair(Settings& s, const std::string& key, std::pair<int, int> fallback) {
     const auto v = s.integers(key, {fallback.first, fallback.second});
-    if (v.size() != 2 || v[0] < 2 || v[1] < 2 || v[0] > 16384 || v[1] > 16384)
-        s.refuse(key, "[width, height], each 2..16384");
+    if (v.size() != 2 || v[0] < 2 || v[1] < 2 || v[0] > max_figure_side || v[1] > max_figure_side)
+        s.refuse(key, "[width, height], each 2.." + std::to_string(max_figure_side));
     return {static_cast<int>(v[0]), static_cast<int>(v[1])};
 }
 
@@ -266,7 +266,8 @@ Description parse_description(std::string_view text, const std::filesystem::path
     record_origins(root, file.filename().string(), d.origins);
     for (const std::string& assignment : overrides) {
         apply_override(root, assignment);
-        d.origins[section_of(assignment)] = "--set " + assignment;
+        // As a one-line message may show it: a --set title may be any bytes, and long.
+        d.origins[section_of(assignment)] = "--set " + printable_short(assignment, 100);
     }
     at_source(d, [&] {
         read_top_level(d, root, seed);

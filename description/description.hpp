@@ -92,6 +92,10 @@ auto at_source(const Description& d, Read&& read) -> decltype(read()) {
     }
 }
 
+// The largest width or height a figure may have, pixels ([figure] size,
+// [animation] size, --size): a size a message suggests is never larger.
+inline constexpr int max_figure_side = 16384;
+
 // The largest description file read; a larger one is refused before it is parsed.
 inline constexpr std::size_t max_description_bytes = 16u << 20;
 

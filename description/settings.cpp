@@ -5,6 +5,8 @@
 #include <limits>
 #include <sstream>
 
+#include "description/plain_name.hpp"
+
 namespace description {
 
 SettingError::SettingError(std::string key, std::string value, std::string allowed)
@@ -110,6 +112,11 @@ void Settings::refuse(const std::string& key, const std::string& allowed) {
     refuse(key, line, allowed);
 }
 
+const std::string& Settings::checked_text(const std::string& key, const std::string& value) {
+    if (!is_text(value)) refuse(key, "\"" + printable_short(value) + "\"", text_allowed);
+    return value;
+}
+
 void Settings::note_allowed(const std::string& key, const std::string& allowed) {
     if (current_settings_log) current_settings_log->section(section_, allowed_).allowed[key] = allowed;
 }
@@ -173,7 +180,7 @@ std::string Settings::text(const std::string& key, const std::string& fallback) 
         else if (!node->is_string())
             wrong_type(key, "a string");
         else
-            value = node->as_string()->get();
+            value = checked_text(key, node->as_string()->get());
     }
     used_[key] = value;
     return value;
@@ -231,7 +238,7 @@ std::vector<std::string> Settings::texts(const std::string& key, const std::vect
         values.clear();
         for (const toml::node& item : *array) {
             if (!item.is_string()) wrong_type(key, "a list of strings");
-            values.push_back(item.as_string()->get());
+            values.push_back(checked_text(key, item.as_string()->get()));
         }
     }
     used_[key] = values;

@@ -82,6 +82,7 @@ public:
     long long integer(const std::string& key, long long fallback);
     int count(const std::string& key, int fallback);         // an integer that fits an int
     double number(const std::string& key, double fallback);  // accepts integers too
+    // A string, refused unless it is valid UTF-8 text (is_text in plain_name.hpp).
     std::string text(const std::string& key, const std::string& fallback);
     bool flag(const std::string& key, bool fallback);
     // The same, refused (SettingError) outside [low, high].
@@ -110,6 +111,10 @@ private:
     const toml::node* find(const std::string& key) const;
     [[noreturn]] void wrong_type(const std::string& key, const char* expected);
     void note_allowed(const std::string& key, const std::string& allowed);
+    // `value`, a string `key` holds, refused unless it is text (is_text in
+    // plain_name.hpp): every string may be drawn, so the line breaker and
+    // the shaper get only characters, and before any model runs.
+    const std::string& checked_text(const std::string& key, const std::string& value);
 
     std::string section_;
     toml::table table_;

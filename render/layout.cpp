@@ -143,11 +143,26 @@ std::string text_clash(const PageText& layout, const Rect& page) {
     // A text's glyphs, or its box when it has none listed.
     auto parts = [](const PageText::Box& t) { return t.parts.empty() ? std::span<const Rect>(&t.box, 1) : std::span<const Rect>(t.parts); };
     auto grown = [](const Rect& r, float by) { return Rect{r.x - by, r.y - by, r.w + 2 * by, r.h + 2 * by}; };
+    // Each glyph of one against the other's glyphs within reach along x
+    // (sorted by their left edges, the widest bounding how far left one may
+    // start): two long lines cost O(n log n), not every pair of glyphs.
     auto texts_clash = [&](const PageText::Box& a, const PageText::Box& b, float gap) {
         if (!clash(grown(a.box, gap), b.box)) return false;
-        for (const Rect& p : parts(a))
-            for (const Rect& q : parts(b))
-                if (clash(grown(p, gap), q)) return true;
+        std::vector<Rect> others;
+        float widest = 0;
+        for (const Rect& q : parts(b))
+            if (clash(grown(a.box, gap), q)) {
+                others.push_back(q);
+                widest = std::max(widest, q.w);
+            }
+        std::sort(others.begin(), others.end(), [](const Rect& l, const Rect& r) { return l.x < r.x; });
+        for (const Rect& p : parts(a)) {
+            const Rect g = grown(p, gap);
+            auto q = std::lower_bound(others.begin(), others.end(), g.x - widest,
+                                      [](const Rect& r, float x) { return r.x < x; });
+            for (; q != others.end() && q->x < g.right(); ++q)
+                if (clash(g, *q)) return true;
+        }
         return false;
     };
     auto clashes_panel = [&](const PageText::Box& t, const Rect& panel) {

@@ -3,6 +3,7 @@
 // with its title above, like matplotlib's subplots(1, n) with imshow.
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -81,17 +82,18 @@ inline constexpr float text_gap = 0.25f;
 std::string text_clash(const PageText& layout, const Rect& page);
 std::string text_clash(const GridText& layout, const Rect& page);
 // The smallest page, `width` x `height` enlarged by steps of 5% (its aspect
-// kept, up to 8 times), at which `layout_at(w, h)` has no clash; {0, 0} when
-// none up to that.
+// kept, up to 8 times, neither side beyond `most`), at which
+// `layout_at(w, h)` has no clash; {0, 0} when none up to that.
 struct PageSize {
     int width = 0, height = 0;
 };
 template <class LayoutAt>
-PageSize size_that_fits(int width, int height, LayoutAt&& layout_at) {
+PageSize size_that_fits(int width, int height, LayoutAt&& layout_at, int most = std::numeric_limits<int>::max()) {
     for (int step = 1; step <= 43; ++step) {  // 1.05^43 ~ 8
         const double k = std::pow(1.05, step);
-        const int w = static_cast<int>(std::ceil(width * k)), h = static_cast<int>(std::ceil(height * k));
-        if (text_clash(layout_at(w, h), Rect{0, 0, float(w), float(h)}).empty()) return {w, h};
+        const double w = std::ceil(width * k), h = std::ceil(height * k);
+        if (w > most || h > most) break;
+        if (text_clash(layout_at(int(w), int(h)), Rect{0, 0, float(w), float(h)}).empty()) return {int(w), int(h)};
     }
     return {};
 }

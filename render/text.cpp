@@ -18,10 +18,10 @@
 #include FT_FREETYPE_H
 #include FT_TRUETYPE_TABLES_H
 #include <hb.h>
-#include <linebreak.h>
 #include <raqm.h>
 
 #include "render/gl_context.hpp"
+#include "render/line_break.hpp"
 #include "render/program.hpp"
 #include "render/utf8.hpp"
 
@@ -241,28 +241,55 @@ std::uint32_t Font::face_for(char32_t c, std::string_view language) const {
 float Font::width(std::string_view utf8, std::string_view language) const { return shape(utf8, language).width; }
 
 Font::Shaped Font::shape(std::string_view utf8, std::string_view language) const {
+    constexpr std::size_t most_remembered = 16;
+    {
+        const std::lock_guard lock(remembered_mutex_);
+        const auto found = std::find_if(remembered_.begin(), remembered_.end(), [&](const Remembered& r) {
+            return r.utf8.size() == utf8.size() && r.language == language && r.utf8 == utf8;
+        });
+        if (found != remembered_.end()) {
+            std::rotate(remembered_.begin(), found, found + 1);  // now the most recent
+            return remembered_.front().shaped;
+        }
+    }
+    Shaped out = shape_anew(utf8, language);
+    const std::lock_guard lock(remembered_mutex_);
+    if (remembered_.size() == most_remembered) remembered_.pop_back();
+    remembered_.insert(remembered_.begin(), Remembered{std::string(language), std::string(utf8), out});
+    return out;
+}
+
+Font::Shaped Font::shape_anew(std::string_view utf8, std::string_view language) const {
     Shaped out;
     const std::u32string codepoints = decode_utf8(utf8);
     if (codepoints.empty()) return out;
-    // Valid UTF-8 for raqm, and each character's face: runs of one face are
-    // shaped together.
-    std::vector<std::pair<std::size_t, std::uint32_t>> runs;  // byte offset where a run starts, its face
+    // Valid UTF-8 for the caller, where each character starts in it, and
+    // each character's face: runs of one face are shaped together.
+    std::vector<std::size_t> byte_of(codepoints.size() + 1);  // code point index -> byte offset in out.text
+    std::vector<std::pair<std::size_t, std::uint32_t>> runs;  // code point index where a run starts, its face
     for (std::size_t i = 0; i < codepoints.size(); ++i) {
         const char32_t c = codepoints[i];
         const std::uint32_t face = (i > 0 && follows_base(c)) ? runs.back().second : face_for(c, language);
-        if (runs.empty() || runs.back().second != face) runs.emplace_back(out.text.size(), face);
+        if (runs.empty() || runs.back().second != face) runs.emplace_back(i, face);
+        byte_of[i] = out.text.size();
         out.text += encode_utf8(c);
     }
+    byte_of[codepoints.size()] = out.text.size();
+    // raqm is given code points, not UTF-8: for UTF-8 text raqm 0.7 turns
+    // each glyph's cluster back into a byte offset by converting the whole
+    // text before it, which made shaping quadratic in the text's length
+    // (20,000 characters took minutes). Its layout is the same either way.
     std::unique_ptr<raqm_t, RaqmDeleter> rq(raqm_create());
-    if (!rq || !raqm_set_text_utf8(rq.get(), out.text.data(), out.text.size()) ||
+    static_assert(sizeof(char32_t) == sizeof(std::uint32_t));
+    if (!rq || !raqm_set_text(rq.get(), reinterpret_cast<const std::uint32_t*>(codepoints.data()), codepoints.size()) ||
         !raqm_set_par_direction(rq.get(), RAQM_DIRECTION_DEFAULT))
         throw std::runtime_error("raqm cannot take the text \"" + out.text + "\"");
     if (!language.empty()) {
         const std::string tag(language);
-        raqm_set_language(rq.get(), tag.c_str(), 0, out.text.size());
+        raqm_set_language(rq.get(), tag.c_str(), 0, codepoints.size());
     }
     for (std::size_t r = 0; r < runs.size(); ++r) {
-        const std::size_t end = r + 1 < runs.size() ? runs[r + 1].first : out.text.size();
+        const std::size_t end = r + 1 < runs.size() ? runs[r + 1].first : codepoints.size();
         if (!raqm_set_freetype_face_range(rq.get(), faces_[runs[r].second]->face, runs[r].first, end - runs[r].first))
             throw std::runtime_error("raqm cannot take a face for \"" + out.text + "\"");
     }
@@ -279,9 +306,10 @@ Font::Shaped Font::shape(std::string_view utf8, std::string_view language) const
         std::uint32_t face = 0;
         while (face < faces_.size() && faces_[face]->face != g.ftface) ++face;
         if (face == faces_.size()) throw std::runtime_error("raqm gave a glyph of a face the font does not hold");
+        const std::size_t cluster = std::min<std::size_t>(g.cluster, codepoints.size());
         out.glyphs.push_back({face, g.index,
                               {pen + static_cast<float>(g.x_offset) / 64.0f, -static_cast<float>(g.y_offset) / 64.0f},
-                              g.cluster});
+                              static_cast<std::uint32_t>(byte_of[cluster]), static_cast<float>(g.x_advance) / 64.0f});
         pen += static_cast<float>(g.x_advance) / 64.0f;
     }
     out.width = pen;
@@ -386,34 +414,111 @@ void Font::bind_atlas(std::uint32_t face) const {
 }
 
 std::vector<std::string> wrap(const Font& font, std::string_view paragraph, float width, std::string_view language) {
-    static std::once_flag started;
-    std::call_once(started, init_linebreak);
-    const std::string text = font.shape(paragraph, language).text;  // valid UTF-8
-    std::vector<char> breaks(text.size());
-    const std::string tag(language);
-    set_linebreaks_utf8(reinterpret_cast<const utf8_t*>(text.data()), text.size(), tag.empty() ? nullptr : tag.c_str(),
-                        breaks.data());
-    auto trimmed = [](std::string line) {
-        while (!line.empty() && (line.back() == ' ' || line.back() == '\n')) line.pop_back();
-        return line;
+    const Font::Shaped whole = font.shape(paragraph, language);
+    const std::string& text = whole.text;  // valid UTF-8
+    // The places a line may end: the byte after each character that allows
+    // or forces a break.
+    struct Candidate {
+        std::size_t end;
+        bool must;
     };
-    std::vector<std::string> lines;
-    std::size_t start = 0, fits = std::string::npos;  // the line's start; the end of the longest piece that fits
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        if (breaks[i] != LINEBREAK_ALLOWBREAK && breaks[i] != LINEBREAK_MUSTBREAK) continue;
-        const std::size_t end = i + 1;  // a break after byte i
-        if (fits != std::string::npos && font.width(trimmed(text.substr(start, end - start)), language) > width) {
-            lines.push_back(trimmed(text.substr(start, fits - start)));  // break at the last place that fitted
-            start = fits;
-        }
-        fits = end;  // a piece wider than the room stays whole, alone on its line
-        if (breaks[i] == LINEBREAK_MUSTBREAK) {
-            lines.push_back(trimmed(text.substr(start, end - start)));
-            start = end;
-            fits = std::string::npos;
+    std::vector<Candidate> candidates;
+    {
+        const std::u32string codepoints = decode_utf8(text);
+        const std::vector<LineBreak> breaks = line_breaks(codepoints, language);
+        std::size_t end = 0;
+        for (std::size_t i = 0; i < codepoints.size(); ++i) {
+            end += encode_utf8(codepoints[i]).size();
+            if (breaks[i] != LineBreak::none) candidates.push_back({end, breaks[i] == LineBreak::must});
         }
     }
-    if (start < text.size()) lines.push_back(trimmed(text.substr(start)));
+    auto trimmed_end = [&](std::size_t start, std::size_t end) {
+        while (end > start && (text[end - 1] == ' ' || text[end - 1] == '\n')) --end;
+        return end;
+    };
+    auto piece = [&](std::size_t start, std::size_t end) { return text.substr(start, trimmed_end(start, end) - start); };
+    // The pen's advance before each byte, the paragraph shaped in one piece:
+    // a line's width but for the kerning and joining at its two ends, which
+    // says where to look for its end.
+    std::vector<double> advance_before(text.size() + 1, 0.0);
+    for (const Font::ShapedGlyph& g : whole.glyphs)
+        if (g.cluster < text.size()) advance_before[g.cluster + 1] += g.advance;
+    for (std::size_t i = 1; i < advance_before.size(); ++i) advance_before[i] += advance_before[i - 1];
+
+    std::vector<std::string> lines;
+    std::size_t start = 0;  // where the line being filled starts
+    auto overflows = [&](std::size_t k) { return font.width(piece(start, candidates[k].end), language) > width; };
+    auto guessed_over = [&](std::size_t k) {
+        return advance_before[trimmed_end(start, candidates[k].end)] - advance_before[start] > width;
+    };
+    // Each line takes the pieces up to the last break before the first that
+    // does not fit (a piece wider than the room stays whole, alone on its
+    // line), or up to a mandatory break. A longer piece of a line is no
+    // narrower, so that first break is found by measuring two or three
+    // pieces, not every one: the paragraph's own advances say where it
+    // is, to within a kerning pair, and the pieces shaped on their own
+    // (as each line is drawn) decide, galloping away from the guess until
+    // the break is bracketed, then halving. Measuring every piece from the
+    // line's start was quadratic in the paragraph's length.
+    std::size_t k = 0;
+    while (k < candidates.size()) {
+        if (candidates[k].must) {  // the line's first piece, whole, and its end
+            lines.push_back(piece(start, candidates[k].end));
+            start = candidates[k].end;
+            ++k;
+            continue;
+        }
+        // The last candidate this line may reach: its mandatory break, or the text's last break.
+        std::size_t last = k + 1;
+        while (last < candidates.size() && !candidates[last].must) ++last;
+        if (last == candidates.size()) --last;
+        if (last == k) break;  // the first piece is the text's last: the rest below
+        // The guess: the first candidate whose piece overflows by the paragraph's advances (last + 1: none).
+        std::size_t low = k + 1, high = last + 1;
+        while (low < high) {
+            const std::size_t middle = low + (high - low) / 2;
+            if (guessed_over(middle)) high = middle;
+            else low = middle + 1;
+        }
+        // fitted: a candidate known to fit (the first piece always does); over: one known to overflow.
+        std::size_t fitted = k, over = candidates.size();
+        if (low - 1 > k) {
+            if (overflows(low - 1)) {  // the guess was late: gallop back
+                over = low - 1;
+                for (std::size_t step = 1; over - fitted > 1; step *= 2) {
+                    const std::size_t probe = over - std::min(step, over - fitted - 1);
+                    if (!overflows(probe)) {
+                        fitted = probe;
+                        break;
+                    }
+                    over = probe;
+                }
+            } else {
+                fitted = low - 1;
+            }
+        }
+        for (std::size_t step = 1; over == candidates.size() && fitted < last; step *= 2) {  // gallop on
+            const std::size_t probe = std::min(fitted + step, last);
+            if (overflows(probe)) over = probe;
+            else fitted = probe;
+        }
+        if (over == candidates.size()) {  // everything up to `last` fits
+            if (candidates[last].must) {
+                lines.push_back(piece(start, candidates[last].end));
+                start = candidates[last].end;
+            }
+            k = last + 1;
+            continue;
+        }
+        while (over - fitted > 1) {  // halve: fitted fits, over overflows
+            const std::size_t middle = fitted + (over - fitted) / 2;
+            (overflows(middle) ? over : fitted) = middle;
+        }
+        lines.push_back(piece(start, candidates[fitted].end));  // break at the last that fitted
+        start = candidates[fitted].end;
+        k = over;  // the next line's first piece
+    }
+    if (start < text.size()) lines.push_back(piece(start, text.size()));
     return lines;
 }
 

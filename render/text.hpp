@@ -12,6 +12,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -63,6 +64,7 @@ public:
         unsigned index;      // glyph index in that face: 0 is its .notdef box
         glm::vec2 position;  // the glyph's origin from the line's start on the baseline, pixels, y down
         std::uint32_t cluster;  // byte offset in `text` of the characters it draws
+        float advance;          // how far the pen moves after it, pixels
     };
     struct Shaped {
         std::string text;  // the line as shaped: valid UTF-8 (malformed bytes became U+FFFD)
@@ -131,6 +133,16 @@ private:
     // Caches: filling them does not change what the font draws.
     mutable std::vector<std::unique_ptr<Face>> faces_;
     mutable std::map<std::pair<char32_t, std::string>, std::uint32_t> fallback_of_;
+    // The lines shaped last, most recent first, by language and text: a
+    // layout tried at many sizes (size_that_fits) measures the same titles
+    // each time, and a 100,000-character one costs milliseconds to shape.
+    struct Remembered {
+        std::string language, utf8;
+        Shaped shaped;
+    };
+    mutable std::vector<Remembered> remembered_;
+    mutable std::mutex remembered_mutex_;  // shape() was safe to call from several threads for text the font has
+    Shaped shape_anew(std::string_view utf8, std::string_view language) const;
 };
 
 // Where a line of text may break, by the Unicode line-breaking algorithm:

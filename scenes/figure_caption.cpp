@@ -76,15 +76,22 @@ FigureCaption figure_caption(const Description& d, int width, int height, double
         // The size that fits: wide enough for the widest word, and tall
         // enough for the lines that width gives.
         const int need_width = std::max(width, static_cast<int>(std::ceil(widest + 2 * caption.margin)));
-        const auto at_need = render::wrap(font, text, static_cast<float>(need_width) - 2 * caption.margin, caption.language);
+        const auto at_need = need_width == width ? caption.lines
+                                                 : render::wrap(font, text, static_cast<float>(need_width) - 2 * caption.margin,
+                                                                caption.language);
         const int need_band =
             static_cast<int>(std::ceil(static_cast<float>(at_need.size()) * font.line_height() + 2 * caption.margin));
         const int need_height = std::max(height, most_of_height * need_band);
+        const std::string allowed = "a figure whose caption fits in a third of its height: its " +
+                                    std::to_string(lines) + " line(s) take " + std::to_string(caption.band) + " px; ";
+        const int most = description::max_figure_side;
+        const std::string remedy = need_width <= most && need_height <= most
+                                       ? "--size " + std::to_string(need_width) + "x" + std::to_string(need_height) +
+                                             " or larger fits them, or caption = \"none\""
+                                       : "no size fits them (a figure is at most " + std::to_string(most) + " x " +
+                                             std::to_string(most) + "): a shorter text, or caption = \"none\"";
         throw SettingError("figure.caption", "\"" + d.figure_caption + "\" at " + size_text(width, height),
-                           "a figure whose caption fits in a third of its height: its " + std::to_string(lines) +
-                               " line(s) take " + std::to_string(caption.band) + " px; --size " +
-                               std::to_string(need_width) + "x" + std::to_string(need_height) +
-                               " or larger fits them, or caption = \"none\"");
+                           allowed + remedy);
     }
     return caption;
 }

@@ -29,15 +29,21 @@ void require_text_fits(const Description& d, const SceneOptions& options,
     const std::string clash = render::text_clash(layout_at(area), area);
     if (clash.empty()) return;
     const int band = scaled(d.height, options.scale) - height;  // the caption's, beneath
-    const render::PageSize fits = render::size_that_fits(width, height + band, [&](int w, int h) {
-        return layout_at(render::Rect{0, 0, float(w), float(std::max(1, h - band))});
-    });
-    const std::string size = "[" + std::to_string(d.width) + ", " + std::to_string(d.height) + "]";
+    // No larger than a size the user could give (in pixels at this scale).
+    const int most = static_cast<int>(std::floor(description::max_figure_side * options.scale));
+    const render::PageSize fits = render::size_that_fits(
+        width, height + band,
+        [&](int w, int h) { return layout_at(render::Rect{0, 0, float(w), float(std::max(1, h - band))}); }, most);
+    // std::string("["): GCC 12 warns (-Wrestrict, a false alarm) of "[" + a temporary here.
+    const std::string size = std::string("[") + std::to_string(d.width) + ", " + std::to_string(d.height) + "]";
     std::string allowed = "a size at which the figure's text fits: at " + std::to_string(width) + " x " +
                           std::to_string(height + band) + " pixels " + clash;
     if (fits.width > 0) {
         const auto unscaled = [&](int pixels) { return std::to_string(int(std::ceil(pixels / options.scale))); };
         allowed += "; [" + unscaled(fits.width) + ", " + unscaled(fits.height) + "] or larger holds them";
+    } else {
+        allowed += "; no size up to 8 times as large (each side at most " + std::to_string(description::max_figure_side) +
+                   ") holds them";
     }
     throw SettingError("figure.size", size, allowed + " (or " + remedy + ")");
 }

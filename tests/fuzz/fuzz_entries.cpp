@@ -1,6 +1,7 @@
 #include "fuzz/fuzz_entries.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -11,6 +12,9 @@
 #include "description/catalog.hpp"
 #include "description/description.hpp"
 #include "description/plain_name.hpp"
+#include "render/layout.hpp"
+#include "render/text.hpp"
+#include "scenes/figure_caption.hpp"
 #include "scenes/scene.hpp"
 #include "sim/lsystem.hpp"
 #include "sim/snowflake.hpp"
@@ -182,6 +186,44 @@ const std::vector<WorkFigure>& work_figures() {
     return all;
 }
 
+// Code points into UTF-8 as they are, even those that are no characters
+// (surrogates, noncharacters): what a careless writer would put in a file.
+std::string loose_utf8(char32_t c) {
+    std::string out;
+    if (c < 0x80) {
+        out += static_cast<char>(c);
+    } else if (c < 0x800) {
+        out += static_cast<char>(0xC0 | (c >> 6));
+        out += static_cast<char>(0x80 | (c & 0x3F));
+    } else if (c < 0x10000) {
+        out += static_cast<char>(0xE0 | (c >> 12));
+        out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+        out += static_cast<char>(0x80 | (c & 0x3F));
+    } else {
+        out += static_cast<char>(0xF0 | (c >> 18));
+        out += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
+        out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+        out += static_cast<char>(0x80 | (c & 0x3F));
+    }
+    return out;
+}
+
+std::string without_breaking_space(const std::string& text) {
+    std::string kept;
+    for (const char c : text)
+        if (c != ' ' && c != '\n') kept += c;
+    return kept;
+}
+
+// The caption as wrapped holds the text: only spaces and line feeds may go.
+void require_whole(const render::Font& font, const std::string& text, const std::vector<std::string>& lines,
+                   const std::string& language) {
+    std::string joined;
+    for (const std::string& line : lines) joined += line;
+    if (without_breaking_space(joined) != without_breaking_space(font.shape(text, language).text))
+        throw std::logic_error("wrap lost or changed characters of " + description::printable_short(text));
+}
+
 }  // namespace
 
 Outcome parts(const std::uint8_t* data, std::size_t size) {
@@ -214,6 +256,63 @@ Outcome parts(const std::uint8_t* data, std::size_t size) {
     }
 }
 
+Outcome caption_text(const std::uint8_t* data, std::size_t size) {
+    if (size < 2) return Outcome::refused;
+    static const char* const languages[] = {"", "ja", "zh-cn", "ko"};
+    const std::string language = languages[(data[0] >> 1) & 3];
+    const float room = 8.0f + 4.0f * static_cast<float>(data[1]);
+    std::string text;
+    if (data[0] & 1) {
+        for (std::size_t i = 2; i + 4 <= size; i += 4)
+            text += loose_utf8(static_cast<char32_t>((data[i] | data[i + 1] << 8 | data[i + 2] << 16 |
+                                                      static_cast<std::uint32_t>(data[i + 3]) << 24) %
+                                                     0x110000u));
+    } else {
+        text.assign(reinterpret_cast<const char*>(data) + 2, size - 2);
+    }
+    render::set_missing_glyph_warning([](const std::string&) {});  // every unknown character would say so
+
+    // As drawn, whatever the reader would say: no code point may crash it.
+    const render::Font& font = render::font_of_size(15);
+    const std::vector<std::string> lines = render::wrap(font, text, room, language);
+    require_whole(font, text, lines, language);
+    render::PageText page;
+    float y = 20;
+    for (const std::string& line : lines) {
+        const render::LineInk ink = render::line_ink(font, line, {room / 2 + 8, y}, render::Align::centre,
+                                                     render::Baseline::baseline, 0, language);
+        page.texts.push_back({ink.box, "a line", -1, ink.glyphs, ink.em});
+        y += font.line_height();
+    }
+    (void)render::text_clash(page, render::Rect{0, 0, room + 16, y});
+    const render::GridText titled = render::grid_text({{10, 40, room, 60}, {room + 20, 40, 60, 60}}, {text, "b"},
+                                                      render::TitlePlace::above, 15, 4);
+    (void)render::text_clash(titled, render::Rect{0, 0, room + 90, 110});
+
+    // As the description reader and the caption take it.
+    try {
+        const description::Description d = description::parse_description(
+            "id = \"fuzz\"\nscene = \"diffusion\"\n[figure]\npanels = [0]\n", "fuzz.toml",
+            {"title=" + text, "figure.caption=title"});
+        const int width = static_cast<int>(room) + 16;
+        const scenes::FigureCaption caption =
+            description::at_source(d, [&] { return scenes::figure_caption(d, width, 16384, 1.0); });
+        require_whole(font, d.title, caption.lines, "");
+        return Outcome::accepted;
+    } catch (const description::UsageError& e) {
+        require_one_clean_line(e.what());
+        // A size the refusal suggests is one figgen would take.
+        const std::string message = e.what();
+        if (const auto at = message.find("--size "); at != std::string::npos) {
+            int w = 0, h = 0;
+            if (std::sscanf(message.c_str() + at + 7, "%dx%d", &w, &h) != 2 || w > description::max_figure_side ||
+                h > description::max_figure_side)
+                throw std::logic_error("a refusal suggests a size figgen refuses: " + message.substr(at, 40));
+        }
+        return Outcome::refused;
+    }
+}
+
 const std::vector<Target>& targets() {
     static const std::vector<Target> all = {
         {"description", description},
@@ -222,6 +321,7 @@ const std::vector<Target>& targets() {
         {"lsystem", lsystem},
         {"output_name", output_name},
         {"parts", parts},
+        {"caption_text", caption_text},
     };
     return all;
 }

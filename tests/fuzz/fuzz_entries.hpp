@@ -47,6 +47,18 @@ Outcome output_name(const std::uint8_t* data, std::size_t size);
 // in one clean line.
 Outcome parts(const std::uint8_t* data, std::size_t size);
 
+// A title drawn as the figure's caption, then as a panel's title: the first
+// byte picks the language (bits 1-2: none, "ja", "zh-cn", "ko") and how the
+// rest is read (bit 0: as bytes, any at all; set: as 4-byte little-endian
+// code points, each modulo 0x110000, surrogates and noncharacters too, put
+// into UTF-8 as they are); the second the room, 8 to 1028 pixels. Accepted
+// when the description reader takes it as `--set title=` and its caption
+// fits a figure that wide; whatever the reader says, the text also goes
+// through wrap, line_ink and text_clash as drawn, and a wrapped caption
+// must hold the text's every character but the spaces and line feeds where
+// it breaks.
+Outcome caption_text(const std::uint8_t* data, std::size_t size);
+
 struct Target {
     const char* name;  // the folder under tests/fuzz/corpus/ and regressions/
     Outcome (*entry)(const std::uint8_t*, std::size_t);
