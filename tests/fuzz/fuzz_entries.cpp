@@ -302,8 +302,12 @@ Outcome caption_text(const std::uint8_t* data, std::size_t size) {
     } catch (const description::UsageError& e) {
         require_one_clean_line(e.what());
         // A size the refusal suggests is one figgen would take.
+        // It ends the message ("--size WxH or larger fits them, ..."): the title
+        // quoted before it may hold "--size " too.
         const std::string message = e.what();
-        if (const auto at = message.find("--size "); at != std::string::npos) {
+        const auto larger = message.rfind(" or larger fits them");
+        if (const auto at = larger == std::string::npos ? larger : message.rfind("--size ", larger);
+            at != std::string::npos) {
             int w = 0, h = 0;
             if (std::sscanf(message.c_str() + at + 7, "%dx%d", &w, &h) != 2 || w > description::max_figure_side ||
                 h > description::max_figure_side)
