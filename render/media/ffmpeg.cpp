@@ -495,21 +495,14 @@ public:
             check(AVERROR(ENOMEM), "opening the file");
         }
         format->flags |= AVFMT_FLAG_CUSTOM_IO;
-        own_io_ = format->pb;
-        // On failure avformat_open_input frees the context, not our I/O.
-        const int opened = avformat_open_input(&format, nullptr, nullptr, nullptr);
-        if (opened < 0) {
-            close_file_io(&own_io_);
-            check(opened, "opening the file");
-        }
+        own_io_.io = format->pb;
+        // On failure avformat_open_input frees the context, not our I/O (own_io_ does).
+        check(avformat_open_input(&format, nullptr, nullptr, nullptr), "opening the file");
         format_.reset(format);
         open_stream(threads);
     }
 
-    ~Decoder() {
-        format_.reset();  // before the I/O it reads through
-        close_file_io(&own_io_);
-    }
+    ~Decoder() = default;  // format_, then the I/O it reads through
 
     Decoder(const Decoder&) = delete;
     Decoder& operator=(const Decoder&) = delete;
@@ -586,7 +579,16 @@ private:
 
     std::filesystem::path path_;
     std::uint64_t max_pixels_ = any_pixels;
-    AVIOContext* own_io_ = nullptr;  // the custom I/O on a descriptor, if any
+    // The custom I/O on a descriptor, if any: freed after format_ (declared
+    // before it), also when the constructor throws (a stream too large).
+    struct OwnIo {
+        AVIOContext* io = nullptr;
+        OwnIo() = default;
+        OwnIo(const OwnIo&) = delete;
+        OwnIo& operator=(const OwnIo&) = delete;
+        ~OwnIo() { close_file_io(&io); }
+    };
+    OwnIo own_io_;
     InputPtr format_;
     CodecPtr codec_;
     FramePtr frame_;
