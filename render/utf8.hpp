@@ -15,4 +15,8 @@ inline constexpr char32_t replacement_character = U'\uFFFD';
 // U+FFFD and decoding resumes at the next byte that could start a sequence.
 std::u32string decode_utf8(std::string_view utf8);
 
+// Code point `c` (below 0x110000) in UTF-8 as it is, surrogates and
+// noncharacters too: what a careless writer would put in a file.
+std::string encode_utf8(char32_t c);
+
 }  // namespace render

@@ -14,6 +14,7 @@
 #include "description/plain_name.hpp"
 #include "render/layout.hpp"
 #include "render/text.hpp"
+#include "render/utf8.hpp"
 #include "scenes/figure_caption.hpp"
 #include "scenes/scene.hpp"
 #include "sim/lsystem.hpp"
@@ -186,28 +187,6 @@ const std::vector<WorkFigure>& work_figures() {
     return all;
 }
 
-// Code points into UTF-8 as they are, even those that are no characters
-// (surrogates, noncharacters): what a careless writer would put in a file.
-std::string loose_utf8(char32_t c) {
-    std::string out;
-    if (c < 0x80) {
-        out += static_cast<char>(c);
-    } else if (c < 0x800) {
-        out += static_cast<char>(0xC0 | (c >> 6));
-        out += static_cast<char>(0x80 | (c & 0x3F));
-    } else if (c < 0x10000) {
-        out += static_cast<char>(0xE0 | (c >> 12));
-        out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
-        out += static_cast<char>(0x80 | (c & 0x3F));
-    } else {
-        out += static_cast<char>(0xF0 | (c >> 18));
-        out += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
-        out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
-        out += static_cast<char>(0x80 | (c & 0x3F));
-    }
-    return out;
-}
-
 std::string without_breaking_space(const std::string& text) {
     std::string kept;
     for (const char c : text)
@@ -264,7 +243,7 @@ Outcome caption_text(const std::uint8_t* data, std::size_t size) {
     std::string text;
     if (data[0] & 1) {
         for (std::size_t i = 2; i + 4 <= size; i += 4)
-            text += loose_utf8(static_cast<char32_t>((data[i] | data[i + 1] << 8 | data[i + 2] << 16 |
+            text += render::encode_utf8(static_cast<char32_t>((data[i] | data[i + 1] << 8 | data[i + 2] << 16 |
                                                       static_cast<std::uint32_t>(data[i + 3]) << 24) %
                                                      0x110000u));
     } else {

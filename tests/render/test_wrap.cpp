@@ -15,26 +15,6 @@ using render::Font;
 
 namespace {
 
-std::string utf8_of(char32_t c) {
-    std::string out;
-    if (c < 0x80) {
-        out += static_cast<char>(c);
-    } else if (c < 0x800) {
-        out += static_cast<char>(0xC0 | (c >> 6));
-        out += static_cast<char>(0x80 | (c & 0x3F));
-    } else if (c < 0x10000) {
-        out += static_cast<char>(0xE0 | (c >> 12));
-        out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
-        out += static_cast<char>(0x80 | (c & 0x3F));
-    } else {
-        out += static_cast<char>(0xF0 | (c >> 18));
-        out += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
-        out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
-        out += static_cast<char>(0x80 | (c & 0x3F));
-    }
-    return out;
-}
-
 // The greedy rule, measured as wrap measured it before it was made
 // O(n log n): at every break, the whole line so far shaped again; a line
 // ends at the last break before the first piece that does not fit, or at
@@ -51,7 +31,7 @@ std::vector<std::string> wrap_by_every_piece(const Font& font, const std::string
     std::vector<std::string> lines;
     std::size_t start = 0, fits = std::string::npos, end = 0;
     for (std::size_t i = 0; i < codepoints.size(); ++i) {
-        end += utf8_of(codepoints[i]).size();
+        end += render::encode_utf8(codepoints[i]).size();
         if (breaks[i] == render::LineBreak::none) continue;
         if (fits != std::string::npos && font.width(trimmed(text.substr(start, end - start)), language) > width) {
             lines.push_back(trimmed(text.substr(start, fits - start)));
@@ -123,7 +103,7 @@ TEST_CASE("flags, noncharacters, tags, surrogates and controls go through wrap a
     for (char32_t c = 0; c < 0xA0; ++c)
         if (c < 0x20 || c >= 0x7F) codes.push_back(c);
     std::string text;
-    for (const char32_t c : codes) text += "ab " + utf8_of(c) + utf8_of(c) + " ";
+    for (const char32_t c : codes) text += "ab " + render::encode_utf8(c) + render::encode_utf8(c) + " ";
     text += "\xED\xA0\x80 \xF4\x90\x80\x80 \xFF";  // U+D800 and U+110000 as UTF-8 would write them, a stray byte
     for (const float width : {1.0f, 30.0f, 300.0f, 3000.0f}) {
         const std::vector<std::string> lines = render::wrap(font, text, width);
