@@ -314,15 +314,19 @@ std::vector<std::string> output_names(const std::string& id) {
 
 namespace {
 
-// The GL the figure was drawn with: its renderer and version, the platform
-// it came through (--gl), the device for egl-device, and the samples a
-// pixel of every multisampled canvas.
+// The GL the figure was drawn with: its renderer and version, whether that
+// is llvmpipe (software, what the goldens are made with) or not (a GPU),
+// the platform it came through (--gl), the device for egl-device, the
+// samples a pixel of every multisampled canvas, and whether it was a debug
+// context (FIGGEN_GL_DEBUG=1).
 nlohmann::json renderer_metadata(const render::GlContext& gl) {
     nlohmann::json r = {{"gl_renderer", gl.renderer()},
                         {"gl_version", gl.version()},
+                        {"software", render::is_llvmpipe(gl.renderer())},
                         {"platform", gl.platform()},
                         {"samples", render::canvas_samples}};
     if (!gl.device().empty()) r["device"] = gl.device();
+    if (gl.debug()) r["debug"] = true;
     return r;
 }
 
@@ -331,6 +335,7 @@ nlohmann::json renderer_metadata(const render::GlContext& gl) {
 void write_figure(const Description& d, const OutputOptions& options, const render::Folder& folder,
                   const MemoryEstimate& memory, const render::Image& image, nlohmann::json metadata) {
     const auto& gl = render::GlContext::get();
+    render::check_gl("the figure");  // in a debug context, what it reported since the last check
     nlohmann::json meta = {
         {"id", d.id},
         {"title", d.title},

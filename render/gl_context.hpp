@@ -1,5 +1,6 @@
 #pragma once
-// The process's one OpenGL context: core profile 3.3 or later, no window,
+// The process's one OpenGL context: core profile 3.3 or later (refused
+// when the driver gives less), no window,
 // from OSMesa or EGL (surfaceless, or a device such as a headless GPU).
 // Created on first use, destroyed at exit. Every drawing class calls
 // GlContext::get() before touching GL.
@@ -33,7 +34,7 @@ constexpr int canvas_samples = 4;
 
 // Where the context comes from (--gl, FIGGEN_GL).
 enum class GlPlatform {
-    automatic,   // "auto": EGL surfaceless on llvmpipe, else OSMesa, saying why on stderr
+    automatic,   // "auto": llvmpipe (EGL surfaceless, OSMesa, EGL's software device), else the GPU, saying why
     osmesa,      // "osmesa": libOSMesa
     egl,         // "egl": EGL's surfaceless platform (Mesa), llvmpipe or the GPU Mesa finds
     egl_device,  // "egl-device": EGL's device platform, device GlChoice::device
@@ -73,8 +74,10 @@ public:
     const std::string& version() const { return version_; }    // GL_VERSION
     const std::string& platform() const { return platform_; }  // "osmesa", "egl" or "egl-device"
     const std::string& device() const { return device_; }      // egl-device: its DRM node or "software"
-    // Why auto passed over EGL for OSMesa; empty when it did not.
+    // Why auto passed over EGL's surfaceless llvmpipe; empty when it did not.
     const std::string& fallback() const { return fallback_; }
+    // A debug context (FIGGEN_GL_DEBUG=1), whose errors check_gl throws.
+    bool debug() const { return debug_; }
     int max_samples() const { return max_samples_; }           // GL_MAX_SAMPLES
     int max_texture_size() const { return max_texture_size_; } // GL_MAX_TEXTURE_SIZE: a field's most cells a side
 
@@ -83,7 +86,7 @@ private:
     ~GlContext();
 
     void make();
-    void use(std::unique_ptr<detail::GlLibrary> library, bool want_llvmpipe);
+    void use(std::unique_ptr<detail::GlLibrary> library);
 
     std::unique_ptr<detail::GlLibrary> library_;  // the one whose context is current
     std::string renderer_;
@@ -93,9 +96,11 @@ private:
     std::string fallback_;
     int max_samples_ = 0;
     int max_texture_size_ = 0;
+    bool debug_ = false;
 };
 
-// Throws std::runtime_error naming `what` if GL has recorded an error.
+// Throws std::runtime_error naming `what` if GL has recorded an error or,
+// in a debug context, reported an error or a high-severity message.
 void check_gl(const char* what);
 
 }  // namespace render

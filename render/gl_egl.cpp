@@ -45,15 +45,6 @@ std::string error_name(EGLint error) {
     return hex;
 }
 
-// Whether a space-separated extension string has `name`.
-bool has_extension(const char* extensions, const char* name) {
-    if (!extensions) return false;
-    const std::size_t length = std::strlen(name);
-    for (const char* p = extensions; (p = std::strstr(p, name)) != nullptr; p += length)
-        if ((p == extensions || p[-1] == ' ') && (p[length] == ' ' || p[length] == '\0')) return true;
-    return false;
-}
-
 // The EGL functions figgen calls, from libEGL.so.1.
 struct Egl {
     PFNEGLGETPROCADDRESSPROC get_proc_address = nullptr;
@@ -67,8 +58,9 @@ struct Egl {
     PFNEGLDESTROYCONTEXTPROC destroy_context = nullptr;
     PFNEGLMAKECURRENTPROC make_current = nullptr;
     PFNEGLRELEASETHREADPROC release_thread = nullptr;
-    PFNEGLQUERYDEVICESEXTPROC query_devices = nullptr;            // EGL_EXT_device_enumeration
-    PFNEGLQUERYDEVICESTRINGEXTPROC query_device_string = nullptr;  // EGL_EXT_device_query
+    // EGL_EXT_device_enumeration and EGL_EXT_device_query, or EGL_EXT_device_base
+    PFNEGLQUERYDEVICESEXTPROC query_devices = nullptr;
+    PFNEGLQUERYDEVICESTRINGEXTPROC query_device_string = nullptr;
 
     // The library opened and its core functions resolved; false, with `why`, when not.
     bool open(std::string& why) {
@@ -107,11 +99,10 @@ struct Egl {
 
     std::string last_error() const { return error_name(get_error()); }
 
-    // The devices of EGL_EXT_device_enumeration; empty, with `why`, when it has none.
+    // The devices of the device platform; empty, with `why`, when it has none.
     std::vector<EGLDeviceEXT> devices(std::string& why) const {
         const char* client = query_string(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-        if (!query_devices || !has_extension(client, "EGL_EXT_device_enumeration") ||
-            !has_extension(client, "EGL_EXT_platform_device")) {
+        if (!query_devices || !has_device_platform(client)) {
             why = "this EGL has no device platform (EGL_EXT_platform_device): install Debian's " +
                   std::string(mesa_package) + ", or the GPU driver's EGL";
             return {};
@@ -158,7 +149,7 @@ public:
         egl_.release_thread();
     }
 
-    void make_current() override {
+    void make_current(bool debug) override {
         const std::string where = "EGL (" + platform_ + ")";
         if (!egl_.bind_api(EGL_OPENGL_API))
             throw std::runtime_error(where + " has no desktop OpenGL (eglBindAPI: " + egl_.last_error() + ")");
@@ -174,10 +165,13 @@ public:
             if (!egl_.choose_config(display_, wanted, &config, 1, &found) || found < 1)
                 throw std::runtime_error(where + " offers no OpenGL config");
         }
+        // GL 3.3 core: the version whose entry points figgen calls (a
+        // driver may give a later one; NVIDIA's gives exactly this).
         const EGLint attributes[] = {
             EGL_CONTEXT_MAJOR_VERSION,       3,
             EGL_CONTEXT_MINOR_VERSION,       3,
             EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+            debug ? EGL_CONTEXT_OPENGL_DEBUG : EGL_NONE, EGL_TRUE,
             EGL_NONE,
         };
         context_ = egl_.create_context(display_, config, EGL_NO_CONTEXT, attributes);
@@ -204,6 +198,21 @@ private:
 };
 
 }  // namespace
+
+bool has_extension(const char* extensions, const char* name) {
+    if (!extensions) return false;
+    const std::size_t length = std::strlen(name);
+    for (const char* p = extensions; (p = std::strstr(p, name)) != nullptr; p += length)
+        if ((p == extensions || p[-1] == ' ') && (p[length] == ' ' || p[length] == '\0')) return true;
+    return false;
+}
+
+bool has_device_platform(const char* client) {
+    const bool enumeration = has_extension(client, "EGL_EXT_device_base") ||
+                             (has_extension(client, "EGL_EXT_device_enumeration") &&
+                              has_extension(client, "EGL_EXT_device_query"));
+    return enumeration && has_extension(client, "EGL_EXT_platform_device");
+}
 
 std::unique_ptr<GlLibrary> open_egl(int device, std::string& why) {
     Egl egl;
@@ -243,6 +252,21 @@ std::unique_ptr<GlLibrary> open_egl(int device, std::string& why) {
         return nullptr;
     }
     return std::make_unique<EglLibrary>(egl, display, platform, device_name);
+}
+
+bool egl_loads(std::string& why) {
+    Egl egl;
+    return egl.open(why);
+}
+
+std::unique_ptr<GlLibrary> open_egl_software(std::string& why) {
+    Egl egl;
+    if (!egl.open(why)) return nullptr;
+    const std::vector<EGLDeviceEXT> devices = egl.devices(why);
+    for (std::size_t i = 0; i < devices.size(); ++i)
+        if (egl.device_name(devices[i]) == "software") return open_egl(static_cast<int>(i), why);
+    if (!devices.empty()) why = "EGL's device platform has no software device (EGL_MESA_device_software)";
+    return nullptr;
 }
 
 int count_egl_devices(std::string& why) {

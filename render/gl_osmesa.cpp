@@ -39,7 +39,9 @@ public:
         if (context_) destroy_context_(context_);
     }
 
-    void make_current() override {
+    // OSMesa has no debug flag: its contexts report through KHR_debug
+    // once GL_DEBUG_OUTPUT is on, which GlContext turns on.
+    void make_current(bool /*debug*/) override {
         const int attribs[] = {
             OSMESA_FORMAT,                OSMESA_RGBA,
             OSMESA_DEPTH_BITS,            0,

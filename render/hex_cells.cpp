@@ -72,14 +72,16 @@ void gl_backend::hex_cells(const Canvas& canvas, const HexView& view, std::span<
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(cells.size() * sizeof(glm::ivec2)), cells.data(),
                  GL_STREAM_DRAW);
     glEnableVertexAttribArray(0);
-    glVertexAttribIPointer(0, 2, GL_INT, sizeof(glm::ivec2), nullptr);
     glVertexAttribDivisor(0, 1);
     // Batches of cells (4 triangles each), finishing each: see triangles_per_finish.
+    // Each batch points the attribute at its first cell (GL 3.3; a
+    // base-instance draw would need GL 4.2).
     const long long total = static_cast<long long>(cells.size()), batch = triangles_per_finish / 4;
     for (long long first = 0; first < total; first += batch) {
         if (first > 0) glFinish();
-        glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 12, static_cast<GLsizei>(std::min(batch, total - first)),
-                                          static_cast<GLuint>(first));
+        glVertexAttribIPointer(0, 2, GL_INT, sizeof(glm::ivec2),
+                               reinterpret_cast<const void*>(static_cast<std::size_t>(first) * sizeof(glm::ivec2)));
+        glDrawArraysInstanced(GL_TRIANGLES, 0, 12, static_cast<GLsizei>(std::min(batch, total - first)));
     }
     glVertexAttribDivisor(0, 0);
     glBindVertexArray(0);

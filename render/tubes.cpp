@@ -196,10 +196,18 @@ struct TubePipeline {
         glBindVertexArray(vao);
         glBindBuffer(GL_ARRAY_BUFFER, instance_vbo);
         glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(tubes.size() * sizeof(Tube)), tubes.data(), GL_STREAM_DRAW);
-        auto per_tube = [](GLuint location, GLint size, std::size_t offset) {
+        point_at(0);
+    }
+
+    // The per-tube attributes read from tube `first` on: a batch's first
+    // instance. GL 4.2's base-instance draws would do it in the draw call;
+    // moving the pointers keeps figgen on GL 3.3, all NVIDIA gives a 3.3
+    // context. With the VAO and instance_vbo bound.
+    void point_at(long long first) const {
+        auto per_tube = [first](GLuint location, GLint size, std::size_t offset) {
             glEnableVertexAttribArray(location);
             glVertexAttribPointer(location, size, GL_FLOAT, GL_FALSE, sizeof(Tube),
-                                  reinterpret_cast<const void*>(offset));
+                                  reinterpret_cast<const void*>(std::size_t(first) * sizeof(Tube) + offset));
             glVertexAttribDivisor(location, 1);
         };
         per_tube(3, 3, offsetof(Tube, a));
@@ -479,8 +487,9 @@ void gl_backend::tubes(const Canvas& canvas, const Rect& viewport, const std::ve
         const long long batch = std::max(1LL, triangles_per_finish / (pipeline.index_count / 3));
         for (long long first = 0; first < total; first += batch) {
             if (first > 0) glFinish();
-            glDrawElementsInstancedBaseInstance(GL_TRIANGLES, pipeline.index_count, GL_UNSIGNED_INT, nullptr,
-                                                GLsizei(std::min(batch, total - first)), GLuint(first));
+            pipeline.point_at(first);
+            glDrawElementsInstanced(GL_TRIANGLES, pipeline.index_count, GL_UNSIGNED_INT, nullptr,
+                                    GLsizei(std::min(batch, total - first)));
         }
         glBindVertexArray(0);
     }
