@@ -19,8 +19,10 @@ build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
 # Regenerates every figure described under figures/ into out/; only the
-# figures whose description or program changed are rendered again.
-figures: build
+# figures whose description or program changed are rendered again. Builds
+# only what it runs: the program and the modules it opens (the figures
+# target depends on them), not the tests or benchmarks.
+figures: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) --target figures -j $(JOBS)
 
 # The gallery make figures wrote (out/index.html), every figure in it, checked
