@@ -61,7 +61,7 @@ void FramePipe::run() {
             changed_.notify_all();  // room in the queue: a producer waiting in push() goes on now
         }
         try {
-            consume_(item.frame, item.step);
+            consume_(item.frame, item.step);  // the consumer may move the frame away
         } catch (...) {
             std::lock_guard hold(lock_);
             failure_ = std::current_exception();

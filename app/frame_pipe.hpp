@@ -18,7 +18,8 @@ namespace app {
 
 class FramePipe {
 public:
-    using Consume = std::function<void(const render::Image& frame, int step)>;
+    // The frame is the consumer's to keep (move from) or drop.
+    using Consume = std::function<void(render::Image& frame, int step)>;
     // Starts the consuming thread. depth >= 1.
     FramePipe(Consume consume, int depth);
     // Without finish(): stops the consumer after the frame it is on and drops the rest.

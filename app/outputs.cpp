@@ -90,6 +90,16 @@ constexpr double vector_page_bytes_per_pixel = 64.0;
 constexpr double webm_encoder_bytes_per_pixel = 96.0;
 constexpr int encoder_frames_held = 40;
 
+// A film's segments encoded at once, memory aside: one a core (or a
+// thread of --threads, where more), at most one a segment; one where the
+// film is one segment or its frames go elsewhere (PNG sequence alone).
+int film_encoders_wanted(const Description& d, const OutputOptions& options) {
+    const int frames = d.animation->frame_count(), per_segment = d.animation->segment_frames;
+    if (!options.encodes() || per_segment <= 0 || per_segment >= frames) return 1;
+    const int segments = (frames + per_segment - 1) / per_segment;
+    return std::max(1, std::min(segments, options.scene_options().threads));
+}
+
 double frame_pixels(const Description& d, const OutputOptions& options) {
     if (!d.animation) return 0.0;
     return static_cast<double>(scaled_even(d.animation->width, options.scale)) *
@@ -102,6 +112,7 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
                                const std::vector<scenes::MemoryNeed>& needs) {
     using scenes::MemoryNeed;
     std::vector<MemoryNeed> all = needs;
+    int film_encoders = 1;
     all.push_back({"figure " + std::to_string(figure_width(d, options)) + " x " +
                        std::to_string(figure_height(d, options)) + " RGBA",
                    canvas_bytes_per_pixel * figure_width(d, options) * figure_height(d, options)});
@@ -117,18 +128,31 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
         all.push_back(
             {"animation frames queued " + size, 4.0 * (FrameSink::frames_queued + 1) * frame_pixels(d, options)});
         if (options.encodes()) {
-            const int frames = d.animation->frame_count(),
-                      held = frames < encoder_frames_held ? frames : encoder_frames_held;
-            all.push_back({"the video encoder's frames " + size,
-                           encoder_bytes + (encoder_bytes_per_pixel + encoder_bytes_per_pixel_frame * held) *
-                                               frame_pixels(d, options)});
+            // Each segment's encoder, and, where several run at once, the
+            // frames of each segment waiting for its encoder (all of a
+            // segment's at worst). As many at once as fit --max-memory.
+            const int frames = d.animation->frame_count(), per_segment = d.animation->segment_frames,
+                      segment = per_segment > 0 && per_segment < frames ? per_segment : frames,
+                      held = std::min(segment, encoder_frames_held);
+            const double encoder = encoder_bytes + (encoder_bytes_per_pixel + encoder_bytes_per_pixel_frame * held) *
+                                                       frame_pixels(d, options),
+                         waiting = 4.0 * segment * frame_pixels(d, options);
+            double others = program_bytes;
+            for (const MemoryNeed& need : all) others += need.bytes;
+            int encoders = film_encoders_wanted(d, options);
+            while (encoders > 1 && others + encoders * (encoder + waiting) > static_cast<double>(options.max_memory))
+                --encoders;
+            film_encoders = encoders;
+            all.push_back({"the video encoder's frames " + size +
+                               (encoders > 1 ? " (" + std::to_string(encoders) + " segments at once)" : ""),
+                           encoders * encoder + (encoders > 1 ? encoders * waiting : 0.0)});
         }
         if (options.webm)
             all.push_back({"the WebM encoder " + size,
                            webm_encoder_bytes + webm_encoder_bytes_per_pixel * frame_pixels(d, options)});
     }
     // The largest of what a setting can make smaller, then the program's own.
-    MemoryEstimate estimate{program_bytes, all.front()};
+    MemoryEstimate estimate{program_bytes, all.front(), film_encoders};
     for (const MemoryNeed& need : all) {
         estimate.bytes += need.bytes;
         if (need.bytes > estimate.largest.bytes) estimate.largest = need;
@@ -173,15 +197,20 @@ void require_disk(const Description& d, const OutputOptions& options, double par
 }
 
 FrameSink::FrameSink(const Description& d, const OutputOptions& options, const render::Folder& folder, int width,
-                     int height, const std::vector<nlohmann::json>* segments)
+                     int height, const std::vector<nlohmann::json>* segments, int encoders)
     : description_(d), options_(options), folder_(folder), width_(width), height_(height), segments_(segments) {
-    if (options.encodes())
-        video_ = std::make_unique<render::VideoWriter>(folder, d.id + ".mp4", width, height,
-                                                       film_video_options(d, options));
+    if (options.encodes()) {
+        const render::VideoOptions video = film_video_options(d, options);
+        video_ = std::make_unique<render::VideoWriter>(folder, d.id + ".mp4", width, height, video);
+        // Segments side by side; a film of one segment, or one encoder, as before.
+        if (!segments && encoders > 1 && video.segment_frames > 0)
+            encoders_ = std::make_unique<SegmentEncoders>(*video_, (folder / (d.id + ".mp4")).string(), width,
+                                                          height, video, encoders);
+    }
     if (options.frames) {
         frames_ = std::make_unique<render::AtomicDir>(folder, d.id + "-frames");
     }
-    pipe_ = std::make_unique<FramePipe>([this](const render::Image& frame, int step) { write(frame, step); },
+    pipe_ = std::make_unique<FramePipe>([this](render::Image& frame, int step) { write(frame, step); },
                                         frames_queued);
 }
 
@@ -191,8 +220,7 @@ void FrameSink::add(render::Image frame, int step) {
     pipe_->push(std::move(frame), step);
 }
 
-void FrameSink::write(const render::Image& frame, int step) {
-    if (video_) video_->add(frame);
+void FrameSink::write(render::Image& frame, int step) {
     if (frames_) {
         char name[32];
         std::snprintf(name, sizeof name, "%05d.png", static_cast<int>(steps_.size()));
@@ -201,11 +229,14 @@ void FrameSink::write(const render::Image& frame, int step) {
                           render::AtomicFile::Commit::now,  // inside the temporary folder
                           render::PngCompression::fast);
     }
+    if (encoders_) encoders_->add(std::move(frame));
+    else if (video_) video_->add(frame);
     steps_.push_back(step);
 }
 
 nlohmann::json FrameSink::finish() {
     pipe_->finish();  // every frame encoded and written, or what failed is thrown here
+    if (encoders_) encoders_->finish();  // every segment in the MP4
     if (segments_)
         for (const nlohmann::json& segment : *segments_) {
             const FilmSegment s = film_segment(segment);
@@ -266,7 +297,8 @@ nlohmann::json FrameSink::finish() {
 
 std::unique_ptr<scenes::Film> FigureFiles::film(int width, int height) {
     if (!description_.animation || !options_.animates()) return nullptr;
-    return std::make_unique<FrameSink>(description_, options_, folder_, width, height, film_segments_);
+    return std::make_unique<FrameSink>(description_, options_, folder_, width, height, film_segments_,
+                                       memory_.film_encoders);
 }
 
 void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json metadata) {

@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "app/frame_pipe.hpp"
+#include "app/segment_encoders.hpp"
 #include "app/work.hpp"
 #include "description/description.hpp"
 #include "render/atomic_file.hpp"
@@ -72,6 +73,10 @@ int figure_height(const Description& d, const OutputOptions& options);
 struct MemoryEstimate {
     double bytes = 0.0;
     scenes::MemoryNeed largest;
+    // The film's segments encoded at once (app/segment_encoders.hpp): one
+    // a core, at most one a segment, fewer where --max-memory would not
+    // hold them; counted in `bytes`.
+    int film_encoders = 1;
 };
 MemoryEstimate estimate_memory(const Description& d, const OutputOptions& options,
                                const std::vector<scenes::MemoryNeed>& needs);
@@ -103,19 +108,21 @@ public:
 
     // `segments`, when given, are the whole film made elsewhere
     // (app/film_segments.hpp): no frame is added, finish() writes them.
+    // `encoders`: the film's segments encoded side by side (MemoryEstimate::film_encoders).
     FrameSink(const Description& d, const OutputOptions& options, const render::Folder& folder, int width,
-              int height, const std::vector<nlohmann::json>* segments = nullptr);
+              int height, const std::vector<nlohmann::json>* segments = nullptr, int encoders = 1);
     ~FrameSink() override;
     void add(render::Image frame, int step) override;
     nlohmann::json finish() override;  // completes the MP4; returns the animation's metadata
 
 private:
-    void write(const render::Image& frame, int step);  // on the pipe's thread, frame by frame in order
+    void write(render::Image& frame, int step);  // on the pipe's thread, frame by frame in order
 
     const Description& description_;
     const OutputOptions& options_;
     render::Folder folder_;
     std::unique_ptr<render::VideoWriter> video_;
+    std::unique_ptr<SegmentEncoders> encoders_;  // the film's segments side by side, into video_
     std::unique_ptr<render::AtomicDir> frames_;  // the PNG sequence, in place at finish()
     nlohmann::json steps_ = nlohmann::json::array();
     int width_, height_;

@@ -6,12 +6,15 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace testkit {
 
@@ -57,6 +60,25 @@ inline void spill(const std::filesystem::path& file, const std::string& text) {
     std::ofstream out(file, std::ios::binary);
     out << text;
 }
+
+// `count` threads spinning until destroyed: a machine busy with other work.
+struct CpuHog {
+    explicit CpuHog(int count) {
+        for (int i = 0; i < count; ++i)
+            threads.emplace_back([this] {
+                volatile unsigned long n = 0;
+                while (!stop.load(std::memory_order_relaxed)) n = n + 1;
+            });
+    }
+    ~CpuHog() {
+        stop = true;
+        for (std::thread& t : threads) t.join();
+    }
+    CpuHog(const CpuHog&) = delete;
+    CpuHog& operator=(const CpuHog&) = delete;
+    std::atomic<bool> stop{false};
+    std::vector<std::thread> threads;
+};
 
 // A fresh folder under the test artifacts, private to this process: ctest
 // runs test cases side by side, and two of them may render the same figure.

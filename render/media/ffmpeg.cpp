@@ -704,7 +704,10 @@ PreviewInfo write_preview(int fd, const std::filesystem::path& shown, int film_f
         wanted.push_back(kept == 1 ? film_frames - 1
                                    : static_cast<int>(std::lround(double(k) * (film_frames - 1) / (kept - 1))));
     std::vector<Image> frames;
-    Decoder decoder(film_fd, shown, 1);
+    // Decoded on every core (0: as many threads as FFmpeg sees cores): the
+    // film just written, waited for; H.264 decodes to the same pixels on
+    // any number of threads.
+    Decoder decoder(film_fd, shown, 0);
     int index = 0;
     for (std::size_t next = 0; next < wanted.size(); ++index) {
         const AVFrame* frame = decoder.next();
@@ -719,7 +722,7 @@ PreviewInfo write_preview(int fd, const std::filesystem::path& shown, int film_f
 }
 
 std::uint64_t write_webm(int fd, const std::filesystem::path& shown, int film_fd, int fps, const WebmOptions& webm) {
-    Decoder decoder(film_fd, shown, 1);
+    Decoder decoder(film_fd, shown, 0);  // every core, the same pixels (see write_preview)
     std::unique_ptr<FfmpegEncoder> encoder;
     VideoOptions options;
     options.fps = fps;

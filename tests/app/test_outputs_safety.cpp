@@ -223,3 +223,25 @@ TEST_CASE("memory running out is reported as memory, with the figure's estimate"
     CHECK(fs::is_empty(out));  // nothing written, no temporary left
 }
 #endif
+
+TEST_CASE("a film is the same bytes on any number of threads, beside a CPU hog too", "[video][segments][cli]") {
+    // 51 frames in segments of 8: seven segments, encoded one after another
+    // (--threads 1) or side by side.
+    const std::string film = "render tc7-2 --scale 0.5 --set 'animation.steps=[0,1000]' --set animation.segment_frames=8";
+    const auto run = [&](const std::string& threads, const std::string& name) {
+        const fs::path out = testkit::fresh_dir("film-threads-" + name);
+        const testkit::Run r = testkit::figgen(film + " --threads " + threads + " --out " + out.string());
+        INFO(r.output);
+        REQUIRE(r.status == 0);
+        return testkit::slurp(out / "tc7-2.mp4");
+    };
+    const std::string expected = run("1", "1");
+    REQUIRE(expected.size() > 1000);
+    for (const std::string threads : {"2", "3", "7"}) {
+        INFO("--threads " << threads);
+        CHECK(run(threads, threads) == expected);
+    }
+    // A busy loop on every core: the encoders finish in another order.
+    const testkit::CpuHog hog(static_cast<int>(std::max(2u, std::thread::hardware_concurrency())));
+    for (int i = 0; i < 2; ++i) CHECK(run("7", "hog-" + std::to_string(i)) == expected);
+}
