@@ -297,8 +297,9 @@ nlohmann::json FrameSink::finish() {
 
 std::unique_ptr<scenes::Film> FigureFiles::film(int width, int height) {
     if (!description_.animation || !options_.animates()) return nullptr;
+    // As many encoders as the estimate allowed, but no more than --threads.
     return std::make_unique<FrameSink>(description_, options_, folder_, width, height, film_segments_,
-                                       memory_.film_encoders);
+                                       std::max(1, std::min(memory_.film_encoders, options_.work.threads)));
 }
 
 void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json metadata) {
