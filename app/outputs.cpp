@@ -124,9 +124,10 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
         const std::string size = std::to_string(scaled_even(d.animation->width, options.scale)) + " x " +
                                  std::to_string(scaled_even(d.animation->height, options.scale));
         all.push_back({"animation frames " + size, canvas_bytes_per_pixel * frame_pixels(d, options)});
-        // The frames queued for the encoding thread and the one it is on.
-        all.push_back(
-            {"animation frames queued " + size, 4.0 * (FrameSink::frames_queued + 1) * frame_pixels(d, options)});
+        // The frames queued for the encoding thread and the one it is on,
+        // and those read back through pixel buffers (render::FrameReader).
+        all.push_back({"animation frames queued " + size,
+                       4.0 * (FrameSink::frames_queued + 1 + render::frames_in_flight) * frame_pixels(d, options)});
         if (options.encodes()) {
             // Each segment's encoder, and, where several run at once, the
             // frames of each segment waiting for its encoder (all of a

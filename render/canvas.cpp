@@ -150,6 +150,43 @@ void Canvas::clear(const glm::vec4& colour) {
     }
 }
 
+void Canvas::read_into_pack_buffer() const {
+    if (resolve_fbo_) {  // multisampled: resolve first
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
+        glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_ ? resolve_fbo_ : msaa_fbo_);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    check_gl("Canvas::read_into_pack_buffer");
+    bind();
+}
+
+namespace {
+
+// `bottom_up` (width x height RGBA in GL's row order) as an image, rows
+// top-down; straight alpha when the canvas was transparent (premultiplied
+// in the framebuffer, see set_transparent).
+Image image_of_rows(const std::uint8_t* bottom_up, int width, int height, bool transparent) {
+    Image image(width, height);
+    const std::size_t stride = static_cast<std::size_t>(width) * 4;
+    for (int y = 0; y < height; ++y)
+        std::copy_n(bottom_up + static_cast<std::size_t>(height - 1 - y) * stride, stride,
+                    image.rgba.data() + static_cast<std::size_t>(y) * stride);
+    if (transparent) {
+        for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
+            const unsigned a = image.rgba[i + 3];
+            if (a == 0 || a == 255) continue;
+            for (std::size_t c = 0; c < 3; ++c)
+                image.rgba[i + c] = static_cast<std::uint8_t>(std::min(255u, (image.rgba[i + c] * 255u + a / 2) / a));
+        }
+    }
+    return image;
+}
+
+}  // namespace
+
 Image Canvas::read() const {
     if (resolve_fbo_) {  // multisampled: resolve first
         glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
@@ -158,27 +195,79 @@ Image Canvas::read() const {
     }
     glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_ ? resolve_fbo_ : msaa_fbo_);
     glFinish();  // llvmpipe renders lazily: wait before reading
-    Image image(width_, height_);
+    std::vector<std::uint8_t> rows(static_cast<std::size_t>(width_) * height_ * 4);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    // GL's rows run bottom-up; read each into its top-down place.
-    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
-    const std::size_t stride = static_cast<std::size_t>(width_) * 4;
-    for (int y = 0; y < height_ / 2; ++y) {
-        std::uint8_t* a = &image.rgba[y * stride];
-        std::uint8_t* b = &image.rgba[(height_ - 1 - y) * stride];
-        std::swap_ranges(a, a + stride, b);
-    }
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
     check_gl("Canvas::read");
     bind();
-    if (transparent_) {
-        // Premultiplied in the framebuffer (see set_transparent), straight in the image.
-        for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
-            const unsigned a = image.rgba[i + 3];
-            if (a == 0 || a == 255) continue;
-            for (std::size_t c = 0; c < 3; ++c)
-                image.rgba[i + c] = static_cast<std::uint8_t>(std::min(255u, (image.rgba[i + c] * 255u + a / 2) / a));
-        }
+    return image_of_rows(rows.data(), width_, height_, transparent_);
+}
+
+FrameReader::FrameReader(int depth) : depth_(depth < 1 ? 1 : depth) {}
+
+FrameReader::~FrameReader() {
+    for (Slot& s : flight_) {
+        if (s.fence) glDeleteSync(s.fence);
+        glDeleteBuffers(1, &s.buffer);
     }
+    for (Slot& s : spare_) glDeleteBuffers(1, &s.buffer);
+}
+
+std::optional<Image> FrameReader::read(const Canvas& canvas) {
+    Slot slot;
+    if (!spare_.empty()) {
+        slot = spare_.back();
+        spare_.pop_back();
+    } else {
+        glGenBuffers(1, &slot.buffer);
+    }
+    const std::size_t bytes = static_cast<std::size_t>(canvas.width()) * canvas.height() * 4;
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffer);
+    if (slot.capacity != bytes) {
+        glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr, GL_STREAM_READ);
+        slot.capacity = bytes;
+    }
+    canvas.read_into_pack_buffer();
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    slot.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    glFlush();  // the fence reaches the GPU: a wait on it ends
+    slot.width = canvas.width();
+    slot.height = canvas.height();
+    slot.transparent = canvas.transparent();
+    flight_.push_back(slot);
+    check_gl("FrameReader::read");
+    if (static_cast<int>(flight_.size()) < depth_) return std::nullopt;
+    return next();
+}
+
+std::optional<Image> FrameReader::next() {
+    if (flight_.empty()) return std::nullopt;
+    Slot slot = flight_.front();
+    flight_.pop_front();
+    Image image = take(slot);
+    spare_.push_back(slot);
+    return image;
+}
+
+Image FrameReader::take(Slot& slot) {
+    // Waits for the copy, a second at a time, for as long as it takes.
+    while (glClientWaitSync(slot.fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000) == GL_TIMEOUT_EXPIRED) {
+    }
+    glDeleteSync(slot.fence);
+    slot.fence = nullptr;
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffer);
+    const void* mapped = glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(slot.capacity),
+                                          GL_MAP_READ_BIT);
+    if (!mapped) {
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        check_gl("FrameReader: mapping a frame");
+        throw std::runtime_error("FrameReader: GL could not map a frame's buffer");
+    }
+    // As the canvas was when read (its size and transparency then).
+    Image image = image_of_rows(static_cast<const std::uint8_t*>(mapped), slot.width, slot.height, slot.transparent);
+    glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    check_gl("FrameReader: reading a frame");
     return image;
 }
 

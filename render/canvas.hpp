@@ -5,7 +5,11 @@
 // origin at the top left, y down, as in the PNG that comes out. A canvas made with `depth` also has a multisampled
 // depth buffer, for 3-D drawings (draw_tubes); 2-D drawing never tests depth.
 
+#include <cstdint>
+#include <deque>
 #include <glm/glm.hpp>
+#include <optional>
+#include <vector>
 
 #include "render/gl.hpp"
 #include "render/gl_context.hpp"
@@ -52,6 +56,11 @@ public:
     // Resolves the samples and reads RGBA; on a transparent canvas, straight
     // (not premultiplied) colour, as PNG stores it.
     Image read() const;
+    // The first half of read(), for FrameReader: resolves the samples and
+    // starts reading them into the pixel buffer object bound to
+    // GL_PIXEL_PACK_BUFFER (at its offset 0), bottom row first.
+    void read_into_pack_buffer() const;
+
 
     // A transparent canvas's background() clears to alpha 0. Blending keeps
     // premultiplied colour in the framebuffer then (the alpha channel blends
@@ -84,6 +93,44 @@ private:
     GLuint msaa_depth_ = 0;                        // 0 when made without depth
     GLuint resolve_fbo_ = 0, resolve_colour_ = 0;  // 0 with one sample: read straight from the canvas
     GLuint stencil_ = 0;  // for Coverage::once, made on first use; not kept with a spare canvas
+};
+
+// Frames read back through pixel buffer objects, up to `depth` in flight
+// (frames_in_flight): glReadPixels into a buffer only queues the copy, so
+// a GPU draws frame n + 1 while frame n travels to memory, and the copy is
+// waited for (a fence) only when the frame is taken, `depth` - 1 frames
+// later. On llvmpipe the read happens at once; the pixels are the same.
+// Frames come back in the order they were read, all the same size or not.
+constexpr int frames_in_flight = 3;
+
+class FrameReader {
+public:
+    explicit FrameReader(int depth = frames_in_flight);
+    ~FrameReader();
+    FrameReader(const FrameReader&) = delete;
+    FrameReader& operator=(const FrameReader&) = delete;
+
+    // Starts reading `canvas` as it is now (it may be drawn on again at
+    // once); when `depth` frames are then in flight, waits for the oldest
+    // and returns it.
+    std::optional<Image> read(const Canvas& canvas);
+    // The oldest frame in flight, waited for; nothing when none is.
+    std::optional<Image> next();
+    int in_flight() const { return static_cast<int>(flight_.size()); }
+
+private:
+    struct Slot {
+        GLuint buffer = 0;
+        GLsync fence = nullptr;
+        std::size_t capacity = 0;  // bytes the buffer holds
+        int width = 0, height = 0;
+        bool transparent = false;
+    };
+    Image take(Slot& slot);
+
+    int depth_;
+    std::deque<Slot> flight_;
+    std::vector<Slot> spare_;  // buffers read back, reused
 };
 
 }  // namespace render

@@ -245,6 +245,24 @@ void release_if_large(std::vector<float>& buffer) {
     if (buffer.capacity() > max_kept_floats) std::vector<float>().swap(buffer);
 }
 
+FieldResampling& resampling_setting() {
+    static FieldResampling setting = FieldResampling::automatic;
+    return setting;
+}
+
+// Whether the CPU resamples a smooth pair (set_field_resampling).
+bool resample_on_cpu() {
+    switch (resampling_setting()) {
+    case FieldResampling::cpu:
+        return true;
+    case FieldResampling::sampler:
+        return false;
+    case FieldResampling::automatic:
+        break;
+    }
+    return is_llvmpipe(GlContext::get().renderer());
+}
+
 bool whole(const Rect& r) {
     return r.x == std::floor(r.x) && r.y == std::floor(r.y) && r.w == std::floor(r.w) && r.h == std::floor(r.h);
 }
@@ -259,6 +277,8 @@ void check_layer(int rows, int cols, std::span<const double> values, const Field
 
 }  // namespace
 
+void set_field_resampling(FieldResampling resampling) { resampling_setting() = resampling; }
+
 void gl_backend::field(const Canvas& canvas, const Rect& where, int rows, int cols,
                        std::span<const std::span<const double>> values, std::span<const FieldStyle* const> styles) {
     Pipeline& p = pipeline();
@@ -269,9 +289,10 @@ void gl_backend::field(const Canvas& canvas, const Rect& where, int rows, int co
     const int layers = static_cast<int>(values.size());
     bool smooth = styles[0]->sampling == Sampling::smooth;
     glm::vec2 cells(cols, rows);
-    // A smooth pair (a film's frame) on whole pixels: the spline on the CPU,
-    // one value a pixel, drawn as nearest cells of one pixel each.
-    if (smooth && layers == 2 && whole(where) && where.w >= 1 && where.h >= 1) {
+    // A smooth pair (a film's frame) on whole pixels, on llvmpipe: the
+    // spline on the CPU, one value a pixel, drawn as nearest cells of one
+    // pixel each. A GPU's sampler does it faster in the shader.
+    if (smooth && layers == 2 && whole(where) && where.w >= 1 && where.h >= 1 && resample_on_cpu()) {
         const int width = static_cast<int>(where.w), height = static_cast<int>(where.h);
         resample_smooth(p, rows, cols, layers, width, height);
         upload(p, height, width, layers, p.resampled.data());

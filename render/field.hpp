@@ -58,4 +58,13 @@ Image field_image(const Rect& where, int rows, int cols, std::span<const double>
 void draw_field_pair(Surface& surface, const Rect& where, int rows, int cols, std::span<const double> first,
                      const FieldStyle& first_style, std::span<const double> second, const FieldStyle& second_style);
 
+// Where a smooth pair on whole pixels (a film's frame) is resampled: on
+// the CPU, a separable cubic B-spline giving one texel a pixel (llvmpipe
+// samples on the CPU anyway, and its sampler is the slow part of a frame),
+// or by the GPU's sampler, the shader's spline of 4 bilinear fetches.
+// automatic: the CPU on llvmpipe, the sampler on any other renderer. The
+// two agree but for rounding (tests/render/test_field.cpp).
+enum class FieldResampling { automatic, cpu, sampler };
+void set_field_resampling(FieldResampling resampling);
+
 }  // namespace render

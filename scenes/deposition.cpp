@@ -142,7 +142,7 @@ public:
             {.check = {},
              .panel = {},
              .frame =
-                 [&](int step) {
+                 [&](int step) -> render::Canvas& {
                      return run.draw_field_frame(
                          {{format_step(d_.animation->title, step), {field_layer(film.field(), spec_, Cells::viewed)}}});
                  },

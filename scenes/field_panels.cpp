@@ -121,11 +121,16 @@ render::PlotStyle colour_bar_style(double scale) {
     return style;
 }
 
-render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
-                                LayerPasses passes) {
+void paint_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
+                        LayerPasses passes) {
     canvas.clear({1, 1, 1, 1});
     draw_field_panels(canvas, {0, 0, float(canvas.width()), float(canvas.height())}, panels,
                       static_cast<int>(panels.size()), scale, passes);
+}
+
+render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
+                                LayerPasses passes) {
+    paint_field_panels(canvas, panels, scale, passes);
     return canvas.read();
 }
 

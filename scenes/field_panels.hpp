@@ -94,6 +94,9 @@ enum class LayerPasses { each, paired };
 // frame, saving its framebuffers' set-up): clears it, draws, reads it back.
 render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
                                 LayerPasses passes = LayerPasses::each);
+// The same but for reading it back (a film's frame, read by a FrameReader).
+void paint_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
+                        LayerPasses passes = LayerPasses::each);
 
 // The text draw_field_panels would draw: the titles and the colour bars'
 // tick labels and labels, for render::text_clash.

@@ -290,7 +290,7 @@ public:
         run.run({.check = {},
                  .panel = {},
                  .frame =
-                     [&](int step) {
+                     [&](int step) -> render::Canvas& {
                          render::Canvas& canvas = run.frame_canvas(true);
                          if (film_cameras.empty())
                              film_cameras = turntable_cameras(plant, float(canvas.width()) / float(canvas.height()));
@@ -354,11 +354,11 @@ private:
     }
 
     // The film's frame: the plant seen through its camera.
-    render::Image turntable_frame(render::Canvas& canvas, const Plant& plant, const render::Camera& camera) const {
+    render::Canvas& turntable_frame(render::Canvas& canvas, const Plant& plant, const render::Camera& camera) const {
         canvas.clear({1, 1, 1, 1});
         const render::Rect view{0, 0, float(canvas.width()), float(canvas.height())};
         render::draw_tubes(canvas, view, plant.tubes, plant.facets, camera, studio_light(camera), sides_);
-        return canvas.read();
+        return canvas;
     }
 
     // One panel per azimuth, as wide as the widest view of the plant needs

@@ -61,7 +61,7 @@ public:
             .check = {},
             .panel = [&](int) { panel(); },
             .frame =
-                [&](int) {
+                [&](int) -> render::Canvas& {
                     return run.draw_field_frame({{title(d_.animation->title), {field_layer(model.cells(), spec_)}}});
                 },
             .advance =

@@ -128,7 +128,7 @@ public:
         StepRunner run(d_, options_, out);
         run.run({.check = {},
                  .panel = {},
-                 .frame = [&](int step) { return draw_frame(run.frame_canvas(), spirals[0], step); },
+                 .frame = [&](int step) -> render::Canvas& { return draw_frame(run.frame_canvas(), spirals[0], step); },
                  .advance = [] { return true; }});
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         nlohmann::json panel_meta = nlohmann::json::array();
@@ -179,7 +179,7 @@ private:
                  render::Align::centre, render::Baseline::baseline);
     }
 
-    render::Image draw_frame(render::Canvas& canvas, const std::vector<sim::Seed>& spiral, int step) const {
+    render::Canvas& draw_frame(render::Canvas& canvas, const std::vector<sim::Seed>& spiral, int step) const {
         canvas.clear({1, 1, 1, 1});
         const auto rects = render::panel_row(canvas.width(), canvas.height(), 1, true, row_);
         render::Shapes shapes;
@@ -189,7 +189,7 @@ private:
         add_title(text, rects[0],
                   format_fixed(flowers_[0].divergence, 3) + "\u00b0, " + std::to_string(step) + " seeds");
         text.draw(canvas);
-        return canvas.read();
+        return canvas;
     }
 
     struct Page {

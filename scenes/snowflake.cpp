@@ -157,7 +157,7 @@ public:
         run.run({
             .check = {},
             .panel = [&](int step) { keep_panels(crystals, step, panels, panel_meta); },
-            .frame = [&](int step) { return draw_frame(run, crystals, step); },
+            .frame = [&](int step) -> render::Canvas& { return draw_frame(run, crystals, step); },
             .advance =
                 [&] {
                     for (auto& c : crystals) c.step();
@@ -221,7 +221,7 @@ private:
         }
     }
 
-    render::Image draw_frame(StepRunner& run, const std::vector<sim::Snowflake>& crystals, int step) const {
+    render::Canvas& draw_frame(StepRunner& run, const std::vector<sim::Snowflake>& crystals, int step) const {
         // A fixed view through the film: growth is at most one ring a step,
         // so the last step bounds the radius.
         std::vector<SnowflakePanel> frame;
@@ -231,7 +231,7 @@ private:
         canvas.clear({1, 1, 1, 1});
         draw_snowflakes(canvas, {0, 0, float(canvas.width()), float(canvas.height())}, frame, colours_, options_.scale,
                         int(frame.size()));
-        return canvas.read();
+        return canvas;
     }
 
     const std::vector<SnowflakeRun> runs_;

@@ -35,6 +35,12 @@ int StepRunner::run_to_stop(const StepHooks& hooks) {
 }
 
 int StepRunner::run_until(const StepHooks& hooks, int last) {
+    const int reached = run_steps(hooks, last);
+    drain_frames();  // every frame read back and in the film when the run ends
+    return reached;
+}
+
+int StepRunner::run_steps(const StepHooks& hooks, int last) {
     for (int step = 0;; ++step) {
         const bool is_panel = this->is_panel(step), is_frame = hooks.frame && wants_frame(step);
         // Every step, not only those drawn: a run that goes bad stops at the
@@ -86,9 +92,22 @@ void StepRunner::final_frame(const StepHooks& hooks, int step) {
         frame(hooks.frame(step), step);
 }
 
-void StepRunner::frame(render::Image image, int step) {
-    film_->add(std::move(image), step);
+void StepRunner::frame(const render::Canvas& canvas, int step) {
+    if (!reader_) reader_ = std::make_unique<render::FrameReader>();
+    reading_.push_back(step);
+    if (std::optional<render::Image> image = reader_->read(canvas)) {
+        film_->add(std::move(*image), reading_.front());
+        reading_.pop_front();
+    }
     progress_.advance();
+}
+
+void StepRunner::drain_frames() {
+    if (!reader_) return;
+    while (std::optional<render::Image> image = reader_->next()) {
+        film_->add(std::move(*image), reading_.front());
+        reading_.pop_front();
+    }
 }
 
 render::Canvas& StepRunner::frame_canvas(bool depth) {
@@ -96,11 +115,12 @@ render::Canvas& StepRunner::frame_canvas(bool depth) {
     return *frame_canvas_;
 }
 
-render::Image StepRunner::draw_field_frame(const std::vector<FieldPanel>& panels) {
+render::Canvas& StepRunner::draw_field_frame(const std::vector<FieldPanel>& panels) {
     if (!frame_canvas_)
         frame_canvas_ = std::make_unique<render::Canvas>(
             frame_width_, frame_height_, field_page_samples(panels, frame_width_, frame_height_, options_.scale));
-    return draw_field_panels(*frame_canvas_, panels, options_.scale, LayerPasses::paired);
+    paint_field_panels(*frame_canvas_, panels, options_.scale, LayerPasses::paired);
+    return *frame_canvas_;
 }
 
 void StepRunner::stepped() {
@@ -109,6 +129,7 @@ void StepRunner::stepped() {
 }
 
 void StepRunner::write_figure(const FigureDrawing& figure, nlohmann::json meta) {
+    drain_frames();
     if (film_) meta["animation"] = film_->finish();
     meta["model_steps"] = model_steps_;
     out_.figure(figure, std::move(meta));
@@ -116,6 +137,7 @@ void StepRunner::write_figure(const FigureDrawing& figure, nlohmann::json meta) 
 }
 
 void StepRunner::finish_film() {
+    drain_frames();
     if (film_) film_->finish();
     progress_.finish();
 }

@@ -4,6 +4,7 @@
 // step any output needs, so the model never runs past it. Frames go straight
 // to the MP4 / PNG sequence as they are drawn.
 
+#include <deque>
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -19,7 +20,9 @@ namespace scenes {
 struct StepHooks {
     std::function<void(int step)> check;           // at every step: throws if the model went unstable
     std::function<void(int step)> panel;           // keep what a panel at this step shows
-    std::function<render::Image(int step)> frame;  // draw the animation frame of this step (none: not filmed)
+    // Draws the animation frame of this step and returns the canvas it is
+    // on, to be read back (none: not filmed).
+    std::function<render::Canvas&(int step)> frame;
     std::function<bool()> advance;                 // one model step; false when the model has stopped (a fixed point)
     std::function<bool()> stopped = {};            // optional: the model has reached its stop and takes no more steps
     // Optional, for a model stepped by a fast kernel: `steps` steps at once
@@ -40,7 +43,7 @@ public:
     render::Canvas& frame_canvas(bool depth = false);
     // A frame of field panels, on a canvas made once with the samples the
     // first frame's page needs (field_page_samples; the layout stays).
-    render::Image draw_field_frame(const std::vector<FieldPanel>& panels);
+    render::Canvas& draw_field_frame(const std::vector<FieldPanel>& panels);
 
     // Runs from step 0 to last_step() or until the model stops (advance()
     // or stopped() says so); returns the last step reached.
@@ -62,6 +65,7 @@ public:
 
 private:
     int run_until(const StepHooks& hooks, int last);
+    int run_steps(const StepHooks& hooks, int last);  // run_until's loop
     void final_frame(const StepHooks& hooks, int step);
     bool is_panel(int step) const;
     int next_stop(const StepHooks& hooks, int step, int last) const;  // the next step an output needs, or last
@@ -73,7 +77,8 @@ private:
     // order, and a final frame at a stop between two of them comes after
     // the earlier one.
     int frame_index(int step) const;
-    void frame(render::Image image, int step);  // hands a drawn frame to the sinks
+    void frame(const render::Canvas& canvas, int step);  // reads a drawn frame back for the sinks
+    void drain_frames();                                 // every frame read back handed to the film
     void stepped();                             // counts one model step (progress bar and metadata)
 
     const Description& description_;
@@ -86,6 +91,9 @@ private:
     FrameRange frames_;  // of the film's frames, those this run draws
     std::unique_ptr<Film> film_;
     std::unique_ptr<render::Canvas> frame_canvas_;
+    // Frames in flight from the GPU (pixel buffer objects), with their steps.
+    std::unique_ptr<render::FrameReader> reader_;
+    std::deque<int> reading_;
 };
 
 }  // namespace scenes

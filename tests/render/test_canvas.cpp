@@ -1,5 +1,9 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <optional>
+#include <vector>
+
 #include "render/canvas.hpp"
 #include "render/gl_context.hpp"
 #include "render/shapes.hpp"
@@ -84,4 +88,45 @@ TEST_CASE("a canvas that takes over a destroyed one's buffers starts as empty as
     Canvas other(41, 23);
     CHECK(other.read().width == 41);
     CHECK(other.read().rgba == render::Image(41, 23).rgba);
+}
+
+TEST_CASE("frames read back through pixel buffers are the frames read directly, in order", "[canvas]") {
+    // Each frame a different colour and a moving square; read three deep, so
+    // that frame n is taken after n + 1 and n + 2 were drawn on the same canvas.
+    render::Canvas canvas(64, 40);
+    const auto paint = [&](int i) {
+        canvas.clear({0.1f * float(i % 10), 0.5f, 1.0f - 0.05f * float(i), 1.0f});
+        render::Shapes shapes;
+        shapes.rect({float(3 * i), 10, 12, 12}, {1, 1, 0, 1});
+        shapes.draw(canvas);
+    };
+    std::vector<render::Image> direct, through;
+    render::FrameReader reader(3);
+    for (int i = 0; i < 12; ++i) {
+        paint(i);
+        direct.push_back(canvas.read());
+        if (auto image = reader.read(canvas)) through.push_back(std::move(*image));
+        CHECK(reader.in_flight() == std::min(i + 1, 2));
+    }
+    while (auto image = reader.next()) through.push_back(std::move(*image));
+    CHECK(reader.in_flight() == 0);
+    REQUIRE(through.size() == direct.size());
+    for (std::size_t i = 0; i < direct.size(); ++i) {
+        INFO("frame " << i);
+        CHECK(through[i].width == 64);
+        CHECK(through[i].height == 40);
+        CHECK(through[i].rgba == direct[i].rgba);
+    }
+    CHECK(direct[0].rgba != direct[1].rgba);
+    // A transparent canvas's frames come back with straight alpha, as read() gives them.
+    render::Canvas clear(32, 32);
+    clear.set_transparent(true);
+    clear.background({1, 1, 1, 1});
+    render::Shapes half;
+    half.rect({4, 4, 20, 20}, {0.8f, 0.2f, 0.4f, 0.5f});
+    half.draw(clear);
+    render::FrameReader one(1);
+    const std::optional<render::Image> read = one.read(clear);
+    REQUIRE(read);
+    CHECK(read->rgba == clear.read().rgba);
 }

@@ -62,6 +62,31 @@ TEST_CASE("two layers drawn in one pass match two draws but for rounding", "[fie
     }
 }
 
+TEST_CASE("a smooth pair resampled by the GPU's sampler matches the CPU's spline but for rounding", "[field]") {
+    // What a GPU draws a film's frame with (FieldResampling::sampler) against
+    // llvmpipe's CPU spline: the same cubic B-spline, the sampler's
+    // bilinear weights rounded to its 8 fractional bits.
+    const Layers layers;
+    render::set_field_resampling(render::FieldResampling::cpu);
+    const render::Image cpu = draw(layers, true, render::Sampling::smooth);
+    render::set_field_resampling(render::FieldResampling::sampler);
+    const render::Image sampler = draw(layers, true, render::Sampling::smooth);
+    render::set_field_resampling(render::FieldResampling::automatic);
+    CHECK(draw(layers, true, render::Sampling::smooth).rgba == cpu.rgba);  // llvmpipe here: the CPU's
+    REQUIRE(cpu.rgba.size() == sampler.rgba.size());
+    int largest = 0;
+    double total = 0;
+    for (std::size_t i = 0; i < cpu.rgba.size(); ++i) {
+        const int d = std::abs(int(cpu.rgba[i]) - int(sampler.rgba[i]));
+        largest = std::max(largest, d);
+        total += d;
+    }
+    INFO("largest difference " << largest << ", mean " << total / double(cpu.rgba.size()));
+    CHECK(largest <= 4);
+    CHECK(total / double(cpu.rgba.size()) < 0.5);
+    CHECK(cpu.rgba != sampler.rgba);  // two paths really taken
+}
+
 TEST_CASE("a pair of layers that do not fit one grid or sampling is refused", "[field]") {
     render::Canvas canvas(20, 20, 1);
     const std::vector<double> four(4, 0.5), six(6, 0.5);

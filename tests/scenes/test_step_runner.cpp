@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "description/description.hpp"
+#include "render/canvas.hpp"
 #include "scenes/step_runner.hpp"
 
 namespace {
@@ -40,6 +41,12 @@ description::Description film_of(std::vector<int> panels, int first, int last, i
     return d;
 }
 
+// The canvas every frame hook returns, read back by the runner.
+render::Canvas& frame_canvas() {
+    static render::Canvas canvas(8, 8, 1);
+    return canvas;
+}
+
 // A model that counts its steps and stops changing at `fixed_point`.
 struct Counter {
     int steps = 0, fixed_point;
@@ -58,7 +65,7 @@ TEST_CASE("the runner stops at the last step an output needs and films the anima
     std::vector<int> panels;
     const int reached = run.run({.check = {},
                                  .panel = [&](int step) { panels.push_back(step); },
-                                 .frame = [&](int) { return render::Image(8, 8); },
+                                 .frame = [&](int) -> render::Canvas& { return frame_canvas(); },
                                  .advance = [&] { return model.step(); }});
     CHECK(reached == 9);
     CHECK(model.steps == 9);  // never past the last step any output needs
@@ -78,7 +85,7 @@ TEST_CASE("a model that stops early ends the film on its final state", "[step-ru
         Counter model{0, 7};
         const int reached = run.run({.check = {},
                                      .panel = {},
-                                     .frame = [&](int) { return render::Image(8, 8); },
+                                     .frame = [&](int) -> render::Canvas& { return frame_canvas(); },
                                      .advance = [&] { return model.step(); }});
         CHECK(reached == 7);
         CHECK(model.steps == 7);
@@ -90,7 +97,7 @@ TEST_CASE("a model that stops early ends the film on its final state", "[step-ru
         Counter model{0, 1000};
         const int reached = run.run({.check = {},
                                      .panel = {},
-                                     .frame = [&](int) { return render::Image(8, 8); },
+                                     .frame = [&](int) -> render::Canvas& { return frame_canvas(); },
                                      .advance = [&] { return model.step(); },
                                      .stopped = [&] { return model.steps == 5; }});
         CHECK(reached == 5);
@@ -110,7 +117,7 @@ TEST_CASE("run_to_stop goes past the last step to the model's stop, filming only
     CHECK(out.frames.empty());
     CHECK(run.run_to_stop({.check = {},
                            .panel = {},
-                           .frame = [&](int) { return render::Image(8, 8); },
+                           .frame = [&](int) -> render::Canvas& { return frame_canvas(); },
                            .advance = [&] { return second.step(); }}) == 3);
     CHECK(out.frames == std::vector<int>{0, 2, 3});
     run.write_figure({8, 8, false, [](render::Surface&) {}}, {});
@@ -126,7 +133,7 @@ TEST_CASE("without a film the runner asks for no frame and runs only to the last
     int frames_drawn = 0;
     CHECK(run.run({.check = {},
                    .panel = {},
-                   .frame = [&](int) { return ++frames_drawn, render::Image(8, 8); },
+                   .frame = [&](int) -> render::Canvas& { return ++frames_drawn, frame_canvas(); },
                    .advance = [&] { return model.step(); }}) == 4);
     CHECK(frames_drawn == 0);
     CHECK(out.frames.empty());
@@ -143,7 +150,7 @@ TEST_CASE("a kernel's leaps land on every step an output needs and count every s
     const int reached =
         run.run({.check = [&](int step) { checked.push_back(step); },
                  .panel = [&](int step) { panels.push_back(steps - step); },
-                 .frame = [&](int step) { return drawn_at.push_back(steps - step), render::Image(8, 8); },
+                 .frame = [&](int step) -> render::Canvas& { return drawn_at.push_back(steps - step), frame_canvas(); },
                  .advance = {},
                  .leap = [&](int n) { leaps.push_back(n), steps += n; }});
     CHECK(reached == 30);
