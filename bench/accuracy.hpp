@@ -54,6 +54,9 @@ nlohmann::json gray_scott_long_run(long long steps);
 // (accuracy_pipeline.cpp).
 nlohmann::json peer_comparison(const Paths& paths);
 nlohmann::json pipeline_times(const Paths& paths, const nlohmann::json& peer);
+// Films' MP4 bytes and render times at several animation.segment_frames,
+// into bench/results/segments.md: what the default length is chosen from.
+nlohmann::json segment_lengths(const Paths& paths);
 
 // Issue 17's targets, each against its measured value from this run
 // (latest.json so far) and Google Benchmark's benchmarks.json; also written

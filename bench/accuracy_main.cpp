@@ -8,6 +8,7 @@
 #include "accuracy.hpp"
 #include "scenes/plot_page.hpp"
 #include "render/atomic_file.hpp"
+#include "render/canvas.hpp"
 #include "render/colormap.hpp"
 #include "render/png_io.hpp"
 
@@ -40,11 +41,15 @@ render::Axes pareto_axes(const std::vector<bench::Curve>& curves, const std::str
 void write_pareto(const std::filesystem::path& file, const bench::Curves& curves) {
     render::PlotStyle style;
     style.wspace = 0.3f;
-    const auto image = scenes::draw_plot_row({pareto_axes(curves.numerics, "Arithmetic against exact solutions",
-                                                           {1e-17, 1.0}, render::Legend::upper_left),
-                                               pareto_axes(curves.estimators, "Estimates against known constants",
-                                                           {1e-6, 1.0}, render::Legend::lower_left)},
-                                              1600, 700, style);
+    render::Canvas canvas(1600, 700, render::canvas_samples);
+    canvas.background({1, 1, 1, 1});
+    scenes::draw_plot_row(canvas, {0, 0, 1600, 700},
+                          {pareto_axes(curves.numerics, "Arithmetic against exact solutions", {1e-17, 1.0},
+                                       render::Legend::upper_left),
+                           pareto_axes(curves.estimators, "Estimates against known constants", {1e-6, 1.0},
+                                       render::Legend::lower_left)},
+                          style);
+    const render::Image image = canvas.read();
     render::write_png(file, image, {{"Title", "figgen: run time against error"}});
 }
 
@@ -84,6 +89,8 @@ int main(int argc, char** argv) {
             out["book_route"] = bench::peer_comparison(paths);
             std::fprintf(stderr, "figgen_accuracy: whole-pipeline times (make figures from clean)\n");
             out["pipeline"] = bench::pipeline_times(paths, out["book_route"]);
+            std::fprintf(stderr, "figgen_accuracy: film segment lengths (bytes against parallelism)\n");
+            out["segment_lengths"] = bench::segment_lengths(paths);
         }
         out["targets"] = bench::target_table(out, paths);
         // After the pipeline study, which starts out/ afresh.

@@ -234,7 +234,55 @@ nlohmann::json pipeline_times(const Paths& paths, const nlohmann::json& peer) {
     for (const auto& e : std::filesystem::directory_iterator(paths.source / "out"))
         figures += e.path().extension() == ".json";
     out["make_figures_from_clean"] = {{"seconds", all}, {"figures", figures}, {"jobs", 2}};
+    if (peer.contains("book") && peer["book"].contains("tc7_figures"))
+        out["make_figures_from_clean"]["times_book_nine_figures"] =
+            all / peer["book"]["tc7_figures"].at("seconds").get<double>();
     return out;
+}
+
+nlohmann::json segment_lengths(const Paths& paths) {
+    // Five catalog films (their own size, frames and fps) at each segment
+    // length: the MP4's bytes against how many segments can be encoded at
+    // once (one a core, at most one a segment), and the time of the whole
+    // render on this machine.
+    const std::vector<std::string> films = {"tc7-2", "bd-500", "tc7-ex2", "pl-phyllotaxis", "sf87-6"};
+    const std::vector<int> lengths = {15, 30, 60, 120, 0};
+    const auto dir = scratch_dir("segments");
+    nlohmann::json rows = nlohmann::json::array();
+    std::string table = "| film | frames | segment_frames | segments (most encoders at once) | MP4 bytes | against 120 | "
+                        "seconds, this machine |\n|---|---|---|---|---|---|---|\n";
+    for (const std::string& id : films) {
+        double at_120 = 0;
+        std::vector<nlohmann::json> film_rows;
+        for (int length : lengths) {
+            const auto out = dir / (id + "-" + std::to_string(length));
+            const double seconds = timed(quoted(paths.figgen) + " render " + id + " --set animation.segment_frames=" +
+                                         std::to_string(length) + " --out " + quoted(out) + " >/dev/null");
+            const int frames =
+                nlohmann::json::parse(std::ifstream(out / (id + ".json")))["animation"].at("frames").get<int>();
+            const double bytes = double(std::filesystem::file_size(out / (id + ".mp4")));
+            const int segments = length > 0 ? (frames + length - 1) / length : 1;
+            if (length == 120) at_120 = bytes;
+            film_rows.push_back({{"figure", id}, {"frames", frames}, {"segment_frames", length},
+                                 {"segments", segments}, {"bytes", bytes}, {"seconds", seconds}});
+            std::filesystem::remove_all(out);
+        }
+        for (nlohmann::json& row : film_rows) {
+            const double ratio = at_120 > 0 ? row["bytes"].get<double>() / at_120 : 0;
+            row["bytes_against_120"] = ratio;
+            char line[256];
+            std::snprintf(line, sizeof line, "| %s | %d | %d%s | %d | %.0f | %.2f | %.2f |\n", id.c_str(),
+                          row["frames"].get<int>(), row["segment_frames"].get<int>(),
+                          row["segment_frames"].get<int>() == 0 ? " (one)" : "", row["segments"].get<int>(),
+                          row["bytes"].get<double>(), ratio, row["seconds"].get<double>());
+            table += line;
+            rows.push_back(row);
+        }
+    }
+    std::filesystem::remove_all(dir);
+    render::write_file_atomically(paths.results / "segments.md", table);
+    std::printf("%s", table.c_str());
+    return rows;
 }
 
 }  // namespace bench

@@ -134,6 +134,11 @@ render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldP
     return canvas.read();
 }
 
+render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale) {
+    render::Canvas canvas(width, height, field_page_samples(panels, width, height, scale));
+    return draw_field_panels(canvas, panels, scale);
+}
+
 FigureDrawing field_figure(const std::vector<FieldPanel>& panels, const Description& d, const SceneOptions& options) {
     const int width = figure_width(d, options), height = figure_height(d, options);
     const double scale = options.scale;

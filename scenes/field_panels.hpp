@@ -94,6 +94,9 @@ enum class LayerPasses { each, paired };
 // frame, saving its framebuffers' set-up): clears it, draws, reads it back.
 render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
                                 LayerPasses passes = LayerPasses::each);
+// On a fresh canvas of width x height, with the samples the page needs
+// (field_page_samples): a page drawn once (benchmarks).
+render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale);
 // The same but for reading it back (a film's frame, read by a FrameReader).
 void paint_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
                         LayerPasses passes = LayerPasses::each);
