@@ -88,7 +88,20 @@ constexpr double webm_encoder_bytes = 32.0 * 1024 * 1024;
 constexpr double vector_page_bytes = 16.0 * 1024 * 1024;
 constexpr double vector_page_bytes_per_pixel = 64.0;
 constexpr double webm_encoder_bytes_per_pixel = 96.0;
-constexpr int encoder_frames_held = 40;
+// The frames an x264 encoder holds, for the estimate above: its preset's
+// rc-lookahead (x264's preset table). medium's 40 is what the constants
+// were measured with; veryfast, the films' preset, looks 10 ahead and was
+// measured at 16 MiB and 72 to 79 bytes a pixel (tc7-1's film at
+// 2000 x 2000, tc7-2's at scale 3), against the 114 this gives.
+int encoder_frames_held(const std::string& preset) {
+    static const std::pair<const char*, int> lookahead[] = {
+        {"ultrafast", 0}, {"superfast", 0}, {"veryfast", 10}, {"faster", 20},  {"fast", 30},
+        {"medium", 40},   {"slow", 50},     {"slower", 60},   {"veryslow", 60}, {"placebo", 60},
+    };
+    for (const auto& [name, frames] : lookahead)
+        if (preset == name) return frames;
+    return 60;
+}
 
 // A film's segments encoded at once, memory aside: one a core (or a
 // thread of --threads, where more), at most one a segment; one where the
@@ -134,19 +147,24 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
             // segment's at worst). As many at once as fit --max-memory.
             const int frames = d.animation->frame_count(), per_segment = d.animation->segment_frames,
                       segment = per_segment > 0 && per_segment < frames ? per_segment : frames,
-                      held = std::min(segment, encoder_frames_held);
+                      held = std::min(segment, encoder_frames_held(options.video_options.preset));
             const double encoder = encoder_bytes + (encoder_bytes_per_pixel + encoder_bytes_per_pixel_frame * held) *
                                                        frame_pixels(d, options),
-                         waiting = 4.0 * segment * frame_pixels(d, options);
+                         frame = 4.0 * frame_pixels(d, options);
             double others = program_bytes;
             for (const MemoryNeed& need : all) others += need.bytes;
             int encoders = film_encoders_wanted(d, options);
-            while (encoders > 1 && others + encoders * (encoder + waiting) > static_cast<double>(options.max_memory))
-                --encoders;
+            // Side by side, each encoder and the frame it is on, and the
+            // frames waiting (SegmentEncoders::waiting_most).
+            const auto need = [&](int n) {
+                return n * encoder +
+                       (n > 1 ? (n + SegmentEncoders::waiting_most(n, segment)) * frame : 0.0);
+            };
+            while (encoders > 1 && others + need(encoders) > static_cast<double>(options.max_memory)) --encoders;
             film_encoders = encoders;
             all.push_back({"the video encoder's frames " + size +
                                (encoders > 1 ? " (" + std::to_string(encoders) + " segments at once)" : ""),
-                           encoders * encoder + (encoders > 1 ? encoders * waiting : 0.0)});
+                           need(encoders)});
         }
         if (options.webm)
             all.push_back({"the WebM encoder " + size,

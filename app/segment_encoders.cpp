@@ -23,7 +23,9 @@ struct SegmentEncoders::Segment {
     std::exception_ptr failure;
     std::thread worker;  // last: started once everything above exists
 
-    void encode(const std::string& shown, int width, int height, const render::VideoOptions& options) {
+    // `taken` is called after each frame is taken from `waiting`.
+    template <class Taken>
+    void encode(const std::string& shown, int width, int height, const render::VideoOptions& options, Taken taken) {
         try {
             render::VideoSegment encoder(shown, width, height, options);
             for (;;) {
@@ -42,6 +44,7 @@ struct SegmentEncoders::Segment {
                     frame = std::move(waiting.front());
                     waiting.pop_front();
                 }
+                taken();
                 encoder.add(frame);
             }
         } catch (...) {
@@ -87,7 +90,18 @@ void SegmentEncoders::add(render::Image frame) {
         if (static_cast<int>(open_.size()) == workers_) write_oldest();
         auto segment = std::make_unique<Segment>();
         Segment* s = segment.get();
-        s->worker = std::thread([this, s] { s->encode(shown_, width_, height_, options_); });
+        s->worker = std::thread([this, s] {
+            s->encode(shown_, width_, height_, options_, [this] {
+                {
+                    std::lock_guard<std::mutex> hold(lock_);
+                    --waiting_;
+                }
+                taken_.notify_all();
+            });
+            // Ended (a failure among the reasons): add() looks again.
+            { std::lock_guard<std::mutex> hold(lock_); }
+            taken_.notify_all();
+        });
         open_.push_back(std::move(segment));
         last = s;
     }
@@ -96,6 +110,21 @@ void SegmentEncoders::add(render::Image frame) {
         Segment& oldest = *open_.front();
         std::lock_guard<std::mutex> hold(oldest.lock);
         if (oldest.failure) std::rethrow_exception(oldest.failure);
+    }
+    {
+        // Room for one more waiting frame, unless an encoder failed (it
+        // takes no more; its failure is thrown below or at the next add).
+        const int most = waiting_most(workers_, options_.segment_frames);
+        std::unique_lock<std::mutex> hold(lock_);
+        taken_.wait(hold, [&] {
+            if (waiting_ < most) return true;
+            for (const std::unique_ptr<Segment>& s : open_) {
+                std::lock_guard<std::mutex> segment(s->lock);
+                if (s->failure) return true;
+            }
+            return false;
+        });
+        ++waiting_;
     }
     std::lock_guard<std::mutex> hold(last->lock);
     if (last->failure) std::rethrow_exception(last->failure);

@@ -9,12 +9,15 @@
 // however loaded the machine is: the film of a lone process, of one worker,
 // and of an MPI job whose ranks each encode some segments.
 //
-// At most `workers` segments are open at once; the frames of an open
-// segment wait for its encoder, so at most workers x segment_frames frames
-// are held (app/outputs.cpp's estimate counts them), never the whole film.
+// At most `workers` segments are open at once, and at most waiting_most()
+// frames wait for their encoders, (workers - 1) x segment_frames and a few:
+// enough for the segments before the newest to wait whole while the newest
+// is fed, never the whole film (app/outputs.cpp's estimate counts them).
 
+#include <condition_variable>
 #include <deque>
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include "render/image.hpp"
@@ -41,6 +44,8 @@ public:
     void finish();
 
     int workers() const { return workers_; }
+    // The most frames that wait for encoders at once.
+    static int waiting_most(int workers, int segment_frames) { return (workers - 1) * segment_frames + 4; }
 
 private:
     struct Segment;
@@ -53,6 +58,11 @@ private:
     render::VideoOptions options_;
     int workers_;
     std::deque<std::unique_ptr<Segment>> open_;  // in film order; the last takes the frames
+    // Frames waiting in every open segment, and what add() waits on when
+    // there are waiting_most() of them.
+    std::mutex lock_;
+    std::condition_variable taken_;
+    int waiting_ = 0;
 };
 
 }  // namespace app
