@@ -440,12 +440,21 @@ private:
     }
 
     // A segment's packets, its times moved to where it starts in the film.
+    // x264 starts a segment's decoding times `delay` frames early (its
+    // B-frames); a short last segment has fewer B-frames and a smaller
+    // delay, so its decoding times move down by the difference to follow
+    // the segment before without a gap (a gap made the MP4's average frame
+    // rate 305/63 for 5 fps in 60 + 1 frames). Still never after a
+    // presentation time.
     void write(const std::vector<Packet>& packets) {
+        const std::int64_t delay = packets.empty() ? 0 : std::max<std::int64_t>(0, -packets.front().dts);
+        if (first_frame_ == 0) film_delay_ = delay;
+        const std::int64_t shift = delay < film_delay_ ? film_delay_ - delay : 0;
         for (const Packet& p : packets) {
             check(av_new_packet(packet_.get(), static_cast<int>(p.data.size())), "writing a packet");
             std::copy(p.data.begin(), p.data.end(), packet_->data);
             packet_->pts = p.pts + first_frame_;
-            packet_->dts = p.dts + first_frame_;
+            packet_->dts = p.dts + first_frame_ - shift;
             if (p.key) packet_->flags |= AV_PKT_FLAG_KEY;
             // The muxer picks its own time base (e.g. 1/15360) in write_header.
             av_packet_rescale_ts(packet_.get(), time_base_, stream_->time_base);
@@ -460,6 +469,7 @@ private:
     VideoOptions options_;
     std::string codec_name_;
     std::int64_t first_frame_ = 0;  // the film's frames before the current segment
+    std::int64_t film_delay_ = 0;   // the first segment's decoding delay, in frames
     AVRational time_base_{1, 1};
     OutputPtr format_;
     AVStream* stream_ = nullptr;  // owned by format_

@@ -391,3 +391,23 @@ TEST_CASE("a film with a preview leaves neither file when the preview cannot be 
     CHECK(files_named_like(film) == 0);
     CHECK(files_named_like(preview) == 0);
 }
+
+TEST_CASE("a film whose last segment is one frame keeps its frame rate and decoding times", "[video][segments]") {
+    // 21 frames in segments of 10: the last segment, one frame, has none of
+    // x264's B-frame delay; its decoding time follows the others' without a
+    // gap, so the MP4's average frame rate is the one it was made with.
+    VideoOptions options;
+    options.segment_frames = 10;
+    options.fps = 5;
+    const fs::path path = scratch("short-last-segment.mp4");
+    {
+        VideoWriter writer(path, kWidth, kHeight, options);
+        for (int i = 0; i < 21; ++i) writer.add(moving_bar(i % kFrames));
+        writer.finish();
+    }
+    const render::VideoInfo info = render::probe_video(path);
+    CHECK(info.frames == 21);
+    CHECK(info.fps == Approx(5.0));
+    CHECK(info.duration_seconds == Approx(21 / 5.0));
+    CHECK(info.key_frames == std::vector<int>{0, 10, 20});
+}
