@@ -237,11 +237,11 @@ TEST_CASE("a film is the same bytes on any number of threads, beside a CPU hog t
     };
     const std::string expected = run("1", "1");
     REQUIRE(expected.size() > 1000);
-    for (const std::string threads : {"2", "3", "7"}) {
+    for (const std::string threads : {"2", "7"}) {
         INFO("--threads " << threads);
         CHECK(run(threads, threads) == expected);
     }
     // A busy loop on every core: the encoders finish in another order.
     const testkit::CpuHog hog(static_cast<int>(std::max(2u, std::thread::hardware_concurrency())));
-    for (int i = 0; i < 2; ++i) CHECK(run("7", "hog-" + std::to_string(i)) == expected);
+    CHECK(run("7", "hog") == expected);
 }
