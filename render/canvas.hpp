@@ -98,8 +98,8 @@ private:
 // Frames read back through pixel buffer objects, up to `depth` in flight
 // (frames_in_flight): glReadPixels into a buffer only queues the copy, so
 // a GPU draws frame n + 1 while frame n travels to memory, and the copy is
-// waited for (a fence) only when the frame is taken, `depth` - 1 frames
-// later. On llvmpipe the read happens at once; the pixels are the same.
+// waited for (by mapping the buffer) only when the frame is taken,
+// `depth` - 1 frames later. On llvmpipe the read happens at once; the pixels are the same.
 // Frames come back in the order they were read, all the same size or not.
 constexpr int frames_in_flight = 3;
 
@@ -121,7 +121,6 @@ public:
 private:
     struct Slot {
         GLuint buffer = 0;
-        GLsync fence = nullptr;
         std::size_t capacity = 0;  // bytes the buffer holds
         int width = 0, height = 0;
         bool transparent = false;

@@ -50,15 +50,19 @@ const std::vector<Key> style_keys = {{"colour", "line colour"}, {"min_width", "t
 
 constexpr int max_depth = 64;  // far past any budget: the counts are cheap, the drawing is not
 
-// The most segments a plant may draw: at segment_bytes (3.9 KB) each, what
-// --max-memory 4G serves beside the program, a canvas and llvmpipe's queue
-// (the turtle's own budget, 5,000,000, would need 20 GB).
+// The most segments a plant may draw (the turtle's own budget, 5,000,000,
+// would take minutes to draw on llvmpipe and hundreds of MB of PDF).
 constexpr std::uint64_t plant_segment_budget = 800'000;
 
-// Memory a drawn segment takes, see memory().
-constexpr double segment_bytes =
-    sizeof(sim::Segment2) + 6 * sizeof(double) +
-    2.0 * render::Shapes::bytes_per_vertex * (render::Shapes::line_vertices + 2 * render::Shapes::min_disc_vertices);
+// Memory a drawn segment takes, see memory(): the turtle's Segment2 and
+// the 6 doubles hashed, each vector up to twice its size while it grows,
+// and the round segment Shapes records (an op and its two points).
+constexpr double segment_bytes = 2.0 * (sizeof(sim::Segment2) + 6 * sizeof(double)) + sizeof(render::Shapes::Op) +
+                                 2 * sizeof(glm::vec2);
+// The triangles a segment becomes when drawn: its line and a disc at each
+// end, at their fewest.
+constexpr double segment_triangles =
+    (render::Shapes::line_vertices + 2 * render::Shapes::min_disc_vertices) / 3.0;
 
 struct Plant {
     std::string title;
@@ -291,19 +295,26 @@ public:
         require_text_fits(d, options, [&](const render::Rect& area) { return render::page_text(title_layout(area, 1.0f)); });
     }
 
-    // Each plant's segments, from the turtle and as lines to draw: per
-    // segment the turtle's Segment2, its 6 doubles hashed, and a line with a
-    // disc at each end, in the batch and again in llvmpipe's copy of it.
-    // The discs are counted at their fewest vertices (12 chords, a radius up
-    // to 3.8 pixels): thicker pens are the few segments near the root. Measured
-    // (make bench's memory sweep): 3.8 KB a segment over the program, for
-    // pl-lsys-lycopodium at depth 7 (335,922 segments) and F -> FF at depth 19.
+    // Each plant's segments, from the turtle and as Shapes records them
+    // (segment_bytes), and the triangles of one batch as they are drawn
+    // (at most triangles_per_finish: the GL backend tessellates batch by
+    // batch), in figgen's buffer and again in llvmpipe's copy. Measured
+    // (make bench's memory sweep, peak RSS): pl-lsys-lycopodium 102 MiB at
+    // depth 3, 200 at depth 6 (55,986 segments), 227 at depth 7 (335,922),
+    // 260 for F -> FF at depth 19 (524,288): about 100 to 175 bytes a
+    // segment past the first batch, against segment_bytes' 256.
     std::vector<MemoryNeed> memory() const override {
         std::vector<MemoryNeed> needs;
-        for (const auto& p : plants_)
+        double triangles = 0;
+        for (const auto& p : plants_) {
             needs.push_back({"plant of depth " + std::to_string(p.depth) + ", " + std::to_string(p.segments) +
                                  " segments",
                              static_cast<double>(p.segments) * segment_bytes});
+            triangles += static_cast<double>(p.segments) * segment_triangles;
+        }
+        needs.push_back({"a batch of the plants' triangles, in figgen's buffer and llvmpipe's",
+                         2.0 * 3.0 * render::Shapes::bytes_per_vertex *
+                             std::min(triangles, static_cast<double>(render::triangles_per_finish))});
         needs.push_back({"llvmpipe's queue of binned triangles", render::queued_triangles_bytes});
         return needs;
     }
