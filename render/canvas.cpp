@@ -150,13 +150,17 @@ void Canvas::clear(const glm::vec4& colour) {
     }
 }
 
-void Canvas::read_into_pack_buffer() const {
+void Canvas::bind_for_reading() const {
     if (resolve_fbo_) {  // multisampled: resolve first
         glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
         glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     }
     glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_ ? resolve_fbo_ : msaa_fbo_);
+}
+
+void Canvas::read_into_pack_buffer() const {
+    bind_for_reading();
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
     check_gl("Canvas::read_into_pack_buffer");
@@ -188,12 +192,7 @@ Image image_of_rows(const std::uint8_t* bottom_up, int width, int height, bool t
 }  // namespace
 
 Image Canvas::read() const {
-    if (resolve_fbo_) {  // multisampled: resolve first
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
-        glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    }
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_ ? resolve_fbo_ : msaa_fbo_);
+    bind_for_reading();
     glFinish();  // llvmpipe renders lazily: wait before reading
     std::vector<std::uint8_t> rows(static_cast<std::size_t>(width_) * height_ * 4);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);

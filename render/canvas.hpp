@@ -83,6 +83,9 @@ public:
     void unclip() override;
 
 private:
+    // Resolves the samples (a multisampled canvas) and binds what holds the
+    // pixels as GL_READ_FRAMEBUFFER, for read() and read_into_pack_buffer().
+    void bind_for_reading() const;
     void make_resolve_target();
 
     bool transparent_ = false;
