@@ -88,6 +88,9 @@ constexpr double webm_encoder_bytes = 32.0 * 1024 * 1024;
 constexpr double vector_page_bytes = 16.0 * 1024 * 1024;
 constexpr double vector_page_bytes_per_pixel = 64.0;
 constexpr double webm_encoder_bytes_per_pixel = 96.0;
+// The film's preview: render's defaults.
+const render::PreviewOptions preview_options{};
+
 // The frames an x264 encoder holds, for the estimate above: its preset's
 // rc-lookahead (x264's preset table). medium's 40 is what the constants
 // were measured with; veryfast, the films' preset, looks 10 ahead and was
@@ -95,7 +98,7 @@ constexpr double webm_encoder_bytes_per_pixel = 96.0;
 // 2000 x 2000, tc7-2's at scale 3), against the 114 this gives.
 int encoder_frames_held(const std::string& preset) {
     static const std::pair<const char*, int> lookahead[] = {
-        {"ultrafast", 0}, {"superfast", 0}, {"veryfast", 10}, {"faster", 20},  {"fast", 30},
+        {"ultrafast", 0}, {"superfast", 0}, {"veryfast", 10}, {"faster", 20},   {"fast", 30},
         {"medium", 40},   {"slow", 50},     {"slower", 60},   {"veryslow", 60}, {"placebo", 60},
     };
     for (const auto& [name, frames] : lookahead)
@@ -130,9 +133,9 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
                        std::to_string(figure_height(d, options)) + " RGBA",
                    canvas_bytes_per_pixel * figure_width(d, options) * figure_height(d, options)});
     if (options.writes_pdf(d) || options.writes_svg(d))
-        all.push_back({"the PDF and SVG's vector page", vector_page_bytes + vector_page_bytes_per_pixel *
-                                                                                figure_width(d, options) *
-                                                                                figure_height(d, options)});
+        all.push_back(
+            {"the PDF and SVG's vector page",
+             vector_page_bytes + vector_page_bytes_per_pixel * figure_width(d, options) * figure_height(d, options)});
     if (d.animation && options.animates()) {
         const std::string size = std::to_string(scaled_even(d.animation->width, options.scale)) + " x " +
                                  std::to_string(scaled_even(d.animation->height, options.scale));
@@ -157,14 +160,23 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
             // Side by side, each encoder and the frame it is on, and the
             // frames waiting (SegmentEncoders::waiting_most).
             const auto need = [&](int n) {
-                return n * encoder +
-                       (n > 1 ? (n + SegmentEncoders::waiting_most(n, segment)) * frame : 0.0);
+                return n * encoder + (n > 1 ? (n + SegmentEncoders::waiting_most(n, segment)) * frame : 0.0);
             };
             while (encoders > 1 && others + need(encoders) > static_cast<double>(options.max_memory)) --encoders;
             film_encoders = encoders;
             all.push_back({"the video encoder's frames " + size +
                                (encoders > 1 ? " (" + std::to_string(encoders) + " segments at once)" : ""),
                            need(encoders)});
+        }
+        if (options.encodes()) {
+            // The preview's frames, at most max_frames fitted into its
+            // size, held from their segments' encoding to the film's end.
+            const double fit = std::min(
+                {1.0, double(preview_options.max_width) / std::max(1, scaled_even(d.animation->width, options.scale)),
+                 double(preview_options.max_height) / std::max(1, scaled_even(d.animation->height, options.scale))});
+            all.push_back(
+                {"the preview's frames", 4.0 * std::min(preview_options.max_frames, d.animation->frame_count()) * fit *
+                                             fit * frame_pixels(d, options)});
         }
         if (options.webm)
             all.push_back({"the WebM encoder " + size,
@@ -223,14 +235,13 @@ FrameSink::FrameSink(const Description& d, const OutputOptions& options, const r
         video_ = std::make_unique<render::VideoWriter>(folder, d.id + ".mp4", width, height, video);
         // Segments side by side; a film of one segment, or one encoder, as before.
         if (!segments && encoders > 1 && video.segment_frames > 0)
-            encoders_ = std::make_unique<SegmentEncoders>(*video_, (folder / (d.id + ".mp4")).string(), width,
-                                                          height, video, encoders);
+            encoders_ = std::make_unique<SegmentEncoders>(*video_, (folder / (d.id + ".mp4")).string(), width, height,
+                                                          video, encoders, d.animation->frame_count(), preview_options);
     }
     if (options.frames) {
         frames_ = std::make_unique<render::AtomicDir>(folder, d.id + "-frames");
     }
-    pipe_ = std::make_unique<FramePipe>([this](render::Image& frame, int step) { write(frame, step); },
-                                        frames_queued);
+    pipe_ = std::make_unique<FramePipe>([this](render::Image& frame, int step) { write(frame, step); }, frames_queued);
 }
 
 FrameSink::~FrameSink() = default;
@@ -248,13 +259,15 @@ void FrameSink::write(render::Image& frame, int step) {
                           render::AtomicFile::Commit::now,  // inside the temporary folder
                           render::PngCompression::fast);
     }
-    if (encoders_) encoders_->add(std::move(frame));
-    else if (video_) video_->add(frame);
+    if (encoders_)
+        encoders_->add(std::move(frame));
+    else if (video_)
+        video_->add(frame);
     steps_.push_back(step);
 }
 
 nlohmann::json FrameSink::finish() {
-    pipe_->finish();  // every frame encoded and written, or what failed is thrown here
+    pipe_->finish();                     // every frame encoded and written, or what failed is thrown here
     if (encoders_) encoders_->finish();  // every segment in the MP4
     if (segments_)
         for (const nlohmann::json& segment : *segments_) {
@@ -286,13 +299,16 @@ nlohmann::json FrameSink::finish() {
         meta["size_rounded"] = {{"from", {asked_width, asked_height}}, {"why", "H.264 in yuv420p needs even sizes"}};
     if (video_) {
         const render::WebmOptions webm;
-        const auto copies = video_->finish(folder_, description_.id + ".webp", {},
+        const auto copies = video_->finish(folder_, description_.id + ".webp", preview_options,
                                            options_.webm ? description_.id + ".webm" : "", webm, options_.video);
         const render::PreviewInfo& preview = copies.preview;
         if (options_.video) meta["file"] = description_.id + ".mp4";
         if (options_.webm)
-            meta["webm"] = {{"file", description_.id + ".webm"}, {"codec", "libvpx-vp9"}, {"crf", webm.crf},
-                            {"speed", webm.speed}, {"bytes", copies.webm_bytes}};
+            meta["webm"] = {{"file", description_.id + ".webm"},
+                            {"codec", "libvpx-vp9"},
+                            {"crf", webm.crf},
+                            {"speed", webm.speed},
+                            {"bytes", copies.webm_bytes}};
         meta["preview"] = {{"file", description_.id + ".webp"},
                            {"frames", preview.frames},
                            {"size", {preview.width, preview.height}},
@@ -322,9 +338,9 @@ std::unique_ptr<scenes::Film> FigureFiles::film(int width, int height) {
 }
 
 void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json metadata) {
-    const scenes::FigureCaption caption = scenes::figure_caption(
-        description_, scaled(description_.width, options_.scale), scaled(description_.height, options_.scale),
-        options_.scale);
+    const scenes::FigureCaption caption =
+        scenes::figure_caption(description_, scaled(description_.width, options_.scale),
+                               scaled(description_.height, options_.scale), options_.scale);
     const scenes::FigureDrawing drawing = scenes::with_caption(scene, caption);
     if (!caption.lines.empty())
         metadata["figure_caption"] = {{"shows", description_.figure_caption},
@@ -361,7 +377,8 @@ void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json meta
 }
 
 std::vector<std::string> output_names(const std::string& id) {
-    return {id + ".png", id + ".json", id + ".mp4", id + ".webp", id + ".webm", id + "-frames", id + ".pdf", id + ".svg"};
+    return {id + ".png",  id + ".json",   id + ".mp4", id + ".webp",
+            id + ".webm", id + "-frames", id + ".pdf", id + ".svg"};
 }
 
 namespace {

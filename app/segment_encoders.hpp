@@ -19,6 +19,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "render/image.hpp"
 #include "render/video.hpp"
@@ -29,8 +30,14 @@ class SegmentEncoders {
 public:
     // `writer` receives every segment; width x height frames encoded with
     // `options` (its segment_frames >= 1 is the segment length); workers >= 1.
+    // For a film planned to have `film_frames` frames (0: unknown), each
+    // worker also decodes back the preview's frames of its segment (render::
+    // preview_frame_indices with `preview`) and, in film order, adds them to
+    // the preview's animation, beside the drawing rather than after the
+    // film; finish() gives the animation to the writer.
     SegmentEncoders(render::VideoWriter& writer, std::string shown, int width, int height,
-                    const render::VideoOptions& options, int workers);
+                    const render::VideoOptions& options, int workers, int film_frames = 0,
+                    const render::PreviewOptions& preview = {});
     // Without finish(): stops every worker after the frame it is on, and
     // nothing more reaches the writer.
     ~SegmentEncoders();
@@ -50,6 +57,9 @@ public:
 private:
     struct Segment;
     void write_oldest();  // waits for the oldest open segment and hands it to the writer
+    // Segment `number`'s preview frames, added when the segments before it have added theirs.
+    void add_preview(int number, std::vector<render::Image> frames);
+    void abandon_preview();  // no more preview frames: no worker waits for its turn
     void stop_all();
 
     render::VideoWriter& writer_;
@@ -57,6 +67,19 @@ private:
     int width_, height_;
     render::VideoOptions options_;
     int workers_;
+    int film_frames_;  // planned, 0: unknown
+    render::PreviewOptions preview_options_;
+    std::vector<int> preview_wanted_;  // the film's frames the preview shows
+    std::unique_ptr<render::PreviewAnimation> preview_;
+    // Whose turn it is to add to preview_: the segments' numbers, in film
+    // order; a failed or stopped film lets every worker go.
+    std::mutex preview_lock_;
+    std::condition_variable preview_turn_;
+    int preview_next_ = 0;
+    bool preview_abandoned_ = false;
+    int segments_ = 0;        // segments begun
+    int frames_written_ = 0;  // frames in the segments written so far
+    int frames_added_ = 0;
     std::deque<std::unique_ptr<Segment>> open_;  // in film order; the last takes the frames
     // Frames waiting in every open segment, and what add() waits on when
     // there are waiting_most() of them.

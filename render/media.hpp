@@ -9,11 +9,11 @@
 // module never touches a path it is not given, and files it writes are the
 // descriptors the program opened (AtomicFile).
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
-#include <cstdint>
 
 #include "render/image.hpp"
 #include "render/video.hpp"
@@ -21,7 +21,7 @@
 namespace render::media {
 
 // Bumped whenever Api or Encoder change: a module of another build is refused.
-constexpr int api_version = 6;
+constexpr int api_version = 7;
 
 using Packet = VideoPacket;
 
@@ -31,8 +31,27 @@ using Packet = VideoPacket;
 class SegmentEncoder {
 public:
     virtual ~SegmentEncoder() = default;
-    virtual void add(const Image& frame) = 0;     // width x height RGBA, already checked
-    virtual std::vector<Packet> finish() = 0;     // flushes; the segment's packets in decoding order
+    virtual void add(const Image& frame) = 0;  // width x height RGBA, already checked
+    virtual std::vector<Packet> finish() = 0;  // flushes; the segment's packets in decoding order
+    // After finish(), which frees the encoder: its frames at `indices` (from
+    // the segment's start, ascending), decoded back from its `packets` on
+    // this thread as a decoder of the whole film gives them, and fitted to
+    // the preview's size as write_preview fits them.
+    virtual std::vector<Image> preview_frames(const std::vector<Packet>& packets, const std::vector<int>& indices,
+                                              const PreviewOptions& options) = 0;
+};
+
+// A film's preview (write_preview's animation) encoded as its frames come,
+// beside the film rather than after it.
+class PreviewEncoder {
+public:
+    virtual ~PreviewEncoder() = default;
+    // The next of the preview's frames (the film's at preview_frame_indices,
+    // decoded back and fitted as write_preview fits them), in order.
+    virtual void add(const Image& frame) = 0;
+    // Writes the preview to `fd`: `frames` are those added, kept for a
+    // lower quality should the animation not fit options.max_bytes.
+    virtual PreviewInfo write(int fd, const std::filesystem::path& shown, const std::vector<Image>& frames) = 0;
 };
 
 // One film being encoded into a file descriptor, segment by segment.
@@ -67,9 +86,13 @@ struct Api {
     // The preview of the film of `film_frames` frames at `film_fps` in the
     // MP4 on `film_fd` (read from its start), written to `fd`; `shown` is
     // what errors name.
-    PreviewInfo (*write_preview)(int fd, const std::filesystem::path& shown, int film_fd, int film_frames,
-                                 int film_fps, const PreviewOptions& options);
+    PreviewInfo (*write_preview)(int fd, const std::filesystem::path& shown, int film_fd, int film_frames, int film_fps,
+                                 const PreviewOptions& options);
     PreviewInfo (*probe_preview)(const std::filesystem::path& path);
+    // The preview of a film of `film_frames` frames at `film_fps`, made as
+    // its frames come; `shown` is what errors name.
+    std::unique_ptr<PreviewEncoder> (*open_preview)(const std::filesystem::path& shown, int film_frames, int film_fps,
+                                                    const PreviewOptions& options);
     // The film in the MP4 on `film_fd` (read from its start), `fps` frames
     // a second, encoded again as VP9 in WebM to `fd`; `shown` is what errors
     // name. Returns the WebM's size in bytes.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -127,6 +128,46 @@ void VideoWriter::add_segment(const std::vector<VideoPacket>& packets, int frame
     frames_ += frames;
 }
 
+PreviewInfo VideoWriter::preview_of_film(int fd, const std::filesystem::path& shown, const PreviewOptions& options) {
+    // Made beside the film, if it is this film's: the same pixels as
+    // decoding the film here.
+    if (preview_ && preview_->film_frames() == frames_ && preview_->complete()) return preview_->write(fd, shown);
+    return media::api().write_preview(fd, shown, encoder_->file.fd(), frames_, fps_, options);
+}
+
+void VideoWriter::set_preview(std::unique_ptr<PreviewAnimation> preview) {
+    if (!encoder_ || encoder_->finished) throw std::logic_error("VideoWriter::set_preview after finish()");
+    preview_ = std::move(preview);
+}
+
+struct PreviewAnimation::Encoder {
+    std::unique_ptr<media::PreviewEncoder> media;
+};
+
+PreviewAnimation::PreviewAnimation(const std::string& shown, int film_frames, int film_fps,
+                                   const PreviewOptions& options)
+    : film_frames_(film_frames) {
+    check_preview(options);
+    if (film_frames < 1 || film_fps < 1)
+        throw std::invalid_argument("a preview needs a film of a frame or more at a frame a second or more");
+    wanted_ = static_cast<int>(preview_frame_indices(film_frames, options).size());
+    encoder_ = std::make_unique<Encoder>();
+    encoder_->media = media::api().open_preview(shown, film_frames, film_fps, options);
+}
+
+PreviewAnimation::~PreviewAnimation() = default;
+
+void PreviewAnimation::add(Image frame) {
+    if (complete()) throw std::logic_error("PreviewAnimation::add past its last frame");
+    encoder_->media->add(frame);
+    frames_.push_back(std::move(frame));
+}
+
+PreviewInfo PreviewAnimation::write(int fd, const std::filesystem::path& shown) {
+    if (!complete()) throw std::logic_error("PreviewAnimation::write before its last frame");
+    return encoder_->media->write(fd, shown, frames_);
+}
+
 struct VideoSegment::Encoder {
     std::unique_ptr<media::SegmentEncoder> media;
 };
@@ -141,17 +182,26 @@ VideoSegment::VideoSegment(const std::string& shown, int width, int height, cons
 VideoSegment::~VideoSegment() = default;
 
 void VideoSegment::add(const Image& frame) {
-    if (!encoder_->media) throw std::logic_error("VideoSegment::add after finish()");
+    if (finished_) throw std::logic_error("VideoSegment::add after finish()");
     check_frame(frame, width_, height_);
     encoder_->media->add(frame);
     ++frames_;
 }
 
 std::vector<VideoPacket> VideoSegment::finish() {
-    if (!encoder_->media) throw std::logic_error("VideoSegment::finish called twice");
-    std::vector<VideoPacket> packets = encoder_->media->finish();
-    encoder_->media.reset();
-    return packets;
+    if (finished_) throw std::logic_error("VideoSegment::finish called twice");
+    finished_ = true;
+    return encoder_->media->finish();
+}
+
+std::vector<Image> VideoSegment::preview_frames(const std::vector<VideoPacket>& packets,
+                                                const std::vector<int>& indices, const PreviewOptions& options) {
+    if (!finished_) throw std::logic_error("VideoSegment::preview_frames before finish()");
+    check_preview(options);
+    for (std::size_t i = 0; i < indices.size(); ++i)
+        if (indices[i] < 0 || indices[i] >= frames_ || (i > 0 && indices[i] <= indices[i - 1]))
+            throw std::invalid_argument("VideoSegment::preview_frames: frame indices must ascend within the segment");
+    return encoder_->media->preview_frames(packets, indices, options);
 }
 
 void VideoWriter::finish() {
@@ -168,8 +218,7 @@ PreviewInfo VideoWriter::finish(const Folder& folder, const std::string& name, c
     check_preview(options);
     encoder_->media->finish();
     AtomicFile preview(folder, name);
-    const PreviewInfo info =
-        media::api().write_preview(preview.fd(), folder / name, encoder_->file.fd(), frames_, fps_, options);
+    const PreviewInfo info = preview_of_film(preview.fd(), folder / name, options);
     encoder_->file.commit();
     preview.commit();
     encoder_->finished = true;
@@ -187,8 +236,7 @@ VideoWriter::Copies VideoWriter::finish(const Folder& folder, const std::string&
     encoder_->media->finish();
     Copies copies;
     AtomicFile preview(folder, preview_name);
-    copies.preview = media::api().write_preview(preview.fd(), folder / preview_name, encoder_->file.fd(), frames_,
-                                                fps_, preview_options);
+    copies.preview = preview_of_film(preview.fd(), folder / preview_name, preview_options);
     std::optional<AtomicFile> webm;
     if (!webm_name.empty()) {
         webm.emplace(folder, webm_name);

@@ -5,9 +5,12 @@
 // The reading side (probe_video, decode_frame) is what the tests check an MP4
 // with: decoded frames, never the file's bytes.
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -17,7 +20,7 @@
 namespace render {
 
 struct VideoOptions {
-    int fps = 30;                // frames per second, >= 1
+    int fps = 30;  // frames per second, >= 1
     // Encoder threads, pinned to 1: x264's frame threads let its rate
     // control see how far the other frames got, so with 2 the same frames
     // gave other bytes 8 times in 20 on a loaded machine (the test "the same
@@ -58,7 +61,7 @@ struct VideoOptions {
 // machine): good at 4 took 7.7 s for 219 KB, SSIM 0.9910 against the MP4;
 // realtime at 6 1.2 s for 286 KB, SSIM 0.9906; at 8 0.9 s, 328 KB, 0.9898.
 struct WebmOptions {
-    int crf = 32;    // libvpx-vp9 quality 0..63 (lower is better)
+    int crf = 32;  // libvpx-vp9 quality 0..63 (lower is better)
     int speed = 6;
 };
 
@@ -83,17 +86,61 @@ struct PreviewOptions {
     int max_width = 360, max_height = 360;
     int max_frames = 48;
     double max_seconds = 4.0;
-    float quality = 70;                       // libwebp's lossy quality, 0..100
-    std::uint64_t max_bytes = 2u << 20;       // 2 MiB
+    float quality = 70;                  // libwebp's lossy quality, 0..100
+    std::uint64_t max_bytes = 2u << 20;  // 2 MiB
 };
 
+// The frames of a film of `film_frames` (>= 1) frames that its preview
+// shows: at most options.max_frames, evenly spread, the first and the last
+// among them, ascending, none twice.
+// Inline: the media module, which links nothing of figgen's, uses it too.
+inline std::vector<int> preview_frame_indices(int film_frames, const PreviewOptions& options) {
+    if (film_frames < 1 || options.max_frames < 1) throw std::invalid_argument("a preview needs a frame or more");
+    const int kept = std::min(options.max_frames, film_frames);
+    std::vector<int> wanted;
+    for (int k = 0; k < kept; ++k) {
+        const int index =
+            kept == 1 ? film_frames - 1 : static_cast<int>(std::lround(double(k) * (film_frames - 1) / (kept - 1)));
+        if (wanted.empty() || wanted.back() != index) wanted.push_back(index);
+    }
+    return wanted;
+}
+
 struct PreviewInfo {
-    int frames = 0;                 // frames in the animation
-    int width = 0, height = 0;      // pixels
-    int loop_count = -1;            // 0: loops for ever
-    int duration_ms = 0;            // one loop
-    std::uint64_t bytes = 0;        // the file's size
-    float quality = 0;              // the quality it was written at
+    int frames = 0;             // frames in the animation
+    int width = 0, height = 0;  // pixels
+    int loop_count = -1;        // 0: loops for ever
+    int duration_ms = 0;        // one loop
+    std::uint64_t bytes = 0;    // the file's size
+    float quality = 0;          // the quality it was written at
+};
+
+// A film's preview made while the film is: its frames (the film's at
+// preview_frame_indices(film_frames, options)), decoded back where their
+// segments were encoded (VideoSegment::preview_frames), are added in film
+// order, each encoded into the animation as it comes.
+// VideoWriter::set_preview hands it to the film's writer. Add from one
+// thread at a time.
+class PreviewAnimation {
+public:
+    // Throws std::invalid_argument for film_frames or film_fps < 1 or bad
+    // options; `shown` is what errors name.
+    PreviewAnimation(const std::string& shown, int film_frames, int film_fps, const PreviewOptions& options = {});
+    ~PreviewAnimation();
+    PreviewAnimation(const PreviewAnimation&) = delete;
+    PreviewAnimation& operator=(const PreviewAnimation&) = delete;
+
+    void add(Image frame);  // the next frame; std::logic_error past the last
+    bool complete() const { return static_cast<int>(frames_.size()) == wanted_; }
+    int film_frames() const { return film_frames_; }
+    // Writes the preview of a complete animation to `fd` (VideoWriter).
+    PreviewInfo write(int fd, const std::filesystem::path& shown);
+
+private:
+    struct Encoder;  // the media module's, kept out of this header
+    std::unique_ptr<Encoder> encoder_;
+    std::vector<Image> frames_;  // kept for a lower quality, should the preview not fit its budget
+    int film_frames_, wanted_;
 };
 
 class VideoWriter {
@@ -101,8 +148,7 @@ public:
     // Throws std::invalid_argument for an odd or non-positive size or bad
     // options, std::runtime_error (naming the path) when FFmpeg fails.
     // folder/name, written through an exclusive temporary (atomic_file.hpp).
-    VideoWriter(const Folder& folder, const std::string& name, int width, int height,
-                const VideoOptions& options = {});
+    VideoWriter(const Folder& folder, const std::string& name, int width, int height, const VideoOptions& options = {});
     VideoWriter(const std::filesystem::path& path, int width, int height, const VideoOptions& options = {});
     ~VideoWriter();  // without finish(), discards the temporary file: no half-written MP4 under the real name
     VideoWriter(const VideoWriter&) = delete;
@@ -114,7 +160,11 @@ public:
     // The next segment of `frames` frames, encoded elsewhere (VideoSegment)
     // with the same size and options: written as it is (stream copy).
     void add_segment(const std::vector<VideoPacket>& packets, int frames);
-    void finish();                 // flushes the encoder, writes the trailer (faststart), renames temp -> final
+    // The preview made beside the film (PreviewAnimation): finish() writes
+    // it when the film has the frames it was made for, and decodes the film
+    // again for its preview when not.
+    void set_preview(std::unique_ptr<PreviewAnimation> preview);
+    void finish();  // flushes the encoder, writes the trailer (faststart), renames temp -> final
     // finish(), and also writes folder/name, the film's preview
     // (PreviewOptions), decoded back from the film just written; both
     // files are committed together.
@@ -136,6 +186,8 @@ public:
 
 private:
     struct Encoder;  // the file and the media module's encoder, kept out of this header
+    // The preview on `fd`, preview_ where it is this film's, else decoded from the film.
+    PreviewInfo preview_of_film(int fd, const std::filesystem::path& shown, const PreviewOptions& options);
     std::unique_ptr<Encoder> encoder_;
     std::filesystem::path path_;
     int width_ = 0;
@@ -143,6 +195,7 @@ private:
     int fps_ = 0;
     std::string codec_name_;
     int frames_ = 0;
+    std::unique_ptr<PreviewAnimation> preview_;
 };
 
 // One segment of a film encoded in memory, for a process that makes some
@@ -154,14 +207,20 @@ public:
     ~VideoSegment();
     VideoSegment(const VideoSegment&) = delete;
     VideoSegment& operator=(const VideoSegment&) = delete;
-    void add(const Image& frame);          // as VideoWriter::add
-    std::vector<VideoPacket> finish();     // its packets, in decoding order
+    void add(const Image& frame);       // as VideoWriter::add
+    std::vector<VideoPacket> finish();  // its packets, in decoding order; frees the encoder
+    // After finish(): the segment's frames at `indices` (from its start,
+    // ascending), decoded back from `packets` (what finish() gave) as the
+    // preview decodes the whole film, and fitted to the preview's size.
+    std::vector<Image> preview_frames(const std::vector<VideoPacket>& packets, const std::vector<int>& indices,
+                                      const PreviewOptions& options = {});
     int frames() const { return frames_; }
 
 private:
     struct Encoder;
     std::unique_ptr<Encoder> encoder_;
     int width_ = 0, height_ = 0, frames_ = 0;
+    bool finished_ = false;
 };
 
 struct VideoInfo {

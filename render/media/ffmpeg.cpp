@@ -45,6 +45,9 @@ struct FreePacket {
 struct FreeScaler {
     void operator()(SwsContext* s) const { sws_freeContext(s); }
 };
+struct FreeParameters {
+    void operator()(AVCodecParameters* p) const { avcodec_parameters_free(&p); }
+};
 // Our own I/O on the temporary's descriptor (AtomicFile), never a path: a
 // context of this kind is freed with close_file_io, not avio_close.
 struct FileIo {
@@ -145,6 +148,7 @@ using CodecPtr = std::unique_ptr<AVCodecContext, FreeCodec>;
 using FramePtr = std::unique_ptr<AVFrame, FreeFrame>;
 using PacketPtr = std::unique_ptr<AVPacket, FreePacket>;
 using ScalerPtr = std::unique_ptr<SwsContext, FreeScaler>;
+using ParametersPtr = std::unique_ptr<AVCodecParameters, FreeParameters>;
 using OutputPtr = std::unique_ptr<AVFormatContext, CloseOutput>;
 using InputPtr = std::unique_ptr<AVFormatContext, CloseInput>;
 
@@ -232,7 +236,8 @@ CodecPtr open_codec(const AVCodec* codec, const std::filesystem::path& shown, in
 
 const AVCodec* chosen_codec(const std::filesystem::path& shown, const VideoOptions& options) {
     const AVCodec* codec = find_encoder(options.codec);
-    if (!codec) throw std::runtime_error("cannot write " + shown.string() + ": FFmpeg has no " + options.codec + " encoder");
+    if (!codec)
+        throw std::runtime_error("cannot write " + shown.string() + ": FFmpeg has no " + options.codec + " encoder");
     return codec;
 }
 
@@ -277,6 +282,9 @@ void clear_buffers(AVFrame& frame) {
     for (AVBufferRef* buffer : frame.buf)
         if (buffer) std::memset(buffer->data, 0, buffer->size);
 }
+
+Image to_rgba(const AVFrame* frame, const std::filesystem::path& shown);
+Image fitted(const Image& frame, const PreviewOptions& options);
 
 // One segment of a film: a fresh encoder, so the segment starts with a key
 // frame and no frame of it refers to a frame outside it (a closed group of
@@ -323,23 +331,84 @@ public:
     std::vector<Packet> finish() override {
         check(avcodec_send_frame(codec_.get(), nullptr), "flushing the encoder");  // x264 holds frames back
         drain();
+        // The stream's parameters (its headers) kept for preview_frames; the
+        // encoder and its frames go now.
+        parameters_.reset(avcodec_parameters_alloc());
+        if (!parameters_) fail_write("keeping the stream's parameters", AVERROR(ENOMEM));
+        check(avcodec_parameters_from_context(parameters_.get(), codec_.get()), "keeping the stream's parameters");
+        codec_.reset();
+        scaler_.reset();
+        yuv_.reset();
         return std::move(packets_);
+    }
+
+    std::vector<Image> preview_frames(const std::vector<Packet>& packets, const std::vector<int>& indices,
+                                      const PreviewOptions& options) override {
+        if (!parameters_) throw std::logic_error("preview_frames before finish");
+        std::vector<Image> kept;
+        if (indices.empty()) return kept;
+        const AVCodec* codec = avcodec_find_decoder(parameters_->codec_id);
+        if (!codec) fail_read("finding its decoder", AVERROR_DECODER_NOT_FOUND);
+        CodecPtr decoder(avcodec_alloc_context3(codec));
+        FramePtr frame(av_frame_alloc());
+        if (!decoder || !frame) fail_read("allocating the decoder", AVERROR(ENOMEM));
+        check_read(avcodec_parameters_to_context(decoder.get(), parameters_.get()), "configuring the decoder");
+        decoder->thread_count = 1;  // this is a worker thread already
+        check_read(avcodec_open2(decoder.get(), codec, nullptr), "opening the decoder");
+        // A frame's presentation time is its index in the segment. Frames
+        // no other frame refers to are skipped unless wanted (the others
+        // decode the same without them).
+        const auto wanted = [&](std::int64_t pts) { return std::binary_search(indices.begin(), indices.end(), pts); };
+        std::size_t next = 0;
+        const auto receive = [&] {
+            for (;;) {
+                const int ret = avcodec_receive_frame(decoder.get(), frame.get());
+                if (ret == AVERROR(EAGAIN) || ret == AVERROR_EOF) return;
+                check_read(ret, "decoding a frame");
+                if (next < indices.size() && frame->pts == indices[next]) {
+                    kept.push_back(fitted(to_rgba(frame.get(), shown_), options));
+                    ++next;
+                }
+                av_frame_unref(frame.get());
+            }
+        };
+        for (const Packet& p : packets) {
+            check_read(av_new_packet(packet_.get(), static_cast<int>(p.data.size())), "reading a packet");
+            std::copy(p.data.begin(), p.data.end(), packet_->data);
+            packet_->pts = p.pts;
+            packet_->dts = p.dts;
+            if (p.key) packet_->flags |= AV_PKT_FLAG_KEY;
+            decoder->skip_frame = wanted(p.pts) ? AVDISCARD_DEFAULT : AVDISCARD_NONREF;
+            const int sent = avcodec_send_packet(decoder.get(), packet_.get());
+            av_packet_unref(packet_.get());
+            check_read(sent, "decoding a packet");
+            receive();
+            if (next == indices.size()) return kept;
+        }
+        check_read(avcodec_send_packet(decoder.get(), nullptr), "flushing the decoder");
+        receive();
+        if (next != indices.size()) fail_read("decoding its frames back", AVERROR_INVALIDDATA);
+        return kept;
     }
 
     int frames() const { return static_cast<int>(frames_); }
 
 private:
     [[noreturn]] void fail_write(const char* step, int err) const { fail("write", shown_, step, err); }
+    [[noreturn]] void fail_read(const char* step, int err) const { fail("read", shown_, step, err); }
     void check(int ret, const char* step) const {
         if (ret < 0) fail_write(step, ret);
+    }
+    void check_read(int ret, const char* step) const {
+        if (ret < 0) fail_read(step, ret);
     }
     void drain() {
         for (;;) {
             const int ret = avcodec_receive_packet(codec_.get(), packet_.get());
             if (ret == AVERROR(EAGAIN) || ret == AVERROR_EOF) return;
             check(ret, "encoding a frame");
-            packets_.push_back({std::vector<std::uint8_t>(packet_->data, packet_->data + packet_->size),
-                                packet_->pts, packet_->dts, (packet_->flags & AV_PKT_FLAG_KEY) != 0});
+            packets_.push_back({std::vector<std::uint8_t>(packet_->data, packet_->data + packet_->size), packet_->pts,
+                                packet_->dts, (packet_->flags & AV_PKT_FLAG_KEY) != 0});
             av_packet_unref(packet_.get());
         }
     }
@@ -353,6 +422,7 @@ private:
     FramePtr yuv_;
     PacketPtr packet_;
     std::vector<Packet> packets_;
+    ParametersPtr parameters_;  // after finish()
 };
 
 // A film into an MP4 on a file descriptor: frames are encoded in segments
@@ -406,8 +476,8 @@ private:
         if (!stream_) fail_write("creating the stream", AVERROR(ENOMEM));
         // The stream's parameters (its headers) from an encoder of the same
         // settings: every segment's encoder makes the same ones.
-        const CodecPtr c = open_codec(codec, shown_, width_, height_, options_,
-                                      (format->oformat->flags & AVFMT_GLOBALHEADER) != 0);
+        const CodecPtr c =
+            open_codec(codec, shown_, width_, height_, options_, (format->oformat->flags & AVFMT_GLOBALHEADER) != 0);
         time_base_ = c->time_base;
         check(avcodec_parameters_from_context(stream_->codecpar, c.get()), "configuring the stream");
         stream_->time_base = c->time_base;
@@ -518,6 +588,7 @@ public:
     Decoder& operator=(const Decoder&) = delete;
 
     const AVStream* stream() const { return format_->streams[stream_index_]; }
+    const std::filesystem::path& path() const { return path_; }
 
     // The next frame, or nullptr after the last; valid until the next call.
     const AVFrame* next() {
@@ -635,24 +706,28 @@ VideoInfo probe_video(const std::filesystem::path& path) {
     return info;
 }
 
-// A decoded frame as RGBA.
-Image to_rgba(const Decoder& decoder, const AVFrame* frame) {
+// A decoded frame as RGBA; errors name `shown`.
+Image to_rgba(const AVFrame* frame, const std::filesystem::path& shown) {
     Image image(frame->width, frame->height);
     // FULL_CHR_H_INT: interpolate the chroma for every output pixel.
     ScalerPtr scaler(sws_getContext(frame->width, frame->height, static_cast<AVPixelFormat>(frame->format),
                                     frame->width, frame->height, AV_PIX_FMT_RGBA,
                                     SWS_BICUBIC | SWS_FULL_CHR_H_INT | SWS_ACCURATE_RND | SWS_BITEXACT, nullptr,
                                     nullptr, nullptr));
-    if (!scaler) decoder.check(AVERROR(EINVAL), "creating the colour converter");
+    if (!scaler) fail("read", shown, "creating the colour converter", AVERROR(EINVAL));
     // Undo the matrix the file says it used (unspecified falls back to BT.601).
     const int* matrix = sws_getCoefficients(frame->colorspace);
     const int full_range = frame->color_range == AVCOL_RANGE_JPEG;
     if (sws_setColorspaceDetails(scaler.get(), matrix, full_range, matrix, 1, 0, 1 << 16, 1 << 16) < 0)
-        decoder.check(AVERROR(EINVAL), "configuring the colour converter");
+        fail("read", shown, "configuring the colour converter", AVERROR(EINVAL));
     std::uint8_t* const planes[] = {image.rgba.data()};
     const int strides[] = {image.width * 4};
     sws_scale(scaler.get(), frame->data, frame->linesize, 0, frame->height, planes, strides);
     return image;
+}
+
+Image to_rgba(const Decoder& decoder, const AVFrame* frame) {
+    return to_rgba(frame, decoder.path());
 }
 
 Image decode_frame(const std::filesystem::path& path, int index, int threads) {
@@ -707,12 +782,7 @@ Image fitted(const Image& frame, const PreviewOptions& options) {
 PreviewInfo write_preview(int fd, const std::filesystem::path& shown, int film_fd, int film_frames, int film_fps,
                           const PreviewOptions& options) {
     if (film_frames < 1 || film_fps < 1) throw std::invalid_argument("a preview needs a film of one frame or more");
-    // The frames to keep, evenly spread, the first and the last among them.
-    const int kept = std::min(options.max_frames, film_frames);
-    std::vector<int> wanted;
-    for (int k = 0; k < kept; ++k)
-        wanted.push_back(kept == 1 ? film_frames - 1
-                                   : static_cast<int>(std::lround(double(k) * (film_frames - 1) / (kept - 1))));
+    const std::vector<int> wanted = preview_frame_indices(film_frames, options);
     std::vector<Image> frames;
     // Decoded on every core (0: as many threads as FFmpeg sees cores): the
     // film just written, waited for; H.264 decodes to the same pixels on
@@ -724,11 +794,50 @@ PreviewInfo write_preview(int fd, const std::filesystem::path& shown, int film_f
         if (!frame) break;
         if (index != wanted[next]) continue;
         frames.push_back(fitted(to_rgba(decoder, frame), options));
-        while (next < wanted.size() && wanted[next] == index) ++next;  // a short film repeats no frame
+        ++next;
     }
     if (frames.empty()) throw std::runtime_error("cannot write " + shown.string() + ": its film has no frames");
     const double seconds = std::min(options.max_seconds, double(film_frames) / film_fps);
     return write_webp(fd, shown, frames, seconds, options);
+}
+
+class WebpPreview final : public PreviewEncoder {
+public:
+    WebpPreview(const std::filesystem::path& shown, int film_frames, int film_fps, const PreviewOptions& options)
+        : shown_(shown),
+          options_(options),
+          seconds_(std::min(options.max_seconds, double(film_frames) / film_fps)),
+          frames_(preview_frame_indices(film_frames, options).size()) {}
+
+    void add(const Image& frame) override {
+        if (!encoder_)
+            encoder_ = std::make_unique<AnimationEncoder>(shown_, frame.width, frame.height,
+                                                          preview_frame_ms(seconds_, frames_), options_.quality);
+        encoder_->add(frame);
+    }
+
+    PreviewInfo write(int fd, const std::filesystem::path& shown, const std::vector<Image>& frames) override {
+        if (frames.empty()) throw std::runtime_error("cannot write " + shown.string() + ": its film has no frames");
+        // write_webp's first try, made as the frames came, when they are these.
+        std::vector<std::uint8_t> first;
+        if (encoder_ && encoder_->frames() == static_cast<int>(frames.size()) && frames.size() == frames_)
+            first = encoder_->assemble();
+        encoder_.reset();
+        return write_webp(fd, shown, frames, seconds_, options_, std::move(first));
+    }
+
+private:
+    std::filesystem::path shown_;
+    PreviewOptions options_;
+    double seconds_;
+    std::size_t frames_;  // the preview's, before any are dropped for its budget
+    std::unique_ptr<AnimationEncoder> encoder_;
+};
+
+std::unique_ptr<PreviewEncoder> open_preview(const std::filesystem::path& shown, int film_frames, int film_fps,
+                                             const PreviewOptions& options) {
+    if (film_frames < 1 || film_fps < 1) throw std::invalid_argument("a preview needs a film of one frame or more");
+    return std::make_unique<WebpPreview>(shown, film_frames, film_fps, options);
 }
 
 std::uint64_t write_webm(int fd, const std::filesystem::path& shown, int film_fd, int fps, const WebmOptions& webm) {
@@ -766,9 +875,9 @@ PreviewInfo write_preview_thumbnail(int fd, const std::filesystem::path& shown, 
     return write_webp(fd, shown, frames, duration_ms / 1000.0, options);
 }
 
-const Api functions{api_version,  open_encoder,      open_segment,  probe_video,
-                    decode_frame, scale,             write_preview, probe_webp,
-                    write_webm,   decode_webp_frame, write_preview_thumbnail,
+const Api functions{api_version,       open_encoder, open_segment,      probe_video,
+                    decode_frame,      scale,        write_preview,     probe_webp,
+                    open_preview,      write_webm,   decode_webp_frame, write_preview_thumbnail,
                     decode_film_frame, webp_canvas};
 
 }  // namespace

@@ -20,9 +20,6 @@
 namespace render::media {
 namespace {
 
-struct FreeEncoder {
-    void operator()(WebPAnimEncoder* e) const { WebPAnimEncoderDelete(e); }
-};
 struct FreeDecoder {
     void operator()(WebPAnimDecoder* d) const { WebPAnimDecoderDelete(d); }
 };
@@ -34,42 +31,70 @@ struct FreeData {
     throw std::runtime_error("cannot write " + shown.string() + ": " + what);
 }
 
-// The animation of `frames` at `quality`, each shown `frame_ms`.
-std::vector<std::uint8_t> encode(const std::filesystem::path& shown, const std::vector<const Image*>& frames,
-                                 int frame_ms, float quality) {
-    const int width = frames.front()->width, height = frames.front()->height;
+}  // namespace
+
+AnimationEncoder::AnimationEncoder(const std::filesystem::path& shown, int width, int height, int frame_ms,
+                                   float quality)
+    : shown_(shown), width_(width), height_(height), frame_ms_(frame_ms) {
     WebPAnimEncoderOptions encoder_options;
     if (!WebPAnimEncoderOptionsInit(&encoder_options)) fail(shown, "libwebp's version does not match its headers");
     encoder_options.anim_params.loop_count = 0;  // for ever
     encoder_options.anim_params.bgcolor = 0xffffffff;
-    std::unique_ptr<WebPAnimEncoder, FreeEncoder> encoder(WebPAnimEncoderNew(width, height, &encoder_options));
-    if (!encoder) fail(shown, "creating the WebP encoder");
-    WebPConfig config;
-    if (!WebPConfigInit(&config)) fail(shown, "libwebp's version does not match its headers");
-    config.quality = quality;
-    config.method = 2;        // faster than the default 4, files a few per cent larger
-    config.thread_level = 0;  // one thread: the same bytes everywhere
-    int timestamp = 0;
-    for (const Image* frame : frames) {
-        WebPPicture picture;
-        if (!WebPPictureInit(&picture)) fail(shown, "libwebp's version does not match its headers");
-        picture.use_argb = 1;
-        picture.width = width;
-        picture.height = height;
-        const bool imported = WebPPictureImportRGBA(&picture, frame->rgba.data(), width * 4);
-        const bool added = imported && WebPAnimEncoderAdd(encoder.get(), &picture, timestamp, &config);
-        WebPPictureFree(&picture);
-        if (!added) fail(shown, std::string("encoding a frame: ") + WebPAnimEncoderGetError(encoder.get()));
-        timestamp += frame_ms;
-    }
-    if (!WebPAnimEncoderAdd(encoder.get(), nullptr, timestamp, nullptr))  // the last frame's end
-        fail(shown, std::string("ending the animation: ") + WebPAnimEncoderGetError(encoder.get()));
+    encoder_.reset(WebPAnimEncoderNew(width, height, &encoder_options));
+    if (!encoder_) fail(shown, "creating the WebP encoder");
+    config_ = std::make_unique<WebPConfig>();
+    if (!WebPConfigInit(config_.get())) fail(shown, "libwebp's version does not match its headers");
+    config_->quality = quality;
+    config_->method = 2;        // faster than the default 4, files a few per cent larger
+    config_->thread_level = 0;  // one thread: the same bytes everywhere
+}
+
+AnimationEncoder::~AnimationEncoder() = default;
+
+void AnimationEncoder::add(const Image& frame) {
+    if (frame.width != width_ || frame.height != height_) fail(shown_, "its frames differ in size");
+    WebPPicture picture;
+    if (!WebPPictureInit(&picture)) fail(shown_, "libwebp's version does not match its headers");
+    picture.use_argb = 1;
+    picture.width = width_;
+    picture.height = height_;
+    const bool imported = WebPPictureImportRGBA(&picture, frame.rgba.data(), width_ * 4);
+    const bool added = imported && WebPAnimEncoderAdd(encoder_.get(), &picture, timestamp_, config_.get());
+    WebPPictureFree(&picture);
+    if (!added) fail(shown_, std::string("encoding a frame: ") + WebPAnimEncoderGetError(encoder_.get()));
+    timestamp_ += frame_ms_;
+    ++frames_;
+}
+
+std::vector<std::uint8_t> AnimationEncoder::assemble() {
+    if (!WebPAnimEncoderAdd(encoder_.get(), nullptr, timestamp_, nullptr))  // the last frame's end
+        fail(shown_, std::string("ending the animation: ") + WebPAnimEncoderGetError(encoder_.get()));
     WebPData data;
     WebPDataInit(&data);
     std::unique_ptr<WebPData, FreeData> hold(&data);
-    if (!WebPAnimEncoderAssemble(encoder.get(), &data))
-        fail(shown, std::string("assembling the animation: ") + WebPAnimEncoderGetError(encoder.get()));
+    if (!WebPAnimEncoderAssemble(encoder_.get(), &data))
+        fail(shown_, std::string("assembling the animation: ") + WebPAnimEncoderGetError(encoder_.get()));
     return {data.bytes, data.bytes + data.size};
+}
+
+void AnimationEncoder::FreeEncoder::operator()(WebPAnimEncoder* e) const {
+    WebPAnimEncoderDelete(e);
+}
+
+int preview_frame_ms(double seconds, std::size_t frames) {
+    // Each frame shows for an equal share of the loop, at least 20 ms
+    // (what browsers show at the least).
+    return std::max(20, static_cast<int>(std::floor(1000.0 * seconds / static_cast<double>(frames))));
+}
+
+namespace {
+
+// The animation of `frames` at `quality`, each shown `frame_ms`.
+std::vector<std::uint8_t> encode(const std::filesystem::path& shown, const std::vector<const Image*>& frames,
+                                 int frame_ms, float quality) {
+    AnimationEncoder encoder(shown, frames.front()->width, frames.front()->height, frame_ms, quality);
+    for (const Image* frame : frames) encoder.add(*frame);
+    return encoder.assemble();
 }
 
 void write_all(int fd, const std::filesystem::path& shown, const std::vector<std::uint8_t>& bytes) {
@@ -154,7 +179,7 @@ private:
 }  // namespace
 
 PreviewInfo write_webp(int fd, const std::filesystem::path& shown, const std::vector<Image>& frames, double seconds,
-                       const PreviewOptions& options) {
+                       const PreviewOptions& options, std::vector<std::uint8_t> first_try) {
     if (frames.empty()) fail(shown, "a preview needs a frame");
     std::vector<const Image*> kept;
     for (const Image& f : frames) kept.push_back(&f);
@@ -162,10 +187,11 @@ PreviewInfo write_webp(int fd, const std::filesystem::path& shown, const std::ve
     std::vector<std::uint8_t> bytes;
     int frame_ms = 0;
     for (;;) {
-        // Each frame shows for an equal share of the loop, at least 20 ms
-        // (what browsers show at the least).
-        frame_ms = std::max(20, static_cast<int>(std::floor(1000.0 * seconds / kept.size())));
-        bytes = encode(shown, kept, frame_ms, quality);
+        frame_ms = preview_frame_ms(seconds, kept.size());
+        if (!first_try.empty())
+            bytes = std::move(first_try), first_try.clear();
+        else
+            bytes = encode(shown, kept, frame_ms, quality);
         if (bytes.size() <= options.max_bytes) break;
         if (quality > 10) {
             // Lossy WebP's size falls about in proportion with the quality

@@ -5,19 +5,50 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "render/image.hpp"
 #include "render/video.hpp"
 
+struct WebPAnimEncoder;
+struct WebPConfig;
+
 namespace render::media {
+
+// libwebp's animation encoder (WebPAnimEncoder, lossy at `quality`, one
+// thread), fed one frame at a time, each shown `frame_ms`; loops for ever.
+// Errors name `shown`.
+class AnimationEncoder {
+public:
+    AnimationEncoder(const std::filesystem::path& shown, int width, int height, int frame_ms, float quality);
+    ~AnimationEncoder();
+    AnimationEncoder(const AnimationEncoder&) = delete;
+    AnimationEncoder& operator=(const AnimationEncoder&) = delete;
+    void add(const Image& frame);          // width x height RGBA
+    std::vector<std::uint8_t> assemble();  // the file's bytes, once every frame is added
+    int frames() const { return frames_; }
+
+private:
+    struct FreeEncoder {
+        void operator()(WebPAnimEncoder* e) const;
+    };
+    std::filesystem::path shown_;
+    int width_, height_, frame_ms_, timestamp_ = 0, frames_ = 0;
+    std::unique_ptr<WebPAnimEncoder, FreeEncoder> encoder_;
+    std::unique_ptr<WebPConfig> config_;
+};
+
+// How long each of `frames` frames shows in a preview lasting `seconds`.
+int preview_frame_ms(double seconds, std::size_t frames);
 
 // Writes `frames` (RGBA, all one size) to `fd` as an animated WebP that
 // loops for ever and lasts `seconds`, at options.quality, or lower, then
-// with every other frame, until it fits options.max_bytes. Errors name
-// `shown`.
+// with every other frame, until it fits options.max_bytes. `first_try`,
+// if given, is the AnimationEncoder's bytes of all the frames at
+// options.quality (encoded as they came). Errors name `shown`.
 PreviewInfo write_webp(int fd, const std::filesystem::path& shown, const std::vector<Image>& frames, double seconds,
-                       const PreviewOptions& options);
+                       const PreviewOptions& options, std::vector<std::uint8_t> first_try = {});
 PreviewInfo probe_webp(const std::filesystem::path& path);
 Image decode_webp_frame(const std::filesystem::path& path, int index);
 

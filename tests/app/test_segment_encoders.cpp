@@ -120,3 +120,78 @@ TEST_CASE("segment encoders need segments and a worker", "[video][segments]") {
     CHECK_THROWS_AS(app::SegmentEncoders(writer, "x", width, height, render::VideoOptions{}, 2), std::invalid_argument);
     CHECK_THROWS_AS(app::SegmentEncoders(writer, "x", width, height, options(), 0), std::invalid_argument);
 }
+
+namespace {
+
+// The film (as side_by_side) with its preview, made beside the film by
+// workers planned for `planned` frames (0: none planned), of which `given`
+// come; returns the preview's bytes.
+std::string preview_beside(const fs::path& dir, int workers, int planned, int given,
+                           const render::PreviewOptions& preview) {
+    fs::create_directories(dir);
+    render::VideoWriter writer(dir / "film.mp4", width, height, options());
+    app::SegmentEncoders encoders(writer, (dir / "film.mp4").string(), width, height, options(), workers, planned,
+                                  preview);
+    for (int i = 0; i < given; ++i) encoders.add(frame(i));
+    encoders.finish();
+    writer.finish(render::Folder::of(dir / "x"), "film.webp", preview);
+    return testkit::slurp(dir / "film.webp");
+}
+
+// The same film's preview decoded from the finished MP4, one encoder.
+std::string preview_after(const fs::path& dir, int given, const render::PreviewOptions& preview) {
+    fs::create_directories(dir);
+    render::VideoWriter writer(dir / "film.mp4", width, height, options());
+    for (int i = 0; i < given; ++i) writer.add(frame(i));
+    writer.finish(render::Folder::of(dir / "x"), "film.webp", preview);
+    return testkit::slurp(dir / "film.webp");
+}
+
+}  // namespace
+
+TEST_CASE("a preview made beside the film is the preview decoded from it", "[video][segments][preview]") {
+    render::PreviewOptions few;  // fewer frames than the film, spread over its segments
+    few.max_frames = 9;
+    render::PreviewOptions all;  // every frame
+    all.max_frames = 48;
+    render::PreviewOptions tight = few;  // over its budget: a lower quality, as write_webp's loop gives
+    tight.max_bytes = 3000;
+    int n = 0;
+    for (const render::PreviewOptions& preview : {few, all, tight}) {
+        const std::string expected = preview_after(scratch("after" + std::to_string(n)), frames, preview);
+        REQUIRE(expected.size() > 100);
+        for (int workers : {2, 3, 8}) {
+            INFO("options " << n << ", " << workers << " workers");
+            CHECK(preview_beside(scratch("beside" + std::to_string(n) + "-" + std::to_string(workers)), workers, frames,
+                                 frames, preview) == expected);
+        }
+        ++n;
+    }
+    // The budget was what made the tight one smaller.
+    CHECK(render::probe_preview(scratch("after2") / "film.webp").bytes <= 3000);
+    CHECK(render::probe_preview(scratch("after0") / "film.webp").bytes > 3000);
+
+    // A film that ends before its planned end (a model at a fixed point):
+    // its preview is decoded from it as before, not made of the planned frames.
+    const std::string short_film = preview_after(scratch("short-after"), 23, few);
+    CHECK(preview_beside(scratch("short-beside"), 3, frames, 23, few) == short_film);
+    CHECK(render::probe_preview(scratch("short-beside") / "film.webp").frames == 9);
+}
+
+TEST_CASE("a preview animation takes its frames in order, and no more", "[video][preview]") {
+    render::PreviewOptions preview;
+    preview.max_frames = 3;
+    CHECK(render::preview_frame_indices(37, preview) == std::vector<int>{0, 18, 36});
+    CHECK(render::preview_frame_indices(2, preview) == std::vector<int>{0, 1});
+    CHECK(render::preview_frame_indices(1, preview) == std::vector<int>{0});
+    CHECK_THROWS_AS(render::preview_frame_indices(0, preview), std::invalid_argument);
+    CHECK_THROWS_AS(render::PreviewAnimation("x", 0, 30, preview), std::invalid_argument);
+    CHECK_THROWS_AS(render::PreviewAnimation("x", 10, 0, preview), std::invalid_argument);
+
+    render::PreviewAnimation animation("x.webp", 37, 30, preview);
+    CHECK_FALSE(animation.complete());
+    CHECK_THROWS_AS(animation.write(-1, "x.webp"), std::logic_error);  // before its last frame
+    for (int i : {0, 18, 36}) animation.add(frame(i));
+    CHECK(animation.complete());
+    CHECK_THROWS_AS(animation.add(frame(1)), std::logic_error);
+}
