@@ -1,0 +1,109 @@
+#pragma once
+// Formula models, as GollyGang/Ready writes them: a rule of `chemicals`
+// chemicals (a, b, c, ...) on a 2-D grid, each updated by forward Euler,
+//     X_new = X + timestep * delta_X,
+// where delta_X is what the formula, a small part of OpenCL C, assigns from
+// the cell's chemicals, its neighbours (a_n, a_se, a_e2, ...), Ready's
+// stencils (laplacian_a, x_gradient_b, ... at three accuracies), x_pos and
+// y_pos, and the rule's parameters.
+//
+// A formula is code from a stranger: it is read by figgen's own grammar
+// into a tree (sim/formula_ast.hpp), held to fixed bounds (Limits), and
+// compiled into operations over whole rows; its text never reaches a
+// compiler, a shell or a shader. Only the built-in functions of an
+// allow-list can be called; loops must have a trip count fixed before the
+// run; arrays have a fixed size and constant indices.
+//
+// Ready's own behaviour is followed where it is a quirk (docs/formulas.md):
+// with its default blocks of four cells in x (block_x = 4), clamped edges
+// clamp per block, so that the cell west of x = 0 is x = 3; and wrapped
+// edges index with `& (size - 1)`, a torus only for sizes (in blocks) that
+// are powers of two.
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sim/formula_ast.hpp"
+#include "sim/grid.hpp"
+
+namespace sim::formula {
+
+// A formula outside the grammar or its bounds: "line L, column C: what".
+class FormulaError : public std::invalid_argument {
+public:
+    FormulaError(Pos pos, const std::string& what);
+    Pos pos() const { return pos_; }
+    const std::string& message() const { return message_; }  // without the position
+
+private:
+    Pos pos_;
+    std::string message_;
+};
+
+// A run that cannot go on: a division by zero, or a chemical that is no
+// longer a finite number. Names the step, the cell and the chemical or the
+// formula's line.
+class Unstable : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+enum class Accuracy { low, medium, high };
+
+// Chemical i's name: a, b, ..., z.
+std::string chemical_name(int i);
+constexpr int max_chemicals = 26;
+
+struct Rule {
+    int chemicals = 2;  // 1 .. max_chemicals
+    // Names and values, in order. `timestep` is needed; `dx` is 1 unless given.
+    std::vector<std::pair<std::string, double>> parameters;
+    std::string code;  // the formula
+    Accuracy accuracy = Accuracy::medium;
+    bool wrap = true;               // a torus; else clamped edges
+    int block_x = 4;                // Ready's block_size_x: 4 (its default) or 1
+    bool double_precision = false;  // Ready's data type: Float64, else Float32
+    // Ready's edges (its quirks above), as its own patterns need; else a
+    // true torus of any size, or each cell clamped to the grid.
+    bool ready_edges = true;
+
+    // Throws std::invalid_argument naming what is wrong, FormulaError for
+    // the code, before anything runs.
+    void validate(int width, int height) const;
+};
+
+// The stencil keywords, as in Ready: `name_X` for a chemical X.
+const std::vector<std::string>& stencil_names();
+
+// A run of a rule on a width x height grid (grid(row y, column x)).
+class Run {
+public:
+    // Compiles the rule (FormulaError, std::invalid_argument) and loads the
+    // start: one width x height grid per chemical, rounded to the rule's
+    // number type.
+    Run(const Rule& rule, int width, int height, const std::vector<Grid<double>>& start);
+    ~Run();
+    Run(Run&&) noexcept;
+    Run& operator=(Run&&) noexcept;
+
+    // `steps` steps on `threads` threads (0: OpenMP's default); the same
+    // bits for any number. Throws Unstable at the first step that fails
+    // (the state is then that step's input).
+    void step(int steps, int threads = 0);
+    Grid<double> chemical(int i) const;
+    long long steps() const;
+    int width() const;
+    int height() const;
+    // Row operations a cell of one step takes: the compiled formula's size.
+    int operations() const;
+
+    struct Impl;  // the engine of the rule's number type (sim/formula_run.cpp)
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sim::formula

@@ -1,0 +1,72 @@
+#pragma once
+// A formula compiled for one grid (sim/formula_compile.cpp): a straight list
+// of operations, each over a run of cells of one row at a time (a chunk),
+// on numbered registers. Loops are unrolled, `if` and `?:` on values of the
+// cells become selections, and everything the formula fixes before the run
+// (parameters, literals, loop counters, array indices) is folded into
+// constants. sim/formula_run.cpp runs it.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sim/formula.hpp"
+
+namespace sim::formula {
+
+enum class Op : std::uint8_t {
+    copy,                         // a
+    add, sub, mul, div,           // a op b
+    neg,                          // -a
+    select,                       // c != 0 ? b : a   (OpenCL's select(a, b, c))
+    less, less_equal, equal, not_equal,  // a op b: `truth` or 0
+    logical_and, logical_or,      // both / either nonzero: `truth` or 0
+    logical_not,                  // a == 0: `truth` or 0 (OpenCL's ! on a float4 gives -1)
+    trunc_int,                    // a converted to int (toward zero)
+    int_div, int_mod,             // a / b, a % b on ints (toward zero)
+    call1, call2, call3,          // fn(a), fn(a, b), fn(a, b, c)
+};
+
+// The built-in functions (an allow-list, sim/formula_compile.cpp).
+enum class Fn : std::uint8_t {
+    sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, asinh, acosh, atanh,
+    exp, exp2, exp10, expm1, log, log2, log10, log1p, sqrt, rsqrt, cbrt,
+    fabs, floor, ceil, round, trunc, rint, sign, degrees, radians, abs_int,
+    pow, atan2, fmin, fmax, fmod, hypot, step, copysign, fdim,
+    clamp, mix, smoothstep, mad,
+};
+
+struct Instr {
+    Op op = Op::copy;
+    Fn fn = Fn::sin;
+    double truth = 1;  // the value of true for comparisons: 1, or -1 for Ready's float4
+    int dst = 0, a = -1, b = -1, c = -1;
+    int mask = -1;  // for div: checked for zero divisors only where this register is nonzero (-1: everywhere)
+    Pos pos;        // in the formula, for errors
+};
+
+struct Program {
+    // Registers 0 .. registers - 1 each hold a chunk of values. Some are
+    // views into the model's rows (inputs, outputs), some constants
+    // (filled once), the rest buffers the operations write.
+    int registers = 0;
+    struct Constant {
+        int reg;
+        double value;  // already rounded to the model's number type
+    };
+    std::vector<Constant> constants;
+    // Chemical `chemical` at offset (dx, dy) from each cell.
+    struct Input {
+        int reg, chemical, dx, dy;
+    };
+    std::vector<Input> inputs;
+    int x_pos = -1, y_pos = -1;  // registers of x_pos and y_pos, if used
+    std::vector<Instr> code;
+    std::vector<int> outputs;  // per chemical: the register of its new value
+    int radius_x = 0, radius_y = 0;  // the farthest neighbour read
+};
+
+// Compiles `rule` (validated) for a width x height grid. Throws FormulaError.
+Program compile(const Rule& rule, int width, int height);
+
+}  // namespace sim::formula

@@ -1,0 +1,498 @@
+// Runs a compiled formula (sim/formula_program.hpp) over the grid: each
+// row in chunks of up to `chunk` cells, each operation a loop over the
+// chunk's cells (vectorised by the compiler, a clone per instruction set),
+// the rows of a step split among threads (sim/parallel_steps.hpp).
+//
+// Neighbours: each chemical's rows are stored with `radius_x` cells of halo
+// on both sides, filled after each row is written as Ready's indexing reads
+// them, so that a neighbour at offset dx is the row read dx cells along;
+// rows at dy are looked up in a table made once.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <optional>
+#include <tuple>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sim/formula.hpp"
+#include "sim/formula_program.hpp"
+#include "sim/formula_scalar.hpp"
+#include "sim/parallel_steps.hpp"
+
+namespace sim::formula {
+
+namespace {
+
+constexpr int chunk = 256;  // cells a row operation takes at once: its registers stay in L1/L2
+
+#if defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__) && !defined(__clang__)
+#define FIGGEN_FORMULA_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define FIGGEN_FORMULA_CLONES
+#endif
+
+// The hot operations, one loop each.
+#define FIGGEN_FORMULA_BINARY(NAME, EXPR)                                                                    \
+    template <class Real>                                                                                   \
+    void NAME(Real* __restrict d, const Real* __restrict a, const Real* __restrict b, int n) {              \
+        for (int i = 0; i < n; ++i) d[i] = EXPR;                                                            \
+    }                                                                                                       \
+    FIGGEN_FORMULA_CLONES void NAME##_f(float* d, const float* a, const float* b, int n) { NAME(d, a, b, n); } \
+    FIGGEN_FORMULA_CLONES void NAME##_d(double* d, const double* a, const double* b, int n) { NAME(d, a, b, n); }
+
+FIGGEN_FORMULA_BINARY(add_rows, a[i] + b[i])
+FIGGEN_FORMULA_BINARY(sub_rows, a[i] - b[i])
+FIGGEN_FORMULA_BINARY(mul_rows, a[i] * b[i])
+FIGGEN_FORMULA_BINARY(div_rows, a[i] / b[i])
+
+// Whether any of b's n values is zero where the mask (if any) is nonzero,
+// and whether any of v's is not a finite number: branch-free, vectorised.
+#define FIGGEN_FORMULA_CHECKS(REAL, SUFFIX)                                                     \
+    FIGGEN_FORMULA_CLONES int zero_where##SUFFIX(const REAL* __restrict b, const REAL* __restrict mask, int n) { \
+        int any = 0;                                                                            \
+        if (mask)                                                                               \
+            for (int i = 0; i < n; ++i) any |= (b[i] == REAL(0)) & (mask[i] != REAL(0));        \
+        else                                                                                    \
+            for (int i = 0; i < n; ++i) any |= b[i] == REAL(0);                                 \
+        return any;                                                                             \
+    }                                                                                           \
+    FIGGEN_FORMULA_CLONES int copy_finite##SUFFIX(REAL* __restrict out, const REAL* __restrict v, int n) { \
+        int bad = 0;                                                                            \
+        for (int i = 0; i < n; ++i) {                                                           \
+            out[i] = v[i];                                                                      \
+            bad |= (v[i] - v[i]) != REAL(0); /* inf - inf and NaN - NaN are NaN */              \
+        }                                                                                       \
+        return bad;                                                                             \
+    }
+FIGGEN_FORMULA_CHECKS(float, _f)
+FIGGEN_FORMULA_CHECKS(double, _d)
+
+template <class Real>
+int zero_where(const Real* b, const Real* mask, int n) {
+    if constexpr (sizeof(Real) == 4) return zero_where_f(b, mask, n);
+    else return zero_where_d(b, mask, n);
+}
+template <class Real>
+int copy_finite(Real* out, const Real* v, int n) {
+    if constexpr (sizeof(Real) == 4) return copy_finite_f(out, v, n);
+    else return copy_finite_d(out, v, n);
+}
+
+template <class Real>
+void binary(Op op, Real* d, const Real* a, const Real* b, int n) {
+    if constexpr (sizeof(Real) == 4) {
+        switch (op) {
+        case Op::add: add_rows_f(d, a, b, n); return;
+        case Op::sub: sub_rows_f(d, a, b, n); return;
+        case Op::mul: mul_rows_f(d, a, b, n); return;
+        default: div_rows_f(d, a, b, n); return;
+        }
+    } else {
+        switch (op) {
+        case Op::add: add_rows_d(d, a, b, n); return;
+        case Op::sub: sub_rows_d(d, a, b, n); return;
+        case Op::mul: mul_rows_d(d, a, b, n); return;
+        default: div_rows_d(d, a, b, n); return;
+        }
+    }
+}
+
+// A chemical's rows with their halo, and which row a row's neighbour at dy is.
+template <class Real>
+struct Rows {
+    int width = 0, height = 0, halo = 0;
+    std::ptrdiff_t stride = 0;
+    std::unique_ptr<Real[]> cells;
+    Real* row(int y) { return cells.get() + static_cast<std::ptrdiff_t>(y) * stride + halo; }
+    const Real* row(int y) const { return cells.get() + static_cast<std::ptrdiff_t>(y) * stride + halo; }
+};
+
+// Where Ready reads the cell at t (a column, -halo .. width + halo - 1) of a
+// row: its blocks of `block` cells clamped or wrapped with `& (blocks - 1)`,
+// the place in the block kept.
+int source_column(int t, int width, int block, bool wrap, bool ready) {
+    if (!ready) return wrap ? ((t % width) + width) % width : std::min(width - 1, std::max(0, t));
+    const int blocks = width / block;
+    const int b = (t >= 0 ? t / block : -((-t + block - 1) / block));
+    const int lane = t - b * block;
+    const int source_block = wrap ? ((b + blocks) & (blocks - 1)) : std::min(blocks - 1, std::max(0, b));
+    return source_block * block + lane;
+}
+
+int source_row(int y, int height, bool wrap, bool ready) {
+    if (!ready) return wrap ? ((y % height) + height) % height : std::min(height - 1, std::max(0, y));
+    return wrap ? ((y + height) & (height - 1)) : std::min(height - 1, std::max(0, y));
+}
+
+}  // namespace
+
+struct Run::Impl {
+    virtual ~Impl() = default;
+    virtual void step(int steps, int threads) = 0;
+    virtual Grid<double> chemical(int i) const = 0;
+    long long steps = 0;
+    int width = 0, height = 0, operations = 0, chemicals = 0;
+};
+
+namespace {
+
+template <class Real>
+class Engine final : public Run::Impl {
+public:
+    Engine(const Rule& rule, Program program, int w, int h, const std::vector<Grid<double>>& start)
+        : rule_(rule), program_(std::move(program)), id_(next_id()) {
+        chemicals = rule.chemicals;
+        width = w;
+        height = h;
+        operations = static_cast<int>(program_.code.size());
+        halo_ = program_.radius_x;
+        for (int k = 0; k < 2; ++k)
+            for (int c = 0; c < rule.chemicals; ++c) state_[k].push_back(make_rows());
+        halo_source_.resize(static_cast<std::size_t>(2 * halo_));
+        for (int i = 0; i < halo_; ++i) {
+            halo_source_[i] = source_column(-halo_ + i, w, rule.block_x, rule.wrap, rule.ready_edges);
+            halo_source_[halo_ + i] = source_column(w + i, w, rule.block_x, rule.wrap, rule.ready_edges);
+        }
+
+        for (int c = 0; c < rule.chemicals; ++c) {
+            Rows<Real>& rows = state_[0][c];
+            for (int y = 0; y < h; ++y) {
+                Real* row = rows.row(y);
+                for (int x = 0; x < w; ++x) row[x] = static_cast<Real>(start[c](y, x));
+                fill_halo(row);
+            }
+        }
+        for (int dy = -program_.radius_y; dy <= program_.radius_y; ++dy) {
+            std::vector<int> rows(static_cast<std::size_t>(h));
+            for (int y = 0; y < h; ++y) rows[y] = source_row(y + dy, h, rule.wrap, rule.ready_edges);
+            row_at_.push_back(std::move(rows));
+        }
+        // x_pos and y_pos as Ready computes them.
+        if (program_.x_pos >= 0) {
+            x_pos_.resize(static_cast<std::size_t>(w));
+            for (int x = 0; x < w; ++x) {
+                if (rule.block_x == 4)
+                    x_pos_[x] = (static_cast<Real>(x / 4) + static_cast<Real>(x % 4) * Real(0.25)) /
+                                static_cast<Real>(w / 4);
+                else
+                    x_pos_[x] = static_cast<Real>(x) / static_cast<Real>(w);
+            }
+        }
+    }
+
+    void step(int steps_wanted, int threads) override {
+        if (steps_wanted <= 0) return;
+        Failure failure;
+        failure.base = steps;
+        const int first = current_;
+        {
+            // Ready builds with -cl-denorms-are-zero: float flushes subnormals;
+            // double keeps them (and so equals figgen's own double models).
+            parallel_steps(height, steps_wanted, threads, [&](int s, int begin, int end) {
+                // A failed step still ends on every thread (the first cell in
+                // row order wins, whatever the timing); no later step runs.
+                if (failure.failed_step.load(std::memory_order_relaxed) < s) return;
+                std::optional<SubnormalsFlushed> flushed;
+                if constexpr (sizeof(Real) == 4) flushed.emplace();
+                const int from = (first + s) & 1;
+                Scratch& scratch = this->scratch();
+                for (int y = begin; y < end; ++y)
+                    if (!row(s, y, state_[from], state_[from ^ 1], scratch, failure)) return;
+            });
+        }
+        if (failure.failed.load()) {
+            // The state stays the failed step's input.
+            const long long done = failure.step - failure.base;  // steps of this call that completed
+            steps = failure.step;
+            current_ = static_cast<int>((first + done) & 1);
+            throw Unstable(failure.message);
+        }
+        steps += steps_wanted;
+        current_ = (first + steps_wanted) & 1;
+    }
+
+    Grid<double> chemical(int i) const override {
+        Grid<double> g(height, width);
+        const Rows<Real>& rows = state_[current_][i];
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) g(y, x) = static_cast<double>(rows.row(y)[x]);
+        return g;
+    }
+
+private:
+    struct Failure {
+        std::atomic<bool> failed{false};
+        std::atomic<long long> failed_step{std::numeric_limits<long long>::max()};  // of this call's steps
+        std::mutex lock;
+        long long step = 0, y = 0, x = 0;
+        long long base = 0;  // the run's steps before this call
+        std::string message;
+        // Keeps the first failure in (step, row, column) order, whatever the threads' timing.
+        void record(long long s, int row, int column, std::string what) {
+            std::lock_guard<std::mutex> hold(lock);
+            if (failed.load() && std::make_tuple(step, y, x) <= std::make_tuple(s, (long long)row, (long long)column))
+                return;
+            step = s;
+            y = row;
+            x = column;
+            message = std::move(what);
+            failed.store(true);
+            failed_step.store(s - base);
+        }
+    };
+
+    // Registers a chunk and a cache line apart, not a power of two: loads
+    // and stores 4 KiB apart alias in the core's store forwarding.
+    static constexpr int register_stride = chunk + 64 / static_cast<int>(sizeof(Real));
+
+    struct Scratch {
+        std::vector<Real, std::allocator<Real>> buffers;
+        std::vector<Real*> reg;
+        std::vector<const Real*> view;
+        std::uint64_t owner = 0;  // the engine whose program the registers hold
+    };
+
+    static std::uint64_t next_id() {
+        static std::atomic<std::uint64_t> id{0};
+        return ++id;
+    }
+
+    Scratch& scratch() {
+        thread_local Scratch s;
+        if (s.owner != id_) {
+            s.owner = id_;
+            s.buffers.assign(static_cast<std::size_t>(program_.registers) * register_stride + 64, Real(0));
+            s.reg.assign(static_cast<std::size_t>(program_.registers), nullptr);
+            Real* base = s.buffers.data();
+            const std::uintptr_t misaligned = reinterpret_cast<std::uintptr_t>(base) % 64;
+            if (misaligned) base += (64 - misaligned) / sizeof(Real);
+            for (int r = 0; r < program_.registers; ++r)
+                s.reg[r] = base + static_cast<std::ptrdiff_t>(r) * register_stride;
+            for (const Program::Constant& c : program_.constants)
+                std::fill(s.reg[c.reg], s.reg[c.reg] + chunk, static_cast<Real>(c.value));
+            s.view.assign(s.reg.begin(), s.reg.end());
+        }
+        return s;
+    }
+
+    Rows<Real> make_rows() const {
+        Rows<Real> r;
+        r.width = width;
+        r.height = height;
+        r.halo = halo_;
+        const std::ptrdiff_t per_line = 64 / sizeof(Real);
+        r.stride = (width + 2 * halo_ + per_line - 1) / per_line * per_line;
+        r.cells.reset(new Real[static_cast<std::size_t>(r.stride) * static_cast<std::size_t>(height)]());
+        return r;
+    }
+
+    void fill_halo(Real* row) const {
+        for (int i = 0; i < halo_; ++i) {
+            row[-halo_ + i] = row[halo_source_[i]];
+            row[width + i] = row[halo_source_[halo_ + i]];
+        }
+    }
+
+    // Row y of step s (the run's step number from 0 at this call) from
+    // `from` into `to`; false after recording a failure.
+    bool row(int s, int y, const std::vector<Rows<Real>>& from, std::vector<Rows<Real>>& to, Scratch& sc,
+             Failure& failure) {
+        const Program& p = program_;
+        const Real y_pos = static_cast<Real>(y) / static_cast<Real>(height);
+        for (int x0 = 0; x0 < width; x0 += chunk) {
+            const int n = std::min(chunk, width - x0);
+            for (const Program::Input& in : p.inputs)
+                sc.view[in.reg] = from[in.chemical].row(row_at_[in.dy + p.radius_y][y]) + x0 + in.dx;
+            if (p.x_pos >= 0) sc.view[p.x_pos] = x_pos_.data() + x0;
+            if (p.y_pos >= 0) {
+                std::fill(sc.reg[p.y_pos], sc.reg[p.y_pos] + n, y_pos);
+                sc.view[p.y_pos] = sc.reg[p.y_pos];
+            }
+            for (const Instr& in : p.code) {
+                const Real* a = in.a >= 0 ? sc.view[in.a] : nullptr;
+                const Real* b = in.b >= 0 ? sc.view[in.b] : nullptr;
+                const Real* c = in.c >= 0 ? sc.view[in.c] : nullptr;
+                const Real* mask = in.mask >= 0 ? sc.view[in.mask] : nullptr;
+                Real* d = sc.reg[in.dst];
+                sc.view[in.dst] = d;
+                switch (in.op) {
+                case Op::add:
+                case Op::sub:
+                case Op::mul: binary<Real>(in.op, d, a, b, n); break;
+                case Op::div: {
+                    int zero = -1;
+                    if (zero_where<Real>(b, mask, n))
+                        for (int i = 0; i < n && zero < 0; ++i)
+                            if (b[i] == 0 && (!mask || mask[i] != 0)) zero = i;
+                    if (zero >= 0) {
+                        failure.record(steps + s, y, x0 + zero,
+                                       "step " + std::to_string(steps + s + 1) + ", cell (x " +
+                                           std::to_string(x0 + zero) + ", y " + std::to_string(y) +
+                                           "): division by zero at line " + std::to_string(in.pos.line) +
+                                           ", column " + std::to_string(in.pos.column) + " of the formula");
+                        return false;
+                    }
+                    binary<Real>(Op::div, d, a, b, n);
+                    break;
+                }
+                case Op::copy: std::copy(a, a + n, d); break;
+                case Op::neg:
+                    for (int i = 0; i < n; ++i) d[i] = -a[i];
+                    break;
+                case Op::select:
+                    for (int i = 0; i < n; ++i) d[i] = c[i] != 0 ? b[i] : a[i];
+                    break;
+                case Op::call1:
+                    for (int i = 0; i < n; ++i) d[i] = scalar_call<Real>(in.fn, a[i], Real(0), Real(0));
+                    break;
+                case Op::call2:
+                    for (int i = 0; i < n; ++i) d[i] = scalar_call<Real>(in.fn, a[i], b[i], Real(0));
+                    break;
+                case Op::call3:
+                    for (int i = 0; i < n; ++i) d[i] = scalar_call<Real>(in.fn, a[i], b[i], c[i]);
+                    break;
+                case Op::int_div:
+                case Op::int_mod: {
+                    int zero = -1;
+                    for (int i = 0; i < n && zero < 0; ++i)
+                        if (std::trunc(b[i]) == 0) zero = i;
+                    if (zero >= 0) {
+                        failure.record(steps + s, y, x0 + zero,
+                                       "step " + std::to_string(steps + s + 1) + ", cell (x " +
+                                           std::to_string(x0 + zero) + ", y " + std::to_string(y) +
+                                           "): integer division by zero at line " + std::to_string(in.pos.line) +
+                                           ", column " + std::to_string(in.pos.column) + " of the formula");
+                        return false;
+                    }
+                    const Real truth = static_cast<Real>(in.truth);
+                    for (int i = 0; i < n; ++i) d[i] = scalar_op<Real>(in.op, a[i], b[i], truth);
+                    break;
+                }
+                default: {
+                    const Real truth = static_cast<Real>(in.truth);
+                    for (int i = 0; i < n; ++i) d[i] = scalar_op<Real>(in.op, a[i], b ? b[i] : Real(0), truth);
+                    break;
+                }
+                }
+            }
+            // The new values, each checked.
+            for (int chem = 0; chem < rule_.chemicals; ++chem) {
+                const Real* v = sc.view[p.outputs[chem]];
+                Real* out = to[chem].row(y) + x0;
+                if (copy_finite<Real>(out, v, n)) {
+                    int bad = 0;
+                    while (std::isfinite(v[bad])) ++bad;
+                    failure.record(steps + s, y, x0 + bad,
+                                   "step " + std::to_string(steps + s + 1) + ": chemical " + chemical_name(chem) +
+                                       " became " + (std::isnan(v[bad]) ? "NaN" : "infinite") + " at cell (x " +
+                                       std::to_string(x0 + bad) + ", y " + std::to_string(y) +
+                                       "): the model is unstable here; try a smaller timestep");
+                    return false;
+                }
+            }
+        }
+        for (int chem = 0; chem < rule_.chemicals; ++chem) fill_halo(to[chem].row(y));
+        return true;
+    }
+
+    Rule rule_;
+    Program program_;
+    std::uint64_t id_;
+    int halo_ = 0;
+    std::vector<Rows<Real>> state_[2];
+    int current_ = 0;
+    std::vector<std::vector<int>> row_at_;  // [dy + radius_y][y]
+    std::vector<int> halo_source_;          // the halo's source columns: left, then right
+    std::vector<Real> x_pos_;
+};
+
+}  // namespace
+
+std::string chemical_name(int i) {
+    if (i < 0 || i >= max_chemicals) throw std::invalid_argument("chemical index " + std::to_string(i));
+    return std::string(1, static_cast<char>('a' + i));
+}
+
+void Rule::validate(int width, int height) const {
+    if (chemicals < 1 || chemicals > max_chemicals)
+        throw std::invalid_argument("number_of_chemicals is " + std::to_string(chemicals) + ", not from 1 to " +
+                                    std::to_string(max_chemicals));
+    if (block_x != 1 && block_x != 4)
+        throw std::invalid_argument("block_size_x is " + std::to_string(block_x) + ": figgen runs 1 or 4");
+    if (width < 1 || height < 1 || width > 16384 || height > 16384)
+        throw std::invalid_argument("the grid is " + std::to_string(width) + " x " + std::to_string(height) +
+                                    ", not from 1 x 1 to 16384 x 16384");
+    if (width % block_x != 0)
+        throw std::invalid_argument("the grid is " + std::to_string(width) + " cells wide: Ready's blocks of " +
+                                    std::to_string(block_x) + " need a multiple of " + std::to_string(block_x));
+    for (const auto& [name, value] : parameters) {
+        if (!std::isfinite(value))
+            throw std::invalid_argument("parameter " + name + " is " + std::to_string(value) + ", not a finite number");
+        if (name.empty() || name.size() > 64 || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
+            throw std::invalid_argument("parameter name \"" + name + "\" is not a name (letters, digits and _)");
+        for (char ch : name)
+            if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'))
+                throw std::invalid_argument("parameter name \"" + name + "\" is not a name (letters, digits and _)");
+    }
+    for (std::size_t i = 0; i < parameters.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (parameters[i].first == parameters[j].first)
+                throw std::invalid_argument("parameter " + parameters[i].first + " is given twice");
+}
+
+Run::Run(const Rule& rule, int width, int height, const std::vector<Grid<double>>& start) {
+    rule.validate(width, height);
+    if (static_cast<int>(start.size()) != rule.chemicals)
+        throw std::invalid_argument("the start has " + std::to_string(start.size()) + " chemicals, the rule " +
+                                    std::to_string(rule.chemicals));
+    for (const Grid<double>& g : start)
+        if (g.rows() != height || g.cols() != width)
+            throw std::invalid_argument("a chemical's start is " + std::to_string(g.cols()) + " x " +
+                                        std::to_string(g.rows()) + ", not the grid's " + std::to_string(width) +
+                                        " x " + std::to_string(height));
+    Program program = compile(rule, width, height);
+    if (program.radius_x * 2 >= width + 8 || program.radius_y > height * 4)
+        throw std::invalid_argument("the grid is too small for the formula's stencils");
+    if (rule.double_precision)
+        impl_ = std::make_unique<Engine<double>>(rule, std::move(program), width, height, start);
+    else
+        impl_ = std::make_unique<Engine<float>>(rule, std::move(program), width, height, start);
+}
+
+Run::~Run() = default;
+Run::Run(Run&&) noexcept = default;
+Run& Run::operator=(Run&&) noexcept = default;
+
+void Run::step(int steps, int threads) {
+    if (steps < 0) throw std::invalid_argument("steps is " + std::to_string(steps) + ", not >= 0");
+    impl_->step(steps, threads);
+}
+
+Grid<double> Run::chemical(int i) const {
+    if (i < 0 || i >= impl_->chemicals) throw std::invalid_argument("no chemical " + std::to_string(i));
+    return impl_->chemical(i);
+}
+
+long long Run::steps() const {
+    return impl_->steps;
+}
+int Run::width() const {
+    return impl_->width;
+}
+int Run::height() const {
+    return impl_->height;
+}
+int Run::operations() const {
+    return impl_->operations;
+}
+
+}  // namespace sim::formula
