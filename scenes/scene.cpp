@@ -10,6 +10,17 @@
 
 namespace scenes {
 
+namespace {
+
+// A formula figure's chemicals a .. z each have a colormap.
+std::vector<std::string> formula_colormap_keys() {
+    std::vector<std::string> keys;
+    for (char c = 'a'; c <= 'z'; ++c) keys.push_back(std::string(1, c) + "_colormap");
+    return keys;
+}
+
+}  // namespace
+
 const std::vector<SceneInfo>& all_scenes() {
     static const std::vector<SceneInfo> all = {
         {"diffusion", read_diffusion, {"colormap"}},
@@ -33,6 +44,7 @@ const std::vector<SceneInfo>& all_scenes() {
         {"roughness", read_roughness},
         {"lsystem", read_lsystem},
         {"lsystem_3d", read_lsystem_3d},
+        {"formula", read_formula, formula_colormap_keys()},
     };
     return all;
 }

@@ -222,11 +222,19 @@ private:
         return program_.registers++;
     }
     int emit(Instr instr) {
+        // The same operation on the same registers is the same value.
+        const auto key = std::make_tuple(static_cast<int>(instr.op), static_cast<int>(instr.fn), instr.a, instr.b,
+                                         instr.c, instr.truth, instr.mask);
+        if (instr.op != Op::stencil) {
+            auto seen = emitted_.find(key);
+            if (seen != emitted_.end()) return seen->second;
+        }
         if (static_cast<int>(program_.code.size()) >= Limits::max_operations)
             throw FormulaError(instr.pos, "the formula compiles to more than " +
                                               std::to_string(Limits::max_operations) + " operations");
         instr.dst = new_register();
         program_.code.push_back(instr);
+        if (instr.op != Op::stencil) emitted_[key] = instr.dst;
         return instr.dst;
     }
     // A register holding v (a constant's register, made once per value).
@@ -275,6 +283,22 @@ private:
         if (!integer) a = as_real(a), b = as_real(b);
         if (op == Op::int_mod && !integer) throw FormulaError(pos, "% takes ints; use fmod for numbers");
         if (integer && op == Op::div) op = Op::int_div;
+        // x * 1, 1 * x, x / 1 and x - (+0) are x, bit for bit.
+        if (!integer) {
+            const auto is = [](const Value& v, double x) {
+                return v.fixed && v.constant == x && !std::signbit(v.constant);
+            };
+            Value same;
+            bool found = true;
+            if (op == Op::mul && is(b, 1)) same = a;
+            else if (op == Op::mul && is(a, 1)) same = b;
+            else if ((op == Op::div && is(b, 1)) || (op == Op::sub && is(b, 0))) same = a;
+            else found = false;
+            if (found && !(a.fixed && b.fixed)) {
+                same.vector = vector;
+                return same;
+            }
+        }
         if (a.fixed && b.fixed) {
             if ((op == Op::div || op == Op::int_div || op == Op::int_mod) && b.constant == 0)
                 throw FormulaError(pos, "division by zero");
@@ -482,32 +506,43 @@ private:
     }
 
     // (w1 * (p + p ...) + p + ... + w2 * p) / (divisor * dx * dx ...), the
-    // weights in ascending order, as Ready's AppliedStencil::GetCode writes it.
+    // weights in ascending order, as Ready's AppliedStencil::GetCode writes
+    // it: one operation (Op::stencil) that keeps that order.
     Value apply_stencil(const Stencil& s, int chemical) {
         std::map<int, std::vector<StencilPoint>> by_weight;
         for (const StencilPoint& p : s.points) by_weight[p.weight].push_back(p);
-        std::optional<Value> sum;
-        auto add = [&](const Value& v) { sum = sum ? arith(Op::add, *sum, v, {}) : v; };
+        StencilSum sum;
+        bool vector = false;
         for (const auto& [weight, points] : by_weight) {
             if (weight == 1) {
-                for (const StencilPoint& p : points) add(input(chemical, p.x, p.y));
+                for (const StencilPoint& p : points) {
+                    const Value v = input(chemical, p.x, p.y);
+                    vector |= v.vector;
+                    sum.terms.push_back({1.0, {v.reg}});
+                }
                 continue;
             }
-            std::optional<Value> group;
+            StencilSum::Term term{round_real(weight), {}};
             for (const StencilPoint& p : points) {
                 const Value v = input(chemical, p.x, p.y);
-                group = group ? arith(Op::add, *group, v, {}) : v;
+                vector |= v.vector;
+                term.inputs.push_back(v.reg);
             }
-            add(arith(Op::mul, constant(weight, true), *group, {}));
+            sum.terms.push_back(std::move(term));
         }
-        Value result = *sum;
         if (s.divisor != 1 || s.dx_power > 0) {
             Value divisor = constant(s.divisor, true);
             const Value dx = keyword("dx");
             for (int i = 0; i < s.dx_power; ++i) divisor = arith(Op::mul, divisor, dx, {});
-            result = arith(Op::div, result, divisor, {});
+            divisor = as_real(divisor);
+            if (divisor.constant == 0) throw FormulaError({1, 1}, "dx is 0: the stencils divide by it");
+            sum.divide = true;
+            sum.divisor = divisor.constant;
         }
-        return result;
+        Instr in = instruction(Op::stencil);
+        in.a = static_cast<int>(program_.stencils.size());
+        program_.stencils.push_back(std::move(sum));
+        return in_register(emit(in), false, vector);
     }
 
     // A keyword of the rule, whatever the formula declares.
@@ -786,6 +821,19 @@ private:
 
     // ---- the program's registers ----
 
+    // The registers an instruction reads (a stencil's inputs).
+    std::vector<int> sources(const Instr& in) const {
+        std::vector<int> read;
+        if (in.op == Op::stencil) {
+            for (const StencilSum::Term& t : program_.stencils[in.a].terms)
+                read.insert(read.end(), t.inputs.begin(), t.inputs.end());
+            return read;
+        }
+        for (int r : {in.a, in.b, in.c, in.mask})
+            if (r >= 0) read.push_back(r);
+        return read;
+    }
+
     // Dead operations removed; registers renumbered so that buffers are
     // shared by values whose lives do not overlap.
     void finish() {
@@ -797,8 +845,7 @@ private:
             const Instr& in = program_.code[i];
             if (!live[in.dst]) continue;
             keep[i] = 1;
-            for (int r : {in.a, in.b, in.c, in.mask})
-                if (r >= 0) live[r] = 1;
+            for (int r : sources(in)) live[r] = 1;
         }
         std::vector<Instr> code;
         for (std::size_t i = 0; i < keep.size(); ++i)
@@ -835,20 +882,28 @@ private:
         // Temporaries: a buffer freed after its last use is taken again.
         std::vector<int> last_use(static_cast<std::size_t>(n), -1);
         for (int i = 0; i < static_cast<int>(code.size()); ++i)
-            for (int r : {code[i].a, code[i].b, code[i].c, code[i].mask})
-                if (r >= 0) last_use[r] = i;
+            for (int r : sources(code[i])) last_use[r] = i;
         for (int out : program_.outputs) last_use[out] = static_cast<int>(code.size());
         std::vector<int> free_buffers;
+        std::vector<StencilSum> stencils;
         for (int i = 0; i < static_cast<int>(code.size()); ++i) {
             Instr& in = code[i];
-            for (int* r : {&in.a, &in.b, &in.c, &in.mask})
-                if (*r >= 0) {
-                    const int virt = *r;
-                    *r = map[virt];
-                    if (last_use[virt] == i && temporary[virt]) {
-                        free_buffers.push_back(map[virt]);
-                        last_use[virt] = -2;  // freed once
-                    }
+            const std::vector<int> read = sources(in);
+            // Renumbered: the operands, or a stencil's inputs (in its own copy).
+            if (in.op == Op::stencil) {
+                StencilSum sum = program_.stencils[in.a];
+                for (StencilSum::Term& t : sum.terms)
+                    for (int& r : t.inputs) r = map[r];
+                in.a = static_cast<int>(stencils.size());
+                stencils.push_back(std::move(sum));
+            } else {
+                for (int* r : {&in.a, &in.b, &in.c, &in.mask})
+                    if (*r >= 0) *r = map[*r];
+            }
+            for (int virt : read)
+                if (last_use[virt] == i && temporary[virt]) {
+                    free_buffers.push_back(map[virt]);
+                    last_use[virt] = -2;  // freed once
                 }
             if (map[in.dst] < 0) {
                 if (!free_buffers.empty()) {
@@ -862,6 +917,7 @@ private:
         }
         for (int& out : program_.outputs) out = map[out];
         program_.code = std::move(code);
+        program_.stencils = std::move(stencils);
         program_.inputs = std::move(inputs);
         program_.constants = std::move(constants);
         program_.registers = next;
@@ -873,6 +929,7 @@ private:
     std::map<std::tuple<int, int, int>, Value> inputs_;
     std::map<std::pair<double, bool>, int> constant_regs_;
     int division_mask_ = -1;
+    std::map<std::tuple<int, int, int, int, int, double, int>, int> emitted_;
     int statements_run_ = 0;
     Program program_;
 };

@@ -25,6 +25,7 @@ enum class Op : std::uint8_t {
     trunc_int,                    // a converted to int (toward zero)
     int_div, int_mod,             // a / b, a % b on ints (toward zero)
     call1, call2, call3,          // fn(a), fn(a, b), fn(a, b, c)
+    stencil,                      // Program::stencils[a]: a weighted sum of inputs, in one pass
 };
 
 // The built-in functions (an allow-list, sim/formula_compile.cpp).
@@ -45,6 +46,19 @@ struct Instr {
     Pos pos;        // in the formula, for errors
 };
 
+// A stencil in one operation, Ready's order of operations kept: the terms
+// added left to right, each an input (weight 1) or weight * (the sum of its
+// inputs, left to right); then, if `divide`, divided by `divisor`.
+struct StencilSum {
+    struct Term {
+        double weight = 1;        // 1: a single input, added as it is
+        std::vector<int> inputs;  // registers
+    };
+    std::vector<Term> terms;
+    bool divide = false;
+    double divisor = 1;  // rounded to the number type
+};
+
 struct Program {
     // Registers 0 .. registers - 1 each hold a chunk of values. Some are
     // views into the model's rows (inputs, outputs), some constants
@@ -62,6 +76,7 @@ struct Program {
     std::vector<Input> inputs;
     int x_pos = -1, y_pos = -1;  // registers of x_pos and y_pos, if used
     std::vector<Instr> code;
+    std::vector<StencilSum> stencils;
     std::vector<int> outputs;  // per chemical: the register of its new value
     int radius_x = 0, radius_y = 0;  // the farthest neighbour read
 };

@@ -110,10 +110,10 @@ void binary(Op op, Real* d, const Real* a, const Real* b, int n) {
 template <class Real>
 struct Rows {
     int width = 0, height = 0, halo = 0;
-    std::ptrdiff_t stride = 0;
+    std::ptrdiff_t stride = 0, offset = 0;  // offset: the padding before row 0
     std::unique_ptr<Real[]> cells;
-    Real* row(int y) { return cells.get() + static_cast<std::ptrdiff_t>(y) * stride + halo; }
-    const Real* row(int y) const { return cells.get() + static_cast<std::ptrdiff_t>(y) * stride + halo; }
+    Real* row(int y) { return cells.get() + offset + static_cast<std::ptrdiff_t>(y) * stride + halo; }
+    const Real* row(int y) const { return cells.get() + offset + static_cast<std::ptrdiff_t>(y) * stride + halo; }
 };
 
 // Where Ready reads the cell at t (a column, -halo .. width + halo - 1) of a
@@ -145,6 +145,101 @@ struct Run::Impl {
 
 namespace {
 
+// A stencil's weighted sum (sim/formula_program.hpp's StencilSum), Ready's
+// order of operations in each cell, as a few passes over the chunk, each a
+// loop the compiler vectorises: a run of single inputs added to the sum in
+// one pass, a weighted group in another, the division in a last.
+//
+// One pass over n cells: with `Weighted`, d = [d +] w * (p0 + p1 + ...);
+// else d = [d +] p0 + p1 + ..., added left to right.
+template <class Real, int N, bool Weighted, bool Accumulate>
+[[gnu::always_inline]] inline void sum_pass(Real* __restrict d, const Real* const* p, int n, Real w) {
+    const Real* q[N];
+    for (int k = 0; k < N; ++k) q[k] = p[k];
+    for (int i = 0; i < n; ++i) {
+        if constexpr (Weighted) {
+            Real g = q[0][i];
+            for (int k = 1; k < N; ++k) g = g + q[k][i];
+            if constexpr (Accumulate) d[i] = d[i] + w * g;
+            else d[i] = w * g;
+        } else {
+            Real acc;
+            if constexpr (Accumulate) acc = d[i] + q[0][i];
+            else acc = q[0][i];
+            for (int k = 1; k < N; ++k) acc = acc + q[k][i];
+            d[i] = acc;
+        }
+    }
+}
+
+// The same for 1 to 8 inputs.
+template <class Real, bool Weighted, bool Accumulate>
+[[gnu::always_inline]] inline void sum_pass(Real* d, const Real* const* p, int count, int n, Real w) {
+    switch (count) {
+    case 1: sum_pass<Real, 1, Weighted, Accumulate>(d, p, n, w); return;
+    case 2: sum_pass<Real, 2, Weighted, Accumulate>(d, p, n, w); return;
+    case 3: sum_pass<Real, 3, Weighted, Accumulate>(d, p, n, w); return;
+    case 4: sum_pass<Real, 4, Weighted, Accumulate>(d, p, n, w); return;
+    case 5: sum_pass<Real, 5, Weighted, Accumulate>(d, p, n, w); return;
+    case 6: sum_pass<Real, 6, Weighted, Accumulate>(d, p, n, w); return;
+    case 7: sum_pass<Real, 7, Weighted, Accumulate>(d, p, n, w); return;
+    default: sum_pass<Real, 8, Weighted, Accumulate>(d, p, n, w); return;
+    }
+}
+
+template <class Real>
+[[gnu::always_inline]] inline void stencil_sum(Real* __restrict d, const StencilSum& sum, const Real* const* view,
+                                               int n, Real* __restrict group) {
+    constexpr int most = 8;  // inputs a pass takes
+    const Real* in[most];
+    bool first = true;
+    std::size_t t = 0;
+    while (t < sum.terms.size()) {
+        if (sum.terms[t].weight == 1) {
+            // A run of single inputs, each added in turn.
+            int count = 0;
+            while (t < sum.terms.size() && sum.terms[t].weight == 1 && count < most)
+                in[count++] = view[sum.terms[t++].inputs[0]];
+            if (first) sum_pass<Real, false, false>(d, in, count, n, Real(1));
+            else sum_pass<Real, false, true>(d, in, count, n, Real(1));
+        } else {
+            // A weighted group: its inputs summed (in the group buffer when
+            // more than a pass takes), then weighted and added.
+            const StencilSum::Term& term = sum.terms[t++];
+            const Real w = static_cast<Real>(term.weight);
+            const int count = static_cast<int>(term.inputs.size());
+            if (count <= most) {
+                for (int k = 0; k < count; ++k) in[k] = view[term.inputs[k]];
+                if (first) sum_pass<Real, true, false>(d, in, count, n, w);
+                else sum_pass<Real, true, true>(d, in, count, n, w);
+            } else {
+                for (int done = 0; done < count; done += most) {
+                    const int take = std::min(most, count - done);
+                    for (int k = 0; k < take; ++k) in[k] = view[term.inputs[done + k]];
+                    if (done == 0) sum_pass<Real, false, false>(group, in, take, n, Real(1));
+                    else sum_pass<Real, false, true>(group, in, take, n, Real(1));
+                }
+                in[0] = group;
+                if (first) sum_pass<Real, 1, true, false>(d, in, n, w);
+                else sum_pass<Real, 1, true, true>(d, in, n, w);
+            }
+        }
+        first = false;
+    }
+    if (sum.divide) {
+        const Real divisor = static_cast<Real>(sum.divisor);
+        for (int i = 0; i < n; ++i) d[i] = d[i] / divisor;
+    }
+}
+FIGGEN_FORMULA_CLONES void stencil_sum_f(float* d, const StencilSum& sum, const float* const* view, int n,
+                                          float* group) {
+    stencil_sum(d, sum, view, n, group);
+}
+FIGGEN_FORMULA_CLONES void stencil_sum_d(double* d, const StencilSum& sum, const double* const* view, int n,
+                                          double* group) {
+    stencil_sum(d, sum, view, n, group);
+}
+
 template <class Real>
 class Engine final : public Run::Impl {
 public:
@@ -155,6 +250,14 @@ public:
         height = h;
         operations = static_cast<int>(program_.code.size());
         halo_ = program_.radius_x;
+        const std::ptrdiff_t per_line = 64 / sizeof(Real);
+        stride_ = (w + 2 * halo_ + per_line - 1) / per_line * per_line;
+        // Several rows make one chunk where a row is short, so that each
+        // operation's loop is long: the rows with their halos (and the
+        // padding to the next row) are one run of memory, the lanes outside
+        // the grid computed and thrown away.
+        group_most_ = stride_ <= max_lanes ? static_cast<int>(max_lanes / stride_) : 1;
+        lanes_ = stride_ <= max_lanes ? static_cast<int>(group_most_ * stride_) : max_lanes;
         for (int k = 0; k < 2; ++k)
             for (int c = 0; c < rule.chemicals; ++c) state_[k].push_back(make_rows());
         halo_source_.resize(static_cast<std::size_t>(2 * halo_));
@@ -162,30 +265,38 @@ public:
             halo_source_[i] = source_column(-halo_ + i, w, rule.block_x, rule.wrap, rule.ready_edges);
             halo_source_[halo_ + i] = source_column(w + i, w, rule.block_x, rule.wrap, rule.ready_edges);
         }
-
-        for (int c = 0; c < rule.chemicals; ++c) {
-            Rows<Real>& rows = state_[0][c];
+        for (int c = 0; c < rule.chemicals; ++c)
             for (int y = 0; y < h; ++y) {
-                Real* row = rows.row(y);
+                Real* row = state_[0][c].row(y);
                 for (int x = 0; x < w; ++x) row[x] = static_cast<Real>(start[c](y, x));
                 fill_halo(row);
             }
-        }
         for (int dy = -program_.radius_y; dy <= program_.radius_y; ++dy) {
             std::vector<int> rows(static_cast<std::size_t>(h));
             for (int y = 0; y < h; ++y) rows[y] = source_row(y + dy, h, rule.wrap, rule.ready_edges);
             row_at_.push_back(std::move(rows));
         }
-        // x_pos and y_pos as Ready computes them.
+        // Row y follows row y - 1 in memory for every neighbour row: they can share a chunk.
+        follows_.assign(static_cast<std::size_t>(h), 0);
+        for (int y = 1; y < h; ++y) {
+            bool follows = true;
+            for (const std::vector<int>& rows : row_at_) follows &= rows[y] == rows[y - 1] + 1;
+            follows_[y] = follows;
+        }
+        // x_pos as Ready computes it, for every lane of a chunk of rows (0 outside the grid).
         if (program_.x_pos >= 0) {
-            x_pos_.resize(static_cast<std::size_t>(w));
-            for (int x = 0; x < w; ++x) {
-                if (rule.block_x == 4)
-                    x_pos_[x] = (static_cast<Real>(x / 4) + static_cast<Real>(x % 4) * Real(0.25)) /
+            x_pos_.assign(static_cast<std::size_t>(std::max<std::ptrdiff_t>(lanes_, stride_)) + 64, Real(0));
+            for (int r = 0; r < group_most_; ++r)
+                for (int x = 0; x < w; ++x) {
+                    Real value;
+                    if (rule.block_x == 4)
+                        value = (static_cast<Real>(x / 4) + static_cast<Real>(x % 4) * Real(0.25)) /
                                 static_cast<Real>(w / 4);
-                else
-                    x_pos_[x] = static_cast<Real>(x) / static_cast<Real>(w);
-            }
+                    else
+                        value = static_cast<Real>(x) / static_cast<Real>(w);
+                    if (group_most_ > 1) x_pos_[static_cast<std::size_t>(r * stride_ + halo_ + x)] = value;
+                    else x_pos_[static_cast<std::size_t>(x)] = value;
+                }
         }
     }
 
@@ -194,21 +305,25 @@ public:
         Failure failure;
         failure.base = steps;
         const int first = current_;
-        {
-            // Ready builds with -cl-denorms-are-zero: float flushes subnormals;
-            // double keeps them (and so equals figgen's own double models).
-            parallel_steps(height, steps_wanted, threads, [&](int s, int begin, int end) {
-                // A failed step still ends on every thread (the first cell in
-                // row order wins, whatever the timing); no later step runs.
-                if (failure.failed_step.load(std::memory_order_relaxed) < s) return;
-                std::optional<SubnormalsFlushed> flushed;
-                if constexpr (sizeof(Real) == 4) flushed.emplace();
-                const int from = (first + s) & 1;
-                Scratch& scratch = this->scratch();
-                for (int y = begin; y < end; ++y)
-                    if (!row(s, y, state_[from], state_[from ^ 1], scratch, failure)) return;
-            });
-        }
+        parallel_steps(height, steps_wanted, threads, [&](int s, int begin, int end) {
+            // A failed step still ends on every thread (the first cell in
+            // row order wins, whatever the timing); no later step runs.
+            if (failure.failed_step.load(std::memory_order_relaxed) < s) return;
+            // Ready builds with -cl-denorms-are-zero: float flushes
+            // subnormals; double keeps them (and so equals figgen's own
+            // double models).
+            std::optional<SubnormalsFlushed> flushed;
+            if constexpr (sizeof(Real) == 4) flushed.emplace();
+            const int from = (first + s) & 1;
+            Scratch& scratch = this->scratch();
+            for (int y = begin; y < end;) {
+                int rows = 1;
+                if (group_most_ > 1)
+                    while (rows < group_most_ && y + rows < end && follows_[y + rows]) ++rows;
+                if (!chunk_rows(s, y, rows, state_[from], state_[from ^ 1], scratch, failure)) return;
+                y += rows;
+            }
+        });
         if (failure.failed.load()) {
             // The state stays the failed step's input.
             const long long done = failure.step - failure.base;  // steps of this call that completed
@@ -229,6 +344,8 @@ public:
     }
 
 private:
+    static constexpr std::ptrdiff_t max_lanes = 1024;  // a chunk's cells: each register 4 or 8 KiB
+
     struct Failure {
         std::atomic<bool> failed{false};
         std::atomic<long long> failed_step{std::numeric_limits<long long>::max()};  // of this call's steps
@@ -252,12 +369,13 @@ private:
 
     // Registers a chunk and a cache line apart, not a power of two: loads
     // and stores 4 KiB apart alias in the core's store forwarding.
-    static constexpr int register_stride = chunk + 64 / static_cast<int>(sizeof(Real));
+    std::ptrdiff_t register_stride() const { return lanes_ + 64 / static_cast<std::ptrdiff_t>(sizeof(Real)); }
 
     struct Scratch {
-        std::vector<Real, std::allocator<Real>> buffers;
+        std::vector<Real> buffers;
         std::vector<Real*> reg;
         std::vector<const Real*> view;
+        Real* group = nullptr;    // a stencil's weighted group of more than 8 inputs
         std::uint64_t owner = 0;  // the engine whose program the registers hold
     };
 
@@ -270,28 +388,32 @@ private:
         thread_local Scratch s;
         if (s.owner != id_) {
             s.owner = id_;
-            s.buffers.assign(static_cast<std::size_t>(program_.registers) * register_stride + 64, Real(0));
+            const std::ptrdiff_t stride = register_stride();
+            s.buffers.assign(static_cast<std::size_t>((program_.registers + 1) * stride + 64), Real(0));
             s.reg.assign(static_cast<std::size_t>(program_.registers), nullptr);
             Real* base = s.buffers.data();
             const std::uintptr_t misaligned = reinterpret_cast<std::uintptr_t>(base) % 64;
             if (misaligned) base += (64 - misaligned) / sizeof(Real);
-            for (int r = 0; r < program_.registers; ++r)
-                s.reg[r] = base + static_cast<std::ptrdiff_t>(r) * register_stride;
+            for (int r = 0; r < program_.registers; ++r) s.reg[r] = base + static_cast<std::ptrdiff_t>(r) * stride;
+            s.group = base + static_cast<std::ptrdiff_t>(program_.registers) * stride;
             for (const Program::Constant& c : program_.constants)
-                std::fill(s.reg[c.reg], s.reg[c.reg] + chunk, static_cast<Real>(c.value));
+                std::fill(s.reg[c.reg], s.reg[c.reg] + lanes_, static_cast<Real>(c.value));
             s.view.assign(s.reg.begin(), s.reg.end());
         }
         return s;
     }
 
+    // Rows of a chemical, with `pad` cells before the first and after the
+    // last so that a chunk's lanes outside the grid read memory that exists.
     Rows<Real> make_rows() const {
         Rows<Real> r;
         r.width = width;
         r.height = height;
         r.halo = halo_;
-        const std::ptrdiff_t per_line = 64 / sizeof(Real);
-        r.stride = (width + 2 * halo_ + per_line - 1) / per_line * per_line;
-        r.cells.reset(new Real[static_cast<std::size_t>(r.stride) * static_cast<std::size_t>(height)]());
+        r.stride = stride_;
+        const std::ptrdiff_t pad = stride_ + 2 * halo_ + 64;
+        r.cells.reset(new Real[static_cast<std::size_t>(stride_ * height + 2 * pad)]());
+        r.offset = pad;
         return r;
     }
 
@@ -302,105 +424,136 @@ private:
         }
     }
 
-    // Row y of step s (the run's step number from 0 at this call) from
-    // `from` into `to`; false after recording a failure.
-    bool row(int s, int y, const std::vector<Rows<Real>>& from, std::vector<Rows<Real>>& to, Scratch& sc,
-             Failure& failure) {
+    void record_zero(Failure& failure, long long s, int y, int x, const Instr& in, const char* what) {
+        failure.record(s, y, x,
+                       "step " + std::to_string(s + 1) + ", cell (x " + std::to_string(x) + ", y " + std::to_string(y) +
+                           "): " + what + " at line " + std::to_string(in.pos.line) + ", column " +
+                           std::to_string(in.pos.column) + " of the formula");
+    }
+
+    // Rows y0 .. y0 + rows - 1 of step s (counted from this call's first)
+    // from `from` into `to`; false after recording a failure. Several rows
+    // go as one chunk of lanes (halos and padding included); a row longer
+    // than a chunk goes in pieces.
+    bool chunk_rows(int s, int y0, int rows, const std::vector<Rows<Real>>& from, std::vector<Rows<Real>>& to,
+                    Scratch& sc, Failure& failure) {
+        if (group_most_ > 1) {
+            if (!chunk(s, y0, rows, -halo_, static_cast<int>(rows * stride_), from, to, sc, failure)) return false;
+        } else {
+            for (int x0 = 0; x0 < width; x0 += static_cast<int>(lanes_))
+                if (!chunk(s, y0, 1, x0, std::min(static_cast<int>(lanes_), width - x0), from, to, sc, failure))
+                    return false;
+        }
+        for (int r = 0; r < rows; ++r)
+            for (int chem = 0; chem < rule_.chemicals; ++chem) fill_halo(to[chem].row(y0 + r));
+        return true;
+    }
+
+    // The chunk of `n` lanes from column x0 of row y0 on (rows > 1: whole
+    // padded rows from the first's halo). The grid's cells of it are, for
+    // each of its rows r, lanes r * stride + (-x0) .. + width (or all n).
+    bool chunk(int s, int y0, int rows, int x0, int n, const std::vector<Rows<Real>>& from,
+               std::vector<Rows<Real>>& to, Scratch& sc, Failure& failure) {
         const Program& p = program_;
-        const Real y_pos = static_cast<Real>(y) / static_cast<Real>(height);
-        for (int x0 = 0; x0 < width; x0 += chunk) {
-            const int n = std::min(chunk, width - x0);
-            for (const Program::Input& in : p.inputs)
-                sc.view[in.reg] = from[in.chemical].row(row_at_[in.dy + p.radius_y][y]) + x0 + in.dx;
-            if (p.x_pos >= 0) sc.view[p.x_pos] = x_pos_.data() + x0;
-            if (p.y_pos >= 0) {
-                std::fill(sc.reg[p.y_pos], sc.reg[p.y_pos] + n, y_pos);
-                sc.view[p.y_pos] = sc.reg[p.y_pos];
+        const long long step = steps + s;
+        const bool padded = group_most_ > 1;  // whole padded rows, from the first's halo
+        const int first_cell = padded ? -x0 : 0, cells = padded ? width : n;
+        auto cell_x = [&](int lane) { return (padded ? lane % static_cast<int>(stride_) - halo_ : x0 + lane); };
+        auto cell_y = [&](int lane) { return y0 + (padded ? lane / static_cast<int>(stride_) : 0); };
+        for (const Program::Input& in : p.inputs)
+            sc.view[in.reg] = from[in.chemical].row(row_at_[in.dy + p.radius_y][y0]) + x0 + in.dx;
+        if (p.x_pos >= 0) sc.view[p.x_pos] = x_pos_.data() + (padded ? 0 : x0);
+        if (p.y_pos >= 0) {
+            Real* yp = sc.reg[p.y_pos];
+            for (int r = 0; r < rows; ++r)
+                std::fill(yp + r * (padded ? stride_ : 0), yp + (padded ? (r + 1) * stride_ : n),
+                          static_cast<Real>(y0 + r) / static_cast<Real>(height));
+            sc.view[p.y_pos] = yp;
+        }
+        for (const Instr& in : p.code) {
+            const Real* a = in.op != Op::stencil && in.a >= 0 ? sc.view[in.a] : nullptr;
+            const Real* b = in.b >= 0 ? sc.view[in.b] : nullptr;
+            const Real* c = in.c >= 0 ? sc.view[in.c] : nullptr;
+            const Real* mask = in.mask >= 0 ? sc.view[in.mask] : nullptr;
+            Real* d = sc.reg[in.dst];
+            switch (in.op) {
+            case Op::add:
+            case Op::sub:
+            case Op::mul: binary<Real>(in.op, d, a, b, n); break;
+            case Op::stencil:
+                if constexpr (sizeof(Real) == 4) stencil_sum_f(d, p.stencils[in.a], sc.view.data(), n, sc.group);
+                else stencil_sum_d(d, p.stencils[in.a], sc.view.data(), n, sc.group);
+                break;
+            case Op::div: {
+                // Zero divisors only count on the grid's cells (and where an if lets them through).
+                for (int r = 0; r < rows; ++r) {
+                    const int begin = r * static_cast<int>(padded ? stride_ : 0) + first_cell;
+                    if (zero_where<Real>(b + begin, mask ? mask + begin : nullptr, cells))
+                        for (int i = begin; i < begin + cells; ++i)
+                            if (b[i] == 0 && (!mask || mask[i] != 0)) {
+                                record_zero(failure, step, cell_y(i), cell_x(i), in, "division by zero");
+                                return false;
+                            }
+                }
+                binary<Real>(Op::div, d, a, b, n);
+                break;
             }
-            for (const Instr& in : p.code) {
-                const Real* a = in.a >= 0 ? sc.view[in.a] : nullptr;
-                const Real* b = in.b >= 0 ? sc.view[in.b] : nullptr;
-                const Real* c = in.c >= 0 ? sc.view[in.c] : nullptr;
-                const Real* mask = in.mask >= 0 ? sc.view[in.mask] : nullptr;
-                Real* d = sc.reg[in.dst];
-                sc.view[in.dst] = d;
-                switch (in.op) {
-                case Op::add:
-                case Op::sub:
-                case Op::mul: binary<Real>(in.op, d, a, b, n); break;
-                case Op::div: {
-                    int zero = -1;
-                    if (zero_where<Real>(b, mask, n))
-                        for (int i = 0; i < n && zero < 0; ++i)
-                            if (b[i] == 0 && (!mask || mask[i] != 0)) zero = i;
-                    if (zero >= 0) {
-                        failure.record(steps + s, y, x0 + zero,
-                                       "step " + std::to_string(steps + s + 1) + ", cell (x " +
-                                           std::to_string(x0 + zero) + ", y " + std::to_string(y) +
-                                           "): division by zero at line " + std::to_string(in.pos.line) +
-                                           ", column " + std::to_string(in.pos.column) + " of the formula");
-                        return false;
-                    }
-                    binary<Real>(Op::div, d, a, b, n);
-                    break;
+            case Op::copy: std::copy(a, a + n, d); break;
+            case Op::neg:
+                for (int i = 0; i < n; ++i) d[i] = -a[i];
+                break;
+            case Op::select:
+                for (int i = 0; i < n; ++i) d[i] = c[i] != 0 ? b[i] : a[i];
+                break;
+            case Op::call1:
+                for (int i = 0; i < n; ++i) d[i] = scalar_call<Real>(in.fn, a[i], Real(0), Real(0));
+                break;
+            case Op::call2:
+                for (int i = 0; i < n; ++i) d[i] = scalar_call<Real>(in.fn, a[i], b[i], Real(0));
+                break;
+            case Op::call3:
+                for (int i = 0; i < n; ++i) d[i] = scalar_call<Real>(in.fn, a[i], b[i], c[i]);
+                break;
+            case Op::int_div:
+            case Op::int_mod: {
+                for (int r = 0; r < rows; ++r) {
+                    const int begin = r * static_cast<int>(padded ? stride_ : 0) + first_cell;
+                    for (int i = begin; i < begin + cells; ++i)
+                        if (std::trunc(b[i]) == 0 && (!mask || mask[i] != 0)) {
+                            record_zero(failure, step, cell_y(i), cell_x(i), in, "integer division by zero");
+                            return false;
+                        }
                 }
-                case Op::copy: std::copy(a, a + n, d); break;
-                case Op::neg:
-                    for (int i = 0; i < n; ++i) d[i] = -a[i];
-                    break;
-                case Op::select:
-                    for (int i = 0; i < n; ++i) d[i] = c[i] != 0 ? b[i] : a[i];
-                    break;
-                case Op::call1:
-                    for (int i = 0; i < n; ++i) d[i] = scalar_call<Real>(in.fn, a[i], Real(0), Real(0));
-                    break;
-                case Op::call2:
-                    for (int i = 0; i < n; ++i) d[i] = scalar_call<Real>(in.fn, a[i], b[i], Real(0));
-                    break;
-                case Op::call3:
-                    for (int i = 0; i < n; ++i) d[i] = scalar_call<Real>(in.fn, a[i], b[i], c[i]);
-                    break;
-                case Op::int_div:
-                case Op::int_mod: {
-                    int zero = -1;
-                    for (int i = 0; i < n && zero < 0; ++i)
-                        if (std::trunc(b[i]) == 0) zero = i;
-                    if (zero >= 0) {
-                        failure.record(steps + s, y, x0 + zero,
-                                       "step " + std::to_string(steps + s + 1) + ", cell (x " +
-                                           std::to_string(x0 + zero) + ", y " + std::to_string(y) +
-                                           "): integer division by zero at line " + std::to_string(in.pos.line) +
-                                           ", column " + std::to_string(in.pos.column) + " of the formula");
-                        return false;
-                    }
-                    const Real truth = static_cast<Real>(in.truth);
-                    for (int i = 0; i < n; ++i) d[i] = scalar_op<Real>(in.op, a[i], b[i], truth);
-                    break;
-                }
-                default: {
-                    const Real truth = static_cast<Real>(in.truth);
-                    for (int i = 0; i < n; ++i) d[i] = scalar_op<Real>(in.op, a[i], b ? b[i] : Real(0), truth);
-                    break;
-                }
-                }
+                const Real truth = static_cast<Real>(in.truth);
+                for (int i = 0; i < n; ++i) d[i] = scalar_op<Real>(in.op, a[i], b[i], truth);
+                break;
             }
-            // The new values, each checked.
+            default: {
+                const Real truth = static_cast<Real>(in.truth);
+                for (int i = 0; i < n; ++i) d[i] = scalar_op<Real>(in.op, a[i], b ? b[i] : Real(0), truth);
+                break;
+            }
+            }
+            sc.view[in.dst] = d;
+        }
+        // The new values of the grid's cells, each checked.
+        for (int r = 0; r < rows; ++r) {
+            const int begin = r * static_cast<int>(padded ? stride_ : 0) + first_cell;
             for (int chem = 0; chem < rule_.chemicals; ++chem) {
-                const Real* v = sc.view[p.outputs[chem]];
-                Real* out = to[chem].row(y) + x0;
-                if (copy_finite<Real>(out, v, n)) {
+                const Real* v = sc.view[p.outputs[chem]] + begin;
+                Real* out = to[chem].row(y0 + r) + (padded ? 0 : x0);
+                if (copy_finite<Real>(out, v, cells)) {
                     int bad = 0;
                     while (std::isfinite(v[bad])) ++bad;
-                    failure.record(steps + s, y, x0 + bad,
-                                   "step " + std::to_string(steps + s + 1) + ": chemical " + chemical_name(chem) +
+                    failure.record(step, y0 + r, (padded ? 0 : x0) + bad,
+                                   "step " + std::to_string(step + 1) + ": chemical " + chemical_name(chem) +
                                        " became " + (std::isnan(v[bad]) ? "NaN" : "infinite") + " at cell (x " +
-                                       std::to_string(x0 + bad) + ", y " + std::to_string(y) +
+                                       std::to_string((padded ? 0 : x0) + bad) + ", y " + std::to_string(y0 + r) +
                                        "): the model is unstable here; try a smaller timestep");
                     return false;
                 }
             }
         }
-        for (int chem = 0; chem < rule_.chemicals; ++chem) fill_halo(to[chem].row(y));
         return true;
     }
 
@@ -408,9 +561,12 @@ private:
     Program program_;
     std::uint64_t id_;
     int halo_ = 0;
+    std::ptrdiff_t stride_ = 0, lanes_ = 0;
+    int group_most_ = 1;
     std::vector<Rows<Real>> state_[2];
     int current_ = 0;
     std::vector<std::vector<int>> row_at_;  // [dy + radius_y][y]
+    std::vector<char> follows_;             // row y follows row y - 1 for every dy
     std::vector<int> halo_source_;          // the halo's source columns: left, then right
     std::vector<Real> x_pos_;
 };

@@ -1,0 +1,208 @@
+#include "sim/formula_pattern.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <memory>
+#include <numeric>
+#include <stdexcept>
+
+namespace sim::formula {
+
+namespace {
+
+template <class Kind, std::size_t N>
+Kind named(const std::string& name, const std::pair<const char*, Kind> (&names)[N], const char* what) {
+    std::string allowed;
+    for (const auto& [text, kind] : names) {
+        if (name == text) return kind;
+        allowed += (allowed.empty() ? "" : ", ") + std::string(text);
+    }
+    throw std::invalid_argument(std::string(what) + " \"" + name + "\" is not one figgen knows: use " + allowed);
+}
+
+const std::pair<const char*, Overlay::Operation> operations[] = {
+    {"overwrite", Overlay::Operation::overwrite}, {"add", Overlay::Operation::add},
+    {"subtract", Overlay::Operation::subtract},   {"multiply", Overlay::Operation::multiply},
+    {"divide", Overlay::Operation::divide}};
+const std::pair<const char*, Fill::Kind> fills[] = {
+    {"constant", Fill::Kind::constant},         {"white_noise", Fill::Kind::white_noise},
+    {"perlin_noise", Fill::Kind::perlin_noise}, {"linear_gradient", Fill::Kind::linear_gradient},
+    {"radial_gradient", Fill::Kind::radial_gradient}, {"gaussian", Fill::Kind::gaussian},
+    {"sine", Fill::Kind::sine},                 {"other_chemical", Fill::Kind::other_chemical},
+    {"parameter", Fill::Kind::parameter}};
+const std::pair<const char*, Shape::Kind> shapes[] = {{"everywhere", Shape::Kind::everywhere},
+                                                      {"rectangle", Shape::Kind::rectangle},
+                                                      {"circle", Shape::Kind::circle},
+                                                      {"pixel", Shape::Kind::pixel}};
+
+template <class Kind, std::size_t N>
+const char* text_of(Kind kind, const std::pair<const char*, Kind> (&names)[N]) {
+    for (const auto& [text, k] : names)
+        if (k == kind) return text;
+    return "?";
+}
+
+double hypot3(double x, double y, double z) {
+    return std::sqrt(x * x + y * y + z * z);
+}
+
+// Ken Perlin's improved noise (2002) over a permutation drawn from the
+// run's generator, in octaves of doubling frequency and halving amplitude,
+// mapped to [0, 1] as Ready's generator maps it.
+class Perlin {
+public:
+    explicit Perlin(Random& rng) {
+        std::iota(p_, p_ + 256, 0);
+        for (int i = 255; i > 0; --i) std::swap(p_[i], p_[rng.below(static_cast<std::uint64_t>(i) + 1)]);
+        for (int i = 0; i < 256; ++i) p_[256 + i] = p_[i];
+    }
+
+    double octaves01(double x, double y, double z, int octaves) const {
+        double sum = 0, amplitude = 1;
+        for (int i = 0; i < octaves; ++i) {
+            sum += noise(x, y, z) * amplitude;
+            x *= 2, y *= 2, z *= 2;
+            amplitude *= 0.5;
+        }
+        return std::clamp(sum * 0.5 + 0.5, 0.0, 1.0);
+    }
+
+private:
+    static double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
+    static double lerp(double t, double a, double b) { return a + t * (b - a); }
+    static double grad(int hash, double x, double y, double z) {
+        const int h = hash & 15;
+        const double u = h < 8 ? x : y, v = h < 4 ? y : h == 12 || h == 14 ? x : z;
+        return ((h & 1) == 0 ? u : -u) + ((h & 2) == 0 ? v : -v);
+    }
+    double noise(double x, double y, double z) const {
+        const int X = static_cast<int>(std::floor(x)) & 255, Y = static_cast<int>(std::floor(y)) & 255,
+                  Z = static_cast<int>(std::floor(z)) & 255;
+        x -= std::floor(x), y -= std::floor(y), z -= std::floor(z);
+        const double u = fade(x), v = fade(y), w = fade(z);
+        const int A = p_[X] + Y, AA = p_[A] + Z, AB = p_[A + 1] + Z, B = p_[X + 1] + Y, BA = p_[B] + Z,
+                  BB = p_[B + 1] + Z;
+        return lerp(w,
+                    lerp(v, lerp(u, grad(p_[AA], x, y, z), grad(p_[BA], x - 1, y, z)),
+                         lerp(u, grad(p_[AB], x, y - 1, z), grad(p_[BB], x - 1, y - 1, z))),
+                    lerp(v, lerp(u, grad(p_[AA + 1], x, y, z - 1), grad(p_[BA + 1], x - 1, y, z - 1)),
+                         lerp(u, grad(p_[AB + 1], x, y - 1, z - 1), grad(p_[BB + 1], x - 1, y - 1, z - 1))));
+    }
+    int p_[512];
+};
+
+}  // namespace
+
+Overlay::Operation operation_named(const std::string& name) {
+    return named(name, operations, "operation");
+}
+Fill::Kind fill_named(const std::string& name) {
+    return named(name, fills, "fill");
+}
+Shape::Kind shape_named(const std::string& name) {
+    return named(name, shapes, "shape");
+}
+const char* name_of(Overlay::Operation op) {
+    return text_of(op, operations);
+}
+const char* name_of(Fill::Kind kind) {
+    return text_of(kind, fills);
+}
+const char* name_of(Shape::Kind kind) {
+    return text_of(kind, shapes);
+}
+
+void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals,
+                   const std::vector<std::pair<std::string, double>>& parameters, bool double_precision, Random& rng) {
+    if (chemicals.empty()) return;
+    const int width = chemicals.front().cols(), height = chemicals.front().rows();
+    const double X = width, Y = height, Z = 1, largest = std::max({X, Y, Z});
+    const auto stored = [&](double v) { return double_precision ? v : static_cast<double>(static_cast<float>(v)); };
+    if (pattern.zero_first)
+        for (Grid<double>& g : chemicals) g.fill(0.0);
+    // Each overlay's noise generator, made once.
+    std::vector<std::unique_ptr<Perlin>> perlin;
+    for (const Overlay& o : pattern.overlays)
+        perlin.push_back(o.fill.kind == Fill::Kind::perlin_noise ? std::make_unique<Perlin>(rng) : nullptr);
+    std::vector<double> parameter_values;
+    for (const Overlay& o : pattern.overlays) {
+        double value = 0;
+        if (o.fill.kind == Fill::Kind::parameter) {
+            bool found = false;
+            for (const auto& [name, v] : parameters)
+                if (name == o.fill.parameter) value = v, found = true;
+            if (!found) throw std::invalid_argument("a parameter fill names \"" + o.fill.parameter + "\", which the rule does not have");
+        }
+        if (o.fill.kind == Fill::Kind::other_chemical && (o.fill.chemical < 0 || o.fill.chemical >= static_cast<int>(chemicals.size())))
+            throw std::invalid_argument("an other_chemical fill names a chemical the rule does not have");
+        parameter_values.push_back(value);
+    }
+    const int n = static_cast<int>(chemicals.size());
+    std::vector<double> values(static_cast<std::size_t>(n));
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            for (std::size_t k = 0; k < pattern.overlays.size(); ++k) {
+                const Overlay& o = pattern.overlays[k];
+                if (o.chemical < 0 || o.chemical >= n) continue;  // as Ready: an overlay of a chemical not there is skipped
+                for (int c = 0; c < n; ++c) values[c] = chemicals[c](y, x);
+                double& target = values[o.chemical];
+                const double fx = x, fy = y, fz = 0;
+                for (const Shape& s : o.shapes) {
+                    bool inside = false;
+                    switch (s.kind) {
+                    case Shape::Kind::everywhere: inside = true; break;
+                    case Shape::Kind::rectangle:
+                        inside = fx / X >= s.a[0] && fx / X <= s.b[0] && fy / Y >= s.a[1] && fy / Y <= s.b[1];
+                        break;
+                    case Shape::Kind::circle:
+                        inside = std::hypot(fx - s.a[0] * X, fy - s.a[1] * Y) < s.radius * largest;
+                        break;
+                    case Shape::Kind::pixel: inside = x == s.pixel[0] && y == s.pixel[1]; break;
+                    }
+                    if (!inside) continue;
+                    const Fill& f = o.fill;
+                    double v = 0;
+                    switch (f.kind) {
+                    case Fill::Kind::constant: v = f.value; break;
+                    case Fill::Kind::white_noise: v = f.low + (f.high - f.low) * rng.uniform(); break;
+                    case Fill::Kind::perlin_noise: v = perlin[k]->octaves01(fx / f.scale, fy / f.scale, fz / f.scale, f.octaves); break;
+                    case Fill::Kind::linear_gradient:
+                    case Fill::Kind::sine: {
+                        const double bx = f.p2[0] - f.p1[0], by = f.p2[1] - f.p1[1], bz = f.p2[2] - f.p1[2];
+                        const double length = hypot3(bx, by, bz);
+                        const double along = length > 0 ? ((fx / X - f.p1[0]) * bx / length + (fy / Y - f.p1[1]) * by / length +
+                                                           (fz / Z - f.p1[2]) * bz / length) / length
+                                                        : 0.0;
+                        v = f.kind == Fill::Kind::sine ? f.amplitude * std::sin(along * 2.0 * std::numbers::pi - f.phase)
+                                                       : f.val1 + (f.val2 - f.val1) * along;
+                        break;
+                    }
+                    case Fill::Kind::radial_gradient: {
+                        const double d = hypot3(fx - f.p1[0] * X, fy - f.p1[1] * Y, fz - f.p1[2] * Z);
+                        const double r = hypot3((f.p2[0] - f.p1[0]) * X, (f.p2[1] - f.p1[1]) * Y, (f.p2[2] - f.p1[2]) * Z);
+                        v = f.val1 + (f.val2 - f.val1) * (r > 0 ? d / r : 0.0);
+                        break;
+                    }
+                    case Fill::Kind::gaussian: {
+                        const double sigma = f.sigma * largest;
+                        const double d = hypot3(f.p1[0] * X - fx, f.p1[1] * Y - fy, f.p1[2] * Z - fz);
+                        v = f.height * std::exp(-d * d / (2.0 * sigma * sigma));
+                        break;
+                    }
+                    case Fill::Kind::other_chemical: v = values[f.chemical]; break;
+                    case Fill::Kind::parameter: v = parameter_values[k]; break;
+                    }
+                    switch (o.operation) {
+                    case Overlay::Operation::overwrite: target = v; break;
+                    case Overlay::Operation::add: target += v; break;
+                    case Overlay::Operation::subtract: target -= v; break;
+                    case Overlay::Operation::multiply: target *= v; break;
+                    case Overlay::Operation::divide: target /= v; break;
+                    }
+                }
+                chemicals[o.chemical](y, x) = stored(target);
+            }
+}
+
+}  // namespace sim::formula

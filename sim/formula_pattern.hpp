@@ -1,0 +1,73 @@
+#pragma once
+// A formula model's start, as Ready's initial pattern generator makes it:
+// overlays applied in order to every cell (x fastest, then y), each
+// combining a fill with the chemical's value where any of its shapes holds
+// the cell. Ready's definitions (its src/readybase/overlays.cpp): shapes and
+// points are fractions of the grid, radii and sigmas of its largest side;
+// each value is stored in the model's number type before the next overlay
+// reads it. Noise comes from figgen's own seeded generator.
+
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sim/grid.hpp"
+#include "sim/random.hpp"
+
+namespace sim::formula {
+
+struct Fill {
+    enum class Kind { constant, white_noise, perlin_noise, linear_gradient, radial_gradient, gaussian, sine,
+                      other_chemical, parameter };
+    Kind kind = Kind::constant;
+    double value = 0;               // constant
+    double low = 0, high = 1;       // white_noise
+    double scale = 64;              // perlin_noise: cells a feature
+    int octaves = 8;                // perlin_noise
+    double val1 = 0, val2 = 1;      // linear_gradient, radial_gradient
+    double height = 1, sigma = 0.1; // gaussian
+    double phase = 0, amplitude = 1;  // sine
+    std::array<double, 3> p1{}, p2{};  // gradients, sine (p1, p2), gaussian (p1: centre)
+    int chemical = 0;               // other_chemical
+    std::string parameter;          // parameter
+};
+
+struct Shape {
+    enum class Kind { everywhere, rectangle, circle, pixel };
+    Kind kind = Kind::everywhere;
+    std::array<double, 3> a{}, b{};  // rectangle's corners; circle's centre (a)
+    double radius = 0;               // circle
+    std::array<int, 3> pixel{};      // pixel
+};
+
+struct Overlay {
+    enum class Operation { overwrite, add, subtract, multiply, divide };
+    int chemical = 0;
+    Operation operation = Operation::overwrite;
+    Fill fill;
+    std::vector<Shape> shapes;
+};
+
+struct Pattern {
+    bool zero_first = false;  // else the overlays apply over the cells already there
+    std::vector<Overlay> overlays;
+};
+
+// Names as Ready writes them ("overwrite", "white_noise", "circle", ...);
+// std::invalid_argument naming the allowed ones for others.
+Overlay::Operation operation_named(const std::string& name);
+Fill::Kind fill_named(const std::string& name);
+Shape::Kind shape_named(const std::string& name);
+const char* name_of(Overlay::Operation op);
+const char* name_of(Fill::Kind kind);
+const char* name_of(Shape::Kind kind);
+
+// Applies `pattern` to `chemicals` (each height x width, changed in place),
+// with the rule's `parameters` (for `parameter` fills), rounding each value
+// to float unless `double_precision`. Throws std::invalid_argument for an
+// overlay naming a chemical or parameter the rule does not have.
+void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals,
+                   const std::vector<std::pair<std::string, double>>& parameters, bool double_precision, Random& rng);
+
+}  // namespace sim::formula

@@ -1,0 +1,132 @@
+// The formula scene (scenes/formula.cpp): a rule of the user's own runs into
+// a figure; tc7-2 written as a formula gives tc7-2's fields bit for bit;
+// every mistake in a description is refused before anything runs.
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "app/render_figure.hpp"
+#include "description/catalog.hpp"
+#include "description/description.hpp"
+#include "figgen_run.hpp"
+#include "scenes/scene.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+nlohmann::json render_small(const description::Description& d) {
+    app::OutputOptions options;
+    options.dir = fs::path(FIGGEN_TEST_ARTIFACT_DIR) / ("formula-scene-" + std::to_string(::getpid()));
+    options.scale = 0.25;
+    options.video = false;
+    scenes::Progress quiet;
+    app::render_figure(d, options, quiet);
+    std::ifstream in(options.dir / (d.id + ".json"));
+    auto meta = nlohmann::json::parse(in);
+    fs::remove_all(options.dir);
+    return meta;
+}
+
+const std::string rule = R"(
+id = "fx-test"
+title = "a test"
+scene = "formula"
+seed = 3
+[params]
+chemicals = 2
+width = 32
+height = 32
+steps = 100
+formula = "delta_a = D_a * laplacian_a - a*b*b + F*(1.0f-a);\ndelta_b = D_b * laplacian_b + a*b*b - (F+K)*b;"
+timestep = 1.0
+D_a = 0.2
+D_b = 0.1
+F = 0.035
+K = 0.06
+initial = [{chemical = "a", fill = "constant", value = 1.0, shapes = [{shape = "everywhere"}]}, {chemical = "b", fill = "constant", value = 0.25, shapes = [{shape = "circle", centre = [0.5, 0.5], radius = 0.1}]}]
+[figure]
+panels = [0, 100]
+size = [400, 200]
+)";
+
+// The description above with one line of [params] replaced (or added).
+std::string with(const std::string& key, const std::string& value) {
+    std::string text = rule;
+    const std::size_t at = text.find("\n" + key + " = ");
+    if (at == std::string::npos) {
+        const std::size_t params = text.find("[params]\n") + 9;
+        return text.insert(params, key + " = " + value + "\n");
+    }
+    const std::size_t end = text.find('\n', at + 1);
+    return text.replace(at + 1, end - at - 1, key + " = " + value);
+}
+
+std::string refusal(const std::string& text) {
+    try {
+        const auto d = description::parse_description(text, "fx-test.toml");
+        scenes::read_scene(d, {});
+    } catch (const description::UsageError& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+
+}  // namespace
+
+TEST_CASE("tc7-2 written as a formula gives tc7-2's fields bit for bit", "[formula][scenes]") {
+    const auto book = render_small(description::load_description(description::resolve_figure("tc7-2")));
+    const auto formula =
+        render_small(description::load_description(fs::path(FIGGEN_SOURCE_DIR) / "docs/examples/fx-tc7-2.toml"));
+    REQUIRE(book["panels"].size() == 3);
+    REQUIRE(formula["panels"].size() == 3);
+    for (int i = 0; i < 3; ++i) {
+        INFO("panel " << i);
+        CHECK(formula["panels"][i]["step"] == book["panels"][i]["step"]);
+        CHECK(formula["panels"][i]["state_sha256"] == book["panels"][i]["state_sha256"]);
+    }
+}
+
+TEST_CASE("a formula description runs into panels, the start as its overlays make it", "[formula][scenes]") {
+    const auto meta = render_small(description::parse_description(rule, "fx-test.toml"));
+    REQUIRE(meta["panels"].size() == 2);
+    // Step 0: A is 1 everywhere; B 0.25 on a circle of radius 3.2 cells around (16, 16), else 0.
+    const auto& a0 = meta["panels"][0]["statistics"]["a"];
+    CHECK(a0["min"] == 1.0);
+    CHECK(a0["max"] == 1.0);
+    const auto& b0 = meta["panels"][0]["statistics"]["b"];
+    CHECK(b0["max"] == 0.25);
+    CHECK(b0["min"] == 0.0);
+    // 37 cells lie within 3.2 of (16, 16) (7 + 2 x 7 + 2 x 5 + 2 x 3 by columns): 0.25 each, over 1024.
+    CHECK(b0["mean"].get<double>() == Approx(37 * 0.25 / 1024));
+    CHECK(meta["panels"][1]["step"] == 100);
+    CHECK(meta["model_operations"].get<int>() > 0);
+}
+
+TEST_CASE("a formula description's mistakes are refused, naming the key and the formula's line", "[formula][scenes]") {
+    CHECK_THAT(refusal(with("formula", "\"delta_a = D_a * laplacian_a + F + K;\\ndelta_b = D_b * q;\"")),
+               Catch::StartsWith("formula = ") &&
+                   Catch::Contains("line 2, column 17 of the formula: 'q' is not a chemical"));
+    CHECK_THAT(refusal(with("Q", "2.0")), Catch::StartsWith("Q = 2 is not allowed: a parameter the formula uses"));
+    CHECK_THAT(refusal(with("width", "30")), Catch::StartsWith("width = 30 is not allowed: a multiple of block_x (4)"));
+    CHECK_THAT(refusal(with("D_a", "nan")), Catch::StartsWith("D_a = nan is not allowed"));
+    CHECK_THAT(refusal(with("timestep", "inf")), Catch::StartsWith("timestep = inf is not allowed"));
+    CHECK_THAT(refusal(with("steps", "50")), Catch::StartsWith("figure.panels = [0, 100] is not allowed"));
+    CHECK_THAT(refusal(with("accuracy", "\"best\"")), Catch::StartsWith("accuracy = 'best' is not allowed"));
+    CHECK_THAT(refusal(with("initial", "[{chemical = \"c\", shapes = [{shape = \"everywhere\"}]}]")),
+               Catch::StartsWith("initial[0].chemical = 'c' is not allowed"));
+    CHECK_THAT(refusal(with("initial", "[{fill = \"plasma\", shapes = [{shape = \"everywhere\"}]}]")),
+               Catch::StartsWith("initial[0].fill = 'plasma' is not allowed"));
+    CHECK_THAT(refusal(with("initial", "[{shapes = [{shape = \"blob\"}]}]")),
+               Catch::StartsWith("initial[0].shapes[0].shape = 'blob' is not allowed"));
+    CHECK_THAT(refusal(with("initial", "[{fill = \"parameter\", parameter = \"G\", shapes = [{shape = \"everywhere\"}]}]")),
+               Catch::StartsWith("initial[0].parameter = 'G' is not allowed"));
+    CHECK_THAT(refusal(with("initial", "[{shapes = []}]")), Catch::StartsWith("initial[0].shapes = [] is not allowed"));
+    CHECK(refusal(rule) == "accepted");
+}
