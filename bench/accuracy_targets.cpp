@@ -1,4 +1,4 @@
-// Issues 17's and 34's targets side by side, from one `make bench` run: the numbers
+// Issues 17's, 34's and 35's targets side by side, from one `make bench` run: the numbers
 // latest.json holds (the book's route, the pipeline) and Google Benchmark's
 // run just before (benchmarks.json), each against its target, into
 // bench/results/targets.md and latest.json's "targets".
@@ -33,6 +33,14 @@ double at(const nlohmann::json& json, std::initializer_list<const char*> path) {
         node = &(*node)[key];
     }
     return node->is_number() ? node->get<double>() : 0;
+}
+
+// The Gray-Scott formula's cell-updates per second over the float kernel's, 0 when either is absent.
+double formula_against_kernel(const Paths& paths) {
+    const auto file = paths.results / "benchmarks.json";
+    const double kernel = benchmark_rate(file, "gray_scott_kernel<float>/n:256/threads:2/real_time");
+    const double formula = benchmark_rate(file, "gray_scott_formula<false>/n:256/threads:2/real_time");
+    return kernel > 0 && formula > 0 ? formula / kernel : 0;
 }
 
 struct Row {
@@ -75,6 +83,9 @@ nlohmann::json target_table(const nlohmann::json& latest, const Paths& paths) {
         {"issue 34: 16-core GPU node, tc7-2's film, 151 frames at 3840 x 2160", "frames/s", 0, 30, true,
          "a GPU node: bash .gpu/run.sh"},
         {"issue 34: the same at 1920 x 1080", "frames/s", 0, 120, true, "a GPU node: bash .gpu/run.sh"},
+        // Issue 35's: a formula model against the hand-written kernel, same run.
+        {"issue 35: Ready's Gray-Scott formula (float, n = 256, 2 threads) against the hand-written float kernel",
+         "x", formula_against_kernel(paths), 0.5, true},
     };
     nlohmann::json out = nlohmann::json::array();
     std::string table = "| what | measured | target | met |\n|---|---|---|---|\n";

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <regex>
 #include <set>
 
 #include "render/digest.hpp"
@@ -222,11 +221,20 @@ Model read_model(Settings& params, const Description& d) {
         params.refuse("width", "a multiple of block_x (" + std::to_string(r.block_x) + ")");
     m.steps = params.count_in("steps", 1000, 0, 10'000'000);
     // The rule's parameters: each a number the formula uses (or timestep, dx).
-    std::set<std::string> words;
-    {
-        static const std::regex word("[A-Za-z_][A-Za-z_0-9]*");
-        for (auto it = std::sregex_iterator(r.code.begin(), r.code.end(), word); it != std::sregex_iterator(); ++it)
-            words.insert(it->str());
+    std::set<std::string> words;  // the formula's names
+    for (std::size_t i = 0; i < r.code.size();) {
+        const auto name_char = [&](std::size_t k, bool first) {
+            const unsigned char c = static_cast<unsigned char>(r.code[k]);
+            return std::isalpha(c) || c == '_' || (!first && std::isdigit(c));
+        };
+        if (!name_char(i, true) || (i > 0 && name_char(i - 1, false))) {
+            ++i;
+            continue;
+        }
+        std::size_t end = i;
+        while (end < r.code.size() && name_char(end, false)) ++end;
+        words.insert(r.code.substr(i, end - i));
+        i = end;
     }
     for (const auto& [key, value] : d.params) {
         const std::string name(key.str());

@@ -15,7 +15,7 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <regex>
+#include <cctype>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -463,24 +463,38 @@ private:
             return &(predefined_[name] = constant_variable(constant(3.14159265358979323846, false), "a constant"));
         if (name == "M_E" || name == "M_E_F")
             return &(predefined_[name] = constant_variable(constant(2.71828182845904523536, false), "a constant"));
-        // A neighbour: chemical, then n/s with a count, then e/w with a
-        // count (Ready's names: a_n, a_se, a_e2, a_n2w3), or u/d (the same
-        // cell on a 2-D grid).
-        static const std::regex neighbour("([a-z])_(?:(u|d)(\\d*))?(?:(n|s)(\\d*))?(?:(e|w)(\\d*))?");
-        std::smatch m;
-        if (std::regex_match(name, m, neighbour) && !chemical_of(m[1]).empty() && name.size() > 2) {
-            auto count = [&](int group) {
-                const std::string digits = m[group].str();
-                if (digits.empty()) return 1;
-                if (digits.size() > 2 || digits == "1" || digits[0] == '0') return -1;  // Ready writes a_n, not a_n1
-                return std::atoi(digits.c_str());
-            };
-            const int ny = m[4].matched ? count(5) : 0, nx = m[6].matched ? count(7) : 0,
-                      nz = m[2].matched ? count(3) : 0;
-            if (ny >= 0 && nx >= 0 && nz >= 0 && nx <= 10 && ny <= 10 && nz <= 10) {
-                const int dy = m[4].str() == "s" ? -ny : ny, dx = m[6].str() == "w" ? -nx : nx;
-                const int chem = m[1].str()[0] - 'a';
-                return &(predefined_[name] = constant_variable(input(chem, dx, dy), "a neighbour's value"));
+        // A neighbour: chemical, then u/d, n/s and e/w each with a count
+        // (Ready's names: a_n, a_se, a_e2, a_n2w3; u and d, the same cell
+        // on a 2-D grid).
+        if (name.size() > 2 && name[1] == '_' && !chemical_of(name.substr(0, 1)).empty()) {
+            std::size_t at = 2;
+            int offset[3] = {0, 0, 0};  // z, y, x
+            bool good = true, any = false;
+            const char* letters[3][2] = {{"u", "d"}, {"n", "s"}, {"e", "w"}};
+            for (int axis = 0; axis < 3 && good; ++axis) {
+                if (at >= name.size()) break;
+                const char c = name[at];
+                const int sign = c == letters[axis][0][0] ? 1 : c == letters[axis][1][0] ? -1 : 0;
+                if (sign == 0) continue;
+                ++at;
+                std::size_t digits = at;
+                while (digits < name.size() && std::isdigit(static_cast<unsigned char>(name[digits]))) ++digits;
+                int count = 1;
+                if (digits > at) {
+                    const std::string number = name.substr(at, digits - at);
+                    // Ready writes a_n, never a_n1; at most 10 cells away.
+                    if (number.size() > 2 || number[0] == '0' || number == "1") good = false;
+                    else count = std::atoi(number.c_str());
+                }
+                at = digits;
+                offset[axis] = sign * count;
+                any = true;
+            }
+            if (good && any && at == name.size() && std::abs(offset[0]) <= 10 && std::abs(offset[1]) <= 10 &&
+                std::abs(offset[2]) <= 10) {
+                const int chem = name[0] - 'a';
+                return &(predefined_[name] =
+                             constant_variable(input(chem, offset[2], offset[1]), "a neighbour's value"));
             }
         }
         // A stencil: label_chemical.
