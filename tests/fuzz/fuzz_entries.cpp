@@ -17,6 +17,7 @@
 #include "render/utf8.hpp"
 #include "scenes/figure_caption.hpp"
 #include "scenes/scene.hpp"
+#include "sim/formula.hpp"
 #include "sim/lsystem.hpp"
 #include "sim/snowflake.hpp"
 #include "sim/turtle.hpp"
@@ -129,6 +130,41 @@ Outcome snowflake_rule(const std::uint8_t* data, std::size_t size) {
     sim::Snowflake flake(params);
     for (int i = 0; i < 8; ++i) flake.step();
     (void)flake.ice_cells();
+    return Outcome::accepted;
+}
+
+Outcome formula(const std::uint8_t* data, std::size_t size) {
+    // The first byte picks the rule's settings (chemicals 1-3, accuracy,
+    // wrap, blocks, number type, Ready's edges); the rest is the formula.
+    const std::uint8_t pick = size > 0 ? data[0] : 0;
+    sim::formula::Rule rule;
+    rule.chemicals = 1 + pick % 3;
+    rule.accuracy = static_cast<sim::formula::Accuracy>((pick / 3) % 3);
+    rule.wrap = (pick & 0x10) != 0;
+    rule.block_x = (pick & 0x20) ? 1 : 4;
+    rule.double_precision = (pick & 0x40) != 0;
+    rule.ready_edges = (pick & 0x80) == 0;
+    rule.parameters = {{"timestep", 0.1}, {"k", 0.5}, {"D_a", 0.2}, {"dx", 1.0}};
+    rule.code = std::string(text_of(data + (size > 0), size > 0 ? size - 1 : 0));
+    std::vector<sim::Grid<double>> start;
+    for (int c = 0; c < rule.chemicals; ++c) {
+        sim::Grid<double> g(8, 8);
+        for (int i = 0; i < 64; ++i) g.data()[i] = 0.1 * ((i * (c + 3)) % 11);
+        start.push_back(std::move(g));
+    }
+    std::unique_ptr<sim::formula::Run> run;
+    try {
+        run = std::make_unique<sim::formula::Run>(rule, 8, 8, start);
+    } catch (const sim::formula::FormulaError&) {
+        return Outcome::refused;
+    }
+    // An accepted formula runs a few steps; a division by zero or a value
+    // gone infinite stops it with its own error, which is no bug.
+    try {
+        run->step(3, 1);
+    } catch (const sim::formula::Unstable&) {
+    }
+    for (int c = 0; c < rule.chemicals; ++c) (void)run->chemical(c);
     return Outcome::accepted;
 }
 
@@ -302,6 +338,7 @@ const std::vector<Target>& targets() {
         {"set", set_assignments},
         {"snowflake_rule", snowflake_rule},
         {"lsystem", lsystem},
+        {"formula", formula},
         {"output_name", output_name},
         {"parts", parts},
         {"caption_text", caption_text},

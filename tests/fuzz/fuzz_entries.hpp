@@ -31,6 +31,11 @@ Outcome snowflake_rule(const std::uint8_t* data, std::size_t size);
 // that is under 20,000 segments.
 Outcome lsystem(const std::uint8_t* data, std::size_t size);
 
+// A formula rule's code (sim::formula::Run): the first byte picks the
+// rule's settings, the rest is the formula. An accepted formula runs 3
+// steps on an 8 x 8 grid; refused: sim::formula::FormulaError.
+Outcome formula(const std::uint8_t* data, std::size_t size);
+
 // A figure id as `--set id=` gives it (any bytes: NUL, newlines, invalid
 // UTF-8): accepted only when it names a file inside the output folder (no
 // separator, not hidden, not "." or ".."), and a refusal's message, as
