@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cctype>
 #include <set>
+#include <thread>
 
 #include "render/digest.hpp"
 #include "scenes/field_panels.hpp"
@@ -195,6 +196,7 @@ struct Model {
     formula::Rule rule;
     int width = 128, height = 128, steps = 1000;
     formula::Pattern pattern;
+    int registers = 0, radius_x = 0;  // of the compiled formula, for the memory estimate
 };
 
 Model read_model(Settings& params, const Description& d) {
@@ -250,7 +252,9 @@ Model read_model(Settings& params, const Description& d) {
         throw SettingError("params.timestep", "", "the rule's timestep: X + timestep * delta_X each step");
     try {
         r.validate(m.width, m.height);
-        (void)formula::compile(r, m.width, m.height);
+        const formula::Program program = formula::compile(r, m.width, m.height);
+        m.registers = program.registers;
+        m.radius_x = program.radius_x;
     } catch (const formula::FormulaError& e) {
         params.refuse("formula", "...", "line " + std::to_string(e.pos().line) + ", column " +
                                             std::to_string(e.pos().column) + " of the formula: " + e.message());
@@ -304,16 +308,25 @@ public:
         require_drawable(params_, "width", "the grid", m_.height, m_.width);
     }
 
-    // Two states of every chemical (with halos), the start, and a copy per
-    // panel and frame of the chemicals shown, with their textures.
+    // Two states of every chemical (rows with their halos and padding,
+    // sim/formula_run.cpp), each thread's registers (a chunk of at most
+    // 1024 cells each, a line apart), the start and the grids read at a
+    // stop, and a copy per panel and frame of the chemicals shown, with
+    // their textures.
     std::vector<MemoryNeed> memory() const override {
         const double cell = m_.rule.double_precision ? 8 : 4, chemicals = m_.rule.chemicals;
         const double panels = static_cast<double>(d_.panels.size()) + 1;
-        return {grid_need("the chemicals' grids", m_.height, m_.width + 32, cell, 2 * chemicals),
+        const double row = m_.width + 2.0 * m_.radius_x + 64 / cell;  // a row, halos and padding
+        const double threads = model_threads() > 0 ? model_threads() : std::max(1u, std::thread::hardware_concurrency());
+        return {grid_need("the chemicals' grids", m_.height + 3, row, cell, 2 * chemicals),
+                grid_need("the formula's registers", threads * (m_.registers + 1), 1024 + 64 / cell, cell, 1),
                 grid_need("the start and the grids read", m_.height, m_.width, 8, 2 * chemicals),
                 grid_need("panels' copies", m_.height, m_.width, 8 + field_layer_bytes_per_cell,
                           panels * static_cast<double>(shown_.size()))};
     }
+
+    // One thread below 256^2 cells (the frame is drawn meanwhile), every core (0) above.
+    int model_threads() const { return m_.width * m_.height < 65536 ? 1 : 0; }
 
     void render(Output& out) const override {
         StepRunner run(d_, options_, out);
@@ -322,8 +335,7 @@ public:
                                              sim::Grid<double>(m_.height, m_.width, 0.0));
         formula::apply_pattern(m_.pattern, start, m_.rule.parameters, m_.rule.double_precision, rng);
         formula::Run model(m_.rule, m_.width, m_.height, start);
-        // One thread below 256^2 cells (the frame is drawn meanwhile), every core above.
-        const int threads = m_.width * m_.height < 65536 ? 1 : 0;
+        const int threads = model_threads();
         std::vector<sim::Grid<double>> now, drawn;  // every chemical where the run is, and those shown as drawn
         auto layers = [&](Cells cells) {
             std::vector<FieldLayer> l;
