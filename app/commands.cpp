@@ -28,6 +28,7 @@
 #include "description/description.hpp"
 #include "description/integer_text.hpp"
 #include "description/plain_name.hpp"
+#include "description/ready_vti.hpp"
 #include "render/gl_context.hpp"
 #include "render/media.hpp"
 #include "render/vector.hpp"
@@ -100,6 +101,32 @@ int ListCommand::run() {
         const Description d = description::load_description(file);
         std::printf("%-20s %s\n", d.id.c_str(), d.title.c_str());
     }
+    return 0;
+}
+
+ConvertCommand::ConvertCommand(CLI::App& parent) {
+    app = parent.add_subcommand("convert", "Write a Ready pattern file (.vti) as the figgen description that runs it");
+    app->add_option("pattern", pattern, "A 2-D Ready pattern file whose rule is a formula (.vti)")->required();
+    app->add_option("--out", out_dir, "Write OUT/ID.toml (created if missing) instead of printing it");
+}
+
+int ConvertCommand::run() {
+    if (!description::is_ready_pattern(pattern))
+        throw UsageError("pattern " + description::printable(pattern) + " is not allowed: a Ready pattern file, NAME.vti");
+    const description::ReadyPattern converted = description::read_ready_pattern(pattern);
+    // Checked as render would check it: a formula figgen cannot run is
+    // refused here, not when the description is first rendered.
+    const Description d = description::parse_description(converted.toml, pattern);
+    description::at_source(d, [&] { return scenes::read_scene(d, scenes::SceneOptions{}); });
+    if (out_dir.empty()) {
+        std::fputs(converted.toml.c_str(), stdout);
+        return 0;
+    }
+    OutputOptions options;
+    options.dir = out_dir;
+    const render::Folder folder = open_output_folder(options);
+    render::write_file_atomically(folder, converted.id + ".toml", converted.toml);
+    std::printf("%s\n", description::printable((folder.path() / (converted.id + ".toml")).string()).c_str());
     return 0;
 }
 
@@ -180,7 +207,9 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
     app->add_option("--gl-device", gl_device, "With --gl egl-device: which device (0.., in EGL's order)")
         ->capture_default_str()
         ->check(integer_in(0, 1023));
-    app->add_option("figures", targets, "Figure ids (see `figgen list`) or .toml description files")->required();
+    app->add_option("figures", targets,
+                    "Figure ids (see `figgen list`), .toml description files, or Ready's pattern files (.vti)")
+        ->required();
     app->add_option("--out", out_dir, "Output folder, created if missing")->capture_default_str();
     app->add_option("--set", overrides,
                     "Override a value: key=value for [params], section.key=value (style, figure, animation), or "
@@ -200,10 +229,10 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
     app->add_option("--format", formats,
                     "What to write besides the PNG and its JSON, a list (e.g. png,pdf,mp4): png (nothing more), pdf "
                     "and svg (the figure as vector graphics), mp4 (the animation), webm (the animation as VP9 in WebM) or "
-                    "frames (the animation as a PNG sequence); default: mp4, and the pdf or svg the description's "
-                    "figure.formats asks for")
+                    "frames (the animation as a PNG sequence), vti (a formula model's last step as Ready's file); default: "
+                    "mp4, and the pdf or svg the description's figure.formats asks for")
         ->delimiter(',')
-        ->check(CLI::IsMember({"png", "pdf", "svg", "mp4", "webm", "frames"}));
+        ->check(CLI::IsMember({"png", "pdf", "svg", "mp4", "webm", "frames", "vti"}));
     app->add_flag("--transparent", transparent,
                   "Leave the figure's background out of the PNG, PDF and SVG: only the ink is opaque");
 }
@@ -241,6 +270,7 @@ OutputOptions output_options(const RenderCommand& c) {
     options.formats_given = !c.formats.empty();
     options.pdf = named("pdf");
     options.svg = named("svg");
+    options.vti = named("vti");
     options.transparent = c.transparent;
     options.max_memory = parse_size("--max-memory", c.max_memory);
     options.max_disk = parse_size("--max-disk", c.max_disk);
@@ -325,7 +355,12 @@ int RenderCommand::run() {
     std::vector<CheckedFigure> figures;
     for (const std::string& target : targets) {
         auto d = std::make_unique<Description>(
-            description::load_description(description::resolve_figure(target), assignments, seed));
+            description::is_ready_pattern(target)
+                ? description::load_ready_pattern(target, assignments, seed)
+                : description::load_description(description::resolve_figure(target), assignments, seed));
+        if (options.vti && d->scene != "formula")
+            throw UsageError("--format vti: " + d->id + " is a " + d->scene +
+                             " figure; a VTI file holds a formula model's chemicals (scene = \"formula\")");
         if (!cmap.empty()) scenes::apply_colormap(*d, cmap);
         if (fps && d->animation) d->animation->fps = *fps;
         auto scene = check_figure(*d, options);

@@ -43,6 +43,14 @@ struct ListCommand : Command {
     int run() override;
 };
 
+// figgen convert PATTERN.vti: Ready's pattern as a figgen description, on
+// stdout or as OUT/ID.toml.
+struct ConvertCommand : Command {
+    explicit ConvertCommand(CLI::App& parent);
+    int run() override;
+    std::string pattern, out_dir;
+};
+
 struct DescribeCommand : Command {
     explicit DescribeCommand(CLI::App& parent);
     int run() override;

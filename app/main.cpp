@@ -70,11 +70,12 @@ int run_command(int argc, char** argv) {
     cli.require_subcommand(1);
     app::ListCommand list(cli);
     app::DescribeCommand describe(cli);
+    app::ConvertCommand convert(cli);
     app::GalleryCommand gallery(cli);
     app::ThumbnailsCommand thumbnails(cli);
     app::RenderCommand render(cli);
     app::RenderCommand merge(cli, true);
-    const std::vector<app::Command*> commands = {&list, &describe, &gallery, &thumbnails, &render, &merge};
+    const std::vector<app::Command*> commands = {&list, &describe, &convert, &gallery, &thumbnails, &render, &merge};
     if (is_unknown_command(argc, argv, commands)) {
         std::string allowed;
         for (const app::Command* c : commands) allowed += (allowed.empty() ? "" : ", ") + c->app->get_name();

@@ -206,6 +206,17 @@ double vector_file_bytes(int width, int height) {
     return 16.0 * width * height + 1024.0 * 1024.0;
 }
 
+// The most a formula model's VTI file takes: every chemical's cells as
+// doubles in base64 (zlib's blocks can only grow by a few bytes each), and
+// the XML around them.
+static double vti_bytes(const Description& d) {
+    const auto value = [&](const char* key, long long fallback, long long most) {
+        return static_cast<double>(std::clamp<long long>(d.params[key].value_or(fallback), 1, most));
+    };
+    const double cells = value("width", 128, 4096) * value("height", 128, 4096);
+    return cells * value("chemicals", 2, 26) * 8 * 1.34 * 1.01 + 65536 + 2.0 * d.params["formula"].value_or(std::string()).size();
+}
+
 void require_disk(const Description& d, const OutputOptions& options, double parts_bytes) {
     double bytes = 4.0 * figure_width(d, options) * figure_height(d, options);
     std::string largest = "the PNG";
@@ -221,6 +232,7 @@ void require_disk(const Description& d, const OutputOptions& options, double par
         if (options.webm) bytes += 0.15 * frames;  // VP9 at crf 32 takes less than x264 at 18 on every catalog film
         if (options.frames) bytes += 4.0 * frames, largest = "the PNG sequence";
     }
+    if (options.vti) bytes += vti_bytes(d);
     if (bytes > static_cast<double>(options.max_disk))
         throw UsageError(d.id + ": its outputs would take up to about " + format_bytes(bytes) + " (mostly " + largest +
                          "), more than --max-disk " + format_bytes(static_cast<double>(options.max_disk)) +
@@ -373,12 +385,19 @@ void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json meta
         vector[name] = {{"file", file_name}, {"bytes", bytes}};
     }
     if (!vector.empty()) metadata["vector"] = std::move(vector);
+    if (options_.vti) {
+        if (!drawing.state_vti) throw std::logic_error(description_.id + ": its scene writes no VTI file");
+        const std::string file_name = description_.id + ".vti";
+        const std::string bytes = drawing.state_vti();
+        render::write_file_atomically(folder_, file_name, bytes);  // with the figure's other files
+        metadata["vti"] = {{"file", file_name}, {"bytes", bytes.size()}};
+    }
     write_figure(description_, options_, folder_, memory_, image, std::move(metadata));
 }
 
 std::vector<std::string> output_names(const std::string& id) {
     return {id + ".png",  id + ".json",   id + ".mp4", id + ".webp",
-            id + ".webm", id + "-frames", id + ".pdf", id + ".svg"};
+            id + ".webm", id + "-frames", id + ".pdf", id + ".svg", id + ".vti"};
 }
 
 namespace {

@@ -5,6 +5,7 @@
 //   <id>.webp           its short looping preview (animated WebP), with the MP4
 //   <id>.webm           the film as VP9 in WebM, for the web (--format webm)
 //   <id>.pdf, <id>.svg  the figure as vector graphics (--format pdf, svg)
+//   <id>.vti            a formula model's last step as Ready's file (--format vti)
 //   <id>-frames/NNNNN.png  the same frames as a PNG sequence (--frames)
 //   <id>.json           metadata of all of them: parameters, seed, per-panel
 //                       step, statistics and state hash, frame list
@@ -38,6 +39,7 @@ struct OutputOptions {
     bool frames = false;                // write <id>-frames/*.png
     bool webm = false;                  // write <id>.webm (VP9), made from the MP4 (kept only with `video`)
     bool pdf = false, svg = false;      // write <id>.pdf, <id>.svg (--format)
+    bool vti = false;                   // write <id>.vti, a formula model's last step as Ready's file (--format vti)
     bool formats_given = false;         // --format was given: a description's figure.formats is not used
     bool transparent = false;           // no background in the PNG, PDF and SVG
     render::VideoOptions video_options;

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,6 +28,8 @@
 #include "description/settings.hpp"
 
 namespace description {
+
+struct StoredStart;  // description/ready_vti.hpp
 
 struct Animation {
     int first = 0;                      // first step shown
@@ -74,6 +77,10 @@ struct Description {
     // Where each key was given: "section.key" (top-level keys under
     // "description.") -> "tc7-1.toml:7" or "--set r=0.5".
     std::map<std::string, std::string> origins;
+    // The arrays a model starts from, from a Ready pattern file that stores
+    // them (figgen render PATTERN.vti); null for a description file, which
+    // cannot name a file to read.
+    std::shared_ptr<const StoredStart> stored_start;
 
     // Where `key` ("params.n", "params.plants[1].axiom") was given: its file
     // and line, the --set that gave it, or else just the file.

@@ -1,6 +1,7 @@
 #include "scenes/field_spec.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 namespace scenes {
@@ -9,6 +10,8 @@ std::vector<Key> field_spec_keys(const std::string& prefix) {
     return {
         {prefix + "colormap", "Reds, Blues, Greens, viridis, inferno, magma, plasma or cividis (--cmap)"},
         {prefix + "colours", "a list of colours for the states 0, 1, ... (#rrggbb or names), instead of colormap"},
+        {prefix + "blend", "\"none\": one colour of colours a state; \"rgb\" or \"hsv\": colours are stops of a smooth "
+                           "ramp, blended in RGB or HSV (Ready's \"HSV blend\")"},
         {prefix + "vmin", "value of the first colour; absent: the panel's minimum"},
         {prefix + "vmax", "value of the last colour; absent: the panel's maximum"},
         {prefix + "alpha", "opacity over what lies below, 0..1"},
@@ -19,6 +22,48 @@ std::vector<Key> field_spec_keys(const std::string& prefix) {
 }
 
 namespace {
+
+glm::vec3 to_hsv(glm::vec3 c) {
+    const float hi = std::max({c.r, c.g, c.b}), lo = std::min({c.r, c.g, c.b}), range = hi - lo;
+    float h = 0;
+    if (range > 0) {
+        if (hi == c.r) h = (c.g - c.b) / range;
+        else if (hi == c.g) h = 2 + (c.b - c.r) / range;
+        else h = 4 + (c.r - c.g) / range;
+        h /= 6;
+        if (h < 0) h += 1;
+    }
+    return {h, hi > 0 ? range / hi : 0.0f, hi};
+}
+
+glm::vec3 from_hsv(glm::vec3 hsv) {
+    const float h = hsv.x * 6, s = hsv.y, v = hsv.z;
+    const int sector = static_cast<int>(std::floor(h)) % 6;
+    const float f = h - std::floor(h), p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
+    switch (sector) {
+        case 0: return {v, t, p};
+        case 1: return {q, v, p};
+        case 2: return {p, v, t};
+        case 3: return {p, q, v};
+        case 4: return {t, p, v};
+        default: return {v, p, q};
+    }
+}
+
+// 256 colours through the stops, evenly spaced, blended in RGB or (hue
+// not wrapping round, as VTK's HSVWrapOff) in HSV.
+std::vector<glm::vec3> ramp(const std::vector<glm::vec3>& stops, bool hsv) {
+    if (stops.size() < 2) return stops;
+    std::vector<glm::vec3> out(256);
+    for (int i = 0; i < 256; ++i) {
+        const float t = static_cast<float>(i) / 255.0f * static_cast<float>(stops.size() - 1);
+        const std::size_t k = std::min(stops.size() - 2, static_cast<std::size_t>(t));
+        const float f = t - static_cast<float>(k);
+        out[static_cast<std::size_t>(i)] = hsv ? from_hsv(glm::mix(to_hsv(stops[k]), to_hsv(stops[k + 1]), f))
+                                               : glm::mix(stops[k], stops[k + 1], f);
+    }
+    return out;
+}
 
 render::Colormap read_colormap(Settings& style, const FieldSpec& defaults, const std::string& prefix) {
     std::optional<render::Colormap> listed;
@@ -31,7 +76,12 @@ render::Colormap read_colormap(Settings& style, const FieldSpec& defaults, const
             colours.push_back(*colour);
         }
         if (colours.empty() || colours.size() > 4096) style.refuse(prefix + "colours", "1 to 4096 colours");
-        listed = render::listed_colormap("listed", colours);
+        const std::string blend = style.text(prefix + "blend", "none");
+        if (blend != "none" && blend != "rgb" && blend != "hsv")
+            style.refuse(prefix + "blend", "\"none\", \"rgb\" or \"hsv\"");
+        listed = render::listed_colormap("listed", blend == "none" ? colours : ramp(colours, blend == "hsv"));
+    } else if (style.has(prefix + "blend")) {
+        style.refuse(prefix + "blend", "only beside " + prefix + "colours, the stops it blends");
     }
     // Read whenever given, so that a bad name is refused beside colours too.
     if (!listed || style.has(prefix + "colormap")) {

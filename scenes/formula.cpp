@@ -12,6 +12,7 @@
 #include <set>
 #include <thread>
 
+#include "description/ready_vti.hpp"
 #include "render/digest.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
@@ -36,7 +37,7 @@ const std::vector<Key> rule_keys = {
     {"block_x", "Ready's block_size_x: 4 (its default) or 1; see docs/formulas.md"},
     {"ready_edges", "true: edges as Ready computes them (its quirks); false: a true torus, each cell clamped"},
     {"width", "grid width in cells, 1..4096 (a multiple of block_x)"},
-    {"height", "grid height in cells, 1..4096"},
+    {"height", "grid height in cells, 2..4096 (Ready's 1-D stencils are not figgen's)"},
     {"steps", "how many steps the model runs, 0..10000000"},
     {"zero_first", "the start is all zero before the overlays (else zero, too: true or false)"},
     {"initial", "the start: Ready's overlays in order, [{chemical, operation, fill, ..., shapes}]"},
@@ -218,32 +219,23 @@ Model read_model(Settings& params, const Description& d) {
     if (r.block_x != 1 && r.block_x != 4) params.refuse("block_x", "4 (Ready's default) or 1");
     r.ready_edges = params.flag("ready_edges", true);
     m.width = params.count_in("width", 128, 1, 4096);
-    m.height = params.count_in("height", 128, 1, 4096);
+    m.height = params.count_in("height", 128, 2, 4096);
     if (m.width % r.block_x != 0)
         params.refuse("width", "a multiple of block_x (" + std::to_string(r.block_x) + ")");
     m.steps = params.count_in("steps", 1000, 0, 10'000'000);
-    // The rule's parameters: each a number the formula uses (or timestep, dx).
-    std::set<std::string> words;  // the formula's names
-    for (std::size_t i = 0; i < r.code.size();) {
-        const auto name_char = [&](std::size_t k, bool first) {
-            const unsigned char c = static_cast<unsigned char>(r.code[k]);
-            return std::isalpha(c) || c == '_' || (!first && std::isdigit(c));
-        };
-        if (!name_char(i, true) || (i > 0 && name_char(i - 1, false))) {
-            ++i;
-            continue;
-        }
-        std::size_t end = i;
-        while (end < r.code.size() && name_char(end, false)) ++end;
-        words.insert(r.code.substr(i, end - i));
-        i = end;
-    }
+    // The rule's parameters: each a number the formula or an overlay
+    // (fill = "parameter") uses, or timestep, dx.
+    std::set<std::string> words = description::formula_words(r.code);
+    if (const toml::array* initial = d.params["initial"].as_array())
+        for (const toml::node& o : *initial)
+            if (const toml::table* t = o.as_table())
+                if (auto p = (*t)["parameter"].value<std::string>()) words.insert(*p);
     for (const auto& [key, value] : d.params) {
         const std::string name(key.str());
         if (is_rule_key(name)) continue;
         const double v = params.number_in(name, 0, -1e30, 1e30);
         if (name != "timestep" && name != "dx" && !words.count(name))
-            params.refuse(name, "a parameter the formula uses (or timestep, dx); is it a misspelt key?");
+            params.refuse(name, "a parameter the formula or an overlay uses (or timestep, dx); is it a misspelt key?");
         r.parameters.emplace_back(name, v);
     }
     bool has_timestep = false;
@@ -306,6 +298,14 @@ public:
         if (origin != "lower" && origin != "upper") style_.refuse("origin", "\"lower\" or \"upper\"");
         upper_ = origin == "upper";
         require_drawable(params_, "width", "the grid", m_.height, m_.width);
+        if (const auto& stored = d.stored_start) {
+            const auto chemicals = static_cast<int>(stored->chemicals.size());
+            if (chemicals != m_.rule.chemicals)
+                params_.refuse("chemicals", "the pattern's " + std::to_string(chemicals) + ", the arrays its file stores");
+            if (stored->width != m_.width) params_.refuse("width", "the pattern's " + std::to_string(stored->width) + ", its stored arrays'");
+            if (stored->height != m_.height)
+                params_.refuse("height", "the pattern's " + std::to_string(stored->height) + ", its stored arrays'");
+        }
     }
 
     // Two states of every chemical (rows with their halos and padding,
@@ -333,7 +333,13 @@ public:
         sim::Random rng(d_.seed);
         std::vector<sim::Grid<double>> start(static_cast<std::size_t>(m_.rule.chemicals),
                                              sim::Grid<double>(m_.height, m_.width, 0.0));
-        formula::apply_pattern(m_.pattern, start, m_.rule.parameters, m_.rule.double_precision, rng);
+        // The arrays a Ready pattern stores, when it starts from them; the
+        // overlays, if any, go on top (after zeroing, if zero_first).
+        if (const auto& stored = d_.stored_start)
+            for (std::size_t c = 0; c < start.size(); ++c)
+                std::copy(stored->chemicals[c].begin(), stored->chemicals[c].end(), start[c].data());
+        if (!d_.stored_start || !m_.pattern.overlays.empty())
+            formula::apply_pattern(m_.pattern, start, m_.rule.parameters, m_.rule.double_precision, rng);
         formula::Run model(m_.rule, m_.width, m_.height, start);
         const int threads = model_threads();
         std::vector<sim::Grid<double>> now, drawn;  // every chemical where the run is, and those shown as drawn
@@ -373,10 +379,31 @@ public:
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"model_operations", model.operations()}};
-        run.write_field_figure(panels, meta);
+        run.write_field_figure(panels, meta, [&] { return state_vti(now); });
     }
 
 private:
+    // The chemicals as Ready writes its own files (description/ready_vti.hpp).
+    std::string state_vti(const std::vector<sim::Grid<double>>& chemicals) const {
+        description::ReadyState s;
+        s.rule_name = d_.title;
+        s.description = d_.caption;
+        s.formula = m_.rule.code;
+        static const char* accuracy[] = {"low", "medium", "high"};
+        s.accuracy = accuracy[static_cast<int>(m_.rule.accuracy)];
+        s.wrap = m_.rule.wrap;
+        s.block_x = m_.rule.block_x;
+        s.parameters = m_.rule.parameters;
+        s.active_chemical = formula::chemical_name(shown_.front());
+        s.low = specs_.front().vmin;
+        s.high = specs_.front().vmax;
+        s.width = m_.width;
+        s.height = m_.height;
+        s.float64 = m_.rule.double_precision;
+        for (const auto& g : chemicals) s.chemicals.emplace_back(g.cells().begin(), g.cells().end());
+        return description::ready_vti(s);
+    }
+
     nlohmann::json metadata(const std::vector<sim::Grid<double>>& chemicals, int step) const {
         nlohmann::json stats = nlohmann::json::object();
         std::vector<double> state;

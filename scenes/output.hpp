@@ -53,6 +53,9 @@ struct FigureDrawing {
     int width = 0, height = 0;
     bool depth = false;  // it draws 3-D tubes (a GL canvas with a depth buffer)
     std::function<void(render::Surface&)> draw;
+    // A formula model's last step as Ready's VTI file (--format vti); null
+    // for the scenes that write none.
+    std::function<std::string()> state_vti = {};
 };
 
 // Where a scene's outputs go.

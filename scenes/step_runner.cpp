@@ -142,10 +142,12 @@ void StepRunner::finish_film() {
     progress_.finish();
 }
 
-void StepRunner::write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta) {
+void StepRunner::write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta,
+                                    std::function<std::string()> state_vti) {
     if (film_only()) return finish_film();
-    write_figure(field_figure(panels, description_, options_),
-                 std::move(meta));
+    FigureDrawing figure = field_figure(panels, description_, options_);
+    figure.state_vti = std::move(state_vti);
+    write_figure(figure, std::move(meta));
 }
 
 }  // namespace scenes

@@ -60,8 +60,10 @@ public:
     // Completes the animation, adds its metadata to `meta`, writes the
     // figure's PNG and JSON and completes the progress bar.
     void write_figure(const FigureDrawing& figure, nlohmann::json meta);
-    // The same for a figure that is a row of field panels, drawn at the figure's size.
-    void write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta);
+    // The same for a figure that is a row of field panels, drawn at the
+    // figure's size; `state_vti`, if given, makes the --format vti file.
+    void write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta,
+                            std::function<std::string()> state_vti = {});
 
 private:
     int run_until(const StepHooks& hooks, int last);

@@ -24,6 +24,8 @@ packages=(
   # fallback fonts through fontconfig, and the documents' own scripts (Noto Sans CJK)
   libraqm-dev libharfbuzz-dev libfribidi-dev libunibreak-dev libfontconfig-dev fonts-noto-cjk
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  libtinyxml2-dev libglib2.0-dev  # Ready's pattern files: XML, and base64 (GLib); zlib as above
+  python3-vtk9  # the tests read figgen's VTI files back with VTK
   libopenmpi-dev openmpi-bin  # MPI: its headers and mpirun; figgen opens libmpi only under mpirun
   catch2 libbenchmark-dev
   chromium chromium-driver python3-selenium  # the gallery's browser test

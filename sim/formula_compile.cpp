@@ -619,8 +619,40 @@ private:
         case Expr::Kind::call: {
             if (e.text == "select") {
                 if (e.args.size() != 3) throw FormulaError(e.pos, "select takes 3 arguments");
-                const Value a = expression(*e.args[0]), b = expression(*e.args[1]), c = expression(*e.args[2]);
-                return select(a, b, c.fixed ? c : truthy(c, e.pos), e.pos);
+                // select(a, b, c) is c ? b : a, both computed: a division in
+                // the one not taken gives a value that is thrown away, as in
+                // OpenCL, so each is checked only on the cells that take it.
+                const Value c = expression(*e.args[2]);
+                if (c.fixed) {
+                    const Value a = expression(*e.args[0]), b = expression(*e.args[1]);
+                    return select(a, b, c, e.pos);
+                }
+                const Value yes = truthy(c, e.pos), outer = division_mask();
+                Value a, b;
+                {
+                    const DivisionMask divisions(*this, logical_and(outer, logical_not_mask(c, e.pos), e.pos));
+                    a = expression(*e.args[0]);
+                }
+                {
+                    const DivisionMask divisions(*this, logical_and(outer, yes, e.pos));
+                    b = expression(*e.args[1]);
+                }
+                return select(a, b, yes, e.pos);
+            }
+            // OpenCL's relational built-ins: the comparisons as functions.
+            static const std::pair<const char*, const char*> relations[] = {
+                {"isgreater", ">"}, {"isgreaterequal", ">="}, {"isless", "<"},
+                {"islessequal", "<="}, {"isequal", "=="},      {"isnotequal", "!="}};
+            for (const auto& [name, op] : relations) {
+                if (e.text != name) continue;
+                if (e.args.size() != 2) throw FormulaError(e.pos, e.text + " takes 2 arguments");
+                const Value a = expression(*e.args[0]), b = expression(*e.args[1]);
+                const std::string o = op;
+                if (o == ">") return arith(Op::less, b, a, e.pos);
+                if (o == ">=") return arith(Op::less_equal, b, a, e.pos);
+                if (o == "<") return arith(Op::less, a, b, e.pos);
+                if (o == "<=") return arith(Op::less_equal, a, b, e.pos);
+                return arith(o == "==" ? Op::equal : Op::not_equal, a, b, e.pos);
             }
             const Builtin* b = find_builtin(e.text);
             if (!b) {

@@ -113,7 +113,7 @@ TEST_CASE("a formula description's mistakes are refused, naming the key and the 
     CHECK_THAT(refusal(with("formula", "\"delta_a = D_a * laplacian_a + F + K;\\ndelta_b = D_b * q;\"")),
                Catch::StartsWith("formula = ") &&
                    Catch::Contains("line 2, column 17 of the formula: 'q' is not a chemical"));
-    CHECK_THAT(refusal(with("Q", "2.0")), Catch::StartsWith("Q = 2 is not allowed: a parameter the formula uses"));
+    CHECK_THAT(refusal(with("Q", "2.0")), Catch::StartsWith("Q = 2 is not allowed: a parameter the formula or an overlay uses"));
     CHECK_THAT(refusal(with("width", "30")), Catch::StartsWith("width = 30 is not allowed: a multiple of block_x (4)"));
     CHECK_THAT(refusal(with("D_a", "nan")), Catch::StartsWith("D_a = nan is not allowed"));
     CHECK_THAT(refusal(with("timestep", "inf")), Catch::StartsWith("timestep = inf is not allowed"));

@@ -1,0 +1,222 @@
+// Ready's pattern files (description/ready_vti.cpp): each encoding VTK
+// writes is read to the same arrays; a pattern becomes a description that
+// runs; what figgen cannot run is refused in one line; and the VTI files
+// figgen writes are read back by VTK itself and continue a run exactly.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "description/description.hpp"
+#include "description/ready_vti.hpp"
+#include "figgen_run.hpp"
+
+namespace fs = std::filesystem;
+using description::UsageError;
+
+namespace {
+
+const fs::path fixtures = fs::path(FIGGEN_SOURCE_DIR) / "tests/description/vti";
+
+// tests/description/vti/make_files.py's values: a[i] = 0.25 i - 3, b[i] = 1 / (i + 1).
+double expected(int chemical, int i, bool float64) {
+    const double v = chemical == 0 ? 0.25 * i - 3 : 1.0 / (i + 1);
+    return float64 ? v : static_cast<double>(static_cast<float>(v));
+}
+
+// A fixture's text with every `from` replaced by `to`, as a file of its own.
+fs::path edited(const std::string& fixture, const std::string& from, const std::string& to, const std::string& name) {
+    std::string text = testkit::slurp(fixtures / fixture);
+    REQUIRE(text.find(from) != std::string::npos);
+    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+        text.replace(at, from.size(), to);
+    const fs::path dir = testkit::fresh_dir("vti-edited");
+    testkit::spill(dir / name, text);
+    return dir / name;
+}
+
+std::string refusal(const fs::path& file) {
+    try {
+        description::read_ready_pattern(file);
+    } catch (const UsageError& e) {
+        return e.what();
+    }
+    return "(read)";
+}
+
+}  // namespace
+
+TEST_CASE("every encoding VTK writes is read to the same arrays", "[ready_vti]") {
+    for (const char* name : {"ascii-f32.vti", "binary-f32.vti", "binary-zlib-f64.vti", "binary-zlib-f32-uint32.vti",
+                             "appended-base64-f32.vti", "appended-base64-zlib-f64.vti", "appended-raw-f64.vti",
+                             "appended-raw-zlib-f32.vti"}) {
+        INFO(name);
+        const auto pattern = description::read_ready_pattern(fixtures / name);
+        REQUIRE(pattern.start);  // apply_when_loading="false": the stored arrays are the start
+        const bool float64 = std::string(name).find("f64") != std::string::npos;
+        CHECK(pattern.start->float64 == float64);
+        CHECK(pattern.start->width == 8);
+        CHECK(pattern.start->height == 6);
+        REQUIRE(pattern.start->chemicals.size() == 2);
+        for (int c = 0; c < 2; ++c)
+            for (int i = 0; i < 48; ++i) CHECK(pattern.start->chemicals[c][i] == expected(c, i, float64));
+    }
+}
+
+TEST_CASE("a Ready pattern becomes the formula description that runs it", "[ready_vti]") {
+    const description::Description d = description::load_ready_pattern(fixtures / "binary-zlib-f64.vti", {"steps=10"});
+    CHECK(d.id == "binary-zlib-f64");
+    CHECK(d.title == "Test rule");
+    CHECK(d.scene == "formula");
+    CHECK(d.params["data_type"].value_or(std::string()) == "double");
+    CHECK(d.params["D"].value_or(0.0) == 0.5);
+    CHECK(d.params["timestep"].value_or(0.0) == Approx(0.1));
+    CHECK(d.params["steps"].value_or(0) == 10);
+    CHECK(d.params["formula"].value_or(std::string()) == "delta_a = D * laplacian_a;\ndelta_b = D * laplacian_b;\n");
+    CHECK(d.panels == std::vector<int>{0, 5, 10});  // 0, N/2 and N
+    CHECK(d.style["show"][0].value_or(std::string()) == "b");  // Ready's active chemical
+    CHECK(d.style["b_vmax"].value_or(0.0) == 1.0);
+    REQUIRE(d.stored_start);
+    // A key's origin is the file (its converted text has no lines of the
+    // .vti), or the --set that gave it.
+    CHECK(d.where("params.D") == "binary-zlib-f64.vti");
+    CHECK(d.where("params.steps") == "--set steps=10");
+}
+
+TEST_CASE("a pattern's overlays become the description's initial, in Ready's order", "[ready_vti]") {
+    const std::string generator = R"(<initial_pattern_generator apply_when_loading="true">
+      <overlay chemical="a"><overwrite /><constant value="0.5" /><everywhere /></overlay>
+      <overlay chemical="b"><add /><white_noise low="0" high="0.25" /><rectangle><point3D x="0.1" y="0.2" z="0" /><point3D x="0.5" y="0.6" z="1" /></rectangle></overlay>
+      <overlay chemical="b"><multiply /><gaussian height="2" sigma="0.1"><point3D x="0.5" y="0.5" z="0.5" /></gaussian><circle radius="0.25"><point3d x="0.5" y="0.5" z="0" /></circle></overlay>
+      <overlay chemical="a"><subtract /><parameter name="D" /><pixel x="3" y="2" z="0" /></overlay>
+      <overlay chemical="a"><divide /><other_chemical chemical="b" /><pixel x="3" y="2" z="1" /></overlay>
+    </initial_pattern_generator>)";
+    const fs::path file = edited("ascii-f32.vti", R"(<initial_pattern_generator apply_when_loading="false" />)",
+                                 generator, "overlays.vti");
+    const auto pattern = description::read_ready_pattern(file);
+    CHECK_FALSE(pattern.start);  // zero first, then the overlays
+    const description::Description d = description::load_ready_pattern(file);
+    const toml::array& initial = *d.params["initial"].as_array();
+    REQUIRE(initial.size() == 4);  // the last one's pixel lies off a 2-D grid: it never applies
+    CHECK(initial[0].as_table()->at("fill").value_or(std::string()) == "constant");
+    CHECK(initial[1].as_table()->at("operation").value_or(std::string()) == "add");
+    const toml::table& rect = *initial[1].as_table()->at("shapes").as_array()->get(0)->as_table();
+    CHECK(rect.at("from").as_array()->get(1)->value_or(0.0) == Approx(0.2));
+    CHECK(initial[2].as_table()->at("centre").as_array()->get(0)->value_or(0.0) == 0.5);
+    CHECK(initial[3].as_table()->at("parameter").value_or(std::string()) == "D");
+    // And it runs: every overlay is one the scene accepts.
+    const fs::path out = testkit::fresh_dir("vti-overlays");
+    const auto run = testkit::figgen("render " + file.string() + " --set steps=2 --format png --scale 0.3 --out " + out.string());
+    INFO(run.output);
+    CHECK(run.status == 0);
+}
+
+TEST_CASE("what figgen cannot run is refused in one line that says what", "[ready_vti]") {
+    using Catch::Contains;
+    CHECK_THAT(refusal(edited("ascii-f32.vti", R"(type="formula")", R"(type="kernel")", "kernel.vti")),
+               Contains("its rule is type \"kernel\": figgen runs formula rules"));
+    CHECK_THAT(refusal(edited("ascii-f32.vti", R"(WholeExtent="0 7 0 5 0 0")", R"(WholeExtent="0 7 0 5 0 3")", "3d.vti")),
+               Contains("it is 3-D (8 x 6 x 4): figgen runs 2-D patterns"));
+    CHECK_THAT(refusal(edited("ascii-f32.vti", R"(WholeExtent="0 7 0 5 0 0")", R"(WholeExtent="0 7 0 0 0 0")", "1d.vti")),
+               Contains("it is 1-D (8 cells)"));
+    CHECK_THAT(refusal(edited("ascii-f32.vti", R"(type="ImageData")", R"(type="UnstructuredGrid")", "mesh.vti")),
+               Contains("not meshes"));
+    CHECK_THAT(refusal(edited("binary-f32.vti", R"(byte_order="LittleEndian")", R"(byte_order="BigEndian")", "big.vti")),
+               Contains("figgen reads LittleEndian"));
+    CHECK_THAT(refusal(edited("ascii-f32.vti", R"(Name="b")", R"(Name="q")", "missing.vti")),
+               Contains("holds neither arrays a, b, ... nor one of 2 components"));
+    CHECK_THAT(refusal(edited("ascii-f32.vti", R"(type="Float32" Name="a")", R"(type="Int32" Name="a")", "int.vti")),
+               Contains("array a is Int32: figgen reads Float32 and Float64"));
+    CHECK_THAT(refusal(edited("ascii-f32.vti", "RD", "XX", "nord.vti")),
+               Contains("no <RD> in <VTKFile>"));
+    CHECK_THAT(refusal(edited("ascii-f32.vti", "<VTKFile", "<VTKFile <", "notxml.vti")), Contains("not XML"));
+    CHECK_THAT(refusal(edited("ascii-f32.vti", R"(<param name="D">0.5</param>)", R"(<param name="D">nan</param>)", "nan.vti")),
+               Contains("parameter D is \"nan\", not a finite number"));
+    CHECK_THAT(refusal(edited("ascii-f32.vti", R"(<param name="D">)", R"(<param name="width">)", "clash.vti")),
+               Contains("a parameter is named width, a key of figgen's formula scene"));
+    CHECK_THAT(refusal(fixtures / "no-such-file.vti"), Contains("not a regular file"));
+    // Cut, corrupt or lying data: a header that claims more than the extent,
+    // zlib blocks that do not inflate, base64 cut short.
+    const std::string zlib = testkit::slurp(fixtures / "binary-zlib-f32-uint32.vti");
+    const std::size_t data = zlib.find(">", zlib.find("Name=\"a\"")) + 1;
+    std::string cut = zlib;
+    cut.replace(data, 30, std::string(30, 'A'));
+    const fs::path dir = testkit::fresh_dir("vti-broken");
+    testkit::spill(dir / "broken.vti", cut);
+    CHECK_THAT(refusal(dir / "broken.vti"), Contains("broken.vti: "));
+    std::string shorter = zlib;
+    shorter.erase(data + 20, 24);
+    testkit::spill(dir / "short.vti", shorter);
+    CHECK_THAT(refusal(dir / "short.vti"), Contains("short.vti: "));
+    // On the command line: exit status 2, one line, nothing written.
+    const fs::path out = testkit::fresh_dir("vti-refused");
+    const auto run = testkit::figgen("render " + (dir / "short.vti").string() + " --out " + out.string());
+    CHECK(run.status == 2);
+    CHECK(run.lines() == 1);
+    CHECK(fs::is_empty(out));
+}
+
+TEST_CASE("figgen's VTI file is read back by VTK with the same arrays, and continues the run", "[ready_vti]") {
+    const fs::path out = testkit::fresh_dir("vti-out");
+    const fs::path pattern = fixtures / "binary-zlib-f32-uint32.vti";
+    const auto run = testkit::figgen("render " + pattern.string() + " --set steps=6 --format png,vti --scale 0.3 --out " +
+                                     out.string());
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    const auto meta = nlohmann::json::parse(testkit::slurp(out / "binary-zlib-f32-uint32.json"));
+    const std::string last_hash = meta["panels"].back()["state_sha256"];
+    CHECK(meta["vti"]["file"] == "binary-zlib-f32-uint32.vti");
+    // VTK's own reader (Debian's python3-vtk9): the arrays, as doubles in
+    // figgen's order (a then b), hash as the figure's last panel's state.
+    const std::string script =
+        "import hashlib, vtkmodules.all as v\n"
+        "from vtkmodules.util.numpy_support import vtk_to_numpy\n"
+        "r = v.vtkXMLImageDataReader(); r.SetFileName('" + (out / "binary-zlib-f32-uint32.vti").string() + "'); r.Update()\n"
+        "im = r.GetOutput(); d = im.GetPointData()\n"
+        "print(im.GetDimensions(), d.GetArray('a').GetDataTypeAsString())\n"
+        "h = hashlib.sha256()\n"
+        "for n in 'ab': h.update(vtk_to_numpy(d.GetArray(n)).astype('<f8').tobytes())\n"
+        "print(h.hexdigest())\n";
+    testkit::spill(out / "read.py", script);
+    const auto vtk = testkit::run_command("/usr/bin/python3 " + (out / "read.py").string());
+    INFO(vtk.output);
+    REQUIRE(vtk.status == 0);
+    CHECK_THAT(vtk.output, Catch::Contains("(8, 6, 1) float"));
+    CHECK_THAT(vtk.output, Catch::Contains(last_hash));
+    // figgen reads it as Ready would: 6 steps from it are 12 from the start.
+    const fs::path again = testkit::fresh_dir("vti-again");
+    const auto more = testkit::figgen("render " + (out / "binary-zlib-f32-uint32.vti").string() +
+                                      " --set steps=6 --format png --scale 0.3 --out " + again.string());
+    INFO(more.output);
+    REQUIRE(more.status == 0);
+    const auto twelve = testkit::figgen("render " + pattern.string() + " --set steps=12 --format png --scale 0.3 --out " +
+                                        again.string() + " --set id=twelve");
+    REQUIRE(twelve.status == 0);
+    const auto m6 = nlohmann::json::parse(testkit::slurp(again / "binary-zlib-f32-uint32.json"));
+    const auto m12 = nlohmann::json::parse(testkit::slurp(again / "twelve.json"));
+    CHECK(m6["panels"].back()["step"] == 6);
+    CHECK(m12["panels"].back()["step"] == 12);
+    CHECK(m6["panels"].back()["state_sha256"] == m12["panels"].back()["state_sha256"]);
+}
+
+TEST_CASE("figgen convert prints the description, or writes OUT/ID.toml", "[ready_vti]") {
+    const auto printed = testkit::figgen("convert " + (fixtures / "ascii-f32.vti").string());
+    REQUIRE(printed.status == 0);
+    CHECK_THAT(printed.output, Catch::Contains("scene = 'formula'"));
+    CHECK_THAT(printed.output, Catch::Contains("starts from them"));  // the stored arrays: said in a comment
+    const fs::path out = testkit::fresh_dir("vti-convert");
+    const auto written = testkit::figgen("convert " + (fixtures / "ascii-f32.vti").string() + " --out " + out.string());
+    REQUIRE(written.status == 0);
+    // What it wrote is a description that loads as the pattern does, less the stored start.
+    const description::Description d = description::load_description(out / "ascii-f32.toml");
+    const description::Description p = description::load_ready_pattern(fixtures / "ascii-f32.vti");
+    CHECK(d.params == p.params);
+    CHECK(d.style == p.style);
+    CHECK(d.panels == p.panels);
+    const auto refused = testkit::figgen("convert " + (fixtures / "make_files.py").string());
+    CHECK(refused.status == 2);
+}
