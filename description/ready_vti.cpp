@@ -52,7 +52,8 @@ std::string dedented(const std::string& text) {
     std::string out;
     for (std::size_t i = 0; i < lines.size(); ++i) {
         const bool cut = i > 0 && common != std::string::npos && lines[i].size() >= common;
-        out += (i ? "\n" : "") + (cut ? lines[i].substr(common) : lines[i]);
+        if (i > 0) out += '\n';
+        out.append(lines[i], cut ? common : 0, std::string::npos);
     }
     return out;
 }
@@ -778,7 +779,7 @@ ReadyPattern read_pattern(const std::filesystem::path& file, std::optional<int> 
     for (int s : panels) panel_list.push_back(s);
     const int side = 300;
     const double aspect = static_cast<double>(ny) / static_cast<double>(nx);
-    const int panel_height = static_cast<int>(std::clamp(side * aspect, 60.0, 900.0));
+    const int panel_height = static_cast<int>(std::clamp(0.72 * side * aspect, 60.0, 900.0));  // a colour bar beside each
     root.insert("figure", toml::table{{"panels", std::move(panel_list)},
                                       {"size", toml::array{side * static_cast<int>(panels.size()), panel_height + 70}}});
     if (steps > 0) {

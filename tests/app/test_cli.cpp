@@ -849,12 +849,16 @@ TEST_CASE("cmake --install puts figgen and the descriptions in a prefix, and the
     std::size_t descriptions = 0;
     for (const auto& entry : fs::directory_iterator(prefix / "share" / "figgen" / "figures"))
         descriptions += entry.path().extension() == ".toml";
-    CHECK(descriptions == 29);
+    std::size_t sources = 0;  // what the source tree holds
+    for (const auto& entry : fs::directory_iterator(fs::path(FIGGEN_SOURCE_DIR) / "figures"))
+        sources += entry.path().extension() == ".toml";
+    CHECK(sources > 30);
+    CHECK(descriptions == sources);
     // It reads the installed folder, not the source tree: take one away.
     fs::remove(prefix / "share" / "figgen" / "figures" / "tc7-9.toml");
     const Run list = testkit::run_command("env -u FIGGEN_FIGURES_DIR " + installed.string() + " list");
     CHECK(list.status == 0);
-    CHECK(list.lines() == 28);
+    CHECK(list.lines() == static_cast<int>(sources) - 1);
     CHECK_THAT(list.output, !Catch::Contains("tc7-9 "));
     // With its film: the installed figgen opens the installed video module, not the build tree's.
     const Run render = testkit::run_command("env -u FIGGEN_FIGURES_DIR LD_DEBUG=files " + installed.string() +

@@ -83,7 +83,7 @@ std::string refusal(const std::string& text) {
 TEST_CASE("tc7-2 written as a formula gives tc7-2's fields bit for bit", "[formula][scenes]") {
     const auto book = render_small(description::load_description(description::resolve_figure("tc7-2")));
     const auto formula =
-        render_small(description::load_description(fs::path(FIGGEN_SOURCE_DIR) / "docs/examples/fx-tc7-2.toml"));
+        render_small(description::load_description(fs::path(FIGGEN_SOURCE_DIR) / "figures/fx-tc7-2.toml"));
     REQUIRE(book["panels"].size() == 3);
     REQUIRE(formula["panels"].size() == 3);
     for (int i = 0; i < 3; ++i) {
