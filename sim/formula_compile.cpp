@@ -444,9 +444,10 @@ private:
         }
         for (const auto& [parameter, value] : rule_.parameters)
             if (name == parameter) {
-                // Ready writes parameters into its kernel with 8 decimals.
+                // Ready holds parameters as float and writes them into its
+                // kernel with 8 decimals: in a double rule 1.1 is 1.10000002.
                 char text[64];
-                std::snprintf(text, sizeof text, "%.8f", value);
+                std::snprintf(text, sizeof text, "%.8f", static_cast<double>(static_cast<float>(value)));
                 return &(predefined_[name] = constant_variable(constant(std::strtod(text, nullptr), false),
                                                                 "a parameter of the rule"));
             }
