@@ -1,0 +1,50 @@
+#pragma once
+// A formula model (sim/formula.hpp) as a description gives it in [params]:
+// the rule (chemicals, formula, accuracy, wrap, data_type, block_x,
+// ready_edges), the grid (width, height), steps, the start (initial:
+// Ready's overlays, in order; or the arrays a Ready pattern file stores)
+// and, as every other key, the rule's own parameters. Shared by the
+// formula scene and the formula atlas.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scenes/scene.hpp"
+#include "sim/formula.hpp"
+#include "sim/formula_pattern.hpp"
+#include "sim/grid.hpp"
+
+namespace scenes {
+
+struct FormulaModel {
+    sim::formula::Rule rule;
+    int width = 128, height = 128, steps = 1000;
+    sim::formula::Pattern pattern;
+    int registers = 0, radius_x = 0;  // of the compiled formula, for the memory estimate
+};
+
+// [params]'s keys: the rule's, the scene's own (`scene_keys`), and every
+// other key of d.params as a parameter of the rule.
+std::vector<Key> formula_param_keys(const Description& d, const std::vector<Key>& scene_keys = {});
+
+// The rule's chemicals as the description gives them (2 if not; its reader
+// checks the number): the style has keys for these alone.
+int formula_chemicals(const Description& d);
+
+// `name`, read from `key` (one of a list when `listed`), as a chemical's
+// index; refuses anything but one of the rule's `chemicals`.
+int chemical_index(Settings& s, const std::string& key, const std::string& name, int chemicals, bool listed = false);
+
+// Reads and checks the model, compiling its formula (refusals name the
+// formula's line and column). `scene_keys` are not rule parameters;
+// `swept` parameters (name, a value in range) are added to the rule's and
+// may not be given in [params].
+FormulaModel read_formula_model(Settings& params, const Description& d, const std::vector<Key>& scene_keys = {},
+                                const std::vector<std::pair<std::string, double>>& swept = {});
+
+// The start: the stored arrays of a Ready pattern, and the overlays drawn
+// with the description's seed.
+std::vector<sim::Grid<double>> formula_start(const FormulaModel& m, const Description& d);
+
+}  // namespace scenes
