@@ -21,6 +21,7 @@
 #include "scenes/panel_grid.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/tile_map.hpp"
 #include "scenes/work_codec.hpp"
 #include "scenes/figure_caption.hpp"
 #include "sim/gray_scott_atlas.hpp"
@@ -88,15 +89,7 @@ public:
         require_drawable(params_, "n", "each tile", atlas_.base.n, atlas_.base.n);
         // Its axes span the atlas's (k, f) ranges, known before any tile runs.
         require_text_fits(
-            d, options,
-            [&](const render::Rect& area) {
-                const render::Rect frame = map_frame(area);
-                render::PageText page;
-                render::axes_text(page, frame, map_axes(), plot_, 0);
-                if (const auto bar = colour_bar()) render::colour_bar_text(page, frame, *bar, plot_, 0);
-                return page;
-            },
-            plot_remedy);
+            d, options, [&](const render::Rect& area) { return tile_map().text(area, plot_); }, plot_remedy);
     }
 
     // The starting A and B, each tile's B kept as floats and, while it is
@@ -306,39 +299,14 @@ private:
 
     void draw_map(render::Surface& canvas, const std::vector<sim::GrayScottAtlasTile>& tiles,
                   const std::vector<TileSummary>& summaries) const {
-        const int columns = atlas_.columns, rows = atlas_.rows;
-        canvas.background({1, 1, 1, 1});
-        const render::Rect frame = map_frame({0, 0, float(canvas.width()), float(canvas.height())});
-        const std::optional<render::ColourBar> bar = colour_bar();
-        const float side = frame.w;
-        const float tw = side / float(columns), th = side / float(rows);
-        std::vector<double> b;  // the tile's B as doubles, reused
-        for (int r = 0; r < rows; ++r)
-            for (int c = 0; c < columns; ++c) {
-                const std::size_t t = static_cast<std::size_t>(r) * columns + c;
-                const sim::Grid<float>& cells = tiles[t].b;
-                b.assign(cells.cells().begin(), cells.cells().end());
-                render::draw_field(canvas, {frame.x + c * tw, frame.y + r * th, tw, th}, cells.rows(), cells.cols(), b,
-                                   summaries[t].style);
-            }
-        render::draw_axes(canvas, frame, map_axes(), plot_);
-        if (bar) render::draw_colour_bar(canvas, frame, *bar, plot_);
+        tile_map().draw(canvas, plot_, [&](int t, std::vector<double>& b) {
+            const sim::Grid<float>& cells = tiles[static_cast<std::size_t>(t)].b;
+            b.assign(cells.cells().begin(), cells.cells().end());
+            return TileMap::Tile{cells.rows(), cells.cols(), summaries[static_cast<std::size_t>(t)].style};
+        });
     }
 
-    // The plot frame in `area`, made square, that holds the tiles: it and the
-    // colour bar beside it centred.
-    render::Rect map_frame(const render::Rect& area) const {
-        render::Rect frame = render::plot_row(static_cast<int>(area.w), static_cast<int>(area.h), 1, plot_)[0];
-        frame.x += area.x;
-        frame.y += area.y;
-        const std::optional<render::ColourBar> bar = colour_bar();
-        float side = std::min(frame.w, frame.h);
-        const float room = bar ? render::colour_bar_room(*bar, side, side, plot_) : 0.0f;
-        side = std::max(1.0f, std::min(side, frame.w - room));
-        frame.x += (frame.w - side - room) / 2;
-        frame.w = frame.h = side;
-        return frame;
-    }
+    TileMap tile_map() const { return {atlas_.columns, atlas_.rows, map_axes(), colour_bar()}; }
 
     // The axes drawn over the tiles: k along x, f up y.
     render::Axes map_axes() const {
