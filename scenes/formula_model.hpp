@@ -22,6 +22,7 @@ struct FormulaModel {
     int width = 128, height = 128, steps = 1000;
     sim::formula::Pattern pattern;
     int registers = 0, radius_x = 0;  // of the compiled formula, for the memory estimate
+    int operations = 0;               // row operations a cell of one step takes (Run::operations)
 };
 
 // [params]'s keys: the rule's, the scene's own (`scene_keys`), and every

@@ -7,6 +7,7 @@
 #include "render/colormap.hpp"
 #include "render/gl_context.hpp"
 #include "scenes/figure_caption.hpp"
+#include "scenes/formula_model.hpp"
 
 namespace scenes {
 
@@ -45,6 +46,7 @@ const std::vector<SceneInfo>& all_scenes() {
         {"lsystem", read_lsystem},
         {"lsystem_3d", read_lsystem_3d},
         {"formula", read_formula, formula_colormap_keys()},
+        {"formula_atlas", read_formula_atlas, {"colormap"}},
     };
     return all;
 }
@@ -84,9 +86,12 @@ void apply_colormap(Description& d, const std::string& name) {
                          fields);
     }
     for (const std::string& key : scene.colormap_keys) {
+        // A formula's chemicals a, b, ...: only those of its rule have keys.
+        if (d.scene == "formula" && key[0] - 'a' >= formula_chemicals(d)) continue;
         d.style.insert_or_assign(key, name);
-        const std::string colours = key.substr(0, key.size() - std::string("colormap").size()) + "colours";
-        d.style.erase(colours);
+        const std::string prefix = key.substr(0, key.size() - std::string("colormap").size());
+        d.style.erase(prefix + "colours");
+        d.style.erase(prefix + "blend");  // how those colours were blended
         d.origins["style." + key] = "--cmap " + name;
     }
 }

@@ -132,5 +132,6 @@ std::unique_ptr<Scene> read_roughness(const Description& d, const SceneOptions& 
 std::unique_ptr<Scene> read_lsystem(const Description& d, const SceneOptions& options);
 std::unique_ptr<Scene> read_lsystem_3d(const Description& d, const SceneOptions& options);
 std::unique_ptr<Scene> read_formula(const Description& d, const SceneOptions& options);
+std::unique_ptr<Scene> read_formula_atlas(const Description& d, const SceneOptions& options);
 
 }  // namespace scenes

@@ -49,7 +49,13 @@ inline std::string quoted(double value) {
     return text;
 }
 
-inline std::string range(double low, double high) { return "[" + quoted(low) + ", " + quoted(high) + "]"; }
+inline std::string range(double low, double high) {
+    std::string text = "[";  // appended in steps: GCC 12 warns (-Wrestrict) of a false overlap in "[" + ...
+    text += quoted(low);
+    text += ", ";
+    text += quoted(high);
+    return text += "]";
+}
 
 // `r`'s member `key`, which must be there.
 inline const nlohmann::json& member(const nlohmann::json& r, const std::string& key) {

@@ -603,6 +603,21 @@ TEST_CASE("render --cmap recolours a field figure with matplotlib's colormap", "
     CHECK(metadata(out / "tc7-2.json")["style"]["b_colormap"] == "magma");
     CHECK(metadata(out / "tc7-ex2.json")["style"]["colormap"] == "magma");
     CHECK_FALSE(metadata(out / "tc7-ex2.json")["style"].contains("colours"));
+    // A formula figure's chemicals (its rule's alone) and an atlas take it;
+    // their colours and how those were blended give way.
+    const Run formula = figgen("render fx-brusselator --format png --scale 0.3 --set steps=50 "
+                               "--set figure.panels=[0,50] --cmap magma --out " + out.string());
+    INFO(formula.output);
+    REQUIRE(formula.status == 0);
+    const Run atlas = figgen("render fx-pearson-map --format png --scale 0.3 --set tiles=[2,2] --set steps=50 "
+                             "--cmap magma --out " + out.string());
+    INFO(atlas.output);
+    REQUIRE(atlas.status == 0);
+    const auto brusselator = metadata(out / "fx-brusselator.json")["style"];
+    CHECK(brusselator["b_colormap"] == "magma");
+    CHECK_FALSE(brusselator.contains("b_colours"));
+    CHECK_FALSE(brusselator.contains("b_blend"));
+    CHECK(metadata(out / "fx-pearson-map.json")["style"]["colormap"] == "magma");
 }
 
 TEST_CASE("render --format, a list of png, pdf, svg, mp4 and frames, chooses what is written besides the PNG",

@@ -37,6 +37,7 @@ std::string small_descriptions(const fs::path& dir, bool film = false) {
     };
     const std::vector<Change> changes = {
         {"gs-atlas", {{"tiles", toml::array{5, 4}}}, {{"steps", 1000}}},
+        {"fx-pearson-map", {{"tiles", toml::array{3, 2}}}, {{"steps", 300}, {"width", 32}, {"height", 32}}},
         {"bd-roughness", {{"widths", toml::array{100, 200}}}, {{"seeds", 2}}},
         {"tc7-phase", {{"qs", toml::array{0.55, 0.65, 0.02}}}, {{"trials", 20}, {"walk_iterations", 30}}},
         {"tc7-ex1", {}, {{"n", 100}, {"gallery_steps", 15}}},

@@ -1,0 +1,316 @@
+// An atlas of any formula model (scene = "formula_atlas"): two of the
+// rule's parameters swept over a grid of tiles, each tile its own run of
+// the model from the same start, one chemical of each drawn at its last
+// step, as gs-atlas maps Gray-Scott over (f, k). [params] is the formula
+// scene's (scenes/formula_model.hpp) and x_parameter, x_range, y_parameter,
+// y_range, tiles; the swept parameters get each tile's values (tile
+// centres: the first column at x_lo + half a tile), x to the right, y up.
+//
+// Each tile is a work item: threads, MPI ranks, shards and resume as for
+// gs-atlas. A tile whose run goes unstable (a division by zero, a chemical
+// no longer finite) is a result too: drawn grey and named in the metadata.
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <thread>
+
+#include "render/colormap.hpp"
+#include "description/ready_vti.hpp"
+#include "scenes/field_panels.hpp"
+#include "scenes/field_spec.hpp"
+#include "scenes/field_stats.hpp"
+#include "scenes/figure_caption.hpp"
+#include "scenes/formula_model.hpp"
+#include "scenes/panel_grid.hpp"
+#include "scenes/plot_page.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/tile_map.hpp"
+#include "scenes/work.hpp"
+#include "scenes/work_codec.hpp"
+
+namespace scenes {
+namespace {
+
+namespace formula = sim::formula;
+
+const std::vector<Key> atlas_keys = {
+    {"x_parameter", "the rule's parameter swept across, left to right"},
+    {"x_range", "[lowest, highest] of x_parameter, the tiles' centres spread over it"},
+    {"y_parameter", "the rule's parameter swept up, bottom to top"},
+    {"y_range", "[lowest, highest] of y_parameter"},
+    {"tiles", "[columns, rows] of the map, each 1..64"},
+};
+
+std::vector<Key> style_keys() {
+    std::vector<Key> keys = {{"show", "the chemical each tile shows, e.g. \"b\""},
+                             {"tile_range", "without vmin and vmax, the colours span: \"all\" the tiles' values (one "
+                                            "range) or \"each\" tile's own"}};
+    const auto field = field_spec_keys();
+    keys.insert(keys.end(), field.begin(), field.end());
+    return with_plot_style_keys(keys);
+}
+
+struct Sweep {
+    std::string x, y;  // the parameters
+    double x_low = 0, x_high = 1, y_low = 0, y_high = 1;
+    int columns = 8, rows = 8;
+};
+
+Sweep read_sweep(Settings& s, const std::set<std::string>& words) {
+    Sweep w;
+    w.x = s.text("x_parameter", "");
+    w.y = s.text("y_parameter", "");
+    for (const auto& [key, name] : {std::pair{"x_parameter", w.x}, std::pair{"y_parameter", w.y}})
+        if (name.empty() || name == "timestep" || name == "dx" || !words.count(name))
+            s.refuse(key, "the name of a parameter the formula uses (not timestep or dx)");
+    if (w.x == w.y) s.refuse("y_parameter", "a parameter other than x_parameter (" + w.x + ")");
+    const auto range = [&](const char* key, double& low, double& high) {
+        const std::vector<double> r = s.numbers(key, {0, 1});
+        if (r.size() != 2 || !std::isfinite(r[0]) || !std::isfinite(r[1]) || !(r[1] > r[0]) ||
+            std::fabs(r[0]) > 1e30 || std::fabs(r[1]) > 1e30)
+            s.refuse(key, "[lowest, highest]: two finite numbers, the second greater");
+        low = r[0];
+        high = r[1];
+    };
+    range("x_range", w.x_low, w.x_high);
+    range("y_range", w.y_low, w.y_high);
+    const std::vector<long long> tiles = s.integers("tiles", {8, 8});
+    if (tiles.size() != 2 || tiles[0] < 1 || tiles[0] > 64 || tiles[1] < 1 || tiles[1] > 64)
+        s.refuse("tiles", "[columns, rows], each an integer from 1 to 64");
+    w.columns = static_cast<int>(tiles[0]);
+    w.rows = static_cast<int>(tiles[1]);
+    return w;
+}
+
+// The tile's parameter values: at the tiles' centres, y rising up the rows
+// (row 0 is the top).
+std::pair<double, double> tile_values(const Sweep& w, int tile) {
+    const int r = tile / w.columns, c = tile % w.columns;
+    const double x = w.x_low + (c + 0.5) / w.columns * (w.x_high - w.x_low);
+    const double y = w.y_low + (w.rows - r - 0.5) / w.rows * (w.y_high - w.y_low);
+    return {x, y};
+}
+
+class FormulaAtlasScene : public SceneBase, public WorkItems {
+public:
+    FormulaAtlasScene(const Description& d, const SceneOptions& options)
+        : SceneBase(d, options, formula_param_keys(d, atlas_keys), style_keys()),
+          words_(description::formula_words(d.params["formula"].value_or(std::string()))),
+          sweep_(read_sweep(params_, words_)),
+          m_(read_formula_model(params_, d, atlas_keys, {{sweep_.x, sweep_.x_low}, {sweep_.y, sweep_.y_low}})),
+          shown_(chemical_index(style_, "show", style_.text("show", "a"), m_.rule.chemicals)),
+          spec_(read_field_spec(style_, {render::colormap("viridis"), {}, {}, 1.0f, render::Sampling::smooth, true, ""})),
+          plot_(read_plot_style(style_, options.scale)),
+          each_tile_(read_tile_range()) {
+        require_drawable(params_, "width", "each tile", m_.height, m_.width);
+        require_text_fits(
+            d, options, [&](const render::Rect& area) { return tile_map().text(area, plot_); }, plot_remedy);
+    }
+
+    // Per thread a run's chemicals (two states, rows with halos) and its
+    // registers; the start; every tile's chemical kept (float or double)
+    // and, while drawn, as doubles with a texture.
+    std::vector<MemoryNeed> memory() const override {
+        const double cell = m_.rule.double_precision ? 8 : 4, chemicals = m_.rule.chemicals;
+        const double row = m_.width + 2.0 * m_.radius_x + 64 / cell;
+        const double threads = std::max(1, options_.threads);
+        return {grid_need("each thread's run: chemicals", m_.height + 3, row, cell, 2 * chemicals * threads),
+                grid_need("each thread's run: registers", threads * (m_.registers + 1), 1024 + 64 / cell, cell, 1),
+                grid_need("the start", m_.height, m_.width, 8, chemicals),
+                grid_need("the tiles kept", m_.height, m_.width, cell + 8 + field_layer_bytes_per_cell, tile_count())};
+    }
+
+    const WorkItems* work() const override { return this; }
+    int item_count() const override { return tile_count(); }
+    std::string item_name(int item) const override {
+        const auto [x, y] = tile_values(sweep_, item);
+        return "tile " + std::to_string(item) + " (" + sweep_.x + " = " + description::shown(x) + ", " + sweep_.y +
+               " = " + description::shown(y) + ")";
+    }
+    double item_bytes() const override { return (m_.rule.double_precision ? 8.0 : 4.0) * m_.width * m_.height + 1024; }
+
+    nlohmann::json run_item(int item) const override {
+        const auto [x, y] = tile_values(sweep_, item);
+        formula::Rule rule = m_.rule;
+        for (auto& [name, value] : rule.parameters) {
+            if (name == sweep_.x) value = x;
+            if (name == sweep_.y) value = y;
+        }
+        nlohmann::json r = {{"x", x}, {"y", y}};
+        try {
+            formula::Run run(rule, m_.width, m_.height, start());
+            run.step(m_.steps, 1);  // one thread a tile: the tiles run side by side
+            const sim::Grid<double> g = run.chemical(shown_);
+            if (m_.rule.double_precision) {
+                r["values"] = binary_of<double>(g.cells());
+            } else {
+                const std::vector<float> f(g.cells().begin(), g.cells().end());
+                r["values"] = binary_of<float>(std::span<const float>(f));
+            }
+        } catch (const formula::Unstable& e) {
+            r["unstable"] = e.what();
+        }
+        return r;
+    }
+
+    void check_result(int item, const nlohmann::json& r) const override {
+        namespace rc = result_check;
+        const auto [x, y] = tile_values(sweep_, item);
+        if (rc::member(r, "x") != x || rc::member(r, "y") != y)
+            throw std::invalid_argument("its parameters are not tile " + std::to_string(item) + "'s");
+        if (r.contains("unstable")) {
+            if (!r["unstable"].is_string()) throw std::invalid_argument("unstable is not a text");
+            return;
+        }
+        const std::size_t cells = static_cast<std::size_t>(m_.width) * m_.height;
+        if (m_.rule.double_precision) rc::values_in<double>(rc::member(r, "values"), "values", cells, -1e300, 1e300);
+        else rc::values_in<float>(rc::member(r, "values"), "values", cells, -3.4e38, 3.4e38);
+    }
+
+    void render(Output& out) const override {
+        Progress& progress = out.progress();
+        progress.start(d_.id, item_count());
+        std::vector<nlohmann::json> results = out.results(*this);
+        tiles_.assign(static_cast<std::size_t>(tile_count()), {});
+        nlohmann::json tile_meta = nlohmann::json::array();
+        int unstable = 0;
+        for (int t = 0; t < tile_count(); ++t) {
+            nlohmann::json& r = results[static_cast<std::size_t>(t)];
+            Tile& tile = tiles_[static_cast<std::size_t>(t)];
+            nlohmann::json meta = {{sweep_.x, r.at("x")}, {sweep_.y, r.at("y")}};
+            if (r.contains("unstable")) {
+                ++unstable;
+                meta["unstable"] = r["unstable"];
+            } else {
+                const std::size_t cells = static_cast<std::size_t>(m_.width) * m_.height;
+                if (m_.rule.double_precision) {
+                    tile.values = values_of<double>(r.at("values"), cells);
+                } else {
+                    const auto f = values_of<float>(r.at("values"), cells);
+                    tile.values.assign(f.begin(), f.end());
+                }
+                double sum = 0;
+                for (double v : tile.values) sum += v;
+                meta["mean"] = sum / static_cast<double>(tile.values.size());
+                meta["state_sha256"] = state_hash(tile.values);  // as the formula scene hashes a chemical
+                // Drawn with y = 0 at the bottom, as the formula scene draws.
+                for (int row = 0; row < m_.height / 2; ++row)
+                    std::swap_ranges(tile.values.begin() + static_cast<std::ptrdiff_t>(row) * m_.width,
+                                     tile.values.begin() + static_cast<std::ptrdiff_t>(row + 1) * m_.width,
+                                     tile.values.begin() + static_cast<std::ptrdiff_t>(m_.height - 1 - row) * m_.width);
+            }
+            r = nullptr;
+            tile_meta.push_back(std::move(meta));
+        }
+        // The colour range: vmin and vmax, else every tile's values (or each its own).
+        double all_lo = 0, all_hi = 0;
+        bool any = false;
+        for (const Tile& tile : tiles_)
+            if (!tile.values.empty()) {
+                const auto [lo, hi] = std::minmax_element(tile.values.begin(), tile.values.end());
+                all_lo = any ? std::min(all_lo, *lo) : *lo;
+                all_hi = any ? std::max(all_hi, *hi) : *hi;
+                any = true;
+            }
+        for (Tile& tile : tiles_) {
+            if (tile.values.empty()) continue;
+            double lo = all_lo, hi = all_hi;
+            if (each_tile_) {
+                const auto [l, h] = std::minmax_element(tile.values.begin(), tile.values.end());
+                lo = *l;
+                hi = *h;
+            }
+            double vmin = spec_.vmin.value_or(lo), vmax = spec_.vmax.value_or(hi);
+            if (!(vmax > vmin)) vmax = vmin + 1;
+            tile.style = {&spec_.colormap, vmin, vmax, spec_.alpha, spec_.sampling};
+        }
+        range_ = {all_lo, any && all_hi > all_lo ? all_hi : all_lo + 1};
+        nlohmann::json meta = {{"params", params_.used()},
+                               {"style", style_.used()},
+                               {"shows", formula::chemical_name(shown_)},
+                               {"tiles_unstable", unstable},
+                               {"tiles", tile_meta},
+                               {"model_operations", m_.operations}};
+        if (const auto bar = colour_bar()) meta["colour_bar"] = colour_bar_metadata(*bar);
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
+        out.figure({width, height, false, [this](render::Surface& s) { draw(s); }}, std::move(meta));
+        progress.finish();
+    }
+
+private:
+    struct Tile {
+        std::vector<double> values;  // empty: the run went unstable
+        render::FieldStyle style;
+    };
+
+    bool read_tile_range() {
+        const std::string range = style_.text("tile_range", "all");
+        if (range != "all" && range != "each") style_.refuse("tile_range", "\"all\" or \"each\"");
+        return range == "each";
+    }
+
+    int tile_count() const { return sweep_.columns * sweep_.rows; }
+
+    const std::vector<sim::Grid<double>>& start() const {
+        std::call_once(start_made_, [&] { start_ = formula_start(m_, d_); });
+        return start_;
+    }
+
+    void draw(render::Surface& surface) const {
+        static const render::Colormap grey = render::listed_colormap("unstable", {{0.6f, 0.6f, 0.6f}});
+        tile_map().draw(surface, plot_, [&](int t, std::vector<double>& values) {
+            const Tile& tile = tiles_[static_cast<std::size_t>(t)];
+            if (tile.values.empty()) {
+                values.assign(1, 0.0);
+                return TileMap::Tile{1, 1, {&grey, 0, 1, 1.0f, render::Sampling::nearest}};
+            }
+            values = tile.values;
+            return TileMap::Tile{m_.height, m_.width, tile.style};
+        });
+    }
+
+    TileMap tile_map() const {
+        render::Axes axes;
+        axes.x_range = std::pair{sweep_.x_low, sweep_.x_high};
+        axes.y_range = std::pair{sweep_.y_low, sweep_.y_high};
+        axes.x_label = sweep_.x;
+        axes.y_label = sweep_.y;
+        axes.title = d_.title;
+        return {sweep_.columns, sweep_.rows, axes, colour_bar()};
+    }
+
+    std::optional<render::ColourBar> colour_bar() const {
+        if (!spec_.colour_bar) return std::nullopt;
+        const std::string chem = formula::chemical_name(shown_);
+        const std::string& label = spec_.colour_bar_label;
+        if (spec_.vmin && spec_.vmax)
+            return render::ColourBar{spec_.colormap, *spec_.vmin, *spec_.vmax, label.empty() ? chem : label};
+        if (!each_tile_)
+            return render::ColourBar{spec_.colormap, spec_.vmin.value_or(range_.first),
+                                     spec_.vmax.value_or(range_.second), label.empty() ? chem : label};
+        return render::ColourBar{spec_.colormap, 0.0, 1.0,
+                                 label.empty() ? chem + ", each tile from its minimum (0) to its maximum (1)" : label};
+    }
+
+    const std::set<std::string> words_;
+    const Sweep sweep_;
+    const FormulaModel m_;
+    const int shown_;
+    const FieldSpec spec_;
+    const render::PlotStyle plot_;
+    mutable std::once_flag start_made_;
+    mutable std::vector<sim::Grid<double>> start_;
+    const bool each_tile_;  // tile_range = "each"
+    mutable std::vector<Tile> tiles_;
+    mutable std::pair<double, double> range_{0.0, 1.0};  // every tile's values, once the tiles ran
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> read_formula_atlas(const Description& d, const SceneOptions& options) {
+    return std::make_unique<FormulaAtlasScene>(d, options);
+}
+
+}  // namespace scenes
