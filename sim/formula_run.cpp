@@ -54,6 +54,43 @@ FIGGEN_FORMULA_BINARY(sub_rows, a[i] - b[i])
 FIGGEN_FORMULA_BINARY(mul_rows, a[i] * b[i])
 FIGGEN_FORMULA_BINARY(div_rows, a[i] / b[i])
 
+// The same with one operand a constant (a parameter, a literal): one row
+// read instead of two. `k op b` and `a op k`.
+#define FIGGEN_FORMULA_SCALAR(NAME, EXPR_LEFT, EXPR_RIGHT)                                                     \
+    template <class Real>                                                                                     \
+    void NAME##_left(Real* __restrict d, Real k, const Real* __restrict b, int n) {                           \
+        for (int i = 0; i < n; ++i) d[i] = EXPR_LEFT;                                                         \
+    }                                                                                                         \
+    template <class Real>                                                                                     \
+    void NAME##_right(Real* __restrict d, const Real* __restrict a, Real k, int n) {                          \
+        for (int i = 0; i < n; ++i) d[i] = EXPR_RIGHT;                                                        \
+    }                                                                                                         \
+    FIGGEN_FORMULA_CLONES void NAME##_left_f(float* d, float k, const float* b, int n) { NAME##_left(d, k, b, n); } \
+    FIGGEN_FORMULA_CLONES void NAME##_left_d(double* d, double k, const double* b, int n) { NAME##_left(d, k, b, n); } \
+    FIGGEN_FORMULA_CLONES void NAME##_right_f(float* d, const float* a, float k, int n) { NAME##_right(d, a, k, n); } \
+    FIGGEN_FORMULA_CLONES void NAME##_right_d(double* d, const double* a, double k, int n) { NAME##_right(d, a, k, n); }
+
+FIGGEN_FORMULA_SCALAR(add_k, k + b[i], a[i] + k)
+FIGGEN_FORMULA_SCALAR(sub_k, k - b[i], a[i] - k)
+FIGGEN_FORMULA_SCALAR(mul_k, k * b[i], a[i] * k)
+FIGGEN_FORMULA_SCALAR(div_k, k / b[i], a[i] / k)
+
+// d = k op b (`left`: the constant is the first operand) or d = a op k.
+template <class Real>
+void binary_scalar(Op op, bool left, Real* d, const Real* v, Real k, int n) {
+#define FIGGEN_FORMULA_PICK(NAME)                                                             \
+    if constexpr (sizeof(Real) == 4) left ? NAME##_left_f(d, k, v, n) : NAME##_right_f(d, v, k, n); \
+    else left ? NAME##_left_d(d, k, v, n) : NAME##_right_d(d, v, k, n);                       \
+    return
+    switch (op) {
+    case Op::add: FIGGEN_FORMULA_PICK(add_k);
+    case Op::sub: FIGGEN_FORMULA_PICK(sub_k);
+    case Op::mul: FIGGEN_FORMULA_PICK(mul_k);
+    default: FIGGEN_FORMULA_PICK(div_k);
+    }
+#undef FIGGEN_FORMULA_PICK
+}
+
 // Whether any of b's n values is zero where the mask (if any) is nonzero,
 // and whether any of v's is not a finite number: branch-free, vectorised.
 #define FIGGEN_FORMULA_CHECKS(REAL, SUFFIX)                                                     \
@@ -249,6 +286,12 @@ public:
         width = w;
         height = h;
         operations = static_cast<int>(program_.code.size());
+        constant_.assign(static_cast<std::size_t>(program_.registers), 0);
+        value_.assign(static_cast<std::size_t>(program_.registers), Real(0));
+        for (const Program::Constant& c : program_.constants) {
+            constant_[static_cast<std::size_t>(c.reg)] = 1;
+            value_[static_cast<std::size_t>(c.reg)] = static_cast<Real>(c.value);
+        }
         halo_ = program_.radius_x;
         const std::ptrdiff_t per_line = 64 / sizeof(Real);
         stride_ = (w + 2 * halo_ + per_line - 1) / per_line * per_line;
@@ -479,7 +522,11 @@ private:
             switch (in.op) {
             case Op::add:
             case Op::sub:
-            case Op::mul: binary<Real>(in.op, d, a, b, n); break;
+            case Op::mul:
+                if (constant_[in.a]) binary_scalar<Real>(in.op, true, d, b, value_[in.a], n);
+                else if (constant_[in.b]) binary_scalar<Real>(in.op, false, d, a, value_[in.b], n);
+                else binary<Real>(in.op, d, a, b, n);
+                break;
             case Op::stencil:
                 if constexpr (sizeof(Real) == 4) stencil_sum_f(d, p.stencils[in.a], sc.view.data(), n, sc.group);
                 else stencil_sum_d(d, p.stencils[in.a], sc.view.data(), n, sc.group);
@@ -495,7 +542,9 @@ private:
                                 return false;
                             }
                 }
-                binary<Real>(Op::div, d, a, b, n);
+                if (constant_[in.a]) binary_scalar<Real>(Op::div, true, d, b, value_[in.a], n);
+                else if (constant_[in.b]) binary_scalar<Real>(Op::div, false, d, a, value_[in.b], n);
+                else binary<Real>(Op::div, d, a, b, n);
                 break;
             }
             case Op::copy: std::copy(a, a + n, d); break;
@@ -569,6 +618,8 @@ private:
     std::vector<char> follows_;             // row y follows row y - 1 for every dy
     std::vector<int> halo_source_;          // the halo's source columns: left, then right
     std::vector<Real> x_pos_;
+    std::vector<char> constant_;  // per register: a constant of the program
+    std::vector<Real> value_;     // and its value
 };
 
 }  // namespace
