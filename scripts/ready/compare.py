@@ -4,6 +4,8 @@ docs/ready-patterns.md's table.
 
     RDY_BUILD=/tmp/rdy-build /usr/bin/python3 scripts/ready/compare.py READY/Patterns WORK > docs/ready-patterns.md
 
+(build/figgen must not be rebuilt while it runs.)
+
 For each pattern: `figgen render P.vti --set steps=100 --format png,vti`
 (does it run?); Ready's start (rdy_start) and Ready's 100 steps from it
 (rdy), scripts/ready/run_pattern.sh; figgen's 100 steps from the same
@@ -78,8 +80,8 @@ def main():
     print('--set steps=100 --format png,vti` succeeds. Against Ready: from the same start (Ready\'s own,')
     print('saved by rdy_start), the largest difference of any chemical in any cell after 100 steps of')
     print('figgen and of Ready\'s `rdy` (PoCL 3.1 on the CPU), with the largest value for scale. Where it')
-    print('exceeds 1e-4, "float vs double" is how far figgen\'s own float and double runs are apart: as')
-    print('large or larger, so the pattern amplifies rounding (chaotic maps such as `fmod(c + laplacian_c, 1)`,')
+    print('exceeds 1e-4, "float vs double" is how far figgen\'s own float and double runs are apart: of')
+    print('the same order (within a factor of 3), so the pattern amplifies rounding (chaotic maps such as `fmod(c + laplacian_c, 1)`,')
     print('divisions by near-zero gradients, values scaled by 1e6) and no two float implementations agree on it.\n')
     print(f'{sum(r["runs"] for r in rows)} of {len(rows)} run; {len(agree)} agree with Ready within 1e-4 '
           f'(the largest difference among them {max(r["diff"] for r in agree):.2g}); the other '
