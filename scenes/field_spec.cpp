@@ -76,7 +76,8 @@ render::Colormap read_colormap(Settings& style, const FieldSpec& defaults, const
             colours.push_back(*colour);
         }
         if (colours.empty() || colours.size() > 4096) style.refuse(prefix + "colours", "1 to 4096 colours");
-        const std::string blend = style.text(prefix + "blend", "none");
+        // Read only when given: figures without it keep their metadata.
+        const std::string blend = style.has(prefix + "blend") ? style.text(prefix + "blend", "none") : "none";
         if (blend != "none" && blend != "rgb" && blend != "hsv")
             style.refuse(prefix + "blend", "\"none\", \"rgb\" or \"hsv\"");
         listed = render::listed_colormap("listed", blend == "none" ? colours : ramp(colours, blend == "hsv"));

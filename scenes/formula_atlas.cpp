@@ -10,6 +10,7 @@
 // gs-atlas. A tile whose run goes unstable (a division by zero, a chemical
 // no longer finite) is a result too: drawn grey and named in the metadata.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <mutex>
 #include <optional>
@@ -58,13 +59,19 @@ struct Sweep {
     int columns = 8, rows = 8;
 };
 
-Sweep read_sweep(Settings& s, const std::set<std::string>& words) {
+const char* const parameter_allowed = "the name of a parameter the formula uses (not timestep or dx)";
+
+// The sweep; whether the formula uses its parameters is checked once the
+// formula itself has been (words_of_formula).
+Sweep read_sweep(Settings& s) {
     Sweep w;
     w.x = s.text("x_parameter", "");
     w.y = s.text("y_parameter", "");
-    for (const auto& [key, name] : {std::pair{"x_parameter", w.x}, std::pair{"y_parameter", w.y}})
-        if (name.empty() || name == "timestep" || name == "dx" || !words.count(name))
-            s.refuse(key, "the name of a parameter the formula uses (not timestep or dx)");
+    for (const auto& [key, name] : {std::pair{"x_parameter", w.x}, std::pair{"y_parameter", w.y}}) {
+        bool plain = !name.empty() && name.size() <= 64 && !std::isdigit(static_cast<unsigned char>(name[0]));
+        for (char c : name) plain &= std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+        if (!plain || name == "timestep" || name == "dx") s.refuse(key, parameter_allowed);
+    }
     if (w.x == w.y) s.refuse("y_parameter", "a parameter other than x_parameter (" + w.x + ")");
     const auto range = [&](const char* key, double& low, double& high) {
         const std::vector<double> r = s.numbers(key, {0, 1});
@@ -97,13 +104,15 @@ class FormulaAtlasScene : public SceneBase, public WorkItems {
 public:
     FormulaAtlasScene(const Description& d, const SceneOptions& options)
         : SceneBase(d, options, formula_param_keys(d, atlas_keys), style_keys()),
-          words_(description::formula_words(d.params["formula"].value_or(std::string()))),
-          sweep_(read_sweep(params_, words_)),
+          sweep_(read_sweep(params_)),
           m_(read_formula_model(params_, d, atlas_keys, {{sweep_.x, sweep_.x_low}, {sweep_.y, sweep_.y_low}})),
           shown_(chemical_index(style_, "show", style_.text("show", "a"), m_.rule.chemicals)),
           spec_(read_field_spec(style_, {render::colormap("viridis"), {}, {}, 1.0f, render::Sampling::smooth, true, ""})),
           plot_(read_plot_style(style_, options.scale)),
           each_tile_(read_tile_range()) {
+        const std::set<std::string> words = description::formula_words(m_.rule.code);
+        if (!words.count(sweep_.x)) params_.refuse("x_parameter", parameter_allowed);
+        if (!words.count(sweep_.y)) params_.refuse("y_parameter", parameter_allowed);
         require_drawable(params_, "width", "each tile", m_.height, m_.width);
         require_text_fits(
             d, options, [&](const render::Rect& area) { return tile_map().text(area, plot_); }, plot_remedy);
@@ -294,7 +303,6 @@ private:
                                  label.empty() ? chem + ", each tile from its minimum (0) to its maximum (1)" : label};
     }
 
-    const std::set<std::string> words_;
     const Sweep sweep_;
     const FormulaModel m_;
     const int shown_;

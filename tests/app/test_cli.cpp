@@ -69,7 +69,7 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
     const Case cases[] = {
         // The command line.
         {"", "A subcommand is required"},
-        {"bogus-command", "unknown command 'bogus-command'; allowed: list, describe, gallery, thumbnails, render"},
+        {"bogus-command", "unknown command 'bogus-command'; allowed: list, describe, convert, gallery, thumbnails, render"},
         {"list extra", "The following argument was not expected: extra"},
         {"render --out " + out.string(), "figures is required"},
         {render + "tc7-1 --frobnicate", "--frobnicate"},
@@ -100,8 +100,8 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "tc7-9 --fps 5", "--fps: none of the figures named has an animation"},
         {render + "tc7-1 --cmap jet", "--cmap jet is not allowed: use one of Reds, Blues, Greens, viridis, inferno, magma, plasma, cividis"},
         {render + "tc7-9 --cmap viridis", "--cmap: tc7-9 (scene percolation_scaling) draws no field to colour; the field scenes are diffusion, "},
-        {render + "tc7-1 --format gif", "--format: gif not in {png,pdf,svg,mp4,webm,frames}"},
-        {render + "tc7-1 --format png,eps", "--format: eps not in {png,pdf,svg,mp4,webm,frames}"},
+        {render + "tc7-1 --format gif", "--format: gif not in {png,pdf,svg,mp4,webm,frames,vti}"},
+        {render + "tc7-1 --format png,eps", "--format: eps not in {png,pdf,svg,mp4,webm,frames,vti}"},
         {render + "tc7-1 --format mp4", "--format mp4 is not allowed with --no-video or --frames: use one"},
         {render + "tc7-1 --format pdf,svg", "--format pdf,svg is not allowed with --no-video or --frames: use one"},
         {render + "tc7-1 --set 'figure.formats=[\"eps\"]'", "--set figure.formats=[\"eps\"]: figure.formats = [ 'eps' ] is not allowed: a list of \"pdf\", \"svg\" and \"png\""},

@@ -123,7 +123,12 @@ TEST_CASE("a formula atlas's mistakes are refused before anything runs", "[formu
         CHECK_FALSE(fs::exists(dir / "out" / "atlas.png"));
         return run.output;
     };
-    CHECK_THAT(refused("x_parameter=q"), Catch::Contains("x_parameter = 'q' is not allowed: the name of a parameter"));
+    // q swept, r given: the formula runs, but does not use q.
+    CHECK_THAT(refused("x_parameter=q' --set 'r=1.0"),
+               Catch::Contains("x_parameter = 'q' is not allowed: the name of a parameter"));
+    // q swept, r not given: the formula's own refusal names r.
+    CHECK_THAT(refused("x_parameter=q"), Catch::Contains("'r' is not a chemical, parameter, keyword or variable"));
+    CHECK_THAT(refused("x_parameter=timestep"), Catch::Contains("(not timestep or dx)"));
     CHECK_THAT(refused("y_parameter=r"), Catch::Contains("a parameter other than x_parameter"));
     CHECK_THAT(refused("x_range=[2, 1]"), Catch::Contains("the second greater"));
     CHECK_THAT(refused("tiles=[0, 2]"), Catch::Contains("each an integer from 1 to 64"));
