@@ -188,40 +188,56 @@ namespace {
 // one pass, a weighted group in another, the division in a last.
 //
 // One pass over n cells: with `Weighted`, d = [d +] w * (p0 + p1 + ...);
-// else d = [d +] p0 + p1 + ..., added left to right.
-template <class Real, int N, bool Weighted, bool Accumulate>
-[[gnu::always_inline]] inline void sum_pass(Real* __restrict d, const Real* const* p, int n, Real w) {
+// else d = [d +] p0 + p1 + ..., added left to right, p0 first multiplied by
+// w when `Head` (the stencil's weighted centre, then its single inputs);
+// then, with `Divide`, d / divisor: several of Ready's steps in one pass,
+// each still rounded in Ready's order.
+template <class Real, int N, bool Weighted, bool Accumulate, bool Head, bool Divide>
+[[gnu::always_inline]] inline void sum_pass(Real* __restrict d, const Real* const* p, int n, Real w, Real divisor) {
     const Real* q[N];
     for (int k = 0; k < N; ++k) q[k] = p[k];
     for (int i = 0; i < n; ++i) {
+        Real v;
         if constexpr (Weighted) {
             Real g = q[0][i];
             for (int k = 1; k < N; ++k) g = g + q[k][i];
-            if constexpr (Accumulate) d[i] = d[i] + w * g;
-            else d[i] = w * g;
+            if constexpr (Accumulate) v = d[i] + w * g;
+            else v = w * g;
         } else {
+            Real first = q[0][i];
+            if constexpr (Head) first = w * first;
             Real acc;
-            if constexpr (Accumulate) acc = d[i] + q[0][i];
-            else acc = q[0][i];
+            if constexpr (Accumulate) acc = d[i] + first;
+            else acc = first;
             for (int k = 1; k < N; ++k) acc = acc + q[k][i];
-            d[i] = acc;
+            v = acc;
         }
+        if constexpr (Divide) v = v / divisor;
+        d[i] = v;
     }
 }
 
 // The same for 1 to 8 inputs.
-template <class Real, bool Weighted, bool Accumulate>
-[[gnu::always_inline]] inline void sum_pass(Real* d, const Real* const* p, int count, int n, Real w) {
+template <class Real, bool Weighted, bool Accumulate, bool Head, bool Divide>
+[[gnu::always_inline]] inline void sum_pass(Real* d, const Real* const* p, int count, int n, Real w, Real divisor) {
     switch (count) {
-    case 1: sum_pass<Real, 1, Weighted, Accumulate>(d, p, n, w); return;
-    case 2: sum_pass<Real, 2, Weighted, Accumulate>(d, p, n, w); return;
-    case 3: sum_pass<Real, 3, Weighted, Accumulate>(d, p, n, w); return;
-    case 4: sum_pass<Real, 4, Weighted, Accumulate>(d, p, n, w); return;
-    case 5: sum_pass<Real, 5, Weighted, Accumulate>(d, p, n, w); return;
-    case 6: sum_pass<Real, 6, Weighted, Accumulate>(d, p, n, w); return;
-    case 7: sum_pass<Real, 7, Weighted, Accumulate>(d, p, n, w); return;
-    default: sum_pass<Real, 8, Weighted, Accumulate>(d, p, n, w); return;
+    case 1: sum_pass<Real, 1, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
+    case 2: sum_pass<Real, 2, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
+    case 3: sum_pass<Real, 3, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
+    case 4: sum_pass<Real, 4, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
+    case 5: sum_pass<Real, 5, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
+    case 6: sum_pass<Real, 6, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
+    case 7: sum_pass<Real, 7, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
+    default: sum_pass<Real, 8, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
     }
+}
+
+// A pass, its division chosen at run time (the stencil's last pass divides).
+template <class Real, bool Weighted, bool Accumulate, bool Head>
+[[gnu::always_inline]] inline void sum_pass(Real* d, const Real* const* p, int count, int n, Real w, bool divide,
+                                            Real divisor) {
+    if (divide) sum_pass<Real, Weighted, Accumulate, Head, true>(d, p, count, n, w, divisor);
+    else sum_pass<Real, Weighted, Accumulate, Head, false>(d, p, count, n, w, divisor);
 }
 
 template <class Real>
@@ -229,43 +245,50 @@ template <class Real>
                                                int n, Real* __restrict group) {
     constexpr int most = 8;  // inputs a pass takes
     const Real* in[most];
+    const Real divisor = static_cast<Real>(sum.divisor);
     bool first = true;
     std::size_t t = 0;
-    while (t < sum.terms.size()) {
-        if (sum.terms[t].weight == 1) {
-            // A run of single inputs, each added in turn.
+    const std::size_t terms = sum.terms.size();
+    while (t < terms) {
+        const StencilSum::Term& term = sum.terms[t];
+        if (term.weight == 1 || (first && term.inputs.size() == 1)) {
+            // A run of single inputs, each added in turn; the first term
+            // may be a weighted single input (Ready's centre, -20 a).
+            const bool head = term.weight != 1;
+            const Real w = static_cast<Real>(term.weight);
             int count = 0;
-            while (t < sum.terms.size() && sum.terms[t].weight == 1 && count < most)
-                in[count++] = view[sum.terms[t++].inputs[0]];
-            if (first) sum_pass<Real, false, false>(d, in, count, n, Real(1));
-            else sum_pass<Real, false, true>(d, in, count, n, Real(1));
+            in[count++] = view[sum.terms[t++].inputs[0]];
+            while (t < terms && sum.terms[t].weight == 1 && count < most) in[count++] = view[sum.terms[t++].inputs[0]];
+            const bool divide = sum.divide && t == terms;
+            if (first && head) sum_pass<Real, false, false, true>(d, in, count, n, w, divide, divisor);
+            else if (first) sum_pass<Real, false, false, false>(d, in, count, n, Real(1), divide, divisor);
+            else sum_pass<Real, false, true, false>(d, in, count, n, Real(1), divide, divisor);
         } else {
             // A weighted group: its inputs summed (in the group buffer when
             // more than a pass takes), then weighted and added.
-            const StencilSum::Term& term = sum.terms[t++];
+            ++t;
+            const bool divide = sum.divide && t == terms;
             const Real w = static_cast<Real>(term.weight);
             const int count = static_cast<int>(term.inputs.size());
             if (count <= most) {
                 for (int k = 0; k < count; ++k) in[k] = view[term.inputs[k]];
-                if (first) sum_pass<Real, true, false>(d, in, count, n, w);
-                else sum_pass<Real, true, true>(d, in, count, n, w);
+                if (first) sum_pass<Real, true, false, false>(d, in, count, n, w, divide, divisor);
+                else sum_pass<Real, true, true, false>(d, in, count, n, w, divide, divisor);
             } else {
                 for (int done = 0; done < count; done += most) {
                     const int take = std::min(most, count - done);
                     for (int k = 0; k < take; ++k) in[k] = view[term.inputs[done + k]];
-                    if (done == 0) sum_pass<Real, false, false>(group, in, take, n, Real(1));
-                    else sum_pass<Real, false, true>(group, in, take, n, Real(1));
+                    if (done == 0) sum_pass<Real, false, false, false, false>(group, in, take, n, Real(1), divisor);
+                    else sum_pass<Real, false, true, false, false>(group, in, take, n, Real(1), divisor);
                 }
                 in[0] = group;
-                if (first) sum_pass<Real, 1, true, false>(d, in, n, w);
-                else sum_pass<Real, 1, true, true>(d, in, n, w);
+                if (first) sum_pass<Real, 1, true, false, false, false>(d, in, n, w, divisor);
+                else sum_pass<Real, 1, true, true, false, false>(d, in, n, w, divisor);
+                if (divide)
+                    for (int i = 0; i < n; ++i) d[i] = d[i] / divisor;
             }
         }
         first = false;
-    }
-    if (sum.divide) {
-        const Real divisor = static_cast<Real>(sum.divisor);
-        for (int i = 0; i < n; ++i) d[i] = d[i] / divisor;
     }
 }
 FIGGEN_FORMULA_CLONES void stencil_sum_f(float* d, const StencilSum& sum, const float* const* view, int n,
