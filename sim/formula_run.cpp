@@ -112,11 +112,26 @@ void binary_scalar(Op op, bool left, Real* d, const Real* v, Real k, int n) {
     }
 FIGGEN_FORMULA_CHECKS(float, _f)
 FIGGEN_FORMULA_CHECKS(double, _d)
+FIGGEN_FORMULA_CLONES int not_finite_f(const float* __restrict v, int n) {
+    int bad = 0;
+    for (int i = 0; i < n; ++i) bad |= (v[i] - v[i]) != 0.0f;
+    return bad;
+}
+FIGGEN_FORMULA_CLONES int not_finite_d(const double* __restrict v, int n) {
+    int bad = 0;
+    for (int i = 0; i < n; ++i) bad |= (v[i] - v[i]) != 0.0;
+    return bad;
+}
 
 template <class Real>
 int zero_where(const Real* b, const Real* mask, int n) {
     if constexpr (sizeof(Real) == 4) return zero_where_f(b, mask, n);
     else return zero_where_d(b, mask, n);
+}
+template <class Real>
+int not_finite(const Real* v, int n) {
+    if constexpr (sizeof(Real) == 4) return not_finite_f(v, n);
+    else return not_finite_d(v, n);
 }
 template <class Real>
 int copy_finite(Real* out, const Real* v, int n) {
@@ -193,7 +208,8 @@ namespace {
 // then, with `Divide`, d / divisor: several of Ready's steps in one pass,
 // each still rounded in Ready's order.
 template <class Real, int N, bool Weighted, bool Accumulate, bool Head, bool Divide>
-[[gnu::always_inline]] inline void sum_pass(Real* __restrict d, const Real* const* p, int n, Real w, Real divisor) {
+[[gnu::always_inline]] inline void sum_pass(Real* __restrict d, const Real* const* p, int n, Real w, Real divisor,
+                                            Real scale = Real(1)) {
     const Real* q[N];
     for (int k = 0; k < N; ++k) q[k] = p[k];
     for (int i = 0; i < n; ++i) {
@@ -212,37 +228,41 @@ template <class Real, int N, bool Weighted, bool Accumulate, bool Head, bool Div
             for (int k = 1; k < N; ++k) acc = acc + q[k][i];
             v = acc;
         }
-        if constexpr (Divide) v = v / divisor;
+        // Then, if the formula multiplies the stencil by a constant
+        // (D_a * laplacian_a), that too: scale is 1 (exact) otherwise.
+        if constexpr (Divide) v = (v / divisor) * scale;
         d[i] = v;
     }
 }
 
 // The same for 1 to 8 inputs.
 template <class Real, bool Weighted, bool Accumulate, bool Head, bool Divide>
-[[gnu::always_inline]] inline void sum_pass(Real* d, const Real* const* p, int count, int n, Real w, Real divisor) {
+[[gnu::always_inline]] inline void sum_pass(Real* d, const Real* const* p, int count, int n, Real w, Real divisor,
+                                            Real scale = Real(1)) {
     switch (count) {
-    case 1: sum_pass<Real, 1, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
-    case 2: sum_pass<Real, 2, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
-    case 3: sum_pass<Real, 3, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
-    case 4: sum_pass<Real, 4, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
-    case 5: sum_pass<Real, 5, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
-    case 6: sum_pass<Real, 6, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
-    case 7: sum_pass<Real, 7, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
-    default: sum_pass<Real, 8, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor); return;
+    case 1: sum_pass<Real, 1, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
+    case 2: sum_pass<Real, 2, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
+    case 3: sum_pass<Real, 3, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
+    case 4: sum_pass<Real, 4, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
+    case 5: sum_pass<Real, 5, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
+    case 6: sum_pass<Real, 6, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
+    case 7: sum_pass<Real, 7, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
+    default: sum_pass<Real, 8, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
     }
 }
 
 // A pass, its division chosen at run time (the stencil's last pass divides).
 template <class Real, bool Weighted, bool Accumulate, bool Head>
 [[gnu::always_inline]] inline void sum_pass(Real* d, const Real* const* p, int count, int n, Real w, bool divide,
-                                            Real divisor) {
-    if (divide) sum_pass<Real, Weighted, Accumulate, Head, true>(d, p, count, n, w, divisor);
+                                            Real divisor, Real scale) {
+    if (divide) sum_pass<Real, Weighted, Accumulate, Head, true>(d, p, count, n, w, divisor, scale);
     else sum_pass<Real, Weighted, Accumulate, Head, false>(d, p, count, n, w, divisor);
 }
 
+// `scale`: what the stencil is multiplied by after its division (1: nothing).
 template <class Real>
 [[gnu::always_inline]] inline void stencil_sum(Real* __restrict d, const StencilSum& sum, const Real* const* view,
-                                               int n, Real* __restrict group) {
+                                               int n, Real* __restrict group, Real scale) {
     constexpr int most = 8;  // inputs a pass takes
     const Real* in[most];
     const Real divisor = static_cast<Real>(sum.divisor);
@@ -260,9 +280,9 @@ template <class Real>
             in[count++] = view[sum.terms[t++].inputs[0]];
             while (t < terms && sum.terms[t].weight == 1 && count < most) in[count++] = view[sum.terms[t++].inputs[0]];
             const bool divide = sum.divide && t == terms;
-            if (first && head) sum_pass<Real, false, false, true>(d, in, count, n, w, divide, divisor);
-            else if (first) sum_pass<Real, false, false, false>(d, in, count, n, Real(1), divide, divisor);
-            else sum_pass<Real, false, true, false>(d, in, count, n, Real(1), divide, divisor);
+            if (first && head) sum_pass<Real, false, false, true>(d, in, count, n, w, divide, divisor, scale);
+            else if (first) sum_pass<Real, false, false, false>(d, in, count, n, Real(1), divide, divisor, scale);
+            else sum_pass<Real, false, true, false>(d, in, count, n, Real(1), divide, divisor, scale);
         } else {
             // A weighted group: its inputs summed (in the group buffer when
             // more than a pass takes), then weighted and added.
@@ -272,8 +292,8 @@ template <class Real>
             const int count = static_cast<int>(term.inputs.size());
             if (count <= most) {
                 for (int k = 0; k < count; ++k) in[k] = view[term.inputs[k]];
-                if (first) sum_pass<Real, true, false, false>(d, in, count, n, w, divide, divisor);
-                else sum_pass<Real, true, true, false>(d, in, count, n, w, divide, divisor);
+                if (first) sum_pass<Real, true, false, false>(d, in, count, n, w, divide, divisor, scale);
+                else sum_pass<Real, true, true, false>(d, in, count, n, w, divide, divisor, scale);
             } else {
                 for (int done = 0; done < count; done += most) {
                     const int take = std::min(most, count - done);
@@ -285,19 +305,19 @@ template <class Real>
                 if (first) sum_pass<Real, 1, true, false, false, false>(d, in, n, w, divisor);
                 else sum_pass<Real, 1, true, true, false, false>(d, in, n, w, divisor);
                 if (divide)
-                    for (int i = 0; i < n; ++i) d[i] = d[i] / divisor;
+                    for (int i = 0; i < n; ++i) d[i] = (d[i] / divisor) * scale;
             }
         }
         first = false;
     }
 }
 FIGGEN_FORMULA_CLONES void stencil_sum_f(float* d, const StencilSum& sum, const float* const* view, int n,
-                                          float* group) {
-    stencil_sum(d, sum, view, n, group);
+                                          float* group, float scale) {
+    stencil_sum(d, sum, view, n, group, scale);
 }
 FIGGEN_FORMULA_CLONES void stencil_sum_d(double* d, const StencilSum& sum, const double* const* view, int n,
-                                          double* group) {
-    stencil_sum(d, sum, view, n, group);
+                                          double* group, double scale) {
+    stencil_sum(d, sum, view, n, group, scale);
 }
 
 template <class Real>
@@ -309,11 +329,60 @@ public:
         width = w;
         height = h;
         operations = static_cast<int>(program_.code.size());
+        // The instruction that makes a chemical's new value writes it
+        // straight into the chemical's next rows (no copy after), where it
+        // is the register's last writer and nothing reads the register
+        // after it, nor another chemical's output shares it.
+        writes_output_.assign(program_.code.size(), -1);
+        for (int chem = 0; chem < rule.chemicals; ++chem) {
+            const int reg = program_.outputs[static_cast<std::size_t>(chem)];
+            int last = -1;
+            for (std::size_t i = 0; i < program_.code.size(); ++i)
+                if (program_.code[i].dst == reg) last = static_cast<int>(i);
+            bool alone = last >= 0;
+            for (std::size_t i = static_cast<std::size_t>(last + 1); alone && i < program_.code.size(); ++i) {
+                const Instr& in = program_.code[i];
+                alone = in.a != reg && in.b != reg && in.c != reg && in.mask != reg &&
+                        !(in.op == Op::stencil && stencil_reads(program_.stencils[static_cast<std::size_t>(in.a)], reg));
+            }
+            for (int other = 0; other < rule.chemicals; ++other)
+                alone = alone && (other == chem || program_.outputs[static_cast<std::size_t>(other)] != reg);
+            if (alone && program_.code[static_cast<std::size_t>(last)].op != Op::stencil)
+                writes_output_[static_cast<std::size_t>(last)] = chem;
+        }
         constant_.assign(static_cast<std::size_t>(program_.registers), 0);
         value_.assign(static_cast<std::size_t>(program_.registers), Real(0));
         for (const Program::Constant& c : program_.constants) {
             constant_[static_cast<std::size_t>(c.reg)] = 1;
             value_[static_cast<std::size_t>(c.reg)] = static_cast<Real>(c.value);
+        }
+        // A stencil that divides, followed by a multiplication of it by a
+        // constant, its value read by nothing else: one pass for both.
+        scaled_into_.assign(program_.code.size(), -1);
+        scale_.assign(program_.code.size(), Real(1));
+        for (std::size_t k = 0; k + 1 < program_.code.size(); ++k) {
+            const Instr& st = program_.code[k];
+            const Instr& mul = program_.code[k + 1];
+            if (st.op != Op::stencil || !program_.stencils[static_cast<std::size_t>(st.a)].divide) continue;
+            if (mul.op != Op::mul || writes_output_[k + 1] >= 0 || writes_output_[k] >= 0) continue;
+            int other = -1;
+            if (mul.a == st.dst && mul.b != st.dst) other = mul.b;
+            else if (mul.b == st.dst && mul.a != st.dst) other = mul.a;
+            if (other < 0 || !constant_[static_cast<std::size_t>(other)]) continue;
+            bool unread = true;  // the stencil's own value, after the multiplication
+            for (std::size_t i = k + 2; unread && i < program_.code.size(); ++i) {
+                const Instr& in = program_.code[i];
+                if (in.dst == st.dst && in.a != st.dst && in.b != st.dst && in.c != st.dst && in.mask != st.dst &&
+                    in.op != Op::stencil)
+                    break;  // written again before any read
+                unread = in.a != st.dst && in.b != st.dst && in.c != st.dst && in.mask != st.dst &&
+                         !(in.op == Op::stencil && stencil_reads(program_.stencils[static_cast<std::size_t>(in.a)], st.dst));
+            }
+            for (int out : program_.outputs) unread = unread && (out != st.dst || mul.dst == st.dst);
+            if (!unread && mul.dst != st.dst) continue;
+            scaled_into_[k] = mul.dst;
+            scale_[k] = value_[static_cast<std::size_t>(other)];
+            ++k;
         }
         halo_ = program_.radius_x;
         const std::ptrdiff_t per_line = 64 / sizeof(Real);
@@ -445,6 +514,13 @@ private:
         std::uint64_t owner = 0;  // the engine whose program the registers hold
     };
 
+    static bool stencil_reads(const StencilSum& sum, int reg) {
+        for (const StencilSum::Term& t : sum.terms)
+            for (int r : t.inputs)
+                if (r == reg) return true;
+        return false;
+    }
+
     static std::uint64_t next_id() {
         static std::atomic<std::uint64_t> id{0};
         return ++id;
@@ -536,12 +612,17 @@ private:
                           static_cast<Real>(y0 + r) / static_cast<Real>(height));
             sc.view[p.y_pos] = yp;
         }
-        for (const Instr& in : p.code) {
+        for (std::size_t k = 0; k < p.code.size(); ++k) {
+            const Instr& in = p.code[k];
             const Real* a = in.op != Op::stencil && in.a >= 0 ? sc.view[in.a] : nullptr;
             const Real* b = in.b >= 0 ? sc.view[in.b] : nullptr;
             const Real* c = in.c >= 0 ? sc.view[in.c] : nullptr;
             const Real* mask = in.mask >= 0 ? sc.view[in.mask] : nullptr;
-            Real* d = sc.reg[in.dst];
+            // A chemical's new value straight into its next rows: the
+            // chunk's lanes are those rows' memory (halos and padding
+            // included, rewritten or unread after).
+            const int direct = writes_output_[k];
+            Real* d = direct >= 0 ? to[direct].row(y0) + (padded ? -halo_ : x0) : sc.reg[in.dst];
             switch (in.op) {
             case Op::add:
             case Op::sub:
@@ -550,10 +631,21 @@ private:
                 else if (constant_[in.b]) binary_scalar<Real>(in.op, false, d, a, value_[in.b], n);
                 else binary<Real>(in.op, d, a, b, n);
                 break;
-            case Op::stencil:
-                if constexpr (sizeof(Real) == 4) stencil_sum_f(d, p.stencils[in.a], sc.view.data(), n, sc.group);
-                else stencil_sum_d(d, p.stencils[in.a], sc.view.data(), n, sc.group);
+            case Op::stencil: {
+                // Fused with the multiplication by a constant after it: the
+                // product goes where that multiplication would put it.
+                const int into = scaled_into_[k];
+                Real* out = into >= 0 ? sc.reg[into] : d;
+                const Real scale = into >= 0 ? scale_[k] : Real(1);
+                if constexpr (sizeof(Real) == 4) stencil_sum_f(out, p.stencils[in.a], sc.view.data(), n, sc.group, scale);
+                else stencil_sum_d(out, p.stencils[in.a], sc.view.data(), n, sc.group, scale);
+                if (into >= 0) {
+                    sc.view[into] = out;
+                    ++k;  // the multiplication is done
+                    continue;
+                }
                 break;
+            }
             case Op::div: {
                 // Zero divisors only count on the grid's cells (and where an if lets them through).
                 for (int r = 0; r < rows; ++r) {
@@ -614,7 +706,13 @@ private:
             for (int chem = 0; chem < rule_.chemicals; ++chem) {
                 const Real* v = sc.view[p.outputs[chem]] + begin;
                 Real* out = to[chem].row(y0 + r) + (padded ? 0 : x0);
-                if (copy_finite<Real>(out, v, cells)) {
+                const bool direct = v == out;
+                const bool failed = direct ? not_finite<Real>(out, cells) : copy_finite<Real>(out, v, cells);
+                // The padding after a row's halo, written with the chunk's
+                // other lanes, is zero again: what is computed there never
+                // matters, and must not grow into subnormal numbers.
+                if (direct && padded) std::fill(out + width + halo_, out - halo_ + stride_, Real(0));
+                if (failed) {
                     int bad = 0;
                     while (std::isfinite(v[bad])) ++bad;
                     failure.record(step, y0 + r, (padded ? 0 : x0) + bad,
@@ -641,6 +739,9 @@ private:
     std::vector<char> follows_;             // row y follows row y - 1 for every dy
     std::vector<int> halo_source_;          // the halo's source columns: left, then right
     std::vector<Real> x_pos_;
+    std::vector<int> writes_output_;  // per instruction: the chemical whose next rows it writes, or -1
+    std::vector<int> scaled_into_;    // per stencil instruction: the register of its fused product, or -1
+    std::vector<Real> scale_;         // and the constant it is multiplied by
     std::vector<char> constant_;  // per register: a constant of the program
     std::vector<Real> value_;     // and its value
 };
