@@ -158,6 +158,53 @@ void binary(Op op, Real* d, const Real* a, const Real* b, int n) {
     }
 }
 
+// Two operations in one pass, the first's value used by the second alone:
+// t = x o1 y, then d = t o2 z (or z o2 t), each rounded as on its own.
+template <class Real, int O1, int O2, bool TFirst>
+void pair_rows(Real* __restrict d, const Real* __restrict x, const Real* __restrict y, const Real* __restrict z, int n) {
+    const auto apply = [](int op, Real u, Real v) { return op == 0 ? u + v : op == 1 ? u - v : u * v; };
+    for (int i = 0; i < n; ++i) {
+        const Real t = apply(O1, x[i], y[i]);
+        d[i] = TFirst ? apply(O2, t, z[i]) : apply(O2, z[i], t);
+    }
+}
+#define FIGGEN_FORMULA_PAIR(O1, O2, FIRST)                                                                          \
+    FIGGEN_FORMULA_CLONES void pair_##O1##_##O2##_##FIRST##_f(float* d, const float* x, const float* y, const float* z, \
+                                                           int n) {                                               \
+        pair_rows<float, O1, O2, FIRST>(d, x, y, z, n);                                                           \
+    }                                                                                                             \
+    FIGGEN_FORMULA_CLONES void pair_##O1##_##O2##_##FIRST##_d(double* d, const double* x, const double* y,          \
+                                                           const double* z, int n) {                              \
+        pair_rows<double, O1, O2, FIRST>(d, x, y, z, n);                                                          \
+    }
+#define FIGGEN_FORMULA_PAIRS(O1, O2) FIGGEN_FORMULA_PAIR(O1, O2, 0) FIGGEN_FORMULA_PAIR(O1, O2, 1)
+FIGGEN_FORMULA_PAIRS(0, 0) FIGGEN_FORMULA_PAIRS(0, 1) FIGGEN_FORMULA_PAIRS(0, 2)
+FIGGEN_FORMULA_PAIRS(1, 0) FIGGEN_FORMULA_PAIRS(1, 1) FIGGEN_FORMULA_PAIRS(1, 2)
+FIGGEN_FORMULA_PAIRS(2, 0) FIGGEN_FORMULA_PAIRS(2, 1) FIGGEN_FORMULA_PAIRS(2, 2)
+
+// The pair kernel for operations o1, o2 (0 add, 1 sub, 2 mul) and whether t is o2's first operand.
+template <class Real>
+using PairKernel = void (*)(Real*, const Real*, const Real*, const Real*, int);
+#define FIGGEN_FORMULA_ROW(O1, O2, SUFFIX) {&pair_##O1##_##O2##_0##SUFFIX, &pair_##O1##_##O2##_1##SUFFIX}
+#define FIGGEN_FORMULA_TABLE(SUFFIX)                                                                        \
+    {{FIGGEN_FORMULA_ROW(0, 0, SUFFIX), FIGGEN_FORMULA_ROW(0, 1, SUFFIX), FIGGEN_FORMULA_ROW(0, 2, SUFFIX)},     \
+     {FIGGEN_FORMULA_ROW(1, 0, SUFFIX), FIGGEN_FORMULA_ROW(1, 1, SUFFIX), FIGGEN_FORMULA_ROW(1, 2, SUFFIX)},     \
+     {FIGGEN_FORMULA_ROW(2, 0, SUFFIX), FIGGEN_FORMULA_ROW(2, 1, SUFFIX), FIGGEN_FORMULA_ROW(2, 2, SUFFIX)}}
+template <class Real>
+PairKernel<Real> pair_kernel(int o1, int o2, bool t_first) {
+    if constexpr (sizeof(Real) == 4) {
+        static const PairKernel<float> table[3][3][2] = FIGGEN_FORMULA_TABLE(_f);
+        return table[o1][o2][t_first ? 1 : 0];
+    } else {
+        static const PairKernel<double> table[3][3][2] = FIGGEN_FORMULA_TABLE(_d);
+        return table[o1][o2][t_first ? 1 : 0];
+    }
+}
+#undef FIGGEN_FORMULA_TABLE
+#undef FIGGEN_FORMULA_ROW
+
+int arithmetic_index(Op op) { return op == Op::add ? 0 : op == Op::sub ? 1 : op == Op::mul ? 2 : -1; }
+
 // A chemical's rows with their halo, and which row a row's neighbour at dy is.
 template <class Real>
 struct Rows {
@@ -382,6 +429,29 @@ public:
             if (!unread && mul.dst != st.dst) continue;
             scaled_into_[k] = mul.dst;
             scale_[k] = value_[static_cast<std::size_t>(other)];
+            ++k;
+        }
+        // Two arithmetic operations in a row, the first's value read by the
+        // second alone (once) and by nothing after: one pass.
+        pair_.assign(program_.code.size(), nullptr);
+        for (std::size_t k = 0; k + 1 < program_.code.size(); ++k) {
+            const Instr& first = program_.code[k];
+            const Instr& second = program_.code[k + 1];
+            const int o1 = arithmetic_index(first.op), o2 = arithmetic_index(second.op);
+            if (o1 < 0 || o2 < 0 || writes_output_[k] >= 0 || (k > 0 && scaled_into_[k - 1] >= 0)) continue;
+            const int t = first.dst;
+            if ((second.a == t) == (second.b == t)) continue;  // read once, as one operand
+            if (first.a == t || first.b == t) continue;        // (t's old value read by the first)
+            bool unread = true;
+            for (std::size_t i = k + 2; unread && i < program_.code.size(); ++i) {
+                const Instr& in = program_.code[i];
+                unread = in.a != t && in.b != t && in.c != t && in.mask != t &&
+                         !(in.op == Op::stencil && stencil_reads(program_.stencils[static_cast<std::size_t>(in.a)], t));
+                if (in.dst == t) break;
+            }
+            for (int out : program_.outputs) unread = unread && out != t;
+            if (!unread && second.dst != t) continue;
+            pair_[k] = pair_kernel<Real>(o1, o2, second.a == t);
             ++k;
         }
         halo_ = program_.radius_x;
@@ -621,6 +691,16 @@ private:
             // A chemical's new value straight into its next rows: the
             // chunk's lanes are those rows' memory (halos and padding
             // included, rewritten or unread after).
+            if (const PairKernel<Real> fused = pair_[k]) {
+                const Instr& next = p.code[k + 1];
+                const Real* z = sc.view[next.a == in.dst ? next.b : next.a];
+                const int out = writes_output_[k + 1];
+                Real* d = out >= 0 ? to[out].row(y0) + (padded ? -halo_ : x0) : sc.reg[next.dst];
+                fused(d, a, b, z, n);
+                sc.view[next.dst] = d;
+                ++k;
+                continue;
+            }
             const int direct = writes_output_[k];
             Real* d = direct >= 0 ? to[direct].row(y0) + (padded ? -halo_ : x0) : sc.reg[in.dst];
             switch (in.op) {
@@ -742,6 +822,7 @@ private:
     std::vector<int> writes_output_;  // per instruction: the chemical whose next rows it writes, or -1
     std::vector<int> scaled_into_;    // per stencil instruction: the register of its fused product, or -1
     std::vector<Real> scale_;         // and the constant it is multiplied by
+    std::vector<PairKernel<Real>> pair_;  // per instruction: fused with the next, or null
     std::vector<char> constant_;  // per register: a constant of the program
     std::vector<Real> value_;     // and its value
 };
