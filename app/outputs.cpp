@@ -208,13 +208,17 @@ double vector_file_bytes(int width, int height) {
 
 // The most a formula model's VTI file takes: every chemical's cells as
 // doubles in base64 (zlib's blocks can only grow by a few bytes each), and
-// the XML around them.
+// the XML around them with the rule's name, description and formula.
 static double vti_bytes(const Description& d) {
     const auto value = [&](const char* key, long long fallback, long long most) {
         return static_cast<double>(std::clamp<long long>(d.params[key].value_or(fallback), 1, most));
     };
     const double cells = value("width", 128, 4096) * value("height", 128, 4096);
-    return cells * value("chemicals", 2, 26) * 8 * 1.34 * 1.01 + 65536 + 2.0 * d.params["formula"].value_or(std::string()).size();
+    // The texts it repeats (XML escapes a character in at most 6: &quot;).
+    const double texts = static_cast<double>(d.title.size() + d.caption.size() +
+                                             d.params["formula"].value_or(std::string()).size());
+    // And each parameter's element: its name (counted in the formula) and value.
+    return cells * value("chemicals", 2, 26) * 8 * 1.34 * 1.01 + 65536 + 6 * texts + 200.0 * d.params.size();
 }
 
 void require_disk(const Description& d, const OutputOptions& options, double parts_bytes) {

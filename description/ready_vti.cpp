@@ -325,36 +325,42 @@ std::optional<toml::table> overlay(const XMLElement* o, int chemicals, std::set<
         } else if (fills.count(name)) {
             has_fill = true;
             t.insert_or_assign("fill", name);
-            if (name == "constant") {
-                t.insert("value", as_float(attribute(e, "value")));
-            } else if (name == "white_noise") {
-                t.insert("low", as_float(attribute(e, "low")));
-                t.insert("high", as_float(attribute(e, "high")));
-            } else if (name == "perlin_noise") {
-                t.insert("scale", as_float(attribute(e, "scale", 64)));
-                t.insert("octaves", static_cast<std::int64_t>(attribute(e, "num_octaves", 8)));
-            } else if (name == "linear_gradient" || name == "radial_gradient") {
-                t.insert("val1", as_float(attribute(e, "val1")));
-                t.insert("val2", as_float(attribute(e, "val2")));
-                const auto p = points(e, 2);
-                t.insert("from", point(p[0]));
-                t.insert("to", point(p[1]));
-            } else if (name == "gaussian") {
-                t.insert("height", as_float(attribute(e, "height")));
-                t.insert("sigma", as_float(attribute(e, "sigma")));
-                t.insert("centre", point(points(e, 1)[0]));
-            } else if (name == "sine") {
-                t.insert("phase", as_float(attribute(e, "phase")));
-                t.insert("amplitude", as_float(attribute(e, "amplitude")));
-                const auto p = points(e, 2);
-                t.insert("from", point(p[0]));
-                t.insert("to", point(p[1]));
-            } else if (name == "other_chemical") {
+            // Each fill's numbers (Ready's attribute, figgen's key, Ready's
+            // default if it has one) and its nested points, in order.
+            struct Number {
+                const char* attribute;
+                const char* key;
+                std::optional<double> fallback;
+            };
+            struct FillKeys {
+                const char* fill;
+                std::vector<Number> numbers;
+                std::vector<const char*> points;
+            };
+            static const FillKeys fill_keys[] = {
+                {"constant", {{"value", "value", {}}}, {}},
+                {"white_noise", {{"low", "low", {}}, {"high", "high", {}}}, {}},
+                {"perlin_noise", {{"scale", "scale", 64}}, {}},
+                {"linear_gradient", {{"val1", "val1", {}}, {"val2", "val2", {}}}, {"from", "to"}},
+                {"radial_gradient", {{"val1", "val1", {}}, {"val2", "val2", {}}}, {"from", "to"}},
+                {"gaussian", {{"height", "height", {}}, {"sigma", "sigma", {}}}, {"centre"}},
+                {"sine", {{"phase", "phase", {}}, {"amplitude", "amplitude", {}}}, {"from", "to"}},
+            };
+            for (const FillKeys& f : fill_keys) {
+                if (name != f.fill) continue;
+                for (const Number& n : f.numbers) t.insert(n.key, as_float(attribute(e, n.attribute, n.fallback)));
+                if (!f.points.empty()) {
+                    const auto p = points(e, f.points.size());
+                    for (std::size_t k = 0; k < p.size(); ++k) t.insert(f.points[k], point(p[k]));
+                }
+            }
+            if (name == "perlin_noise") t.insert("octaves", static_cast<std::int64_t>(attribute(e, "num_octaves", 8)));
+            if (name == "other_chemical") {
                 const std::string other = text_attribute(e, "chemical", "");
                 if (other.size() != 1 || other[0] < 'a' || other[0] >= 'a' + chemicals)
                     throw Refused("an overlay's other_chemical is \"" + printable_short(other) + "\", not one of the rule's");
                 t.insert("other", other);
-            } else {
+            } else if (name == "parameter") {
                 const std::string p = text_attribute(e, "name", "");
                 t.insert("parameter", p);
                 parameters_used.insert(p);
@@ -699,16 +705,34 @@ ReadyPattern read_pattern(const std::filesystem::path& file, std::optional<int> 
     for (int c = 0; c < chemicals; ++c)
         for (const XMLElement* a : all)
             if (text_attribute(a, "Name", "") == std::string(1, static_cast<char>('a' + c))) named.push_back(a);
-    if (static_cast<int>(named.size()) == chemicals && static_cast<int>(all.size()) == chemicals) {
-        for (const XMLElement* a : named) {
-            std::vector<double> v = arrays.read(a, 1, start->float64);
-            start->chemicals.push_back(std::move(v));
+    const bool by_name = static_cast<int>(named.size()) == chemicals && static_cast<int>(all.size()) == chemicals;
+    const bool by_component = !by_name && all.size() == 1 && attribute(all[0], "NumberOfComponents", 1) == chemicals;
+    // The number type is the arrays' (Ready's too), read from their type
+    // whether or not the arrays themselves are needed.
+    if (by_name || by_component) start->float64 = text_attribute(all[0], "type", "") == "Float64";
+    // Ready starts from the stored arrays unless it regenerates the start
+    // from zero: then its overlays (if it applies them) go on top. Only
+    // then are they decoded, and never more than max_start_bytes of them.
+    const XMLElement* generator = child(rd, "initial_pattern_generator");
+    const bool apply = generator && text_attribute(generator, "apply_when_loading", "true") == "true";
+    const bool zero_first = !generator || text_attribute(generator, "zero_first", "true") != "false";
+    if (!apply || !zero_first) {
+        const double bytes = 8.0 * static_cast<double>(cells) * chemicals;
+        if (bytes > static_cast<double>(max_start_bytes))
+            throw Refused("its stored arrays would take " + std::to_string(static_cast<long long>(bytes / (1 << 20))) +
+                          " MiB as doubles: figgen reads at most " + std::to_string(max_start_bytes >> 20) +
+                          " MiB of a pattern's arrays");
+        if (!by_name && !by_component)
+            throw Refused("it starts from its stored arrays, but holds neither arrays a, b, ... nor one of " +
+                          std::to_string(chemicals) + " components");
+        if (by_name) {
+            for (const XMLElement* a : named) start->chemicals.push_back(arrays.read(a, 1, start->float64));
+        } else {
+            const std::vector<double> v = arrays.read(all[0], chemicals, start->float64);
+            start->chemicals.assign(static_cast<std::size_t>(chemicals), std::vector<double>(cells));
+            for (std::uint64_t i = 0; i < cells; ++i)
+                for (int c = 0; c < chemicals; ++c) start->chemicals[static_cast<std::size_t>(c)][i] = v[i * chemicals + c];
         }
-    } else if (all.size() == 1 && attribute(all[0], "NumberOfComponents", 1) == chemicals) {
-        const std::vector<double> v = arrays.read(all[0], chemicals, start->float64);
-        start->chemicals.assign(static_cast<std::size_t>(chemicals), std::vector<double>(cells));
-        for (std::uint64_t i = 0; i < cells; ++i)
-            for (int c = 0; c < chemicals; ++c) start->chemicals[static_cast<std::size_t>(c)][i] = v[i * chemicals + c];
     }
 
     // The description.
@@ -736,20 +760,10 @@ ReadyPattern read_pattern(const std::filesystem::path& file, std::optional<int> 
     params.insert("height", ny);
     params.insert("steps", steps);
 
-    const XMLElement* generator = child(rd, "initial_pattern_generator");
-    const bool apply = generator && text_attribute(generator, "apply_when_loading", "true") == "true";
     std::set<std::string> used = formula_words(code);
     used.insert("timestep");
     used.insert("dx");
-    // Ready starts from the stored arrays unless it regenerates the start
-    // from zero: then its overlays (if it applies them) go on top.
-    const bool zero_first = !generator || text_attribute(generator, "zero_first", "true") != "false";
-    if (!apply || !zero_first) {
-        if (start->chemicals.empty())
-            throw Refused("it starts from its stored arrays, but holds neither arrays a, b, ... nor one of " +
-                          std::to_string(chemicals) + " components");
-        out.start = start;
-    }
+    if (!start->chemicals.empty()) out.start = start;
     if (apply) {
         params.insert("zero_first", zero_first);
         toml::array initial;

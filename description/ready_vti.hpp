@@ -46,6 +46,9 @@ struct ReadyPattern {
 
 // The largest pattern file read; a larger one is refused before it is parsed.
 inline constexpr std::uintmax_t max_pattern_bytes = 256u << 20;
+// The most a pattern's stored arrays may take decoded (as doubles): zlib
+// lets a small file hold far more. 1 GiB holds 8 chemicals of 4096 x 4096.
+inline constexpr std::uintmax_t max_start_bytes = 1u << 30;
 
 // Whether `target` names a Ready pattern file (ends in .vti).
 bool is_ready_pattern(const std::string& target);

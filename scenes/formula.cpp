@@ -89,7 +89,8 @@ public:
         const double panels = static_cast<double>(d_.panels.size()) + 1;
         const double row = m_.width + 2.0 * m_.radius_x + 64 / cell;  // a row, halos and padding
         const double threads = model_threads() > 0 ? model_threads() : std::max(1u, std::thread::hardware_concurrency());
-        return {grid_need("the chemicals' grids", m_.height + 3, row, cell, 2 * chemicals),
+        return {grid_need("the arrays a Ready pattern stores", m_.height, m_.width, 8, d_.stored_start ? chemicals : 0),
+                grid_need("the chemicals' grids", m_.height + 3, row, cell, 2 * chemicals),
                 grid_need("the formula's registers", threads * (m_.registers + 1), 1024 + 64 / cell, cell, 1),
                 grid_need("the start and the grids read", m_.height, m_.width, 8, 2 * chemicals),
                 grid_need("panels' copies", m_.height, m_.width, 8 + field_layer_bytes_per_cell,

@@ -139,6 +139,13 @@ TEST_CASE("what figgen cannot run is refused in one line that says what", "[read
     CHECK_THAT(refusal(edited("ascii-f32.vti", R"(<param name="D">)", R"(<param name="width">)", "clash.vti")),
                Contains("a parameter is named width, a key of figgen's formula scene"));
     CHECK_THAT(refusal(fixtures / "no-such-file.vti"), Contains("not a regular file"));
+    // A small file may claim arrays far larger than itself (zlib): refused
+    // before any is decoded. 9 chemicals of 4096 x 4096 as doubles: 1152 MiB.
+    const fs::path huge = edited("ascii-f32.vti", R"(WholeExtent="0 7 0 5 0 0")", R"(WholeExtent="0 4095 0 4095 0 0")", "huge.vti");
+    std::string text = testkit::slurp(huge);
+    text.replace(text.find(R"(number_of_chemicals="2")"), 23, R"(number_of_chemicals="9")");
+    testkit::spill(huge, text);
+    CHECK_THAT(refusal(huge), Contains("its stored arrays would take 1152 MiB as doubles: figgen reads at most 1024 MiB"));
     // Cut, corrupt or lying data: a header that claims more than the extent,
     // zlib blocks that do not inflate, base64 cut short.
     const std::string zlib = testkit::slurp(fixtures / "binary-zlib-f32-uint32.vti");
