@@ -1,7 +1,8 @@
 // Throughput of formula models (sim/formula.hpp) in cell-updates per
 // second, beside the hand-written kernels (bench_gray_scott.cpp): Ready's
-// own Gray-Scott formula (its File > New Pattern rule), compiled into row
-// operations, in float and double. Args: n, threads.
+// own Gray-Scott formula (its File > New Pattern rule), compiled and fused
+// into three chains (sim/formula_fused.hpp), in float and double. Args: n,
+// threads.
 #include <benchmark/benchmark.h>
 
 #include "kernel_throughput.hpp"

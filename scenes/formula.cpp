@@ -81,7 +81,7 @@ public:
 
     // Two states of every chemical (rows with their halos and padding,
     // sim/formula_run.cpp), each thread's registers (a chunk of at most
-    // 1024 cells each, a line apart), the start and the grids read at a
+    // sim::formula::chunk_lanes cells each, a line apart), the start and the grids read at a
     // stop, and a copy per panel and frame of the chemicals shown, with
     // their textures.
     std::vector<MemoryNeed> memory() const override {
@@ -91,7 +91,7 @@ public:
         const double threads = model_threads() > 0 ? model_threads() : std::max(1u, std::thread::hardware_concurrency());
         return {grid_need("the arrays a Ready pattern stores", m_.height, m_.width, 8, d_.stored_start ? chemicals : 0),
                 grid_need("the chemicals' grids", m_.height + 3, row, cell, 2 * chemicals),
-                grid_need("the formula's registers", threads * (m_.registers + 1), 1024 + 64 / cell, cell, 1),
+                grid_need("the formula's registers", threads * (m_.registers + 1), sim::formula::chunk_lanes + 64 / cell, cell, 1),
                 grid_need("the start and the grids read", m_.height, m_.width, 8, 2 * chemicals),
                 grid_need("panels' copies", m_.height, m_.width, 8 + field_layer_bytes_per_cell,
                           panels * static_cast<double>(shown_.size()))};

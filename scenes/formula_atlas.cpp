@@ -127,7 +127,7 @@ public:
         const double threads = std::max(1, options_.threads);
         return {grid_need("the arrays a Ready pattern stores", m_.height, m_.width, 8, d_.stored_start ? chemicals : 0),
                 grid_need("each thread's run: chemicals", m_.height + 3, row, cell, 2 * chemicals * threads),
-                grid_need("each thread's run: registers", threads * (m_.registers + 1), 1024 + 64 / cell, cell, 1),
+                grid_need("each thread's run: registers", threads * (m_.registers + 1), sim::formula::chunk_lanes + 64 / cell, cell, 1),
                 grid_need("the start", m_.height, m_.width, 8, chemicals),
                 grid_need("the tiles kept", m_.height, m_.width, cell + 8 + field_layer_bytes_per_cell, tile_count())};
     }

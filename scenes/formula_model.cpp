@@ -233,7 +233,7 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
         const formula::Program program = formula::compile(r, m.width, m.height);
         m.registers = program.registers;
         m.radius_x = program.radius_x;
-        m.operations = static_cast<int>(program.code.size());
+        m.operations = program.operations;
     } catch (const formula::FormulaError& e) {
         params.refuse("formula", "...", "line " + std::to_string(e.pos().line) + ", column " +
                                             std::to_string(e.pos().column) + " of the formula: " + e.message());

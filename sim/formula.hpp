@@ -78,6 +78,11 @@ struct Rule {
 // The stencil keywords, as in Ready: `name_X` for a chemical X.
 const std::vector<std::string>& stencil_names();
 
+// The most cells a run's register holds at once (a chunk of a row, or of
+// several rows with their halos): each thread has the compiled formula's
+// registers of this many cells, and a cache line more.
+constexpr int chunk_lanes = 2048;
+
 // A run of a rule on a width x height grid (grid(row y, column x)).
 class Run {
 public:

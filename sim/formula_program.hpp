@@ -26,6 +26,7 @@ enum class Op : std::uint8_t {
     int_div, int_mod,             // a / b, a % b on ints (toward zero)
     call1, call2, call3,          // fn(a), fn(a, b), fn(a, b, c)
     stencil,                      // Program::stencils[a]: a weighted sum of inputs, in one pass
+    chain,                        // Program::chains[a]: several operations in one pass (below)
 };
 
 // The built-in functions (an allow-list, sim/formula_compile.cpp).
@@ -59,6 +60,32 @@ struct StencilSum {
     double divisor = 1;  // rounded to the number type
 };
 
+// Operations fused into one pass over the chunk (sim/formula_fused.hpp),
+// each value rounded as the operation alone rounds it: a stencil or a
+// binary operation, then operations that each take the value so far and
+// one operand. An operand may itself be a short chain, kept in a second
+// accumulator (`aux`). Only add, sub, mul, and div by a nonzero constant
+// go into a chain: nothing in one can fail.
+struct Chain {
+    enum class Kind : std::uint8_t {
+        stencil,  // acc = Program::stencils[stencil]
+        binary,   // acc = x op y
+        acc,      // acc = acc op x (t_first), or x op acc
+        aux,      // aux = x op y
+        aux_op,   // aux = aux op x (t_first), or x op aux
+        acc_aux,  // acc = acc op aux (t_first), or aux op acc
+    };
+    struct Step {
+        Kind kind = Kind::binary;
+        Op op = Op::add;
+        bool t_first = true;
+        int x = -1, y = -1;     // registers; -1: the constant kx or ky
+        double kx = 0, ky = 0;  // rounded to the number type
+        int stencil = -1;
+    };
+    std::vector<Step> steps;
+};
+
 struct Program {
     // Registers 0 .. registers - 1 each hold a chunk of values. Some are
     // views into the model's rows (inputs, outputs), some constants
@@ -77,9 +104,15 @@ struct Program {
     int x_pos = -1, y_pos = -1;  // registers of x_pos and y_pos, if used
     std::vector<Instr> code;
     std::vector<StencilSum> stencils;
+    std::vector<Chain> chains;
+    int operations = 0;  // the operations before any were fused into chains
     std::vector<int> outputs;  // per chemical: the register of its new value
     int radius_x = 0, radius_y = 0;  // the farthest neighbour read
 };
+
+// The registers an instruction reads: its operands, a stencil's inputs, a
+// chain's operands.
+std::vector<int> sources(const Program& program, const Instr& in);
 
 // Compiles `rule` (validated) for a width x height grid. Throws FormulaError.
 Program compile(const Rule& rule, int width, int height);

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "sim/formula.hpp"
+#include "sim/formula_fused.hpp"
 #include "sim/formula_program.hpp"
 #include "sim/formula_scalar.hpp"
 #include "sim/parallel_steps.hpp"
@@ -158,53 +159,6 @@ void binary(Op op, Real* d, const Real* a, const Real* b, int n) {
     }
 }
 
-// Two operations in one pass, the first's value used by the second alone:
-// t = x o1 y, then d = t o2 z (or z o2 t), each rounded as on its own.
-template <class Real, int O1, int O2, bool TFirst>
-void pair_rows(Real* __restrict d, const Real* __restrict x, const Real* __restrict y, const Real* __restrict z, int n) {
-    const auto apply = [](int op, Real u, Real v) { return op == 0 ? u + v : op == 1 ? u - v : u * v; };
-    for (int i = 0; i < n; ++i) {
-        const Real t = apply(O1, x[i], y[i]);
-        d[i] = TFirst ? apply(O2, t, z[i]) : apply(O2, z[i], t);
-    }
-}
-#define FIGGEN_FORMULA_PAIR(O1, O2, FIRST)                                                                          \
-    FIGGEN_FORMULA_CLONES void pair_##O1##_##O2##_##FIRST##_f(float* d, const float* x, const float* y, const float* z, \
-                                                           int n) {                                               \
-        pair_rows<float, O1, O2, FIRST>(d, x, y, z, n);                                                           \
-    }                                                                                                             \
-    FIGGEN_FORMULA_CLONES void pair_##O1##_##O2##_##FIRST##_d(double* d, const double* x, const double* y,          \
-                                                           const double* z, int n) {                              \
-        pair_rows<double, O1, O2, FIRST>(d, x, y, z, n);                                                          \
-    }
-#define FIGGEN_FORMULA_PAIRS(O1, O2) FIGGEN_FORMULA_PAIR(O1, O2, 0) FIGGEN_FORMULA_PAIR(O1, O2, 1)
-FIGGEN_FORMULA_PAIRS(0, 0) FIGGEN_FORMULA_PAIRS(0, 1) FIGGEN_FORMULA_PAIRS(0, 2)
-FIGGEN_FORMULA_PAIRS(1, 0) FIGGEN_FORMULA_PAIRS(1, 1) FIGGEN_FORMULA_PAIRS(1, 2)
-FIGGEN_FORMULA_PAIRS(2, 0) FIGGEN_FORMULA_PAIRS(2, 1) FIGGEN_FORMULA_PAIRS(2, 2)
-
-// The pair kernel for operations o1, o2 (0 add, 1 sub, 2 mul) and whether t is o2's first operand.
-template <class Real>
-using PairKernel = void (*)(Real*, const Real*, const Real*, const Real*, int);
-#define FIGGEN_FORMULA_ROW(O1, O2, SUFFIX) {&pair_##O1##_##O2##_0##SUFFIX, &pair_##O1##_##O2##_1##SUFFIX}
-#define FIGGEN_FORMULA_TABLE(SUFFIX)                                                                        \
-    {{FIGGEN_FORMULA_ROW(0, 0, SUFFIX), FIGGEN_FORMULA_ROW(0, 1, SUFFIX), FIGGEN_FORMULA_ROW(0, 2, SUFFIX)},     \
-     {FIGGEN_FORMULA_ROW(1, 0, SUFFIX), FIGGEN_FORMULA_ROW(1, 1, SUFFIX), FIGGEN_FORMULA_ROW(1, 2, SUFFIX)},     \
-     {FIGGEN_FORMULA_ROW(2, 0, SUFFIX), FIGGEN_FORMULA_ROW(2, 1, SUFFIX), FIGGEN_FORMULA_ROW(2, 2, SUFFIX)}}
-template <class Real>
-PairKernel<Real> pair_kernel(int o1, int o2, bool t_first) {
-    if constexpr (sizeof(Real) == 4) {
-        static const PairKernel<float> table[3][3][2] = FIGGEN_FORMULA_TABLE(_f);
-        return table[o1][o2][t_first ? 1 : 0];
-    } else {
-        static const PairKernel<double> table[3][3][2] = FIGGEN_FORMULA_TABLE(_d);
-        return table[o1][o2][t_first ? 1 : 0];
-    }
-}
-#undef FIGGEN_FORMULA_TABLE
-#undef FIGGEN_FORMULA_ROW
-
-int arithmetic_index(Op op) { return op == Op::add ? 0 : op == Op::sub ? 1 : op == Op::mul ? 2 : -1; }
-
 // A chemical's rows with their halo, and which row a row's neighbour at dy is.
 template <class Real>
 struct Rows {
@@ -244,129 +198,6 @@ struct Run::Impl {
 
 namespace {
 
-// A stencil's weighted sum (sim/formula_program.hpp's StencilSum), Ready's
-// order of operations in each cell, as a few passes over the chunk, each a
-// loop the compiler vectorises: a run of single inputs added to the sum in
-// one pass, a weighted group in another, the division in a last.
-//
-// One pass over n cells: with `Weighted`, d = [d +] w * (p0 + p1 + ...);
-// else d = [d +] p0 + p1 + ..., added left to right, p0 first multiplied by
-// w when `Head` (the stencil's weighted centre, then its single inputs);
-// then, with `Divide`, d / divisor: several of Ready's steps in one pass,
-// each still rounded in Ready's order.
-template <class Real, int N, bool Weighted, bool Accumulate, bool Head, bool Divide>
-[[gnu::always_inline]] inline void sum_pass(Real* __restrict d, const Real* const* p, int n, Real w, Real divisor,
-                                            Real scale = Real(1)) {
-    const Real* q[N];
-    for (int k = 0; k < N; ++k) q[k] = p[k];
-    for (int i = 0; i < n; ++i) {
-        Real v;
-        if constexpr (Weighted) {
-            Real g = q[0][i];
-            for (int k = 1; k < N; ++k) g = g + q[k][i];
-            if constexpr (Accumulate) v = d[i] + w * g;
-            else v = w * g;
-        } else {
-            Real first = q[0][i];
-            if constexpr (Head) first = w * first;
-            Real acc;
-            if constexpr (Accumulate) acc = d[i] + first;
-            else acc = first;
-            for (int k = 1; k < N; ++k) acc = acc + q[k][i];
-            v = acc;
-        }
-        // Then, if the formula multiplies the stencil by a constant
-        // (D_a * laplacian_a), that too: scale is 1 (exact) otherwise.
-        if constexpr (Divide) v = (v / divisor) * scale;
-        d[i] = v;
-    }
-}
-
-// The same for 1 to 8 inputs.
-template <class Real, bool Weighted, bool Accumulate, bool Head, bool Divide>
-[[gnu::always_inline]] inline void sum_pass(Real* d, const Real* const* p, int count, int n, Real w, Real divisor,
-                                            Real scale = Real(1)) {
-    switch (count) {
-    case 1: sum_pass<Real, 1, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
-    case 2: sum_pass<Real, 2, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
-    case 3: sum_pass<Real, 3, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
-    case 4: sum_pass<Real, 4, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
-    case 5: sum_pass<Real, 5, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
-    case 6: sum_pass<Real, 6, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
-    case 7: sum_pass<Real, 7, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
-    default: sum_pass<Real, 8, Weighted, Accumulate, Head, Divide>(d, p, n, w, divisor, scale); return;
-    }
-}
-
-// A pass, its division chosen at run time (the stencil's last pass divides).
-template <class Real, bool Weighted, bool Accumulate, bool Head>
-[[gnu::always_inline]] inline void sum_pass(Real* d, const Real* const* p, int count, int n, Real w, bool divide,
-                                            Real divisor, Real scale) {
-    if (divide) sum_pass<Real, Weighted, Accumulate, Head, true>(d, p, count, n, w, divisor, scale);
-    else sum_pass<Real, Weighted, Accumulate, Head, false>(d, p, count, n, w, divisor);
-}
-
-// `scale`: what the stencil is multiplied by after its division (1: nothing).
-template <class Real>
-[[gnu::always_inline]] inline void stencil_sum(Real* __restrict d, const StencilSum& sum, const Real* const* view,
-                                               int n, Real* __restrict group, Real scale) {
-    constexpr int most = 8;  // inputs a pass takes
-    const Real* in[most];
-    const Real divisor = static_cast<Real>(sum.divisor);
-    bool first = true;
-    std::size_t t = 0;
-    const std::size_t terms = sum.terms.size();
-    while (t < terms) {
-        const StencilSum::Term& term = sum.terms[t];
-        if (term.weight == 1 || (first && term.inputs.size() == 1)) {
-            // A run of single inputs, each added in turn; the first term
-            // may be a weighted single input (Ready's centre, -20 a).
-            const bool head = term.weight != 1;
-            const Real w = static_cast<Real>(term.weight);
-            int count = 0;
-            in[count++] = view[sum.terms[t++].inputs[0]];
-            while (t < terms && sum.terms[t].weight == 1 && count < most) in[count++] = view[sum.terms[t++].inputs[0]];
-            const bool divide = sum.divide && t == terms;
-            if (first && head) sum_pass<Real, false, false, true>(d, in, count, n, w, divide, divisor, scale);
-            else if (first) sum_pass<Real, false, false, false>(d, in, count, n, Real(1), divide, divisor, scale);
-            else sum_pass<Real, false, true, false>(d, in, count, n, Real(1), divide, divisor, scale);
-        } else {
-            // A weighted group: its inputs summed (in the group buffer when
-            // more than a pass takes), then weighted and added.
-            ++t;
-            const bool divide = sum.divide && t == terms;
-            const Real w = static_cast<Real>(term.weight);
-            const int count = static_cast<int>(term.inputs.size());
-            if (count <= most) {
-                for (int k = 0; k < count; ++k) in[k] = view[term.inputs[k]];
-                if (first) sum_pass<Real, true, false, false>(d, in, count, n, w, divide, divisor, scale);
-                else sum_pass<Real, true, true, false>(d, in, count, n, w, divide, divisor, scale);
-            } else {
-                for (int done = 0; done < count; done += most) {
-                    const int take = std::min(most, count - done);
-                    for (int k = 0; k < take; ++k) in[k] = view[term.inputs[done + k]];
-                    if (done == 0) sum_pass<Real, false, false, false, false>(group, in, take, n, Real(1), divisor);
-                    else sum_pass<Real, false, true, false, false>(group, in, take, n, Real(1), divisor);
-                }
-                in[0] = group;
-                if (first) sum_pass<Real, 1, true, false, false, false>(d, in, n, w, divisor);
-                else sum_pass<Real, 1, true, true, false, false>(d, in, n, w, divisor);
-                if (divide)
-                    for (int i = 0; i < n; ++i) d[i] = (d[i] / divisor) * scale;
-            }
-        }
-        first = false;
-    }
-}
-FIGGEN_FORMULA_CLONES void stencil_sum_f(float* d, const StencilSum& sum, const float* const* view, int n,
-                                          float* group, float scale) {
-    stencil_sum(d, sum, view, n, group, scale);
-}
-FIGGEN_FORMULA_CLONES void stencil_sum_d(double* d, const StencilSum& sum, const double* const* view, int n,
-                                          double* group, double scale) {
-    stencil_sum(d, sum, view, n, group, scale);
-}
-
 template <class Real>
 class Engine final : public Run::Impl {
 public:
@@ -375,7 +206,7 @@ public:
         chemicals = rule.chemicals;
         width = w;
         height = h;
-        operations = static_cast<int>(program_.code.size());
+        operations = program_.operations;
         // The instruction that makes a chemical's new value writes it
         // straight into the chemical's next rows (no copy after), where it
         // is the register's last writer and nothing reads the register
@@ -389,13 +220,11 @@ public:
             bool alone = last >= 0;
             for (std::size_t i = static_cast<std::size_t>(last + 1); alone && i < program_.code.size(); ++i) {
                 const Instr& in = program_.code[i];
-                alone = in.a != reg && in.b != reg && in.c != reg && in.mask != reg &&
-                        !(in.op == Op::stencil && stencil_reads(program_.stencils[static_cast<std::size_t>(in.a)], reg));
+                alone = !reads(in, reg);
             }
             for (int other = 0; other < rule.chemicals; ++other)
                 alone = alone && (other == chem || program_.outputs[static_cast<std::size_t>(other)] != reg);
-            if (alone && program_.code[static_cast<std::size_t>(last)].op != Op::stencil)
-                writes_output_[static_cast<std::size_t>(last)] = chem;
+            if (alone) writes_output_[static_cast<std::size_t>(last)] = chem;
         }
         constant_.assign(static_cast<std::size_t>(program_.registers), 0);
         value_.assign(static_cast<std::size_t>(program_.registers), Real(0));
@@ -403,56 +232,9 @@ public:
             constant_[static_cast<std::size_t>(c.reg)] = 1;
             value_[static_cast<std::size_t>(c.reg)] = static_cast<Real>(c.value);
         }
-        // A stencil that divides, followed by a multiplication of it by a
-        // constant, its value read by nothing else: one pass for both.
-        scaled_into_.assign(program_.code.size(), -1);
-        scale_.assign(program_.code.size(), Real(1));
-        for (std::size_t k = 0; k + 1 < program_.code.size(); ++k) {
-            const Instr& st = program_.code[k];
-            const Instr& mul = program_.code[k + 1];
-            if (st.op != Op::stencil || !program_.stencils[static_cast<std::size_t>(st.a)].divide) continue;
-            if (mul.op != Op::mul || writes_output_[k + 1] >= 0 || writes_output_[k] >= 0) continue;
-            int other = -1;
-            if (mul.a == st.dst && mul.b != st.dst) other = mul.b;
-            else if (mul.b == st.dst && mul.a != st.dst) other = mul.a;
-            if (other < 0 || !constant_[static_cast<std::size_t>(other)]) continue;
-            bool unread = true;  // the stencil's own value, after the multiplication
-            for (std::size_t i = k + 2; unread && i < program_.code.size(); ++i) {
-                const Instr& in = program_.code[i];
-                if (in.dst == st.dst && in.a != st.dst && in.b != st.dst && in.c != st.dst && in.mask != st.dst &&
-                    in.op != Op::stencil)
-                    break;  // written again before any read
-                unread = in.a != st.dst && in.b != st.dst && in.c != st.dst && in.mask != st.dst &&
-                         !(in.op == Op::stencil && stencil_reads(program_.stencils[static_cast<std::size_t>(in.a)], st.dst));
-            }
-            for (int out : program_.outputs) unread = unread && (out != st.dst || mul.dst == st.dst);
-            if (!unread && mul.dst != st.dst) continue;
-            scaled_into_[k] = mul.dst;
-            scale_[k] = value_[static_cast<std::size_t>(other)];
-            ++k;
-        }
-        // Two arithmetic operations in a row, the first's value read by the
-        // second alone (once) and by nothing after: one pass.
-        pair_.assign(program_.code.size(), nullptr);
-        for (std::size_t k = 0; k + 1 < program_.code.size(); ++k) {
-            const Instr& first = program_.code[k];
-            const Instr& second = program_.code[k + 1];
-            const int o1 = arithmetic_index(first.op), o2 = arithmetic_index(second.op);
-            if (o1 < 0 || o2 < 0 || writes_output_[k] >= 0 || (k > 0 && scaled_into_[k - 1] >= 0)) continue;
-            const int t = first.dst;
-            if ((second.a == t) == (second.b == t)) continue;  // read once, as one operand
-            if (first.a == t || first.b == t) continue;        // (t's old value read by the first)
-            bool unread = true;
-            for (std::size_t i = k + 2; unread && i < program_.code.size(); ++i) {
-                const Instr& in = program_.code[i];
-                unread = in.a != t && in.b != t && in.c != t && in.mask != t &&
-                         !(in.op == Op::stencil && stencil_reads(program_.stencils[static_cast<std::size_t>(in.a)], t));
-                if (in.dst == t) break;
-            }
-            for (int out : program_.outputs) unread = unread && out != t;
-            if (!unread && second.dst != t) continue;
-            pair_[k] = pair_kernel<Real>(o1, o2, second.a == t);
-            ++k;
+        for (const Chain& chain : program_.chains) {
+            if constexpr (sizeof(Real) == 4) plans_.push_back(fused::plan_float(program_, chain));
+            else plans_.push_back(fused::plan_double(program_, chain));
         }
         halo_ = program_.radius_x;
         const std::ptrdiff_t per_line = 64 / sizeof(Real);
@@ -461,7 +243,14 @@ public:
         // operation's loop is long: the rows with their halos (and the
         // padding to the next row) are one run of memory, the lanes outside
         // the grid computed and thrown away.
+        // As many rows as fit, or fewer that make whole blocks of 64 cells
+        // for the chains' vector code (sim/formula_fused.hpp).
         group_most_ = stride_ <= max_lanes ? static_cast<int>(max_lanes / stride_) : 1;
+        for (int rows = group_most_; rows >= 2; --rows)
+            if (rows * stride_ % 64 == 0) {
+                group_most_ = rows;
+                break;
+            }
         lanes_ = stride_ <= max_lanes ? static_cast<int>(group_most_ * stride_) : max_lanes;
         for (int k = 0; k < 2; ++k)
             for (int c = 0; c < rule.chemicals; ++c) state_[k].push_back(make_rows());
@@ -549,7 +338,7 @@ public:
     }
 
 private:
-    static constexpr std::ptrdiff_t max_lanes = 1024;  // a chunk's cells: each register 4 or 8 KiB
+    static constexpr std::ptrdiff_t max_lanes = chunk_lanes;  // a chunk's cells: each register 8 or 16 KiB
 
     struct Failure {
         std::atomic<bool> failed{false};
@@ -580,14 +369,12 @@ private:
         std::vector<Real> buffers;
         std::vector<Real*> reg;
         std::vector<const Real*> view;
-        Real* group = nullptr;    // a stencil's weighted group of more than 8 inputs
         std::uint64_t owner = 0;  // the engine whose program the registers hold
     };
 
-    static bool stencil_reads(const StencilSum& sum, int reg) {
-        for (const StencilSum::Term& t : sum.terms)
-            for (int r : t.inputs)
-                if (r == reg) return true;
+    bool reads(const Instr& in, int reg) const {
+        for (int r : sources(program_, in))
+            if (r == reg) return true;
         return false;
     }
 
@@ -607,7 +394,6 @@ private:
             const std::uintptr_t misaligned = reinterpret_cast<std::uintptr_t>(base) % 64;
             if (misaligned) base += (64 - misaligned) / sizeof(Real);
             for (int r = 0; r < program_.registers; ++r) s.reg[r] = base + static_cast<std::ptrdiff_t>(r) * stride;
-            s.group = base + static_cast<std::ptrdiff_t>(program_.registers) * stride;
             for (const Program::Constant& c : program_.constants)
                 std::fill(s.reg[c.reg], s.reg[c.reg] + lanes_, static_cast<Real>(c.value));
             s.view.assign(s.reg.begin(), s.reg.end());
@@ -617,15 +403,20 @@ private:
 
     // Rows of a chemical, with `pad` cells before the first and after the
     // last so that a chunk's lanes outside the grid read memory that exists.
+    // Each row's halo starts on a cache line: a chunk's first lane, so that
+    // the loads of the cells themselves (not their neighbours in x) and the
+    // stores are aligned.
     Rows<Real> make_rows() const {
         Rows<Real> r;
         r.width = width;
         r.height = height;
         r.halo = halo_;
         r.stride = stride_;
-        const std::ptrdiff_t pad = stride_ + 2 * halo_ + 64;
-        r.cells.reset(new Real[static_cast<std::size_t>(stride_ * height + 2 * pad)]());
-        r.offset = pad;
+        const std::ptrdiff_t line = 64 / static_cast<std::ptrdiff_t>(sizeof(Real));
+        const std::ptrdiff_t pad = (stride_ + 2 * halo_ + 64 + line - 1) / line * line;
+        r.cells.reset(new Real[static_cast<std::size_t>(stride_ * height + 2 * pad + line)]());
+        const std::uintptr_t misaligned = reinterpret_cast<std::uintptr_t>(r.cells.get()) % 64;
+        r.offset = pad + (misaligned ? (64 - static_cast<std::ptrdiff_t>(misaligned)) / static_cast<std::ptrdiff_t>(sizeof(Real)) : 0);
         return r;
     }
 
@@ -682,25 +473,16 @@ private:
                           static_cast<Real>(y0 + r) / static_cast<Real>(height));
             sc.view[p.y_pos] = yp;
         }
+        std::uint32_t verify = ~std::uint32_t(0);  // the chemicals whose new values are still to check
         for (std::size_t k = 0; k < p.code.size(); ++k) {
             const Instr& in = p.code[k];
-            const Real* a = in.op != Op::stencil && in.a >= 0 ? sc.view[in.a] : nullptr;
+            const Real* a = in.op != Op::chain && in.a >= 0 ? sc.view[in.a] : nullptr;
             const Real* b = in.b >= 0 ? sc.view[in.b] : nullptr;
             const Real* c = in.c >= 0 ? sc.view[in.c] : nullptr;
             const Real* mask = in.mask >= 0 ? sc.view[in.mask] : nullptr;
             // A chemical's new value straight into its next rows: the
             // chunk's lanes are those rows' memory (halos and padding
             // included, rewritten or unread after).
-            if (const PairKernel<Real> fused = pair_[k]) {
-                const Instr& next = p.code[k + 1];
-                const Real* z = sc.view[next.a == in.dst ? next.b : next.a];
-                const int out = writes_output_[k + 1];
-                Real* d = out >= 0 ? to[out].row(y0) + (padded ? -halo_ : x0) : sc.reg[next.dst];
-                fused(d, a, b, z, n);
-                sc.view[next.dst] = d;
-                ++k;
-                continue;
-            }
             const int direct = writes_output_[k];
             Real* d = direct >= 0 ? to[direct].row(y0) + (padded ? -halo_ : x0) : sc.reg[in.dst];
             switch (in.op) {
@@ -711,21 +493,15 @@ private:
                 else if (constant_[in.b]) binary_scalar<Real>(in.op, false, d, a, value_[in.b], n);
                 else binary<Real>(in.op, d, a, b, n);
                 break;
-            case Op::stencil: {
-                // Fused with the multiplication by a constant after it: the
-                // product goes where that multiplication would put it.
-                const int into = scaled_into_[k];
-                Real* out = into >= 0 ? sc.reg[into] : d;
-                const Real scale = into >= 0 ? scale_[k] : Real(1);
-                if constexpr (sizeof(Real) == 4) stencil_sum_f(out, p.stencils[in.a], sc.view.data(), n, sc.group, scale);
-                else stencil_sum_d(out, p.stencils[in.a], sc.view.data(), n, sc.group, scale);
-                if (into >= 0) {
-                    sc.view[into] = out;
-                    ++k;  // the multiplication is done
-                    continue;
-                }
+            case Op::chain:
+                // A chain that writes a chemical checks its values as it
+                // goes (all lanes: where one is not finite, the grid's
+                // cells are checked again below).
+                if (!fused::run(plans_[static_cast<std::size_t>(in.a)], sc.view.data(), d, n, direct >= 0) &&
+                    direct >= 0)
+                    verify &= ~(std::uint32_t(1) << direct);
                 break;
-            }
+            case Op::stencil: throw std::logic_error("a stencil outside a chain");
             case Op::div: {
                 // Zero divisors only count on the grid's cells (and where an if lets them through).
                 for (int r = 0; r < rows; ++r) {
@@ -787,7 +563,9 @@ private:
                 const Real* v = sc.view[p.outputs[chem]] + begin;
                 Real* out = to[chem].row(y0 + r) + (padded ? 0 : x0);
                 const bool direct = v == out;
-                const bool failed = direct ? not_finite<Real>(out, cells) : copy_finite<Real>(out, v, cells);
+                const bool failed = !direct                                    ? copy_finite<Real>(out, v, cells)
+                                    : (verify >> chem & 1) ? not_finite<Real>(out, cells) != 0
+                                                           : false;
                 // The padding after a row's halo, written with the chunk's
                 // other lanes, is zero again: what is computed there never
                 // matters, and must not grow into subnormal numbers.
@@ -820,9 +598,7 @@ private:
     std::vector<int> halo_source_;          // the halo's source columns: left, then right
     std::vector<Real> x_pos_;
     std::vector<int> writes_output_;  // per instruction: the chemical whose next rows it writes, or -1
-    std::vector<int> scaled_into_;    // per stencil instruction: the register of its fused product, or -1
-    std::vector<Real> scale_;         // and the constant it is multiplied by
-    std::vector<PairKernel<Real>> pair_;  // per instruction: fused with the next, or null
+    std::vector<fused::Plan<Real>> plans_;  // per chain
     std::vector<char> constant_;  // per register: a constant of the program
     std::vector<Real> value_;     // and its value
 };

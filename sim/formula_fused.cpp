@@ -1,0 +1,309 @@
+// Chains of a compiled formula in one pass (sim/formula_fused.hpp): the
+// vector code of sim/formula_fused_body.inc for each instruction set, the
+// choice among them, and the proof behind each division by multiplication.
+#include "sim/formula_fused.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <algorithm>
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+// The vector code jumps from operation to operation through a table of
+// label addresses (GCC's labels as values, sim/formula_fused_body.inc).
+#pragma GCC diagnostic ignored "-Wpedantic"
+
+namespace sim::formula::fused {
+
+namespace {
+
+// One lane at a time, any processor.
+template <class R>
+struct Plain {
+    using Real = R;
+    using V = R;
+    using M = bool;
+    static constexpr int W = 1;
+    static V load(const R* p) { return *p; }
+    static void store(R* p, V v) { *p = v; }
+    static V set1(R v) { return v; }
+    static M clear() { return false; }
+    static M not_finite(V v) { return (v - v) != R(0); }  // inf - inf and NaN - NaN are NaN
+    static M either(M a, M b) { return a || b; }
+    static bool any(M m) { return m; }
+};
+
+namespace plain {
+#include "sim/formula_fused_body.inc"
+}  // namespace plain
+
+}  // namespace
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define FIGGEN_FUSED_X86 1
+
+#pragma GCC push_options
+#pragma GCC target("avx2,fma")
+namespace avx2 {
+namespace {
+
+struct F {
+    using Real = float;
+    using V = __m256;
+    using M = __m256;
+    static constexpr int W = 8;
+    static V load(const float* p) { return _mm256_loadu_ps(p); }
+    static void store(float* p, V v) { _mm256_storeu_ps(p, v); }
+    static V set1(float v) { return _mm256_set1_ps(v); }
+    static M clear() { return _mm256_setzero_ps(); }
+    static M not_finite(V v) { return _mm256_cmp_ps(_mm256_sub_ps(v, v), _mm256_setzero_ps(), _CMP_NEQ_UQ); }
+    static M either(M a, M b) { return _mm256_or_ps(a, b); }
+    static bool any(M m) { return _mm256_movemask_ps(m) != 0; }
+};
+
+struct D {
+    using Real = double;
+    using V = __m256d;
+    using M = __m256d;
+    static constexpr int W = 4;
+    static V load(const double* p) { return _mm256_loadu_pd(p); }
+    static void store(double* p, V v) { _mm256_storeu_pd(p, v); }
+    static V set1(double v) { return _mm256_set1_pd(v); }
+    static M clear() { return _mm256_setzero_pd(); }
+    static M not_finite(V v) { return _mm256_cmp_pd(_mm256_sub_pd(v, v), _mm256_setzero_pd(), _CMP_NEQ_UQ); }
+    static M either(M a, M b) { return _mm256_or_pd(a, b); }
+    static bool any(M m) { return _mm256_movemask_pd(m) != 0; }
+};
+
+#include "sim/formula_fused_body.inc"
+
+}  // namespace
+
+// Blocks of 2 vectors, then single vectors.
+int run_f(const Plan<float>& p, const float* const* view, float* d, int n, bool check, bool& bad) {
+    bool more = false;
+    const int done = chain_lanes<F, 2>(p, view, d, 0, n, check, bad);
+    const int after = chain_lanes<F, 1>(p, view, d, done, n, check, more);
+    bad |= more;
+    return after;
+}
+int run_d(const Plan<double>& p, const double* const* view, double* d, int n, bool check, bool& bad) {
+    bool more = false;
+    const int done = chain_lanes<D, 2>(p, view, d, 0, n, check, bad);
+    const int after = chain_lanes<D, 1>(p, view, d, done, n, check, more);
+    bad |= more;
+    return after;
+}
+
+}  // namespace avx2
+#pragma GCC pop_options
+
+#pragma GCC push_options
+#pragma GCC target("avx512f,avx2,fma")
+namespace avx512 {
+namespace {
+
+struct F {
+    using Real = float;
+    using V = __m512;
+    using M = __mmask16;
+    static constexpr int W = 16;
+    static V load(const float* p) { return _mm512_loadu_ps(p); }
+    static void store(float* p, V v) { _mm512_storeu_ps(p, v); }
+    static V set1(float v) { return _mm512_set1_ps(v); }
+    static M clear() { return 0; }
+    static M not_finite(V v) { return _mm512_cmp_ps_mask(_mm512_sub_ps(v, v), _mm512_setzero_ps(), _CMP_NEQ_UQ); }
+    static M either(M a, M b) { return static_cast<M>(a | b); }
+    static bool any(M m) { return m != 0; }
+};
+
+struct D {
+    using Real = double;
+    using V = __m512d;
+    using M = __mmask8;
+    static constexpr int W = 8;
+    static V load(const double* p) { return _mm512_loadu_pd(p); }
+    static void store(double* p, V v) { _mm512_storeu_pd(p, v); }
+    static V set1(double v) { return _mm512_set1_pd(v); }
+    static M clear() { return 0; }
+    static M not_finite(V v) { return _mm512_cmp_pd_mask(_mm512_sub_pd(v, v), _mm512_setzero_pd(), _CMP_NEQ_UQ); }
+    static M either(M a, M b) { return static_cast<M>(a | b); }
+    static bool any(M m) { return m != 0; }
+};
+
+#include "sim/formula_fused_body.inc"
+
+}  // namespace
+
+// Blocks of 4 vectors, then single vectors.
+int run_f(const Plan<float>& p, const float* const* view, float* d, int n, bool check, bool& bad) {
+    bool more = false;
+    const int done = chain_lanes<F, 4>(p, view, d, 0, n, check, bad);
+    const int after = chain_lanes<F, 1>(p, view, d, done, n, check, more);
+    bad |= more;
+    return after;
+}
+int run_d(const Plan<double>& p, const double* const* view, double* d, int n, bool check, bool& bad) {
+    bool more = false;
+    const int done = chain_lanes<D, 4>(p, view, d, 0, n, check, bad);
+    const int after = chain_lanes<D, 1>(p, view, d, done, n, check, more);
+    bad |= more;
+    return after;
+}
+
+}  // namespace avx512
+#pragma GCC pop_options
+#endif
+
+namespace {
+
+Isa detect() {
+#if defined(FIGGEN_FUSED_X86)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+        return Isa::avx512;
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return Isa::avx2;
+#endif
+    return Isa::plain;
+}
+
+std::atomic<Isa>& current() {
+    static std::atomic<Isa> isa{best_isa()};
+    return isa;
+}
+
+template <class Real>
+bool run_any(const Plan<Real>& p, const Real* const* view, Real* d, int n, bool check) {
+    bool bad = false;
+    int done = 0;
+#if defined(FIGGEN_FUSED_X86)
+    switch (current().load(std::memory_order_relaxed)) {
+    case Isa::avx512:
+        if constexpr (sizeof(Real) == 4) done = avx512::run_f(p, view, d, n, check, bad);
+        else done = avx512::run_d(p, view, d, n, check, bad);
+        break;
+    case Isa::avx2:
+        if constexpr (sizeof(Real) == 4) done = avx2::run_f(p, view, d, n, check, bad);
+        else done = avx2::run_d(p, view, d, n, check, bad);
+        break;
+    case Isa::plain: break;
+    }
+#endif
+    if (done < n) {
+        // The lanes after the last whole vector, one at a time.
+        bool rest = false;
+        plain::chain_lanes<Plain<Real>, 1>(p, view, d, done, n, check, rest);
+        bad |= rest;
+    }
+    return bad;
+}
+
+// The chain's steps as operations on acc, aux and g (sim/formula_fused.hpp).
+template <class Real>
+Plan<Real> make_plan(const Program& program, const Chain& chain) {
+    Plan<Real> plan;
+    auto add = [&](Kind kind, int reg, double k) { plan.code.push_back({kind, reg, static_cast<Real>(k)}); };
+    // The kinds of acc (or aux: the same list from aux_set_row on).
+    auto on = [](bool aux, Kind kind) {
+        return aux ? static_cast<Kind>(static_cast<int>(kind) - static_cast<int>(Kind::acc_set_row) +
+                                       static_cast<int>(Kind::aux_set_row))
+                   : kind;
+    };
+    // t = t op x (t_first) or x op t, x a row or a constant.
+    auto with = [&](bool aux, Op op, bool t_first, int reg, double k) {
+        const bool row = reg >= 0;
+        Kind kind;
+        switch (op) {
+        case Op::add: kind = row ? Kind::acc_add_row : Kind::acc_add_k; break;
+        case Op::mul: kind = row ? Kind::acc_mul_row : Kind::acc_mul_k; break;
+        case Op::sub:
+            kind = t_first ? (row ? Kind::acc_sub_row : Kind::acc_sub_k) : (row ? Kind::acc_rsub_row : Kind::acc_rsub_k);
+            break;
+        case Op::div:
+            if (row || !t_first || k == 0) throw std::logic_error("a chain divides by a value of the cells");
+            kind = Kind::acc_div_k;
+            break;
+        default: throw std::logic_error("a chain holds an operation it cannot run");
+        }
+        add(on(aux, kind), reg, k);
+    };
+    // t = x op y.
+    auto binary = [&](bool aux, const Chain::Step& st) {
+        add(on(aux, st.x >= 0 ? Kind::acc_set_row : Kind::acc_set_k), st.x, st.kx);
+        with(aux, st.op, true, st.y, st.ky);
+    };
+    for (const Chain::Step& st : chain.steps) {
+        switch (st.kind) {
+        case Chain::Kind::stencil: {
+            // The terms left to right: a single input, or weight * (its
+            // inputs left to right); then the division.
+            const StencilSum& sum = program.stencils[static_cast<std::size_t>(st.stencil)];
+            bool first = true;
+            for (const StencilSum::Term& t : sum.terms) {
+                if (t.inputs.size() == 1 && (t.weight == 1 || first)) {
+                    add(first ? Kind::acc_set_row : Kind::acc_add_row, t.inputs[0], 0);
+                    if (t.weight != 1) add(Kind::acc_mul_k, -1, t.weight);  // Ready's weighted centre first
+                } else {
+                    add(Kind::g_set_row, t.inputs[0], 0);
+                    for (std::size_t k = 1; k < t.inputs.size(); ++k) add(Kind::g_add_row, t.inputs[k], 0);
+                    add(first ? Kind::acc_set_wg : Kind::acc_add_wg, -1, t.weight);
+                }
+                first = false;
+            }
+            if (sum.divide) add(Kind::acc_div_k, -1, sum.divisor);
+            break;
+        }
+        case Chain::Kind::binary: binary(false, st); break;
+        case Chain::Kind::aux: binary(true, st); break;
+        case Chain::Kind::acc: with(false, st.op, st.t_first, st.x, st.kx); break;
+        case Chain::Kind::aux_op: with(true, st.op, st.t_first, st.x, st.kx); break;
+        case Chain::Kind::acc_aux:
+            switch (st.op) {
+            case Op::add: add(Kind::aa_add, -1, 0); break;
+            case Op::mul: add(Kind::aa_mul, -1, 0); break;
+            case Op::sub: add(st.t_first ? Kind::aa_sub : Kind::aa_rsub, -1, 0); break;
+            default: throw std::logic_error("a chain divides by a value of the cells");
+            }
+            break;
+        }
+    }
+    add(Kind::end, -1, 0);
+    return plan;
+}
+
+}  // namespace
+
+Plan<float> plan_float(const Program& program, const Chain& chain) {
+    return make_plan<float>(program, chain);
+}
+Plan<double> plan_double(const Program& program, const Chain& chain) {
+    return make_plan<double>(program, chain);
+}
+
+bool run(const Plan<float>& plan, const float* const* view, float* d, int n, bool check) {
+    return run_any(plan, view, d, n, check);
+}
+bool run(const Plan<double>& plan, const double* const* view, double* d, int n, bool check) {
+    return run_any(plan, view, d, n, check);
+}
+
+Isa best_isa() {
+    static const Isa best = detect();
+    return best;
+}
+Isa isa() {
+    return current().load();
+}
+void use_isa(Isa wanted) {
+    if (static_cast<int>(wanted) > static_cast<int>(best_isa()))
+        throw std::invalid_argument("this processor cannot run that instruction set");
+    current().store(wanted);
+}
+
+}  // namespace sim::formula::fused

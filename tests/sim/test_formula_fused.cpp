@@ -1,0 +1,154 @@
+// Chains of a compiled formula (sim/formula_fused.hpp): operations fused
+// into one pass round as each does alone (against the same arithmetic in
+// plain C++, term by term), on every instruction set the processor has,
+// and Ready's Gray-Scott fuses as expected.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <functional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "sim/formula.hpp"
+#include "sim/formula_fused.hpp"
+#include "sim/formula_program.hpp"
+#include "sim/random.hpp"
+
+using sim::Grid;
+using namespace sim::formula;
+
+namespace {
+
+// The instruction sets this processor runs, plain C++ first.
+std::vector<fused::Isa> instruction_sets() {
+    std::vector<fused::Isa> all{fused::Isa::plain};
+    if (fused::best_isa() >= fused::Isa::avx2) all.push_back(fused::Isa::avx2);
+    if (fused::best_isa() >= fused::Isa::avx512) all.push_back(fused::Isa::avx512);
+    return all;
+}
+
+// Puts back the instruction set in use when it goes.
+struct KeepIsa {
+    fused::Isa saved = fused::isa();
+    ~KeepIsa() { fused::use_isa(saved); }
+};
+
+Rule two_chemicals(const std::string& code) {
+    Rule r;
+    r.parameters = {{"timestep", 1.0}};
+    r.code = code;
+    r.ready_edges = false;  // a torus at any size
+    r.block_x = 1;
+    return r;
+}
+
+// Values from low to high, not a pattern a wrong lane would hide in.
+Grid<double> start(int width, int height, std::uint64_t seed, double low = 0.1, double high = 1.6) {
+    sim::Random rng(seed);
+    Grid<double> g(height, width);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) g(y, x) = static_cast<float>(rng.uniform(low, high));
+    return g;
+}
+
+bool same_bits(const Grid<double>& a, const Grid<double>& b) {
+    if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+    for (int y = 0; y < a.rows(); ++y)
+        for (int x = 0; x < a.cols(); ++x)
+            if (std::memcmp(&a(y, x), &b(y, x), sizeof(double)) != 0) return false;
+    return true;
+}
+
+// The kinds of operation the formula's chains use.
+std::set<fused::Kind> kinds_of(const Rule& rule, int width, int height) {
+    const Program program = compile(rule, width, height);
+    std::set<fused::Kind> kinds;
+    for (const Chain& chain : program.chains)
+        for (const fused::Micro<float>& m : fused::plan_float(program, chain).code) kinds.insert(m.kind);
+    return kinds;
+}
+
+// One step of `code` in float on a torus, against `reference` (the new a
+// and b of a cell from a, b and a's east and west neighbours), on every
+// instruction set.
+void check_one_step(const std::string& code,
+                    const std::function<void(float a, float b, float ae, float aw, float& na, float& nb)>& reference) {
+    constexpr int width = 70, height = 9;  // a row is not a whole number of vectors
+    const Grid<double> a = start(width, height, 3), b = start(width, height, 4);
+    Grid<double> want_a(height, width), want_b(height, width);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            float na = 0, nb = 0;
+            reference(static_cast<float>(a(y, x)), static_cast<float>(b(y, x)),
+                      static_cast<float>(a(y, (x + 1) % width)), static_cast<float>(a(y, (x + width - 1) % width)), na,
+                      nb);
+            want_a(y, x) = na;
+            want_b(y, x) = nb;
+        }
+    KeepIsa keep;
+    for (fused::Isa isa : instruction_sets()) {
+        INFO("instruction set " << static_cast<int>(isa));
+        fused::use_isa(isa);
+        Run run(two_chemicals(code), width, height, {a, b});
+        run.step(1, 1);
+        CHECK(same_bits(run.chemical(0), want_a));
+        CHECK(same_bits(run.chemical(1), want_b));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("a chain rounds each operation as it does alone, on every instruction set", "[formula]") {
+    const std::string first = "delta_a = ((a_e - a) * b + (2.0f - a_w) * 0.5f) / 4.0f - (3.0f - a*b);\n"
+                              "delta_b = 1.5f - (b*3.0f - a_e) * (0.25f - b) / 2.0f;";
+    check_one_step(first, [](float a, float b, float ae, float aw, float& na, float& nb) {
+        const float da = ((ae - a) * b + (2.0f - aw) * 0.5f) / 4.0f - (3.0f - a * b);
+        const float db = 1.5f - (b * 3.0f - ae) * (0.25f - b) / 2.0f;
+        na = a + da;
+        nb = b + db;
+    });
+    const std::string second = "delta_a = (a_w - b) * (b - a) - (a_e + a) * 0.5f + b / 8.0f;\n"
+                               "delta_b = (b - (a - 1.0f) / 3.0f) * 2.0f - (1.0f - b) * (a_w + b) - (0.5f - a_e * b);";
+    check_one_step(second, [](float a, float b, float ae, float aw, float& na, float& nb) {
+        const float da = (aw - b) * (b - a) - (ae + a) * 0.5f + b / 8.0f;
+        const float db = (b - (a - 1.0f) / 3.0f) * 2.0f - (1.0f - b) * (aw + b) - (0.5f - ae * b);
+        na = a + da;
+        nb = b + db;
+    });
+    // Between them the two formulas use most kinds of operation.
+    std::set<fused::Kind> used = kinds_of(two_chemicals(first), 70, 9);
+    for (fused::Kind k : kinds_of(two_chemicals(second), 70, 9)) used.insert(k);
+    for (fused::Kind k : {fused::Kind::acc_set_row, fused::Kind::acc_sub_row, fused::Kind::acc_rsub_row,
+                          fused::Kind::acc_rsub_k, fused::Kind::acc_mul_row, fused::Kind::acc_mul_k,
+                          fused::Kind::acc_div_k, fused::Kind::acc_add_row, fused::Kind::aux_set_k,
+                          fused::Kind::aux_set_row, fused::Kind::aux_sub_row, fused::Kind::aux_mul_k,
+                          fused::Kind::aux_mul_row, fused::Kind::aa_add, fused::Kind::aa_sub, fused::Kind::end}) {
+        INFO("kind " << static_cast<int>(k));
+        CHECK(used.count(k) == 1);
+    }
+}
+
+TEST_CASE("Ready's Gray-Scott fuses into three chains, the same bits on every instruction set", "[formula]") {
+    Rule rule = two_chemicals("delta_a = D_a * laplacian_a - a*b*b + F*(1.0f-a);\n"
+                              "delta_b = D_b * laplacian_b + a*b*b - (F+K)*b;");
+    rule.parameters = {{"timestep", 1.0}, {"D_a", 0.082}, {"D_b", 0.041}, {"K", 0.06}, {"F", 0.035}};
+    const Program program = compile(rule, 64, 48);
+    // a*b*b, read twice, is a chain of its own; each chemical's update one
+    // more, its F*(1-a) or (F+K)*b in the second accumulator.
+    CHECK(program.chains.size() == 3);
+    CHECK(program.code.size() == 3);
+    CHECK(program.operations == 15);
+    const Grid<double> a = start(64, 48, 5, 0.4, 1.0), b = start(64, 48, 6, 0.0, 0.4);
+    KeepIsa keep;
+    std::vector<Grid<double>> results;
+    for (fused::Isa isa : instruction_sets()) {
+        fused::use_isa(isa);
+        Run run(rule, 64, 48, {a, b});
+        run.step(50, 2);
+        results.push_back(run.chemical(1));
+    }
+    for (std::size_t i = 1; i < results.size(); ++i) CHECK(same_bits(results[i], results[0]));
+    CHECK_THROWS_AS(fused::use_isa(static_cast<fused::Isa>(static_cast<int>(fused::best_isa()) + 1)),
+                    std::invalid_argument);
+}
