@@ -58,7 +58,7 @@ test-without-osmesa: build
 # stacks, globals and the heap are still scanned.
 # max_malloc_fill_size, malloc_fill_byte: ASan's allocator ignores glibc's
 # M_PERTURB, which keeps libx264's reads of memory it never wrote the same
-# in every process (render/media/ffmpeg.cpp, SameFreshMemory); filling every
+# in every process (media/ffmpeg.cpp, SameFreshMemory); filling every
 # allocation does the same under ASan, so films are the same bytes there
 # too (without it, segments encoded side by side differed 1 run in 6).
 SANITIZE_BUILD ?= build-sanitize

@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "app/mpi/api.hpp"
-#include "render/module.hpp"
+#include "base/module.hpp"
 
 namespace app {
 namespace {

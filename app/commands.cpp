@@ -29,9 +29,9 @@
 #include "description/integer_text.hpp"
 #include "description/plain_name.hpp"
 #include "description/ready_vti.hpp"
-#include "render/gl_context.hpp"
-#include "render/media.hpp"
-#include "render/vector.hpp"
+#include "render/gl/gl_context.hpp"
+#include "media/media.hpp"
+#include "render/vector/vector.hpp"
 #include "sim/check.hpp"
 
 namespace app {

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "render/atomic_file.hpp"
+#include "base/atomic_file.hpp"
 
 namespace app {
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "app/outputs.hpp"
-#include "render/video.hpp"
+#include "media/video.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/work.hpp"
 

@@ -21,10 +21,10 @@
 #include "app/version.hpp"
 #include "description/catalog.hpp"
 #include "description/plain_name.hpp"
-#include "render/atomic_file.hpp"
-#include "render/png_io.hpp"
-#include "render/thumbnail.hpp"
-#include "render/video.hpp"
+#include "base/atomic_file.hpp"
+#include "media/png_io.hpp"
+#include "media/thumbnail.hpp"
+#include "media/video.hpp"
 
 namespace app {
 using description::catalog_files;

@@ -13,8 +13,8 @@
 #include "app/version.hpp"
 #include "description/plain_name.hpp"
 #include "description/settings.hpp"
-#include "render/atomic_file.hpp"
-#include "render/background.hpp"
+#include "base/atomic_file.hpp"
+#include "base/background.hpp"
 
 namespace {
 

@@ -9,12 +9,12 @@
 
 #include "app/film_segments.hpp"
 #include "app/version.hpp"
-#include "render/atomic_file.hpp"
-#include "render/canvas.hpp"
-#include "render/gl_context.hpp"
-#include "render/png_io.hpp"
-#include "render/vector.hpp"
-#include "render/vector_page.hpp"
+#include "base/atomic_file.hpp"
+#include "render/gl/canvas.hpp"
+#include "render/gl/gl_context.hpp"
+#include "media/png_io.hpp"
+#include "render/vector/vector.hpp"
+#include "render/vector/vector_page.hpp"
 #include "scenes/figure_caption.hpp"
 
 namespace app {

@@ -21,9 +21,9 @@
 #include "app/segment_encoders.hpp"
 #include "app/work.hpp"
 #include "description/description.hpp"
-#include "render/atomic_file.hpp"
+#include "base/atomic_file.hpp"
 #include "render/image.hpp"
-#include "render/video.hpp"
+#include "media/video.hpp"
 #include "scenes/output.hpp"
 #include "scenes/scene.hpp"
 

@@ -10,7 +10,7 @@
 
 #include "app/figure_lock.hpp"
 #include "app/film_segments.hpp"
-#include "render/atomic_file.hpp"
+#include "base/atomic_file.hpp"
 #include "render/text.hpp"
 
 namespace app {

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "render/image.hpp"
-#include "render/video.hpp"
+#include "media/video.hpp"
 
 namespace app {
 

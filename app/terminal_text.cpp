@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <cwchar>
 
-#include "render/utf8.hpp"
+#include "base/utf8.hpp"
 
 namespace app {
 namespace {

@@ -20,7 +20,7 @@
 #include "app/figure_lock.hpp"
 #include "app/version.hpp"
 #include "description/plain_name.hpp"
-#include "render/digest.hpp"
+#include "base/digest.hpp"
 
 namespace app {
 

@@ -23,7 +23,7 @@
 #include "app/bounded_json.hpp"
 #include "app/cluster.hpp"
 #include "description/description.hpp"
-#include "render/atomic_file.hpp"
+#include "base/atomic_file.hpp"
 #include "scenes/output.hpp"
 #include "scenes/work.hpp"
 

@@ -17,9 +17,9 @@
 #include <stdexcept>
 
 #include "accuracy.hpp"
-#include "render/atomic_file.hpp"
-#include "render/png_io.hpp"
-#include "render/video.hpp"
+#include "base/atomic_file.hpp"
+#include "media/png_io.hpp"
+#include "media/video.hpp"
 
 namespace bench {
 namespace {

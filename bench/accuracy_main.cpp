@@ -7,10 +7,10 @@
 
 #include "accuracy.hpp"
 #include "scenes/plot_page.hpp"
-#include "render/atomic_file.hpp"
-#include "render/canvas.hpp"
+#include "base/atomic_file.hpp"
+#include "render/gl/canvas.hpp"
 #include "render/colormap.hpp"
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 
 namespace {
 

@@ -12,7 +12,7 @@
 #include <stdexcept>
 
 #include "accuracy.hpp"
-#include "render/video.hpp"
+#include "media/video.hpp"
 #include "scenes/field_panels.hpp"
 #include "sim/gray_scott.hpp"
 #include "sim/gray_scott_kernels.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "accuracy.hpp"
-#include "render/atomic_file.hpp"
+#include "base/atomic_file.hpp"
 
 namespace bench {
 namespace {

@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "render/hex_cells.hpp"
-#include "render/png_io.hpp"
-#include "render/video.hpp"
+#include "media/png_io.hpp"
+#include "media/video.hpp"
 #include "scenes/field_panels.hpp"
 #include "sim/diffusion.hpp"
 

@@ -6,10 +6,11 @@
 // interpolation_stage="data").
 
 #include <span>
+#include <vector>
 
-#include "render/canvas.hpp"
 #include "render/colormap.hpp"
 #include "render/image.hpp"
+#include "render/surface.hpp"
 
 namespace render {
 
@@ -66,5 +67,13 @@ void draw_field_pair(Surface& surface, const Rect& where, int rows, int cols, st
 // two agree but for rounding (tests/render/test_field.cpp).
 enum class FieldResampling { automatic, cpu, sampler };
 void set_field_resampling(FieldResampling resampling);
+FieldResampling field_resampling();
+
+// `texels` (rows x cols of `layers` interleaved channels) resampled by the
+// smooth shader's cubic B-spline to one value a pixel of width x height,
+// into `resampled`; `across_rows` is scratch. The GL canvas's films and the
+// vector page's images both use it.
+void spline_resample(const std::vector<float>& texels, int rows, int cols, int layers, int width, int height,
+                     std::vector<float>& across_rows, std::vector<float>& resampled);
 
 }  // namespace render

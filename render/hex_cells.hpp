@@ -12,7 +12,7 @@
 
 #include <glm/glm.hpp>
 
-#include "render/canvas.hpp"
+#include "render/surface.hpp"
 #include "render/shapes.hpp"
 
 namespace render {

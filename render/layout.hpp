@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "render/canvas.hpp"
+#include "render/surface.hpp"
 #include "render/text.hpp"
 
 namespace render {

@@ -9,7 +9,6 @@
 #include <string_view>
 
 #include "render/field.hpp"
-#include "render/gl.hpp"
 #include "render/shapes.hpp"
 #include "render/ticks.hpp"
 

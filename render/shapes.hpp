@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "render/canvas.hpp"
+#include "render/surface.hpp"
 
 namespace render {
 class Surface;
@@ -80,7 +80,7 @@ public:
 
     bool empty() const { return ops_.empty(); }
     // Bytes of one vertex (position and colour) as the GL backend makes and
-    // uploads them, at most triangles_per_finish triangles at a time; line()
+    // uploads them, at most triangles_per_finish (render/gl/canvas.hpp) triangles at a time; line()
     // makes 6 vertices, disc() disc_vertices(radius). A recorded primitive
     // takes less than its vertices: memory estimates count vertices twice.
     static constexpr std::size_t bytes_per_vertex = sizeof(Vertex);

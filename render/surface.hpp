@@ -1,9 +1,9 @@
 #pragma once
 // What a figure is drawn on: one interface, several backends. A scene says
 // what its figure holds (shapes, text, fields, hexagonal cells, 3-D tubes)
-// through these calls; the GL canvas (render/canvas.hpp) turns them into
+// through these calls; the GL canvas (render/gl/canvas.hpp) turns them into
 // pixels for PNG files and film frames, and the vector page
-// (render/vector_page.hpp) into paths, glyphs and embedded images for PDF and
+// (render/vector/vector_page.hpp) into paths, glyphs and embedded images for PDF and
 // SVG. A later backend is one more class here, not a change to every scene.
 // Coordinates are pixels, origin at the top left, y down, on every backend.
 

@@ -20,77 +20,17 @@
 #include <hb.h>
 #include <raqm.h>
 
-#include "render/gl_context.hpp"
 #include "render/line_break.hpp"
-#include "render/program.hpp"
-#include "render/utf8.hpp"
+#include "base/utf8.hpp"
 
 namespace render {
 namespace {
-
-// Zero texels around every bitmap in the atlas. Quads reach one texel past
-// their bitmap so that linear filtering can fade the edge out, and a pixel
-// centre may lie half a pixel outside the quad under multisampling: two
-// texels keep every sample off the neighbouring glyphs.
-constexpr int pad = 2;
-constexpr int atlas_min_width = 1024;
-constexpr int atlas_start_height = 256;
-// The tallest atlas a face may fill in memory: 1024 x 8192 bytes, some 3,000
-// CJK glyphs at 40 px (bind_atlas also checks GL's own limit).
-constexpr int max_atlas_height = 8192;
-
-const char* const vertex_shader = R"(#version 330 core
-layout(location = 0) in vec2 position;
-layout(location = 1) in vec2 texel;
-layout(location = 2) in vec4 colour;
-uniform mat4 projection;
-out vec2 v_texel;
-out vec4 v_colour;
-void main() {
-    v_texel = texel;
-    v_colour = colour;
-    gl_Position = projection * vec4(position, 0.0, 1.0);
-})";
-
-// The atlas holds coverage, which scales the colour's alpha.
-const char* const fragment_shader = R"(#version 330 core
-uniform sampler2D atlas;
-in vec2 v_texel;
-in vec4 v_colour;
-out vec4 out_colour;
-void main() {
-    float coverage = texture(atlas, v_texel / vec2(textureSize(atlas, 0))).r;
-    out_colour = vec4(v_colour.rgb, v_colour.a * coverage);
-})";
-
-// Shared by every batch of this kind, created on first use.
-StreamPipeline& pipeline() {
-    static StreamPipeline p{vertex_shader, fragment_shader};
-    return p;
-}
 
 std::string freetype_error(FT_Error error) {
     const char* text = FT_Error_String(error);  // null unless FreeType was built with error strings
     return text ? text : "FreeType error " + std::to_string(error);
 }
 
-// Rotation by `degrees` counter-clockwise on screen, in y-down coordinates.
-// Quarter turns are exact so that rotated labels still meet the pixel grid.
-struct Rotation {
-    float c = 1, s = 0;
-    explicit Rotation(float degrees) {
-        const float turns = degrees / 90.0f;
-        if (turns == std::floor(turns)) {
-            static constexpr float cosines[] = {1, 0, -1, 0}, sines[] = {0, 1, 0, -1};
-            const int quarter = static_cast<int>(std::fmod(std::fmod(turns, 4.0f) + 4.0f, 4.0f));
-            c = cosines[quarter], s = sines[quarter];
-        } else {
-            const float radians = degrees * 3.14159265358979f / 180.0f;
-            c = std::cos(radians), s = std::sin(radians);
-        }
-    }
-    glm::vec2 operator()(glm::vec2 v) const { return {c * v.x + s * v.y, -s * v.x + c * v.y}; }
-};
 
 }  // namespace
 
@@ -165,10 +105,7 @@ Font::Font(float pixel_size, const std::string& path) : pixel_size_(pixel_size),
 }
 
 Font::~Font() {
-    for (auto& f : faces_) {
-        if (f->atlas.texture) glDeleteTextures(1, &f->atlas.texture);
-        FT_Done_Face(f->face);
-    }
+    for (auto& f : faces_) FT_Done_Face(f->face);
     FT_Done_FreeType(library_);
 }
 
@@ -184,12 +121,7 @@ std::unique_ptr<Font::Face> Font::open_face(const FontFile& file) const {
         throw std::runtime_error("font " + file.path + " cannot be scaled to " + std::to_string(pixel_size_) + " px");
     }
     const float scale = static_cast<float>(size_26_6) / 64.0f / static_cast<float>(f->face->units_per_EM);
-    // Wide enough for the face's widest possible glyph.
-    const float widest = static_cast<float>(f->face->bbox.xMax - f->face->bbox.xMin) * scale;
-    f->atlas.width = std::max(atlas_min_width, static_cast<int>(std::ceil(widest)) + 2 * pad + 2);
-    f->atlas.height = atlas_start_height;
-    f->atlas.pixels.assign(static_cast<std::size_t>(f->atlas.width) * f->atlas.height, 0);
-    f->atlas.shelf_x = f->atlas.shelf_y = pad;
+    f->widest = static_cast<float>(f->face->bbox.xMax - f->face->bbox.xMin) * scale;
     return f;
 }
 
@@ -296,10 +228,8 @@ Font::Shaped Font::shape_anew(std::string_view utf8, std::string_view language) 
     return out;
 }
 
-const Font::Glyph& Font::glyph(std::uint32_t face, unsigned index) const {
-    Face& f = *faces_[face];
-    if (const auto found = f.glyphs.find(index); found != f.glyphs.end()) return found->second;
-    Glyph g;
+Font::Bitmap Font::rasterise(std::uint32_t face, unsigned index) const {
+    Face& f = *faces_.at(face);
     // Light hinting snaps only vertically (baseline, x-height), which keeps
     // the unhinted advances below true; the bitmap is 8-bit grey coverage.
     if (const FT_Error error = FT_Load_Glyph(f.face, index, FT_LOAD_RENDER | FT_LOAD_TARGET_LIGHT))
@@ -309,18 +239,22 @@ const Font::Glyph& Font::glyph(std::uint32_t face, unsigned index) const {
     const FT_Bitmap& bitmap = slot->bitmap;
     if (bitmap.pixel_mode != FT_PIXEL_MODE_GRAY && bitmap.rows > 0)
         throw std::runtime_error("font " + f.file.path + " gave a glyph bitmap that is not 8-bit grey");
-    g.left = static_cast<float>(slot->bitmap_left);
-    g.top = static_cast<float>(slot->bitmap_top);
-    g.width = static_cast<int>(bitmap.width);
-    g.height = static_cast<int>(bitmap.rows);
-    if (g.width > 0 && g.height > 0) place(f, g, bitmap.buffer, bitmap.pitch);
-    return f.glyphs.emplace(index, g).first->second;
+    Bitmap out;
+    out.left = static_cast<float>(slot->bitmap_left);
+    out.top = static_cast<float>(slot->bitmap_top);
+    out.width = static_cast<int>(bitmap.width);
+    out.height = static_cast<int>(bitmap.rows);
+    out.pitch = bitmap.pitch;
+    out.rows = bitmap.buffer;
+    return out;
 }
+
+float Font::widest(std::uint32_t face) const { return faces_.at(face)->widest; }
 
 Font::Ink Font::ink(std::uint32_t face, unsigned index) const {
     Face& f = *faces_[face];
     if (const auto found = f.inks.find(index); found != f.inks.end()) return found->second;
-    // glyph()'s hinting, without its bitmap.
+    // rasterise()'s hinting, without its bitmap.
     if (const FT_Error error = FT_Load_Glyph(f.face, index, FT_LOAD_TARGET_LIGHT))
         throw std::runtime_error("cannot load glyph " + std::to_string(index) + " of " + f.file.path + ": " +
                                  freetype_error(error));
@@ -328,69 +262,6 @@ Font::Ink Font::ink(std::uint32_t face, unsigned index) const {
     const Ink ink{static_cast<float>(m.horiBearingX) / 64.0f, static_cast<float>(m.horiBearingX + m.width) / 64.0f,
                   -static_cast<float>(m.horiBearingY) / 64.0f, static_cast<float>(m.height - m.horiBearingY) / 64.0f};
     return f.inks.emplace(index, ink).first->second;
-}
-
-void Font::place(Face& f, Glyph& g, const unsigned char* rows, int pitch) const {
-    Atlas& a = f.atlas;
-    if (g.width + 2 * pad > a.width)
-        throw std::runtime_error("glyph of " + std::to_string(g.width) + " px is wider than the font atlas");
-    if (a.shelf_x + g.width + pad > a.width) {  // start the next shelf
-        a.shelf_y += a.shelf_height;
-        a.shelf_x = pad;
-        a.shelf_height = 0;
-    }
-    while (a.shelf_y + g.height + pad > a.height) {
-        if (2 * a.height > max_atlas_height)
-            throw std::runtime_error("font atlas for " + f.file.path + " is full (" + std::to_string(a.width) + "x" +
-                                     std::to_string(a.height) + ")");
-        a.height *= 2;
-        a.pixels.resize(static_cast<std::size_t>(a.width) * a.height, 0);
-    }
-    g.atlas_x = a.shelf_x;
-    g.atlas_y = a.shelf_y;
-    // A negative pitch means FreeType stored the rows bottom-up.
-    const unsigned char* first = pitch >= 0 ? rows : rows - static_cast<std::ptrdiff_t>(pitch) * (g.height - 1);
-    for (int y = 0; y < g.height; ++y)
-        std::memcpy(&a.pixels[static_cast<std::size_t>(g.atlas_y + y) * a.width + g.atlas_x],
-                    first + static_cast<std::ptrdiff_t>(pitch) * y, static_cast<std::size_t>(g.width));
-    const bool clean = a.dirty_bottom == a.dirty_top;
-    a.dirty_top = clean ? g.atlas_y : std::min(a.dirty_top, g.atlas_y);
-    a.dirty_bottom = clean ? g.atlas_y + g.height : std::max(a.dirty_bottom, g.atlas_y + g.height);
-    a.shelf_x += g.width + pad;
-    a.shelf_height = std::max(a.shelf_height, g.height + pad);
-}
-
-void Font::bind_atlas(std::uint32_t face) const {
-    Atlas& a = faces_[face]->atlas;
-    GLint max_size = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-    if (a.height > max_size)
-        throw std::runtime_error("font atlas for " + faces_[face]->file.path + " (" + std::to_string(a.width) + "x" +
-                                 std::to_string(a.height) + ") is larger than GL's textures");
-    glActiveTexture(GL_TEXTURE0);
-    if (!a.texture) {
-        glGenTextures(1, &a.texture);
-        glBindTexture(GL_TEXTURE_2D, a.texture);
-        // Linear: quads sit at fractional pen positions, between texels.
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    }
-    glBindTexture(GL_TEXTURE_2D, a.texture);
-    GLint alignment = 4;
-    glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows of single bytes
-    if (a.texture_height != a.height) {
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, a.width, a.height, 0, GL_RED, GL_UNSIGNED_BYTE, a.pixels.data());
-        a.texture_height = a.height;
-    } else if (a.dirty_bottom > a.dirty_top) {
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, a.dirty_top, a.width, a.dirty_bottom - a.dirty_top, GL_RED,
-                        GL_UNSIGNED_BYTE, &a.pixels[static_cast<std::size_t>(a.dirty_top) * a.width]);
-    }
-    a.dirty_top = a.dirty_bottom = 0;
-    glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
-    check_gl("Font::bind_atlas");
 }
 
 std::vector<std::string> wrap(const Font& font, std::string_view paragraph, float width, std::string_view language) {
@@ -563,56 +434,11 @@ void Text::add(Font& font, std::string_view utf8, glm::vec2 position, const glm:
     const Rotation rotate(rotation_degrees);
     const glm::vec2 origin = line_origin(font, shaped.width, position, align, baseline, rotate);
 
-    for (const Font::ShapedGlyph& placed : shaped.glyphs) {
-        const Font::Glyph& g = font.glyph(placed.face, placed.index);
-        if (g.width <= 0 || g.height <= 0) continue;
-        auto batch = std::find_if(batches_.begin(), batches_.end(),
-                                  [&](const Batch& b) { return b.font == &font && b.face == placed.face; });
-        if (batch == batches_.end()) batch = batches_.insert(batches_.end(), Batch{&font, placed.face, {}});
-        // One texel of the zero border on each side, so the edge fades out under filtering.
-        const glm::vec2 q0 = placed.position + glm::vec2(g.left - 1, -g.top - 1);
-        const glm::vec2 size{static_cast<float>(g.width + 2), static_cast<float>(g.height + 2)};
-        const glm::vec2 t0{static_cast<float>(g.atlas_x - 1), static_cast<float>(g.atlas_y - 1)};
-        const Vertex tl{origin + rotate(q0), t0, colour};
-        const Vertex tr{origin + rotate(q0 + glm::vec2(size.x, 0)), t0 + glm::vec2(size.x, 0), colour};
-        const Vertex bl{origin + rotate(q0 + glm::vec2(0, size.y)), t0 + glm::vec2(0, size.y), colour};
-        const Vertex br{origin + rotate(q0 + size), t0 + size, colour};
-        batch->vertices.insert(batch->vertices.end(), {tl, tr, br, tl, br, bl});
-    }
     lines_.push_back(Line{&font, origin, rotation_degrees, colour, std::move(shaped)});
 }
 
 void Text::draw(Surface& surface) const {
     if (!lines_.empty()) surface.text(*this);
-}
-
-void gl_backend::text(const Canvas& canvas, const Text& text) {
-    StreamPipeline& p = pipeline();
-    canvas.bind();
-    p.program.use();
-    p.program.set("projection", canvas.projection());
-    p.program.set("atlas", 0);
-    glBindVertexArray(p.vao);
-    glBindBuffer(GL_ARRAY_BUFFER, p.vbo);
-    glEnableVertexAttribArray(0);
-    using Vertex = Text::Vertex;
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex),
-                          reinterpret_cast<const void*>(offsetof(Vertex, position)));
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex),
-                          reinterpret_cast<const void*>(offsetof(Vertex, texel)));
-    glEnableVertexAttribArray(2);
-    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex),
-                          reinterpret_cast<const void*>(offsetof(Vertex, colour)));
-    for (const Text::Batch& batch : text.batches_) {
-        if (batch.vertices.empty()) continue;
-        batch.font->bind_atlas(batch.face);
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(batch.vertices.size() * sizeof(Vertex)),
-                     batch.vertices.data(), GL_STREAM_DRAW);
-        glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(batch.vertices.size()));
-    }
-    glBindVertexArray(0);
-    check_gl("Text::draw");
 }
 
 namespace {

@@ -2,12 +2,14 @@
 // Text: lines shaped by HarfBuzz through libraqm (kerning, ligatures,
 // combining marks, right-to-left and mixed directions by FriBidi), from the
 // figure's font (DejaVu Sans) and, for characters it lacks, from the
-// fallback faces fontconfig finds (render/font_fallback.hpp). Each face's
-// glyphs are rasterised on demand into a single-channel atlas texture, and a
-// batch of strings is drawn from them. Single lines; wrap() breaks a
+// fallback faces fontconfig finds (render/font_fallback.hpp). A batch of
+// strings (Text) is drawn by a backend: the GL canvas from a glyph atlas
+// (render/gl/text_gl.cpp), the vector page from the glyphs' outlines.
+// Single lines; wrap() breaks a
 // paragraph into lines by the Unicode line-breaking rules (libunibreak).
 // Pixel coordinates, origin top left, y down.
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -21,10 +23,8 @@
 
 #include <glm/glm.hpp>
 
-#include "render/canvas.hpp"
 #include "render/font_fallback.hpp"
-#include "render/gl.hpp"
-#include "render/gl_backend.hpp"
+#include "render/surface.hpp"
 
 // FreeType's handle types, declared here so that its headers stay in text.cpp.
 struct FT_LibraryRec_;
@@ -87,34 +87,30 @@ public:
     std::size_t face_count() const { return faces_.size(); }
     const FontFile& face_file(std::size_t face) const;
 
+    // A glyph's 8-bit coverage bitmap as it is drawn (light hinting): its
+    // top-left corner from the pen, y up (FreeType's bitmap_left and
+    // bitmap_top), and rows `pitch` bytes apart (bottom-up when negative).
+    // The rows are FreeType's: valid until this font's next rasterise() or ink().
+    struct Bitmap {
+        float left = 0, top = 0;
+        int width = 0, height = 0, pitch = 0;
+        const unsigned char* rows = nullptr;
+    };
+    Bitmap rasterise(std::uint32_t face, unsigned index) const;
+    // The widest glyph face `face` may have at this size, pixels.
+    float widest(std::uint32_t face) const;
+
+    // A backend's own cache for this font, freed with it: the GL canvas
+    // keeps its glyph atlas here (render/gl/text_gl.cpp).
+    std::shared_ptr<void>& backend_cache() const { return backend_cache_; }
+
 private:
-    friend void gl_backend::text(const Canvas& canvas, const Text& text);
-    friend class Text;
-
-    struct Glyph {
-        float left = 0, top = 0;        // bitmap's top-left corner relative to the pen, y up (FreeType's bitmap_left/top)
-        int width = 0, height = 0;      // bitmap size, pixels
-        int atlas_x = 0, atlas_y = 0;   // bitmap's top-left texel in the atlas
-    };
-
-    // Shelf-packed R8 coverage atlas with a copy in memory: it grows by
-    // doubling its height and is uploaded lazily, when a batch is drawn.
-    struct Atlas {
-        int width = 0, height = 0;
-        std::vector<std::uint8_t> pixels;
-        int shelf_x = 0, shelf_y = 0, shelf_height = 0;
-        int dirty_top = 0, dirty_bottom = 0;  // rows changed since the last upload
-        GLuint texture = 0;
-        int texture_height = 0;               // rows allocated on the GL side
-    };
-
-    // One FreeType face at the font's size, its rasterised glyphs and their atlas.
+    // One FreeType face at the font's size and its glyphs' ink boxes.
     struct Face {
         FontFile file;
         FT_FaceRec_* face = nullptr;
-        std::unordered_map<unsigned, Glyph> glyphs;  // by glyph index
-        std::unordered_map<unsigned, Ink> inks;      // by glyph index
-        Atlas atlas;
+        std::unordered_map<unsigned, Ink> inks;  // by glyph index
+        float widest = 0;
     };
 
     std::unique_ptr<Face> open_face(const FontFile& file) const;
@@ -122,9 +118,6 @@ private:
     // fallback for `language`, else (no installed font has it) the font's
     // own, whose .notdef box is drawn, with a warning.
     std::uint32_t face_for(char32_t c, std::string_view language) const;
-    const Glyph& glyph(std::uint32_t face, unsigned index) const;  // from the cache, rasterised on first use
-    void place(Face& face, Glyph& glyph, const unsigned char* rows, int pitch) const;  // copies a bitmap into the atlas
-    void bind_atlas(std::uint32_t face) const;  // uploads new glyphs, binds the face's atlas to texture unit 0
 
     float pixel_size_;
     std::string path_;
@@ -143,6 +136,25 @@ private:
     mutable std::vector<Remembered> remembered_;
     mutable std::mutex remembered_mutex_;  // shape() was safe to call from several threads for text the font has
     Shaped shape_anew(std::string_view utf8, std::string_view language) const;
+    mutable std::shared_ptr<void> backend_cache_;
+};
+
+// Rotation by `degrees` counter-clockwise on screen, in y-down coordinates.
+// Quarter turns are exact so that rotated labels still meet the pixel grid.
+struct Rotation {
+    float c = 1, s = 0;
+    explicit Rotation(float degrees) {
+        const float turns = degrees / 90.0f;
+        if (turns == std::floor(turns)) {
+            static constexpr float cosines[] = {1, 0, -1, 0}, sines[] = {0, 1, 0, -1};
+            const int quarter = static_cast<int>(std::fmod(std::fmod(turns, 4.0f) + 4.0f, 4.0f));
+            c = cosines[quarter], s = sines[quarter];
+        } else {
+            const float radians = degrees * 3.14159265358979f / 180.0f;
+            c = std::cos(radians), s = std::sin(radians);
+        }
+    }
+    glm::vec2 operator()(glm::vec2 v) const { return {c * v.x + s * v.y, -s * v.x + c * v.y}; }
 };
 
 // Where a line of text may break, by the Unicode line-breaking algorithm:
@@ -185,16 +197,12 @@ public:
              std::string_view language = {});
 
     bool empty() const { return lines_.empty(); }
-    void clear() {
-        batches_.clear();
-        lines_.clear();
-    }
+    void clear() { lines_.clear(); }
     // Draws every line on `surface` (render/surface.hpp).
     void draw(Surface& surface) const;
 
-    // Each line as laid out, for backends that draw glyphs from the font
-    // itself (the vector page): the same glyphs at the same pen positions
-    // as the GL quads.
+    // Each line as laid out, which a backend draws: the GL canvas as quads
+    // from its glyph atlas, the vector page as the glyphs' outlines.
     struct Line {
         const Font* font;
         glm::vec2 origin;        // the pen's start on the baseline, pixels
@@ -205,19 +213,6 @@ public:
     const std::vector<Line>& lines() const { return lines_; }
 
 private:
-    friend void gl_backend::text(const Canvas& canvas, const Text& text);
-
-    struct Vertex {
-        glm::vec2 position;  // pixels
-        glm::vec2 texel;     // atlas texels, normalised in the shader since the atlas may grow
-        glm::vec4 colour;    // straight alpha
-    };
-    struct Batch {
-        const Font* font;
-        std::uint32_t face;
-        std::vector<Vertex> vertices;
-    };
-    std::vector<Batch> batches_;
     std::vector<Line> lines_;
 };
 

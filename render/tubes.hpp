@@ -17,7 +17,7 @@
 
 #include <glm/glm.hpp>
 
-#include "render/canvas.hpp"
+#include "render/surface.hpp"
 
 namespace render {
 

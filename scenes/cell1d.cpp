@@ -4,8 +4,8 @@
 #include "scenes/model_check.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/figure_caption.hpp"
-#include "render/digest.hpp"
-#include "render/gl_context.hpp"
+#include "base/digest.hpp"
+#include "render/gl/gl_context.hpp"
 #include "sim/cell1d.hpp"
 #include "sim/check.hpp"
 

@@ -14,7 +14,7 @@
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/figure_caption.hpp"
-#include "render/digest.hpp"
+#include "base/digest.hpp"
 #include "sim/cell1d.hpp"
 #include "sim/fractal.hpp"
 

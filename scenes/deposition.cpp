@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "render/colormap.hpp"
-#include "render/digest.hpp"
+#include "base/digest.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/model_check.hpp"
 #include "scenes/scene.hpp"

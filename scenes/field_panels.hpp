@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "render/canvas.hpp"
+#include "render/gl/canvas.hpp"
 #include "render/field.hpp"
 #include "render/image.hpp"
 #include "scenes/output.hpp"

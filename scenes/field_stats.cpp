@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "render/digest.hpp"
+#include "base/digest.hpp"
 
 namespace scenes {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "render/digest.hpp"
+#include "base/digest.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/model_check.hpp"

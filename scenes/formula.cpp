@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "description/ready_vti.hpp"
-#include "render/digest.hpp"
+#include "base/digest.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/field_stats.hpp"

@@ -3,7 +3,7 @@
 // its own range, stacked at alpha 0.7 with bicubic-like smoothing.
 #include "sim/gray_scott.hpp"
 
-#include "render/digest.hpp"
+#include "base/digest.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/field_stats.hpp"

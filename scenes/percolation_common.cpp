@@ -1,6 +1,6 @@
 #include "scenes/percolation_common.hpp"
 
-#include "render/digest.hpp"
+#include "base/digest.hpp"
 
 namespace scenes {
 

@@ -8,7 +8,7 @@
 
 #include "scenes/description_names.hpp"
 #include "description/settings.hpp"
-#include "render/canvas.hpp"
+#include "render/gl/canvas.hpp"
 #include "render/image.hpp"
 #include "scenes/output.hpp"
 #include "scenes/scene.hpp"

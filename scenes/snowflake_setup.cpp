@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "scenes/model_check.hpp"
-#include "render/digest.hpp"
+#include "base/digest.hpp"
 
 namespace scenes {
 namespace {

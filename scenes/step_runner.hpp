@@ -9,7 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "render/canvas.hpp"
+#include "render/gl/canvas.hpp"
 #include "render/image.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/scene.hpp"

@@ -12,7 +12,7 @@
 
 #include "golden_cases.hpp"
 #include "image_check.hpp"
-#include "render/gl_context.hpp"
+#include "render/gl/gl_context.hpp"
 
 int main(int argc, char** argv) {
     const char* dir = argc > 1 ? argv[1] : FIGGEN_TEST_GOLDEN_DIR;

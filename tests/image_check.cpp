@@ -4,8 +4,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "render/digest.hpp"
-#include "render/png_io.hpp"
+#include "base/digest.hpp"
+#include "media/png_io.hpp"
 
 namespace testkit {
 namespace {

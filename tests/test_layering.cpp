@@ -1,12 +1,17 @@
 // The layering of the project's folders, read from their #include lines:
-//   sim/          the models: nothing of the project but sim/
-//   render/       drawing: nothing of the project but render/
-//   description/  the description reader: nothing but description/
-//   scenes/       sim, render, description (models meet drawing here)
-//   app/          the command: everything
+//   base/           files, digests, UTF-8, background work, modules: every layer may use it
+//   sim/            the models: nothing of the project but sim/ (and base/)
+//   render/         drawing's vocabulary, no GL: nothing but render/
+//   render/gl/      the OpenGL canvas: render/
+//   render/vector/  the PDF and SVG page: render/ (and render/gl/ for the pictures it embeds)
+//   media/          PNG, films, thumbnails: render/ (images)
+//   description/    the description reader: nothing but description/
+//   scenes/         sim, render, description (models meet drawing here)
+//   app/            the command: everything
 // and no clock in sim/: a model's results never depend on time.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -20,12 +25,27 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::map<std::string, std::set<std::string>> may_include = {
-    {"sim", {"sim"}},
-    {"render", {"render"}},
-    {"description", {"description"}},
-    {"scenes", {"sim", "render", "description", "scenes"}},
-    {"app", {"sim", "render", "description", "scenes", "app"}},
+    {"base", {"base"}},
+    {"sim", {"sim", "base"}},
+    {"render", {"render", "base"}},
+    {"render/gl", {"render/gl", "render", "base"}},
+    {"render/vector", {"render/vector", "render/gl", "render", "base"}},
+    {"media", {"media", "render", "base"}},
+    {"description", {"description", "base"}},
+    {"scenes", {"sim", "render", "render/gl", "description", "scenes", "base"}},
+    {"app", {"sim", "render", "render/gl", "render/vector", "media", "description", "scenes", "app", "base"}},
 };
+
+// The layer a path (a file's, or an include's) belongs to: the longest
+// folder of may_include it is in, or "" (a system header, a test's own).
+std::string layer_of(const std::string& path) {
+    std::string best;
+    for (const auto& entry : may_include) {
+        const std::string& folder = entry.first;
+        if (path.compare(0, folder.size() + 1, folder + "/") == 0 && folder.size() > best.size()) best = folder;
+    }
+    return best;
+}
 
 // What a C++ file includes: the text inside "..." or <...> of each #include.
 std::vector<std::string> includes_of(const fs::path& file) {
@@ -46,15 +66,15 @@ std::vector<std::string> layering_violations(const fs::path& root) {
         if (!fs::is_directory(root / folder)) continue;
         for (const auto& entry : fs::recursive_directory_iterator(root / folder)) {
             const std::string ext = entry.path().extension().string();
-            if (ext != ".cpp" && ext != ".hpp") continue;
+            if (ext != ".cpp" && ext != ".hpp" && ext != ".inc") continue;
+            const std::string file = fs::relative(entry.path(), root).generic_string();
+            if (layer_of(file) != folder) continue;  // a folder of its own (render/gl/ in render/)
             for (const std::string& included : includes_of(entry.path())) {
-                const auto slash = included.find('/');
-                const std::string top = slash == std::string::npos ? "" : included.substr(0, slash);
-                const bool ours = may_include.count(top) > 0;
+                const std::string layer = layer_of(included);
                 const bool clock = folder == "sim" && (included == "chrono" || included == "ctime" ||
                                                        included == "sys/time.h" || included == "time.h");
-                if ((ours && !allowed.count(top)) || clock)
-                    violations.push_back(fs::relative(entry.path(), root).string() + ": includes " + included);
+                if ((!layer.empty() && !allowed.count(layer)) || clock)
+                    violations.push_back(file + ": includes " + included);
             }
         }
     }
@@ -74,16 +94,24 @@ TEST_CASE("every folder includes only the folders below it, and sim/ reads no cl
 TEST_CASE("the layering check finds an include that goes up and a clock in sim/", "[layering]") {
     const fs::path root = fs::temp_directory_path() / "figgen-layering-check";
     fs::remove_all(root);
-    for (const char* folder : {"sim", "render", "description", "scenes", "app"}) fs::create_directories(root / folder);
+    for (const char* folder : {"base", "sim", "render", "render/gl", "media", "description", "scenes", "app"})
+        fs::create_directories(root / folder);
     std::ofstream(root / "scenes" / "fine.cpp") << "#include \"sim/model.hpp\"\n#include <vector>\n";
     std::ofstream(root / "app" / "main.cpp") << "#include \"scenes/scene.hpp\"\n";
+    std::ofstream(root / "render" / "gl" / "canvas.cpp") << "#include \"render/surface.hpp\"\n#include \"base/digest.hpp\"\n";
+    std::ofstream(root / "media" / "video.cpp") << "#include \"render/image.hpp\"\n";
     CHECK(layering_violations(root).empty());
     std::ofstream(root / "render" / "up.hpp") << "#pragma once\n  #  include \"sim/grid.hpp\"\n";
+    std::ofstream(root / "render" / "plot.hpp") << "#include \"render/gl/canvas.hpp\"\n";
+    std::ofstream(root / "base" / "up.cpp") << "#include \"render/image.hpp\"\n";
     std::ofstream(root / "scenes" / "up.cpp") << "#include \"app/outputs.hpp\"\n";
     std::ofstream(root / "sim" / "timed.cpp") << "#include <chrono>\n";
     std::ofstream(root / "description" / "up.cpp") << "#include \"scenes/scene.hpp\"\n";
-    const auto violations = layering_violations(root);
-    CHECK(violations == std::vector<std::string>{"description/up.cpp: includes scenes/scene.hpp",
+    auto violations = layering_violations(root);
+    std::sort(violations.begin(), violations.end());
+    CHECK(violations == std::vector<std::string>{"base/up.cpp: includes render/image.hpp",
+                                                 "description/up.cpp: includes scenes/scene.hpp",
+                                                 "render/plot.hpp: includes render/gl/canvas.hpp",
                                                  "render/up.hpp: includes sim/grid.hpp",
                                                  "scenes/up.cpp: includes app/outputs.hpp",
                                                  "sim/timed.cpp: includes chrono"});

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 
 namespace testkit {
 namespace {

@@ -1,4 +1,4 @@
-// The vector module (render/vector.hpp): a page of paths, glyphs and images
+// The vector module (render/vector/vector.hpp): a page of paths, glyphs and images
 // written as PDF or SVG through cairo.
 //
 // Glyphs come from the very font file and glyph indices the PNG drew, through
@@ -26,7 +26,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "render/vector.hpp"
+#include "render/vector/vector.hpp"
 
 namespace render::vector {
 namespace {

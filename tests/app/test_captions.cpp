@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "figgen_run.hpp"
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 #include "vector_check.hpp"
 
 namespace fs = std::filesystem;

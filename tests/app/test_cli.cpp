@@ -13,8 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include "figgen_run.hpp"
-#include "render/png_io.hpp"
-#include "render/video.hpp"
+#include "media/png_io.hpp"
+#include "media/video.hpp"
 
 namespace fs = std::filesystem;
 

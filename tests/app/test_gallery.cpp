@@ -9,9 +9,9 @@
 #include <sstream>
 
 #include "figgen_run.hpp"
-#include "render/png_io.hpp"
-#include "render/video.hpp"
-#include "render/thumbnail.hpp"
+#include "media/png_io.hpp"
+#include "media/video.hpp"
+#include "media/thumbnail.hpp"
 
 namespace fs = std::filesystem;
 

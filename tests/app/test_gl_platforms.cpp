@@ -16,8 +16,8 @@
 #include "figgen_run.hpp"
 #include "golden_cases.hpp"
 #include "image_check.hpp"
-#include "render/gl_context.hpp"
-#include "render/png_io.hpp"
+#include "render/gl/gl_context.hpp"
+#include "media/png_io.hpp"
 
 namespace fs = std::filesystem;
 using testkit::Run;

@@ -15,7 +15,7 @@
 
 #include "child_process.hpp"
 #include "figgen_run.hpp"
-#include "render/digest.hpp"
+#include "base/digest.hpp"
 
 namespace fs = std::filesystem;
 using testkit::slurp;

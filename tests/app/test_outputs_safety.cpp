@@ -17,8 +17,8 @@
 
 #include "child_process.hpp"
 #include "figgen_run.hpp"
-#include "render/digest.hpp"
-#include "render/png_io.hpp"
+#include "base/digest.hpp"
+#include "media/png_io.hpp"
 
 namespace fs = std::filesystem;
 using testkit::Child;

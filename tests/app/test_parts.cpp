@@ -14,7 +14,7 @@
 #include <string>
 
 #include "figgen_run.hpp"
-#include "render/digest.hpp"
+#include "base/digest.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

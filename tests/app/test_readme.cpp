@@ -12,8 +12,8 @@
 #include "figgen_run.hpp"
 #include "description/catalog.hpp"
 #include "description/description.hpp"
-#include "render/png_io.hpp"
-#include "render/video.hpp"
+#include "media/png_io.hpp"
+#include "media/video.hpp"
 
 namespace fs = std::filesystem;
 

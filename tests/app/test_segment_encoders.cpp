@@ -10,7 +10,7 @@
 
 #include "app/segment_encoders.hpp"
 #include "figgen_run.hpp"
-#include "render/video.hpp"
+#include "media/video.hpp"
 
 namespace fs = std::filesystem;
 using render::Image;

@@ -14,7 +14,7 @@
 #include "description/plain_name.hpp"
 #include "render/layout.hpp"
 #include "render/text.hpp"
-#include "render/utf8.hpp"
+#include "base/utf8.hpp"
 #include "scenes/figure_caption.hpp"
 #include "scenes/scene.hpp"
 #include "sim/formula.hpp"

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "figgen_run.hpp"
-#include "render/atomic_file.hpp"
+#include "base/atomic_file.hpp"
 
 namespace fs = std::filesystem;
 using testkit::slurp;

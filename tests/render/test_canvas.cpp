@@ -4,8 +4,8 @@
 #include <optional>
 #include <vector>
 
-#include "render/canvas.hpp"
-#include "render/gl_context.hpp"
+#include "render/gl/canvas.hpp"
+#include "render/gl/gl_context.hpp"
 #include "render/shapes.hpp"
 
 using render::Canvas;

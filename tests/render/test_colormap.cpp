@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "render/canvas.hpp"
+#include "render/gl/canvas.hpp"
 #include "render/colormap.hpp"
 #include "render/field.hpp"
 

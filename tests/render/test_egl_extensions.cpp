@@ -3,7 +3,7 @@
 // read on an H200 node) and of Debian 12's Mesa 22.3.
 #include <catch2/catch.hpp>
 
-#include "render/gl_library.hpp"
+#include "render/gl/gl_library.hpp"
 
 using render::detail::has_device_platform;
 using render::detail::has_extension;

@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "render/canvas.hpp"
+#include "render/gl/canvas.hpp"
 #include "render/colormap.hpp"
 #include "render/field.hpp"
 

@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "render/gl.hpp"
-#include "render/gl_context.hpp"
+#include "render/gl/gl.hpp"
+#include "render/gl/gl_context.hpp"
 
 using Catch::Matchers::Contains;
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "render/canvas.hpp"
+#include "render/gl/canvas.hpp"
 #include "render/hex_cells.hpp"
 
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "description/catalog.hpp"
-#include "render/gl_context.hpp"
+#include "render/gl/gl_context.hpp"
 #include "golden_cases.hpp"
 #include "image_check.hpp"
 #include "vector_check.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "render/canvas.hpp"
+#include "render/gl/canvas.hpp"
 #include "render/plot.hpp"
 #include "render/shapes.hpp"
 #include "render/ticks.hpp"

@@ -7,7 +7,7 @@
 
 #include <csignal>
 
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 
 namespace fs = std::filesystem;
 

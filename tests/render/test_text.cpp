@@ -10,9 +10,9 @@
 #include <vector>
 #include <string>
 
-#include "render/canvas.hpp"
+#include "render/gl/canvas.hpp"
 #include "render/text.hpp"
-#include "render/utf8.hpp"
+#include "base/utf8.hpp"
 
 using render::Align;
 using render::Baseline;

@@ -8,8 +8,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "render/canvas.hpp"
-#include "render/png_io.hpp"
+#include "render/gl/canvas.hpp"
+#include "media/png_io.hpp"
 #include "render/shapes.hpp"
 #include "render/tubes.hpp"
 

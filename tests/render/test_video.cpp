@@ -7,8 +7,8 @@
 #include <iterator>
 #include <string>
 
-#include "render/atomic_file.hpp"
-#include "render/video.hpp"
+#include "base/atomic_file.hpp"
+#include "media/video.hpp"
 
 namespace fs = std::filesystem;
 using render::Image;

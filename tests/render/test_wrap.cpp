@@ -9,7 +9,7 @@
 
 #include "render/line_break.hpp"
 #include "render/text.hpp"
-#include "render/utf8.hpp"
+#include "base/utf8.hpp"
 
 using render::Font;
 

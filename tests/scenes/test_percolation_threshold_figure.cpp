@@ -10,7 +10,7 @@
 #include "description/catalog.hpp"
 #include "description/description.hpp"
 #include "figgen_run.hpp"
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/work_codec.hpp"
 #include "sim/percolation_threshold.hpp"

@@ -12,7 +12,7 @@
 
 #include "figgen_run.hpp"
 #include "render/image.hpp"
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 
 namespace fs = std::filesystem;
 

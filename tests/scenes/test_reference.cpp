@@ -9,7 +9,7 @@
 
 #include "golden_cases.hpp"
 #include "render/layout.hpp"
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 
 TEST_CASE("tc7-1 has the printed Figure 7.1's colour in every cell", "[reference]") {
     const render::Image printed =

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "description/description.hpp"
-#include "render/canvas.hpp"
+#include "render/gl/canvas.hpp"
 #include "scenes/step_runner.hpp"
 
 namespace {
