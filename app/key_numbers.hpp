@@ -2,7 +2,7 @@
 // The key results of a figure, as its gallery card shows them: a few
 // labelled numbers taken from its metadata (slopes, dimensions, p_c,
 // exponents, fitted ranges), each beside the catalog's reference value where
-// /work/shared/FIGURES.md (the catalog) gives one. Which numbers a scene's
+// docs/catalog.md (the catalog) gives one. Which numbers a scene's
 // metadata holds, and what the catalog says of them, is one table in
 // key_numbers.cpp: data, not code.
 //

@@ -93,7 +93,7 @@ MemoryEstimate require_memory(const Description& d, const OutputOptions& options
 // and vector_file_bytes for each of its PDF and SVG.
 void require_disk(const Description& d, const OutputOptions& options, double parts_bytes = 0);
 // The most a figure's PDF or SVG of width x height pixels may take: 16
-// bytes a pixel and 1 MiB (see README's vector section for what the
+// bytes a pixel and 1 MiB (see docs/outputs.md for what the
 // catalog's take). A file that would pass it stops with an error before
 // more is written, so the disk estimate holds.
 double vector_file_bytes(int width, int height);

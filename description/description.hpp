@@ -41,8 +41,8 @@ struct Animation {
     // Frames per film segment: each is encoded on its own, from a key frame,
     // and the segments are joined by stream copy, so a film made in segments
     // on many processes or threads is the same film (0: one segment). 60
-    // frames, 2 s at 30 fps: measured on five catalog films (README, Speed
-    // and accuracy), their MP4s are 5 to 22% larger than with 120 and 1.16
+    // frames, 2 s at 30 fps: measured on five catalog films (docs/speed.md,
+    // Films), their MP4s are 5 to 22% larger than with 120 and 1.16
     // to 1.79 times a single stream's, and twice as many segments (5 to 7)
     // can be encoded at once; 30 would make them 16 to 65% larger than 120.
     int segment_frames = 60;

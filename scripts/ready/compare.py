@@ -2,7 +2,7 @@
 """figgen against Ready on every 2-D formula pattern of Ready's repository:
 docs/ready-patterns.md's table.
 
-    RDY_BUILD=/tmp/rdy-build /usr/bin/python3 scripts/ready/compare.py READY/Patterns WORK > docs/ready-patterns.md
+    RDY_BUILD=build-rdy /usr/bin/python3 scripts/ready/compare.py READY/Patterns WORK > docs/ready-patterns.md
 
 (build/figgen must not be rebuilt while it runs.)
 

@@ -1,9 +1,14 @@
-// The README stays true: its grid shows every figure of the catalog, and
-// the description it teaches with renders.
+// The README stays true: its grid shows every figure of the catalog, it
+// stays a short front door whose links (and the docs' links) lead to files
+// of the repository, and the descriptions docs/descriptions.md teaches with
+// render.
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -21,11 +26,47 @@ namespace {
 
 const fs::path project = fs::path(FIGGEN_TEST_GOLDEN_DIR).parent_path().parent_path();
 
-std::string readme() {
-    std::ifstream in(project / "README.md");
+std::string text_of(const fs::path& file) {
+    std::ifstream in(file);
     std::ostringstream text;
     text << in.rdbuf();
     return text.str();
+}
+
+std::string readme() { return text_of(project / "README.md"); }
+
+// The lines of a Markdown text outside its ``` fences.
+std::vector<std::string> prose_lines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    bool fenced = false;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("```", 0) == 0) {
+            fenced = !fenced;
+            continue;
+        }
+        if (!fenced) lines.push_back(line);
+    }
+    return lines;
+}
+
+// The anchors of a Markdown file's headings, as GitHub makes them: lower
+// case, spaces to hyphens, punctuation other than - and _ dropped.
+std::set<std::string> anchors_of(const std::string& text) {
+    std::set<std::string> anchors;
+    for (const std::string& line : prose_lines(text)) {
+        if (line.empty() || line[0] != '#') continue;
+        const auto start = line.find_first_not_of('#');
+        if (start == std::string::npos || line[start] != ' ') continue;
+        std::string anchor;
+        for (const char c : line.substr(start + 1)) {
+            const auto u = static_cast<unsigned char>(c);
+            if (c == ' ') anchor += '-';
+            else if (std::isalnum(u) || c == '-' || c == '_' || u >= 0x80) anchor += char(std::tolower(u));
+        }
+        anchors.insert(anchor);
+    }
+    return anchors;
 }
 
 }  // namespace
@@ -68,21 +109,64 @@ TEST_CASE("the README's grid shows a committed thumbnail of every catalog figure
     CHECK(moving == films);
 }
 
-TEST_CASE("the README's example description renders", "[readme][cli]") {
+TEST_CASE("the README is a front door: short, licensed, its links and the docs' inside the repository",
+          "[readme]") {
     const std::string text = readme();
-    const auto section = text.find("### Writing a description");
-    REQUIRE(section != std::string::npos);
-    const auto begin = text.find("```toml\n", section);
-    REQUIRE(begin != std::string::npos);
-    const auto end = text.find("```", begin + 8);
-    const fs::path dir = testkit::fresh_dir("readme-example");
-    std::ofstream(dir / "spots.toml") << text.substr(begin + 8, end - begin - 8);
-    const testkit::Run run = testkit::figgen("render " + (dir / "spots.toml").string() +
-                                             " --format png --scale 0.3 --out " + (dir / "out").string());
-    INFO(run.output);
-    REQUIRE(run.status == 0);
-    CHECK(fs::exists(dir / "out" / "spots.png"));
-    CHECK(fs::exists(dir / "out" / "spots.json"));
+    CHECK(std::count(text.begin(), text.end(), '\n') < 200);
+    CHECK_THAT(text, Catch::Contains("](LICENSE)"));
+    REQUIRE(fs::exists(project / "LICENSE"));
+    // Every relative link of the README and of docs/*.md names a file of the
+    // repository (a heading, where it names one), never one beside it.
+    std::vector<fs::path> pages = {project / "README.md"};
+    for (const auto& entry : fs::directory_iterator(project / "docs"))
+        if (entry.path().extension() == ".md") pages.push_back(entry.path());
+    CHECK(pages.size() > 5);
+    static const std::regex link(R"(\]\(([^)\s]+)\))");
+    int links = 0;
+    for (const fs::path& page : pages) {
+        const std::string markdown = text_of(page);
+        for (const std::string& line : prose_lines(markdown)) {
+            for (auto m = std::sregex_iterator(line.begin(), line.end(), link); m != std::sregex_iterator(); ++m) {
+                const std::string target = (*m)[1];
+                if (target.rfind("http://", 0) == 0 || target.rfind("https://", 0) == 0) continue;
+                INFO(page.filename().string() << " links to " << target);
+                ++links;
+                const auto hash = target.find('#');
+                const std::string file = target.substr(0, hash);
+                const fs::path to = file.empty() ? page : (page.parent_path() / file).lexically_normal();
+                const std::string inside = to.lexically_relative(project).string();
+                CHECK(inside.rfind("..", 0) != 0);
+                CHECK(fs::exists(to));
+                if (hash != std::string::npos && fs::exists(to))
+                    CHECK(anchors_of(text_of(to)).count(target.substr(hash + 1)) == 1);
+            }
+        }
+    }
+    CHECK(links > 50);
+}
+
+TEST_CASE("the descriptions docs/descriptions.md teaches with render", "[readme][cli]") {
+    const std::string text = text_of(project / "docs" / "descriptions.md");
+    // Every whole description in it (a ```toml block with a scene), rendered small.
+    int rendered = 0;
+    for (auto begin = text.find("```toml\n"); begin != std::string::npos; begin = text.find("```toml\n", begin + 8)) {
+        const auto end = text.find("```", begin + 8);
+        const std::string description = text.substr(begin + 8, end - begin - 8);
+        if (description.find("\nscene ") == std::string::npos) continue;
+        std::smatch id;
+        REQUIRE(std::regex_search(description, id, std::regex(R"re((?:^|\n)id\s*=\s*"([^"]+)")re")));
+        INFO(description);
+        const fs::path dir = testkit::fresh_dir("docs-example-" + id[1].str());
+        std::ofstream(dir / (id[1].str() + ".toml")) << description;
+        const testkit::Run run = testkit::figgen("render " + (dir / (id[1].str() + ".toml")).string() +
+                                                 " --format png --scale 0.3 --out " + (dir / "out").string());
+        INFO(run.output);
+        REQUIRE(run.status == 0);
+        CHECK(fs::exists(dir / "out" / (id[1].str() + ".png")));
+        CHECK(fs::exists(dir / "out" / (id[1].str() + ".json")));
+        ++rendered;
+    }
+    CHECK(rendered >= 2);  // spots.toml and the Sierpinski L-systems
 }
 
 namespace {

@@ -1,19 +1,26 @@
 // Figures against the printed ones in ../shared/reference: the colour at the
-// centre of every cell of every panel. Built only when that folder exists
-// (tests/CMakeLists.txt), as it does beside the project in CI.
-#ifdef FIGGEN_REFERENCE_DIR
+// centre of every cell of every panel. The comparison is built only when that
+// folder exists (tests/CMakeLists.txt); without it, one test case says so.
 #include <catch2/catch.hpp>
 
+#ifdef FIGGEN_REFERENCE_DIR
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 
 #include "golden_cases.hpp"
 #include "render/layout.hpp"
 #include "media/png_io.hpp"
 
 TEST_CASE("tc7-1 has the printed Figure 7.1's colour in every cell", "[reference]") {
-    const render::Image printed =
-        render::read_png(std::string(FIGGEN_REFERENCE_DIR) + "/think-complexity-ch7/s07-1.png").image;
+    const std::string scan = std::string(FIGGEN_REFERENCE_DIR) + "/think-complexity-ch7/s07-1.png";
+    if (!std::filesystem::exists(scan)) {
+        WARN("SKIPPED: the printed Figure 7.1 is absent (" << scan
+             << "), so tc7-1 is not compared with it; put the scans there, or point "
+                "FIGGEN_REFERENCE_DIR at them, to compare");
+        return;
+    }
+    const render::Image printed = render::read_png(scan).image;
     REQUIRE(printed.width == 900);
     REQUIRE(printed.height == 450);
     const render::Image ours = testkit::render_catalog_figure("tc7-1", 1.0);
@@ -39,5 +46,11 @@ TEST_CASE("tc7-1 has the printed Figure 7.1's colour in every cell", "[reference
     // The print went through matplotlib's 8-bit pipeline and PNG; ours through
     // GL's. Measured: 2 at most. A wrong alpha (0.7) or step (10 for 15) gives > 10.
     CHECK(largest <= 3);
+}
+#else
+TEST_CASE("the printed reference figures are absent: no figure is compared with its print", "[reference]") {
+    WARN("SKIPPED: no printed reference figures (../shared/reference/think-complexity-ch7 beside the "
+         "project, or FIGGEN_REFERENCE_DIR when CMake runs), so tc7-1 is not compared with the printed "
+         "Figure 7.1; the goldens in tests/golden still check every figure");
 }
 #endif
