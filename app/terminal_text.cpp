@@ -54,13 +54,9 @@ std::string fit_columns(std::string_view utf8, int columns) {
     int used = 0;
     const int room = columns - 3;  // for "..."
     for (std::size_t at = 0; at < utf8.size();) {
-        const auto lead = static_cast<unsigned char>(utf8[at]);
-        std::size_t bytes = std::min<std::size_t>(lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1,
-                                                  utf8.size() - at);
-        const std::u32string one = render::decode_utf8(utf8.substr(at, bytes));
-        int w = 1;
-        if (one.size() == 1 && one[0] != render::replacement_character) w = columns_of(one[0]);
-        else bytes = 1;  // a malformed byte, one column
+        const render::Utf8Char c = render::decode_utf8_at(utf8, at);
+        const std::size_t bytes = c.valid ? c.length : 1;  // a malformed byte, one column
+        const int w = c.valid ? columns_of(c.code) : 1;
         if (used + w > room) break;
         out.append(utf8.substr(at, bytes));
         used += w;

@@ -2,6 +2,7 @@
 // UTF-8 to code points, for text drawing. Figure labels come from TOML files
 // (UTF-8 by definition) and from C++ string literals (UTF-8 with GCC/Clang).
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -9,6 +10,17 @@ namespace render {
 
 // The replacement character, drawn wherever the input is not valid UTF-8.
 inline constexpr char32_t replacement_character = U'\uFFFD';
+
+// The character that starts at utf8[at] (at < size): its code point and
+// its length in bytes when it is valid UTF-8; else U+FFFD, valid = false,
+// and the bytes a decoder skips (the lead and the continuation bytes after
+// it, up to the sequence's length). The one decoder every reader uses.
+struct Utf8Char {
+    char32_t code;
+    std::size_t length;
+    bool valid;
+};
+Utf8Char decode_utf8_at(std::string_view utf8, std::size_t at);
 
 // Decodes `utf8`; each malformed sequence (stray continuation byte, truncated
 // sequence, overlong form, surrogate, value above U+10FFFF) becomes one
