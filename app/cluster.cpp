@@ -1,7 +1,5 @@
 #include "app/cluster.hpp"
 
-#include <dlfcn.h>
-
 #include <chrono>
 #include <climits>
 #include <cstdlib>
@@ -52,17 +50,11 @@ std::unique_ptr<Cluster> Cluster::join() {
         "started by an MPI launcher, but this figgen was built without MPI: install libopenmpi-dev "
         "(scripts/deps.sh) and build again");
 #else
-    const std::filesystem::path path = render::module_path(FIGGEN_MPI_RELATIVE, FIGGEN_MPI_BUILT);
-    // RTLD_GLOBAL: Open MPI opens its own components, which need libmpi's symbols.
-    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL);
-    if (!handle)
-        throw std::runtime_error("cannot load figgen's MPI module (" + std::string(::dlerror()) +
-                                 "): install Debian's libopenmpi3 and openmpi-bin (scripts/deps.sh), or build figgen "
-                                 "again");
-    auto* entry = reinterpret_cast<const mpi::Api* (*)()>(::dlsym(handle, "figgen_mpi_api"));
-    const mpi::Api* api = entry ? entry() : nullptr;
-    if (!api || api->version != mpi::api_version)
-        throw std::runtime_error(path.string() + " is not this build's MPI module: build or install figgen again");
+    static constexpr render::ModuleSpec spec{FIGGEN_MPI_RELATIVE, FIGGEN_MPI_BUILT, "figgen_mpi_api", mpi::api_version,
+                                             "MPI module", "libopenmpi3 and openmpi-bin (scripts/deps.sh)", true};
+    const render::OpenedModule opened = render::open_module(spec);
+    if (!opened.api) throw std::runtime_error(opened.error);
+    const auto* api = static_cast<const mpi::Api*>(opened.api);
     std::unique_ptr<Cluster> cluster(new Cluster);
     cluster->module_ = static_cast<const Module*>(api);
     char error[256] = {};

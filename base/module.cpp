@@ -18,7 +18,7 @@ std::filesystem::path module_path(const char* relative, const char* built) {
 
 OpenedModule open_module(const ModuleSpec& spec) {
     const std::filesystem::path path = module_path(spec.relative, spec.built);
-    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    void* handle = ::dlopen(path.c_str(), RTLD_NOW | (spec.global ? RTLD_GLOBAL : RTLD_LOCAL));
     if (!handle)
         return {nullptr, std::string("cannot load figgen's ") + spec.what + " (" + ::dlerror() +
                              "): build figgen again (make) or install it again; its libraries are Debian's " +

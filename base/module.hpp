@@ -26,6 +26,9 @@ struct ModuleSpec {
     int version;
     const char* what;      // "video module"
     const char* packages;  // "libavcodec59, libavformat59 and libswscale6"
+    // Its symbols visible to the libraries it opens in turn (RTLD_GLOBAL):
+    // Open MPI's components need libmpi's.
+    bool global = false;
 };
 
 // The module's Api, or null and one line saying why not.
