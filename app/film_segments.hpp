@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "app/outputs.hpp"
+#include "app/output_files.hpp"
 #include "media/video.hpp"
 #include "scenes/scene.hpp"
-#include "scenes/work.hpp"
+#include "scenes/work_items.hpp"
 
 namespace app {
 

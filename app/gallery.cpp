@@ -17,7 +17,7 @@
 
 #include "app/bounded_json.hpp"
 #include "app/key_numbers.hpp"
-#include "app/outputs.hpp"
+#include "app/output_files.hpp"
 #include "app/version.hpp"
 #include "description/catalog.hpp"
 #include "description/plain_name.hpp"

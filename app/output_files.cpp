@@ -1,4 +1,4 @@
-#include "app/outputs.hpp"
+#include "app/output_files.hpp"
 
 #include <sys/stat.h>
 

@@ -19,7 +19,7 @@
 
 #include "app/frame_pipe.hpp"
 #include "app/segment_encoders.hpp"
-#include "app/work.hpp"
+#include "app/schedule.hpp"
 #include "description/description.hpp"
 #include "base/atomic_file.hpp"
 #include "render/image.hpp"

@@ -6,7 +6,7 @@
 
 #include <memory>
 
-#include "app/outputs.hpp"
+#include "app/output_files.hpp"
 #include "description/description.hpp"
 #include "scenes/output.hpp"
 #include "scenes/scene.hpp"

@@ -1,4 +1,4 @@
-#include "app/work.hpp"
+#include "app/schedule.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -374,27 +375,122 @@ void check_merge_sources(const description::Description& d, const scenes::WorkIt
                          "); allowed: the parts of every shard (render --shard K/N for each K of N)");
 }
 
+namespace {
+
+using Results = std::vector<std::optional<json>>;
+using Record = std::function<void(int item, json result)>;
+
+// figgen merge: every item from the parts of the --from folders; the first
+// folder holding an item gives it.
+void gather_from_parts(const description::Description& d, const scenes::WorkItems& items, const WorkOptions& options,
+                       Results& results, scenes::Progress& progress) {
+    const int count = items.item_count();
+    for (const std::filesystem::path& from : options.merge_from) {
+        const Parts parts = Parts::given(from, d, items);
+        for (int i = 0; i < count; ++i) {
+            if (results[i]) continue;
+            Part part = parts.load(i);
+            if (part.state == Part::State::damaged) throw damaged_part(parts, i, part);
+            if (part.state == Part::State::sound) results[i] = std::move(part.result);
+        }
+    }
+    for (int i = 0; i < count; ++i)
+        if (!results[i])
+            throw UsageError("--from: " + d.id + "'s parts lack " + items.item_name(i) +
+                             "; allowed: the parts of every shard (render --shard K/N for each K of N)");
+    progress.advance(count);
+}
+
+// The missing items on this process's threads, each taking the next.
+void run_here(const description::Description& d, const scenes::WorkItems& items, const std::vector<int>& missing,
+              int threads, const Record& record) {
+    std::atomic<std::size_t> cursor{0};
+    run_on_threads(
+        threads,
+        [&] {
+            const std::size_t j = cursor++;
+            return j < missing.size() ? missing[j] : -1;
+        },
+        [&](int item) { record(item, run_one(d, items, item)); });
+}
+
+// Rank 0 of an MPI job: says which items are missing, then runs its share
+// while a thread of its own serves the other ranks (their requests, results
+// and failures). The first failure, here or on a rank, ends the job.
+void run_as_rank_zero(const description::Description& d, const scenes::WorkItems& items,
+                      const std::vector<int>& missing, const WorkOptions& options, const Record& record) {
+    Cluster* cluster = options.cluster;
+    const int count = items.item_count();
+    const bool dynamic = options.schedule == Schedule::dynamic;
+    Cluster::Bytes header = cbor({{"figure", d.id}, {"missing", missing}, {"dynamic", dynamic}});
+    cluster->broadcast(header);
+    std::atomic<std::size_t> cursor{0};
+    const std::vector<int> mine = dynamic ? missing : fixed_share(missing, 0, cluster->size());
+    std::atomic<bool> stop{false};     // hand out no more items
+    std::atomic<bool> abandon{false};  // rank 0 failed: the server stops too, the job is aborted
+    std::string rank_failure;          // the first failure another rank sent
+    std::exception_ptr serve_failure;
+    std::thread server([&] {
+        try {
+            for (int working = cluster->size() - 1; working > 0 && !abandon;) {
+                std::optional<Cluster::Message> next = cluster->poll();
+                if (!next) {
+                    std::this_thread::sleep_for(std::chrono::microseconds(200));
+                    continue;
+                }
+                Cluster::Message& m = *next;
+                if (m.tag == tag_done) {
+                    --working;
+                } else if (m.tag == tag_request) {
+                    const std::size_t j = stop ? mine.size() : cursor++;
+                    cluster->send(m.from, tag_assign, cbor({{"item", j < mine.size() ? mine[j] : -1}}));
+                } else if (m.tag == tag_result) {
+                    json r = decoded(m.bytes);
+                    const int item = r.at("item").get<int>();
+                    if (item < 0 || item >= count) throw std::runtime_error("a result of no item");
+                    record(item, std::move(r.at("result")));
+                } else if (m.tag == tag_failed) {
+                    const json f = decoded(m.bytes);
+                    if (rank_failure.empty())
+                        rank_failure = "rank " + std::to_string(m.from) + ": " + f.at("error").get<std::string>();
+                    stop = true;
+                    break;  // the job ends: rank 0 reports it and aborts every rank
+                }
+            }
+        } catch (...) {
+            serve_failure = std::current_exception();
+            stop = true;
+        }
+    });
+    try {
+        run_on_threads(
+            options.threads,
+            [&] {
+                const std::size_t j = stop ? mine.size() : cursor++;
+                return j < mine.size() ? mine[j] : -1;
+            },
+            [&](int item) { record(item, run_one(d, items, item)); });
+    } catch (const std::exception& e) {
+        stop = abandon = true;
+        server.join();  // it stops at its next poll; the caller aborts the job once this is said
+        throw std::runtime_error("rank 0: " + std::string(e.what()));
+    }
+    server.join();
+    if (serve_failure) std::rethrow_exception(serve_failure);
+    if (!rank_failure.empty()) throw std::runtime_error(rank_failure);
+}
+
+}  // namespace
+
 std::vector<json> run_work(const description::Description& d, const scenes::WorkItems& items,
                            const render::Folder& folder, const WorkOptions& options, scenes::Progress& progress) {
     const int count = items.item_count();
-    std::vector<std::optional<json>> results(static_cast<std::size_t>(count));
+    Results results(static_cast<std::size_t>(count));
     if (options.merging()) {
-        // Every --from folder's parts; the first folder holding an item gives it.
-        for (const std::filesystem::path& from : options.merge_from) {
-            const Parts parts = Parts::given(from, d, items);
-            for (int i = 0; i < count; ++i) {
-                if (results[i]) continue;
-                Part part = parts.load(i);
-                if (part.state == Part::State::damaged) throw damaged_part(parts, i, part);
-                if (part.state == Part::State::sound) results[i] = std::move(part.result);
-            }
-        }
-        for (int i = 0; i < count; ++i)
-            if (!results[i])
-                throw UsageError("--from: " + d.id + "'s parts lack " + items.item_name(i) +
-                                 "; allowed: the parts of every shard (render --shard K/N for each K of N)");
-        progress.advance(count);
+        gather_from_parts(d, items, options, results, progress);
     } else {
+        // The items kept from an earlier run are used; the rest are run,
+        // each kept as a part as it finishes.
         const Parts parts = Parts::in_output(folder, d, items);
         std::vector<int> missing;
         for (int i = 0; i < count; ++i) {
@@ -408,84 +504,14 @@ std::vector<json> run_work(const description::Description& d, const scenes::Work
             std::fprintf(stderr, "figgen: %s: resuming: %zu of %d items kept from an earlier run in %s\n", d.id.c_str(),
                          kept, count, description::printable(parts.folder().path().string()).c_str());
         std::mutex record_lock;
-        auto record = [&](int item, json result) {
+        const Record record = [&](int item, json result) {
             parts.store(item, result);
             std::lock_guard<std::mutex> hold(record_lock);
             results[item] = std::move(result);
             progress.advance();
         };
-        Cluster* cluster = options.cluster;
-        if (!cluster) {
-            std::atomic<std::size_t> cursor{0};
-            run_on_threads(
-                options.threads,
-                [&] {
-                    const std::size_t j = cursor++;
-                    return j < missing.size() ? missing[j] : -1;
-                },
-                [&](int item) { record(item, run_one(d, items, item)); });
-        } else {
-            // Rank 0: says which items are missing, then runs its share while
-            // a thread of its own serves the other ranks.
-            const bool dynamic = options.schedule == Schedule::dynamic;
-            Cluster::Bytes header = cbor({{"figure", d.id}, {"missing", missing}, {"dynamic", dynamic}});
-            cluster->broadcast(header);
-            std::atomic<std::size_t> cursor{0};
-            const std::vector<int> mine = dynamic ? missing : fixed_share(missing, 0, cluster->size());
-            std::atomic<bool> stop{false};     // hand out no more items
-            std::atomic<bool> abandon{false};  // rank 0 failed: the server stops too, the job is aborted
-            std::string rank_failure;          // the first failure another rank sent
-            std::exception_ptr serve_failure;
-            std::thread server([&] {
-                try {
-                    for (int working = cluster->size() - 1; working > 0 && !abandon;) {
-                        std::optional<Cluster::Message> next = cluster->poll();
-                        if (!next) {
-                            std::this_thread::sleep_for(std::chrono::microseconds(200));
-                            continue;
-                        }
-                        Cluster::Message& m = *next;
-                        if (m.tag == tag_done) {
-                            --working;
-                        } else if (m.tag == tag_request) {
-                            const std::size_t j = stop ? mine.size() : cursor++;
-                            cluster->send(m.from, tag_assign, cbor({{"item", j < mine.size() ? mine[j] : -1}}));
-                        } else if (m.tag == tag_result) {
-                            json r = decoded(m.bytes);
-                            const int item = r.at("item").get<int>();
-                            if (item < 0 || item >= count) throw std::runtime_error("a result of no item");
-                            record(item, std::move(r.at("result")));
-                        } else if (m.tag == tag_failed) {
-                            const json f = decoded(m.bytes);
-                            if (rank_failure.empty())
-                                rank_failure =
-                                    "rank " + std::to_string(m.from) + ": " + f.at("error").get<std::string>();
-                            stop = true;
-                            break;  // the job ends: rank 0 reports it and aborts every rank
-                        }
-                    }
-                } catch (...) {
-                    serve_failure = std::current_exception();
-                    stop = true;
-                }
-            });
-            try {
-                run_on_threads(
-                    options.threads,
-                    [&] {
-                        const std::size_t j = stop ? mine.size() : cursor++;
-                        return j < mine.size() ? mine[j] : -1;
-                    },
-                    [&](int item) { record(item, run_one(d, items, item)); });
-            } catch (const std::exception& e) {
-                stop = abandon = true;
-                server.join();  // it stops at its next poll; the caller aborts the job once this is said
-                throw std::runtime_error("rank 0: " + std::string(e.what()));
-            }
-            server.join();
-            if (serve_failure) std::rethrow_exception(serve_failure);
-            if (!rank_failure.empty()) throw std::runtime_error(rank_failure);
-        }
+        if (options.cluster) run_as_rank_zero(d, items, missing, options, record);
+        else run_here(d, items, missing, options.threads, record);
     }
     std::vector<json> out;
     out.reserve(results.size());

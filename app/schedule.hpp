@@ -1,5 +1,5 @@
 #pragma once
-// Running a figure's work items (scenes/work.hpp): on this process's
+// Running a figure's work items (scenes/work_items.hpp): on this process's
 // threads, over the ranks of an MPI job, as one shard of a job array, or
 // not at all (figgen merge, from the parts that shards wrote).
 //
@@ -25,7 +25,7 @@
 #include "description/description.hpp"
 #include "base/atomic_file.hpp"
 #include "scenes/output.hpp"
-#include "scenes/work.hpp"
+#include "scenes/work_items.hpp"
 
 namespace app {
 

@@ -12,7 +12,7 @@
 // At most `workers` segments are open at once, and at most waiting_most()
 // frames wait for their encoders, (workers - 1) x segment_frames and a few:
 // enough for the segments before the newest to wait whole while the newest
-// is fed, never the whole film (app/outputs.cpp's estimate counts them).
+// is fed, never the whole film (app/output_files.cpp's estimate counts them).
 
 #include <condition_variable>
 #include <deque>

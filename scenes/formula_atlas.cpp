@@ -28,7 +28,7 @@
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/tile_map.hpp"
-#include "scenes/work.hpp"
+#include "scenes/work_items.hpp"
 #include "scenes/work_codec.hpp"
 
 namespace scenes {

@@ -5,7 +5,7 @@
 // R_L(p) = R_infinity(p_c), and those estimates extrapolated to L = infinity
 // along L^(-11/4).
 //
-// The samples are work items (scenes/work.hpp): blocks of samples_per_item
+// The samples are work items (scenes/work_items.hpp): blocks of samples_per_item
 // samples of one L, L after L in the order of `sizes`, each drawing from
 // its own stream sim::Random::for_item(seed, item). An L's samples are its
 // blocks' in item order, so the figure is the same bits on any number of

@@ -42,7 +42,7 @@ public:
     // command against --max-memory before render()).
     virtual std::vector<MemoryNeed> memory() const { return {}; }
     // The model's work items when its run splits into independent ones
-    // (scenes/work.hpp); render() then gets their results from
+    // (scenes/work_items.hpp); render() then gets their results from
     // Output::results. Null for a scene that runs as one piece.
     virtual const WorkItems* work() const { return nullptr; }
     // Phases 2 and 3: runs the model and writes every output into `out`.

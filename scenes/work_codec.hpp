@@ -1,5 +1,5 @@
 #pragma once
-// Numbers in a work item's result (scenes/work.hpp): arrays of floats or
+// Numbers in a work item's result (scenes/work_items.hpp): arrays of floats or
 // doubles as one CBOR byte string each, in the host's byte order (the ranks
 // and shards of a run share a machine type), read back with their size
 // checked, since a merge reads parts that came from elsewhere.

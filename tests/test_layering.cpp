@@ -104,7 +104,7 @@ TEST_CASE("the layering check finds an include that goes up and a clock in sim/"
     std::ofstream(root / "render" / "up.hpp") << "#pragma once\n  #  include \"sim/grid.hpp\"\n";
     std::ofstream(root / "render" / "plot.hpp") << "#include \"render/gl/canvas.hpp\"\n";
     std::ofstream(root / "base" / "up.cpp") << "#include \"render/image.hpp\"\n";
-    std::ofstream(root / "scenes" / "up.cpp") << "#include \"app/outputs.hpp\"\n";
+    std::ofstream(root / "scenes" / "up.cpp") << "#include \"app/output_files.hpp\"\n";
     std::ofstream(root / "sim" / "timed.cpp") << "#include <chrono>\n";
     std::ofstream(root / "description" / "up.cpp") << "#include \"scenes/scene.hpp\"\n";
     auto violations = layering_violations(root);
@@ -113,7 +113,7 @@ TEST_CASE("the layering check finds an include that goes up and a clock in sim/"
                                                  "description/up.cpp: includes scenes/scene.hpp",
                                                  "render/plot.hpp: includes render/gl/canvas.hpp",
                                                  "render/up.hpp: includes sim/grid.hpp",
-                                                 "scenes/up.cpp: includes app/outputs.hpp",
+                                                 "scenes/up.cpp: includes app/output_files.hpp",
                                                  "sim/timed.cpp: includes chrono"});
     fs::remove_all(root);
 }

@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "app/bounded_json.hpp"
-#include "app/work.hpp"
+#include "app/schedule.hpp"
 #include "description/catalog.hpp"
 #include "description/description.hpp"
 #include "description/plain_name.hpp"
