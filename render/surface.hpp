@@ -51,10 +51,15 @@ public:
     // A rows x cols field (row-major, row 0 at the top) filling `where`; see render/field.hpp.
     virtual void field(const Rect& where, int rows, int cols, std::span<const double> values,
                        const FieldStyle& style) = 0;
-    // Two layers of one grid, the second over the first (render/field.hpp's draw_field_pair).
+    // Two layers of one grid, the second over the first (render/field.hpp's
+    // draw_field_pair): by default two field() calls; the GL canvas draws
+    // both in one pass.
     virtual void field_pair(const Rect& where, int rows, int cols, std::span<const double> first,
                             const FieldStyle& first_style, std::span<const double> second,
-                            const FieldStyle& second_style) = 0;
+                            const FieldStyle& second_style) {
+        field(where, rows, cols, first, first_style);
+        field(where, rows, cols, second, second_style);
+    }
     virtual void hex_cells(const HexView& view, std::span<const glm::ivec2> cells, const glm::vec4& colour) = 0;
     // 3-D tubes and flat facets in `viewport`, one depth-tested picture (render/tubes.hpp).
     virtual void tubes(const Rect& viewport, const std::vector<Tube>& tubes, const std::vector<Facet>& facets,

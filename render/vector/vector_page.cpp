@@ -240,13 +240,6 @@ void VectorPage::field(const Rect& where, int rows, int cols, std::span<const do
         vector::Picture{field_image(where, rows, cols, values, style), where, style.sampling == Sampling::smooth});
 }
 
-void VectorPage::field_pair(const Rect& where, int rows, int cols, std::span<const double> first,
-                            const FieldStyle& first_style, std::span<const double> second,
-                            const FieldStyle& second_style) {
-    field(where, rows, cols, first, first_style);
-    field(where, rows, cols, second, second_style);
-}
-
 void VectorPage::hex_cells(const HexView& view, std::span<const glm::ivec2> cells, const glm::vec4& colour) {
     // Cells under a pixel across would be more hexagons than the page has
     // pixels to show them: drawn by GL at the page's pixels and embedded as

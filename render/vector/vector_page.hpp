@@ -37,9 +37,6 @@ public:
     void text(const Text& text) override;
     void field(const Rect& where, int rows, int cols, std::span<const double> values,
                const FieldStyle& style) override;
-    void field_pair(const Rect& where, int rows, int cols, std::span<const double> first,
-                    const FieldStyle& first_style, std::span<const double> second,
-                    const FieldStyle& second_style) override;
     void hex_cells(const HexView& view, std::span<const glm::ivec2> cells, const glm::vec4& colour) override;
     void tubes(const Rect& viewport, const std::vector<Tube>& tubes, const std::vector<Facet>& facets,
                const Camera& camera, const Light& light, int sides) override;
