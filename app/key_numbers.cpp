@@ -38,8 +38,8 @@ struct Entry {
 };
 
 // Every scene's key numbers, with the catalog's reference values
-// (FIGURES.md, the catalog of the figures the descriptions reproduce). The
-// order here is the order on the card.
+// (docs/catalog.md, the figures the descriptions reproduce). The order
+// here is the order on the card.
 const std::vector<Entry>& entries() {
     static const std::vector<Entry> table = {
         // Think Complexity, chapter 7
