@@ -85,20 +85,11 @@ struct D {
 
 }  // namespace
 
-// Blocks of 2 vectors, then single vectors.
 int run_f(const Plan<float>& p, const float* const* view, float* d, int n, bool check, bool& bad) {
-    bool more = false;
-    const int done = chain_lanes<F, 2>(p, view, d, 0, n, check, bad);
-    const int after = chain_lanes<F, 1>(p, view, d, done, n, check, more);
-    bad |= more;
-    return after;
+    return chain_vectors<F, 2>(p, view, d, n, check, bad);
 }
 int run_d(const Plan<double>& p, const double* const* view, double* d, int n, bool check, bool& bad) {
-    bool more = false;
-    const int done = chain_lanes<D, 2>(p, view, d, 0, n, check, bad);
-    const int after = chain_lanes<D, 1>(p, view, d, done, n, check, more);
-    bad |= more;
-    return after;
+    return chain_vectors<D, 2>(p, view, d, n, check, bad);
 }
 
 }  // namespace avx2
@@ -141,20 +132,11 @@ struct D {
 
 }  // namespace
 
-// Blocks of 4 vectors, then single vectors.
 int run_f(const Plan<float>& p, const float* const* view, float* d, int n, bool check, bool& bad) {
-    bool more = false;
-    const int done = chain_lanes<F, 4>(p, view, d, 0, n, check, bad);
-    const int after = chain_lanes<F, 1>(p, view, d, done, n, check, more);
-    bad |= more;
-    return after;
+    return chain_vectors<F, 4>(p, view, d, n, check, bad);
 }
 int run_d(const Plan<double>& p, const double* const* view, double* d, int n, bool check, bool& bad) {
-    bool more = false;
-    const int done = chain_lanes<D, 4>(p, view, d, 0, n, check, bad);
-    const int after = chain_lanes<D, 1>(p, view, d, done, n, check, more);
-    bad |= more;
-    return after;
+    return chain_vectors<D, 4>(p, view, d, n, check, bad);
 }
 
 }  // namespace avx512

@@ -1,7 +1,8 @@
-// Runs a compiled formula (sim/formula_program.hpp) over the grid: each
-// row in chunks of up to `chunk` cells, each operation a loop over the
-// chunk's cells (vectorised by the compiler, a clone per instruction set),
-// the rows of a step split among threads (sim/parallel_steps.hpp).
+// Runs a compiled formula (sim/formula_program.hpp) over the grid: rows in
+// chunks of up to chunk_lanes cells, each chain in one pass over the chunk
+// (sim/formula_fused.hpp), each other operation a loop over it (vectorised
+// by the compiler, a clone per instruction set), the rows of a step split
+// among threads (sim/parallel_steps.hpp).
 //
 // Neighbours: each chemical's rows are stored with `radius_x` cells of halo
 // on both sides, filled after each row is written as Ready's indexing reads
@@ -33,63 +34,31 @@ namespace sim::formula {
 
 namespace {
 
-constexpr int chunk = 256;  // cells a row operation takes at once: its registers stay in L1/L2
-
 #if defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__) && !defined(__clang__)
 #define FIGGEN_FORMULA_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define FIGGEN_FORMULA_CLONES
 #endif
 
-// The hot operations, one loop each.
-#define FIGGEN_FORMULA_BINARY(NAME, EXPR)                                                                    \
-    template <class Real>                                                                                   \
-    void NAME(Real* __restrict d, const Real* __restrict a, const Real* __restrict b, int n) {              \
-        for (int i = 0; i < n; ++i) d[i] = EXPR;                                                            \
-    }                                                                                                       \
-    FIGGEN_FORMULA_CLONES void NAME##_f(float* d, const float* a, const float* b, int n) { NAME(d, a, b, n); } \
-    FIGGEN_FORMULA_CLONES void NAME##_d(double* d, const double* a, const double* b, int n) { NAME(d, a, b, n); }
-
-FIGGEN_FORMULA_BINARY(add_rows, a[i] + b[i])
-FIGGEN_FORMULA_BINARY(sub_rows, a[i] - b[i])
-FIGGEN_FORMULA_BINARY(mul_rows, a[i] * b[i])
-FIGGEN_FORMULA_BINARY(div_rows, a[i] / b[i])
-
-// The same with one operand a constant (a parameter, a literal): one row
-// read instead of two. `k op b` and `a op k`.
-#define FIGGEN_FORMULA_SCALAR(NAME, EXPR_LEFT, EXPR_RIGHT)                                                     \
-    template <class Real>                                                                                     \
-    void NAME##_left(Real* __restrict d, Real k, const Real* __restrict b, int n) {                           \
-        for (int i = 0; i < n; ++i) d[i] = EXPR_LEFT;                                                         \
-    }                                                                                                         \
-    template <class Real>                                                                                     \
-    void NAME##_right(Real* __restrict d, const Real* __restrict a, Real k, int n) {                          \
-        for (int i = 0; i < n; ++i) d[i] = EXPR_RIGHT;                                                        \
-    }                                                                                                         \
-    FIGGEN_FORMULA_CLONES void NAME##_left_f(float* d, float k, const float* b, int n) { NAME##_left(d, k, b, n); } \
-    FIGGEN_FORMULA_CLONES void NAME##_left_d(double* d, double k, const double* b, int n) { NAME##_left(d, k, b, n); } \
-    FIGGEN_FORMULA_CLONES void NAME##_right_f(float* d, const float* a, float k, int n) { NAME##_right(d, a, k, n); } \
-    FIGGEN_FORMULA_CLONES void NAME##_right_d(double* d, const double* a, double k, int n) { NAME##_right(d, a, k, n); }
-
-FIGGEN_FORMULA_SCALAR(add_k, k + b[i], a[i] + k)
-FIGGEN_FORMULA_SCALAR(sub_k, k - b[i], a[i] - k)
-FIGGEN_FORMULA_SCALAR(mul_k, k * b[i], a[i] * k)
-FIGGEN_FORMULA_SCALAR(div_k, k / b[i], a[i] / k)
-
-// d = k op b (`left`: the constant is the first operand) or d = a op k.
+// A division by the cells' values (chains, sim/formula_fused.hpp, take
+// the rest of the arithmetic): a / b, k / b or a / k, one loop each.
 template <class Real>
-void binary_scalar(Op op, bool left, Real* d, const Real* v, Real k, int n) {
-#define FIGGEN_FORMULA_PICK(NAME)                                                             \
-    if constexpr (sizeof(Real) == 4) left ? NAME##_left_f(d, k, v, n) : NAME##_right_f(d, v, k, n); \
-    else left ? NAME##_left_d(d, k, v, n) : NAME##_right_d(d, v, k, n);                       \
-    return
-    switch (op) {
-    case Op::add: FIGGEN_FORMULA_PICK(add_k);
-    case Op::sub: FIGGEN_FORMULA_PICK(sub_k);
-    case Op::mul: FIGGEN_FORMULA_PICK(mul_k);
-    default: FIGGEN_FORMULA_PICK(div_k);
-    }
-#undef FIGGEN_FORMULA_PICK
+void divide_rows(Real* __restrict d, const Real* __restrict a, const Real* __restrict b, int n) {
+    for (int i = 0; i < n; ++i) d[i] = a[i] / b[i];
+}
+template <class Real>
+void divide_left(Real* __restrict d, Real k, const Real* __restrict b, int n) {
+    for (int i = 0; i < n; ++i) d[i] = k / b[i];
+}
+template <class Real>
+void divide_right(Real* __restrict d, const Real* __restrict a, Real k, int n) {
+    for (int i = 0; i < n; ++i) d[i] = a[i] / k;
+}
+FIGGEN_FORMULA_CLONES void divide_f(float* d, const float* a, const float* b, float k, int n) {
+    a ? b ? divide_rows(d, a, b, n) : divide_right(d, a, k, n) : divide_left(d, k, b, n);
+}
+FIGGEN_FORMULA_CLONES void divide_d(double* d, const double* a, const double* b, double k, int n) {
+    a ? b ? divide_rows(d, a, b, n) : divide_right(d, a, k, n) : divide_left(d, k, b, n);
 }
 
 // Whether any of b's n values is zero where the mask (if any) is nonzero,
@@ -140,23 +109,11 @@ int copy_finite(Real* out, const Real* v, int n) {
     else return copy_finite_d(out, v, n);
 }
 
+// d = a / b; a null a or b is the constant k.
 template <class Real>
-void binary(Op op, Real* d, const Real* a, const Real* b, int n) {
-    if constexpr (sizeof(Real) == 4) {
-        switch (op) {
-        case Op::add: add_rows_f(d, a, b, n); return;
-        case Op::sub: sub_rows_f(d, a, b, n); return;
-        case Op::mul: mul_rows_f(d, a, b, n); return;
-        default: div_rows_f(d, a, b, n); return;
-        }
-    } else {
-        switch (op) {
-        case Op::add: add_rows_d(d, a, b, n); return;
-        case Op::sub: sub_rows_d(d, a, b, n); return;
-        case Op::mul: mul_rows_d(d, a, b, n); return;
-        default: div_rows_d(d, a, b, n); return;
-        }
-    }
+void divide(Real* d, const Real* a, const Real* b, Real k, int n) {
+    if constexpr (sizeof(Real) == 4) divide_f(d, a, b, k, n);
+    else divide_d(d, a, b, k, n);
 }
 
 // A chemical's rows with their halo, and which row a row's neighbour at dy is.
@@ -388,7 +345,7 @@ private:
         if (s.owner != id_) {
             s.owner = id_;
             const std::ptrdiff_t stride = register_stride();
-            s.buffers.assign(static_cast<std::size_t>((program_.registers + 1) * stride + 64), Real(0));
+            s.buffers.assign(static_cast<std::size_t>(program_.registers * stride + 64), Real(0));
             s.reg.assign(static_cast<std::size_t>(program_.registers), nullptr);
             Real* base = s.buffers.data();
             const std::uintptr_t misaligned = reinterpret_cast<std::uintptr_t>(base) % 64;
@@ -486,13 +443,6 @@ private:
             const int direct = writes_output_[k];
             Real* d = direct >= 0 ? to[direct].row(y0) + (padded ? -halo_ : x0) : sc.reg[in.dst];
             switch (in.op) {
-            case Op::add:
-            case Op::sub:
-            case Op::mul:
-                if (constant_[in.a]) binary_scalar<Real>(in.op, true, d, b, value_[in.a], n);
-                else if (constant_[in.b]) binary_scalar<Real>(in.op, false, d, a, value_[in.b], n);
-                else binary<Real>(in.op, d, a, b, n);
-                break;
             case Op::chain:
                 // A chain that writes a chemical checks its values as it
                 // goes (all lanes: where one is not finite, the grid's
@@ -513,9 +463,9 @@ private:
                                 return false;
                             }
                 }
-                if (constant_[in.a]) binary_scalar<Real>(Op::div, true, d, b, value_[in.a], n);
-                else if (constant_[in.b]) binary_scalar<Real>(Op::div, false, d, a, value_[in.b], n);
-                else binary<Real>(Op::div, d, a, b, n);
+                if (constant_[in.a]) divide<Real>(d, nullptr, b, value_[in.a], n);
+                else if (constant_[in.b]) divide<Real>(d, a, nullptr, value_[in.b], n);
+                else divide<Real>(d, a, b, Real(0), n);
                 break;
             }
             case Op::copy: std::copy(a, a + n, d); break;
