@@ -19,6 +19,7 @@
 #include "app/cluster.hpp"
 #include "app/describe.hpp"
 #include "app/film_segments.hpp"
+#include "app/formats.hpp"
 #include "app/gallery.hpp"
 #include "app/output_files.hpp"
 #include "app/progress.hpp"
@@ -226,13 +227,9 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
     app->add_option("--cmap", cmap,
                     "Colormap of a field figure's fields: viridis, inferno, magma, plasma, cividis, Reds, Blues or "
                     "Greens");
-    app->add_option("--format", formats,
-                    "What to write besides the PNG and its JSON, a list (e.g. png,pdf,mp4): png (nothing more), pdf "
-                    "and svg (the figure as vector graphics), mp4 (the animation), webm (the animation as VP9 in WebM) or "
-                    "frames (the animation as a PNG sequence), vti (a formula model's last step as Ready's file); default: "
-                    "mp4, and the pdf or svg the description's figure.formats asks for")
+    app->add_option("--format", formats, format_help())
         ->delimiter(',')
-        ->check(CLI::IsMember({"png", "pdf", "svg", "mp4", "webm", "frames", "vti"}));
+        ->check(CLI::IsMember(format_names()));
     app->add_flag("--transparent", transparent,
                   "Leave the figure's background out of the PNG, PDF and SVG: only the ink is opaque");
 }
@@ -259,18 +256,23 @@ OutputOptions output_options(const RenderCommand& c) {
     for (const std::string& f : c.formats) formats += (formats.empty() ? "" : ",") + f;
     if (!c.formats.empty() && (c.no_video || c.frames))
         throw UsageError("--format " + formats + " is not allowed with --no-video or --frames: use one");
-    const auto named = [&](const char* f) { return std::find(c.formats.begin(), c.formats.end(), f) != c.formats.end(); };
     if (c.out_dir.empty()) throw UsageError("--out is empty: give the folder the figures go into, e.g. --out out");
     OutputOptions options;
     options.dir = c.out_dir;
     options.scale = c.scale;
-    options.video = c.formats.empty() ? !c.no_video : named("mp4");
-    options.frames = c.frames || named("frames");
-    options.webm = named("webm");
+    options.video = c.formats.empty() && !c.no_video;
+    options.frames = c.frames;
     options.formats_given = !c.formats.empty();
-    options.pdf = named("pdf");
-    options.svg = named("svg");
-    options.vti = named("vti");
+    for (const std::string& name : c.formats) {
+        const OutputFormat* format = output_format(name);
+        if (!format || !format->choose)
+            throw UsageError("--format " + formats + " is not allowed: use a list of " + [] {
+                std::string all;
+                for (const std::string& n : format_names()) all += (all.empty() ? "" : ", ") + n;
+                return all;
+            }());
+        format->choose(options);
+    }
     options.transparent = c.transparent;
     options.max_memory = parse_size("--max-memory", c.max_memory);
     options.max_disk = parse_size("--max-disk", c.max_disk);
@@ -438,7 +440,7 @@ void render_all(const std::vector<CheckedFigure>& figures, const OutputOptions& 
         render::media::preload();
     // And cairo's when a figure is written as PDF or SVG.
     if (std::any_of(figures.begin(), figures.end(), [&](const CheckedFigure& f) {
-            return options.writes_pdf(*f.description) || options.writes_svg(*f.description);
+            return writes_vector(*f.description, options);
         }))
         render::vector::preload();
     ProgressBar progress = ProgressBar::for_stderr();

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "app/bounded_json.hpp"
+#include "app/formats.hpp"
 #include "app/key_numbers.hpp"
 #include "app/output_files.hpp"
 #include "app/version.hpp"
@@ -553,13 +554,14 @@ void details_html(const render::Folder& figures, const std::string& id, const st
         card << " (" << count_of(size[0]) << " x " << count_of(size[1]) << ")";
     card << "</a><a href=\"" << escape(id) << ".json\">metadata</a>";
     if (!movie.empty()) card << "<a href=\"" << escape(movie) << "\">MP4</a>";
-    const std::string webm = text_of(member(member(meta, "animation"), "webm"), "file", "");
-    if (webm == id + ".webm" && is_file_in(figures, webm)) card << "<a href=\"" << escape(webm) << "\">WebM</a>";
-    // The vector files its JSON lists and the folder holds.
-    for (const auto& [format, label] : {std::pair{"pdf", "PDF"}, std::pair{"svg", "SVG"}}) {
-        const std::string file = text_of(member(member(meta, "vector"), format), "file", "");
-        if (file == id + "." + format && is_file_in(figures, file))
-            card << "<a href=\"" << escape(file) << "\">" << label << "</a>";
+    // The other formats' files its JSON names and the folder holds.
+    for (const OutputFormat& f : output_formats()) {
+        if (!f.link || f.json.empty()) continue;
+        const nlohmann::json* at = &meta;
+        for (const char* key : f.json) at = &member(*at, key);
+        const std::string file = text_of(*at, "file", "");
+        if (file == id + f.suffix && is_file_in(figures, file))
+            card << "<a href=\"" << escape(file) << "\">" << f.link << "</a>";
     }
     card << "</div>\n";
     key_numbers_html(meta, card);

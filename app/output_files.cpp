@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "app/film_segments.hpp"
+#include "app/formats.hpp"
 #include "app/version.hpp"
 #include "base/atomic_file.hpp"
 #include "render/gl/canvas.hpp"
@@ -62,49 +63,8 @@ constexpr double program_bytes = 120.0 * 1024 * 1024 + render::max_spare_canvas_
 // 4000 x 4000 film of tc7-2 peaked at 754 MiB against an estimate of 2.0 GiB.
 // 3-D scenes add their depth buffers themselves (lsystem_3d).
 constexpr double canvas_bytes_per_pixel = 28.0;
-// The film's encoder (x264, preset medium: 40 frames of look-ahead, 3
-// B-frames, 3 references, each frame with its half-pel planes and its
-// quarter-size copy), over the frame canvas. Measured on tc7-1 at
-// 1000 x 1000 with 2, 4, 11, 21, 61 and 201 frames: 62, 80, 117, 152, 241
-// and 244 bytes a pixel above the program; at 400 x 400 and 2000 x 2000
-// (61 frames) 227 and 210 bytes a pixel over about 14 MiB of its own.
-constexpr double encoder_bytes = 16.0 * 1024 * 1024;
-constexpr double encoder_bytes_per_pixel = 64.0;
-constexpr double encoder_bytes_per_pixel_frame = 5.0;
-// The WebM's stage (--format webm: the MP4 decoded again and encoded as
-// VP9, libvpx realtime at cpu-used 6), after x264 has gone. Measured as the
-// peak above the same run without it, on tc7-2's film: 37.0 MiB at
-// 480 x 520 and 86.5 MiB at 960 x 1040, 21 MiB and 69 bytes a pixel; with
-// a margin, 32 MiB and 96.
-constexpr double webm_encoder_bytes = 32.0 * 1024 * 1024;
-// The PDF's and SVG's stage: a vector page (its paths, and its images at
-// most render::max_cells_per_pixel cells a pixel each way, hexagons under a
-// pixel drawn as one image) and cairo writing it, one format at a time,
-// after the PNG's canvas has gone. Measured above the same run without
-// them: 1.1 to 9.0 MiB on six catalog figures (900 x 450 to 1000 x 620),
-// 13.0 MiB for tc7-1's three fields of 3000 x 3000 cells; with a margin,
-// 16 MiB and 64 bytes a pixel of the figure. A plant's paths are counted by
-// its own estimate (a segment's bytes there are far more than its path's).
-constexpr double vector_page_bytes = 16.0 * 1024 * 1024;
-constexpr double vector_page_bytes_per_pixel = 64.0;
-constexpr double webm_encoder_bytes_per_pixel = 96.0;
 // The film's preview: render's defaults.
 const render::PreviewOptions preview_options{};
-
-// The frames an x264 encoder holds, for the estimate above: its preset's
-// rc-lookahead (x264's preset table). medium's 40 is what the constants
-// were measured with; veryfast, the films' preset, looks 10 ahead and was
-// measured at 16 MiB and 72 to 79 bytes a pixel (tc7-1's film at
-// 2000 x 2000, tc7-2's at scale 3), against the 114 this gives.
-int encoder_frames_held(const std::string& preset) {
-    static const std::pair<const char*, int> lookahead[] = {
-        {"ultrafast", 0}, {"superfast", 0}, {"veryfast", 10}, {"faster", 20},   {"fast", 30},
-        {"medium", 40},   {"slow", 50},     {"slower", 60},   {"veryslow", 60}, {"placebo", 60},
-    };
-    for (const auto& [name, frames] : lookahead)
-        if (preset == name) return frames;
-    return 60;
-}
 
 // A film's segments encoded at once, memory aside: one a core (or a
 // thread of --threads, where more), at most one a segment; one where the
@@ -116,10 +76,34 @@ int film_encoders_wanted(const Description& d, const OutputOptions& options) {
     return std::max(1, std::min(segments, options.scene_options().threads));
 }
 
+}  // namespace
+
 double frame_pixels(const Description& d, const OutputOptions& options) {
     if (!d.animation) return 0.0;
     return static_cast<double>(scaled_even(d.animation->width, options.scale)) *
            scaled_even(d.animation->height, options.scale);
+}
+
+bool writes_vector(const Description& d, const OutputOptions& options) {
+    for (const OutputFormat& f : output_formats())
+        if (f.vector && f.wanted(d, options)) return true;
+    return false;
+}
+
+namespace {
+
+// The memory of each wanted format of `stage` that has its own (a stage two
+// formats share counted once).
+void format_needs(const Description& d, const OutputOptions& options, OutputFormat::Stage stage,
+                  std::vector<scenes::MemoryNeed>& all) {
+    std::vector<std::string> counted;
+    for (const OutputFormat& f : output_formats()) {
+        if (f.stage != stage || !f.memory || !f.wanted(d, options)) continue;
+        scenes::MemoryNeed need = f.memory(d, options);
+        if (std::find(counted.begin(), counted.end(), need.what) != counted.end()) continue;
+        counted.push_back(need.what);
+        all.push_back(std::move(need));
+    }
 }
 
 }  // namespace
@@ -127,15 +111,13 @@ double frame_pixels(const Description& d, const OutputOptions& options) {
 MemoryEstimate estimate_memory(const Description& d, const OutputOptions& options,
                                const std::vector<scenes::MemoryNeed>& needs) {
     using scenes::MemoryNeed;
+    namespace film = render::film_costs;
     std::vector<MemoryNeed> all = needs;
     int film_encoders = 1;
     all.push_back({"figure " + std::to_string(figure_width(d, options)) + " x " +
                        std::to_string(figure_height(d, options)) + " RGBA",
                    canvas_bytes_per_pixel * figure_width(d, options) * figure_height(d, options)});
-    if (options.writes_pdf(d) || options.writes_svg(d))
-        all.push_back(
-            {"the PDF and SVG's vector page",
-             vector_page_bytes + vector_page_bytes_per_pixel * figure_width(d, options) * figure_height(d, options)});
+    format_needs(d, options, OutputFormat::Stage::figure, all);
     if (d.animation && options.animates()) {
         const std::string size = std::to_string(scaled_even(d.animation->width, options.scale)) + " x " +
                                  std::to_string(scaled_even(d.animation->height, options.scale));
@@ -150,9 +132,9 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
             // segment's at worst). As many at once as fit --max-memory.
             const int frames = d.animation->frame_count(), per_segment = d.animation->segment_frames,
                       segment = per_segment > 0 && per_segment < frames ? per_segment : frames,
-                      held = std::min(segment, encoder_frames_held(options.video_options.preset));
-            const double encoder = encoder_bytes + (encoder_bytes_per_pixel + encoder_bytes_per_pixel_frame * held) *
-                                                       frame_pixels(d, options),
+                      held = std::min(segment, film::x264_frames_held(options.video_options.preset));
+            const double encoder = film::x264_bytes + (film::x264_bytes_per_pixel + film::x264_bytes_per_pixel_frame * held) *
+                                                          frame_pixels(d, options),
                          frame = 4.0 * frame_pixels(d, options);
             double others = program_bytes;
             for (const MemoryNeed& need : all) others += need.bytes;
@@ -168,19 +150,7 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
                                (encoders > 1 ? " (" + std::to_string(encoders) + " segments at once)" : ""),
                            need(encoders)});
         }
-        if (options.encodes()) {
-            // The preview's frames, at most max_frames fitted into its
-            // size, held from their segments' encoding to the film's end.
-            const double fit = std::min(
-                {1.0, double(preview_options.max_width) / std::max(1, scaled_even(d.animation->width, options.scale)),
-                 double(preview_options.max_height) / std::max(1, scaled_even(d.animation->height, options.scale))});
-            all.push_back(
-                {"the preview's frames", 4.0 * std::min(preview_options.max_frames, d.animation->frame_count()) * fit *
-                                             fit * frame_pixels(d, options)});
-        }
-        if (options.webm)
-            all.push_back({"the WebM encoder " + size,
-                           webm_encoder_bytes + webm_encoder_bytes_per_pixel * frame_pixels(d, options)});
+        format_needs(d, options, OutputFormat::Stage::film, all);
     }
     // The largest of what a setting can make smaller, then the program's own.
     MemoryEstimate estimate{program_bytes, all.front(), film_encoders};
@@ -202,41 +172,15 @@ MemoryEstimate require_memory(const Description& d, const OutputOptions& options
     return estimate;
 }
 
-double vector_file_bytes(int width, int height) {
-    return 16.0 * width * height + 1024.0 * 1024.0;
-}
-
-// The most a formula model's VTI file takes: every chemical's cells as
-// doubles in base64 (zlib's blocks can only grow by a few bytes each), and
-// the XML around them with the rule's name, description and formula.
-static double vti_bytes(const Description& d) {
-    const auto value = [&](const char* key, long long fallback, long long most) {
-        return static_cast<double>(std::clamp<long long>(d.params[key].value_or(fallback), 1, most));
-    };
-    const double cells = value("width", 128, 4096) * value("height", 128, 4096);
-    // The texts it repeats (XML escapes a character in at most 6: &quot;).
-    const double texts = static_cast<double>(d.title.size() + d.caption.size() +
-                                             d.params["formula"].value_or(std::string()).size());
-    // And each parameter's element: its name (counted in the formula) and value.
-    return cells * value("chemicals", 2, 26) * 8 * 1.34 * 1.01 + 65536 + 6 * texts + 200.0 * d.params.size();
-}
-
 void require_disk(const Description& d, const OutputOptions& options, double parts_bytes) {
-    double bytes = 4.0 * figure_width(d, options) * figure_height(d, options);
-    std::string largest = "the PNG";
-    if (parts_bytes > bytes) largest = "the parts of its work items";
-    bytes += parts_bytes;
-    const double vector = vector_file_bytes(figure_width(d, options), figure_height(d, options));
-    for (const bool wanted : {options.writes_pdf(d), options.writes_svg(d)})
-        if (wanted) bytes += vector;
-    if (d.animation) {
-        const double frames = d.animation->frame_count() * frame_pixels(d, options);
-        // The preview: at most its budget, 2 MiB.
-        if (options.encodes()) bytes += 0.15 * frames + render::PreviewOptions{}.max_bytes, largest = "the MP4";
-        if (options.webm) bytes += 0.15 * frames;  // VP9 at crf 32 takes less than x264 at 18 on every catalog film
-        if (options.frames) bytes += 4.0 * frames, largest = "the PNG sequence";
+    double bytes = parts_bytes, most = parts_bytes;
+    std::string largest = "the parts of its work items";
+    for (const OutputFormat& f : output_formats()) {
+        if (!f.wanted(d, options)) continue;
+        const double need = f.disk(d, options);
+        bytes += need;
+        if (need > most) most = need, largest = f.shown;
     }
-    if (options.vti) bytes += vti_bytes(d);
     if (bytes > static_cast<double>(options.max_disk))
         throw UsageError(d.id + ": its outputs would take up to about " + format_bytes(bytes) + " (mostly " + largest +
                          "), more than --max-disk " + format_bytes(static_cast<double>(options.max_disk)) +
@@ -371,22 +315,20 @@ void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json meta
         image = canvas.read();
     }  // the canvas's GL storage goes before the PNG is encoded
     nlohmann::json vector = nlohmann::json::object();
-    for (const auto& [format, name, wanted] :
-         {std::tuple{render::vector::Format::pdf, "pdf", options_.writes_pdf(description_)},
-          std::tuple{render::vector::Format::svg, "svg", options_.writes_svg(description_)}}) {
-        if (!wanted) continue;
+    for (const OutputFormat& f : output_formats()) {
+        if (!f.vector || !f.wanted(description_, options_)) continue;
         render::VectorPage page(drawing.width, drawing.height, options_.transparent);
         drawing.draw(page);
         page.page().title = description_.title;
         page.page().creator = std::string("figgen ") + app::version();
-        const std::string file_name = description_.id + "." + name;
+        const std::string file_name = description_.id + f.suffix;
         render::AtomicFile file(folder_, file_name);
-        render::vector::api().write(file.fd(), file.final_path(), format, page.page(),
-                                    static_cast<std::uint64_t>(vector_file_bytes(drawing.width, drawing.height)));
+        render::vector::api().write(file.fd(), file.final_path(), *f.vector, page.page(),
+                                    static_cast<std::uint64_t>(render::vector::file_bytes(drawing.width, drawing.height)));
         struct stat info {};
         const double bytes = ::fstat(file.fd(), &info) == 0 ? static_cast<double>(info.st_size) : 0.0;
         file.commit();  // with the figure's other files (render_figure's CommitGroup)
-        vector[name] = {{"file", file_name}, {"bytes", bytes}};
+        vector[f.name] = {{"file", file_name}, {"bytes", bytes}};
     }
     if (!vector.empty()) metadata["vector"] = std::move(vector);
     if (options_.vti) {
@@ -400,8 +342,9 @@ void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json meta
 }
 
 std::vector<std::string> output_names(const std::string& id) {
-    return {id + ".png",  id + ".json",   id + ".mp4", id + ".webp",
-            id + ".webm", id + "-frames", id + ".pdf", id + ".svg", id + ".vti"};
+    std::vector<std::string> names;
+    for (const OutputFormat& f : output_formats()) names.push_back(id + f.suffix);
+    return names;
 }
 
 namespace {

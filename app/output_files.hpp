@@ -51,12 +51,7 @@ struct OutputOptions {
 
     bool animates() const { return video || webm || frames; }
     bool encodes() const { return video || webm; }  // an MP4 is encoded, kept or not
-    // The vector files figure `d` gets: --format's, or else those its description asks for.
-    bool writes_pdf(const Description& d) const { return formats_given ? pdf : asks(d, "pdf"); }
-    bool writes_svg(const Description& d) const { return formats_given ? svg : asks(d, "svg"); }
-    static bool asks(const Description& d, const char* format) {
-        return std::find(d.formats.begin(), d.formats.end(), format) != d.formats.end();
-    }
+    // Which files a figure gets: app/formats.hpp's table.
     // Threads for the scenes' memory estimates: --threads, but never fewer
     // than the machine's cores, so that the estimate (kept in the JSON) is
     // the same for every run on this machine that uses no more threads than
@@ -86,17 +81,14 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
 // the message gives the estimate and its largest part. Returns the estimate.
 MemoryEstimate require_memory(const Description& d, const OutputOptions& options,
                               const std::vector<scenes::MemoryNeed>& needs);
-// Refuses a figure whose outputs would take more than options.max_disk: the
-// PNG (at most 4 bytes a pixel), the PNG sequence likewise, the MP4 at 0.15
-// bytes a pixel and frame (our films measure 0.002..0.057), and the parts
-// of its work items kept while it runs (`parts_bytes`, the scene's bound),
-// and vector_file_bytes for each of its PDF and SVG.
+// Refuses a figure whose outputs would take more than options.max_disk:
+// each file's most (app/formats.hpp's table) and the parts of its work
+// items kept while it runs (`parts_bytes`, the scene's bound).
 void require_disk(const Description& d, const OutputOptions& options, double parts_bytes = 0);
-// The most a figure's PDF or SVG of width x height pixels may take: 16
-// bytes a pixel and 1 MiB (see docs/outputs.md for what the
-// catalog's take). A file that would pass it stops with an error before
-// more is written, so the disk estimate holds.
-double vector_file_bytes(int width, int height);
+// A film frame's pixels at the output scale (0 without a film).
+double frame_pixels(const Description& d, const OutputOptions& options);
+// Whether figure `d` gets a file drawn on a vector page (PDF, SVG).
+bool writes_vector(const Description& d, const OutputOptions& options);
 // "1.5 GiB", "12 MiB", "640 KiB", "100 bytes".
 std::string format_bytes(double bytes);
 
@@ -171,7 +163,7 @@ private:
 void write_figure(const Description& d, const OutputOptions& options, const render::Folder& folder,
                   const MemoryEstimate& memory, const render::Image& image, nlohmann::json metadata);
 
-// The names of figure `id`'s files in the output folder.
+// The names of figure `id`'s files in the output folder (one per format).
 std::vector<std::string> output_names(const std::string& id);
 
 }  // namespace app

@@ -12,6 +12,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/atomic_file.hpp"
@@ -51,6 +52,45 @@ struct VideoOptions {
     std::string container = "mp4";
     int speed = 4;
 };
+
+// What the film encoders hold and write, measured on figgen's own films
+// (the estimates of app/formats.cpp add them up).
+namespace film_costs {
+// x264 (preset medium: 40 frames of look-ahead, 3 B-frames, 3 references,
+// each frame with its half-pel planes and its quarter-size copy), over the
+// frame canvas. Measured on tc7-1 at 1000 x 1000 with 2, 4, 11, 21, 61 and
+// 201 frames: 62, 80, 117, 152, 241 and 244 bytes a pixel above the
+// program; at 400 x 400 and 2000 x 2000 (61 frames) 227 and 210 bytes a
+// pixel over about 14 MiB of its own.
+constexpr double x264_bytes = 16.0 * 1024 * 1024;
+constexpr double x264_bytes_per_pixel = 64.0;
+constexpr double x264_bytes_per_pixel_frame = 5.0;  // per frame it holds (x264_frames_held)
+// The WebM's stage (the MP4 decoded again and encoded as VP9, libvpx
+// realtime at cpu-used 6), after x264 has gone. Measured as the peak above
+// the same run without it, on tc7-2's film: 37.0 MiB at 480 x 520 and
+// 86.5 MiB at 960 x 1040, 21 MiB and 69 bytes a pixel; with a margin, 32
+// MiB and 96.
+constexpr double vp9_bytes = 32.0 * 1024 * 1024;
+constexpr double vp9_bytes_per_pixel = 96.0;
+// The most an MP4 or WebM takes a pixel and frame: our films measure 0.002
+// to 0.057 (x264 at crf 18), and VP9 at crf 32 takes less than x264 on
+// every catalog film.
+constexpr double file_bytes_per_pixel_frame = 0.15;
+// The frames an x264 encoder holds: its preset's rc-lookahead (x264's
+// preset table). medium's 40 is what the constants were measured with;
+// veryfast, the films' preset, looks 10 ahead and was measured at 16 MiB
+// and 72 to 79 bytes a pixel (tc7-1's film at 2000 x 2000, tc7-2's at
+// scale 3), against the 114 this gives.
+inline int x264_frames_held(const std::string& preset) {
+    static const std::pair<const char*, int> lookahead[] = {
+        {"ultrafast", 0}, {"superfast", 0}, {"veryfast", 10}, {"faster", 20},   {"fast", 30},
+        {"medium", 40},   {"slow", 50},     {"slower", 60},   {"veryslow", 60}, {"placebo", 60},
+    };
+    for (const auto& [name, frames] : lookahead)
+        if (preset == name) return frames;
+    return 60;
+}
+}  // namespace film_costs
 
 // The film for the web: VP9 (libvpx-vp9) in WebM, made from the MP4 just
 // written, decoded back (as the preview is), so that it is the same bytes

@@ -123,6 +123,24 @@ struct Api {
                   std::uint64_t max_bytes);
 };
 
+// The PDF's and SVG's stage: a vector page (its paths, and its images at
+// most render::max_cells_per_pixel cells a pixel each way, hexagons under a
+// pixel drawn as one image) and cairo writing it, one format at a time,
+// after the PNG's canvas has gone. Measured above the same run without
+// them: 1.1 to 9.0 MiB on six catalog figures (900 x 450 to 1000 x 620),
+// 13.0 MiB for tc7-1's three fields of 3000 x 3000 cells; with a margin,
+// 16 MiB and 64 bytes a pixel of the figure. A plant's paths are counted by
+// its own estimate (a segment's bytes there are far more than its path's).
+constexpr double page_bytes = 16.0 * 1024 * 1024;
+constexpr double page_bytes_per_pixel = 64.0;
+// The most a PDF or SVG of width x height pixels may take: 16 bytes a pixel
+// and 1 MiB (docs/outputs.md lists what the catalog's take). A file that
+// would pass it stops with an error before more is written (Api::write's
+// max_bytes), so the disk estimate holds.
+inline double file_bytes(int width, int height) {
+    return 16.0 * width * height + 1024.0 * 1024.0;
+}
+
 // The module's functions, opening it on the first call (std::runtime_error
 // with one line saying what is missing when it cannot).
 const Api& api();

@@ -135,8 +135,8 @@ TEST_CASE("bad input gets one line naming the problem and what is allowed, exit 
         {render + "pl-lsys-3d --set depth=40", "--set depth=40: depth = 40 is not allowed: a depth within the turtle's budget (it would draw more than 18,446,744,073,709,551,615 segments, more than the budget of 5,000,000)"},
         {"render --frames --out " + out.string() + " tc7-2 --max-disk 10M", // 351 frames of 480 x 520 at 4 bytes, the MP4 at 0.15, its preview at most 2 MiB and the 900 x 450 PNG: 350.3 MiB
          "its outputs would take up to about 350.3 MiB (mostly the PNG sequence), more than --max-disk 10.0 MiB"},
-        {"render --format pdf,svg --out " + out.string() + " tc7-7 --max-disk 10M", // the PNG at 4 bytes a pixel, the PDF and the SVG at 16 and 1 MiB each: 900 x 450 x 36 + 2 MiB = 15.9 MiB
-         "its outputs would take up to about 15.9 MiB (mostly the PNG), more than --max-disk 10.0 MiB"},
+        {"render --format pdf,svg --out " + out.string() + " tc7-7 --max-disk 10M", // the PNG at 4 bytes a pixel, the PDF and the SVG at 16 and 1 MiB each: 900 x 450 x 36 + 2 MiB = 15.9 MiB, the PDF the largest part
+         "its outputs would take up to about 15.9 MiB (mostly the PDF), more than --max-disk 10.0 MiB"},
         // diffusion
         {render + "tc7-1 --set r=0.5", "--set r=0.5: r = 0.5 is not allowed: a number from 0 to 0.25 (the explicit 5-point update's stability bound; beyond it the checkerboard grows)"},
         {render + "tc7-1 --set r=nan", "--set r=nan: r = nan is not allowed: expected a finite number"},
