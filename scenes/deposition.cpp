@@ -142,8 +142,8 @@ public:
             {.check = {},
              .panel = {},
              .frame =
-                 [&](int step) -> render::Canvas& {
-                     return run.draw_field_frame(
+                 [&](int step) -> FrameDrawing {
+                     return run.field_frame(
                          {{format_step(d_.animation->title, step), {field_layer(film.field(), spec_, Cells::viewed)}}});
                  },
              .advance =

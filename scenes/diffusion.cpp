@@ -69,7 +69,7 @@ public:
                                           {"statistics", field_statistics(model.field())},
                                           {"state_sha256", state_hash(model.field())}});
                 },
-            .frame = [&](int step) -> render::Canvas& { return run.draw_field_frame({panel(d_.animation->title, step, Cells::viewed)}); },
+            .frame = [&](int step) -> FrameDrawing { return run.field_frame({panel(d_.animation->title, step, Cells::viewed)}); },
             .advance =
                 [&] {
                     model.step();

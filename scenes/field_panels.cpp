@@ -121,10 +121,10 @@ render::PlotStyle colour_bar_style(double scale) {
     return style;
 }
 
-void paint_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
+void paint_field_panels(render::Surface& surface, const std::vector<FieldPanel>& panels, double scale,
                         LayerPasses passes) {
-    canvas.clear({1, 1, 1, 1});
-    draw_field_panels(canvas, {0, 0, float(canvas.width()), float(canvas.height())}, panels,
+    surface.background({1, 1, 1, 1});
+    draw_field_panels(surface, {0, 0, float(surface.width()), float(surface.height())}, panels,
                       static_cast<int>(panels.size()), scale, passes);
 }
 

@@ -97,8 +97,9 @@ render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldP
 // On a fresh canvas of width x height, with the samples the page needs
 // (field_page_samples): a page drawn once (benchmarks).
 render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale);
-// The same but for reading it back (a film's frame, read by a FrameReader).
-void paint_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
+// The same on any surface of the page's size, not read back (a film's
+// frame, read by a FrameReader).
+void paint_field_panels(render::Surface& surface, const std::vector<FieldPanel>& panels, double scale,
                         LayerPasses passes = LayerPasses::each);
 
 // The text draw_field_panels would draw: the titles and the colour bars'

@@ -165,7 +165,7 @@ private:
                     history.panels.push_back(panel(d_.panel_title, step));
                     history.panel_meta.push_back(panel_metadata(model, step));
                 },
-            .frame = [&](int step) -> render::Canvas& { return run.draw_field_frame({panel(d_.animation->title, step)}); },
+            .frame = [&](int step) -> FrameDrawing { return run.field_frame({panel(d_.animation->title, step)}); },
             .advance =
                 [&] {
                     history.count(model);

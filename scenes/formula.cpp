@@ -127,8 +127,8 @@ public:
                     panel_meta.push_back(metadata(now, step));
                 },
             .frame =
-                [&](int step) -> render::Canvas& {
-                    return run.draw_field_frame({{format_step(d_.animation->title, step), layers(Cells::viewed)}});
+                [&](int step) -> FrameDrawing {
+                    return run.field_frame({{format_step(d_.animation->title, step), layers(Cells::viewed)}});
                 },
             .advance = {},
             .leap =

@@ -160,8 +160,8 @@ public:
                     panel_meta.push_back(panel_metadata(model, step));
                 },
             .frame =
-                [&](int step) -> render::Canvas& {
-                    return run.draw_field_frame(
+                [&](int step) -> FrameDrawing {
+                    return run.field_frame(
                         {panel_of(model, a_spec_, b_spec_, format_step(d_.animation->title, step), Cells::viewed)});
                 },
             .advance = {},

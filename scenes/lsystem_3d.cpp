@@ -290,11 +290,14 @@ public:
         run.run({.check = {},
                  .panel = {},
                  .frame =
-                     [&](int step) -> render::Canvas& {
-                         render::Canvas& canvas = run.frame_canvas(true);
+                     [&](int step) {
                          if (film_cameras.empty())
-                             film_cameras = turntable_cameras(plant, float(canvas.width()) / float(canvas.height()));
-                         return turntable_frame(canvas, plant, film_cameras[std::size_t(step)]);
+                             film_cameras =
+                                 turntable_cameras(plant, float(run.frame_width()) / float(run.frame_height()));
+                         return FrameDrawing{[&, step](render::Surface& surface) {
+                                                 turntable_frame(surface, plant, film_cameras[std::size_t(step)]);
+                                             },
+                                             4, true};
                      },
                  .advance = [] { return true; }});
 
@@ -354,11 +357,10 @@ private:
     }
 
     // The film's frame: the plant seen through its camera.
-    render::Canvas& turntable_frame(render::Canvas& canvas, const Plant& plant, const render::Camera& camera) const {
-        canvas.clear({1, 1, 1, 1});
+    void turntable_frame(render::Surface& canvas, const Plant& plant, const render::Camera& camera) const {
+        canvas.background({1, 1, 1, 1});
         const render::Rect view{0, 0, float(canvas.width()), float(canvas.height())};
         render::draw_tubes(canvas, view, plant.tubes, plant.facets, camera, studio_light(camera), sides_);
-        return canvas;
     }
 
     // One panel per azimuth, as wide as the widest view of the plant needs

@@ -61,8 +61,8 @@ public:
             .check = {},
             .panel = [&](int) { panel(); },
             .frame =
-                [&](int) -> render::Canvas& {
-                    return run.draw_field_frame({{title(d_.animation->title), {field_layer(model.cells(), spec_)}}});
+                [&](int) -> FrameDrawing {
+                    return run.field_frame({{title(d_.animation->title), {field_layer(model.cells(), spec_)}}});
                 },
             .advance =
                 [&] {

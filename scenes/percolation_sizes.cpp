@@ -93,8 +93,8 @@ private:
         h.stopped = [&model, this] { return stop_ == StopRule::bottom_or_fixed_point && model.bottom_row_wet(); };
         h.advance = [&model] { return model.step() > 0; };
         if (filmed)
-            h.frame = [&model, &run, n, this](int) -> render::Canvas& {
-                return run.draw_field_frame(
+            h.frame = [&model, &run, n, this](int) -> FrameDrawing {
+                return run.field_frame(
                     {{titled(d_.animation->title, n, model), {field_layer(model.cells(), spec_)}}});
             };
         return h;

@@ -128,7 +128,10 @@ public:
         StepRunner run(d_, options_, out);
         run.run({.check = {},
                  .panel = {},
-                 .frame = [&](int step) -> render::Canvas& { return draw_frame(run.frame_canvas(), spirals[0], step); },
+                 .frame =
+                     [&](int step) {
+                         return FrameDrawing{[&, step](render::Surface& surface) { draw_frame(surface, spirals[0], step); }};
+                     },
                  .advance = [] { return true; }});
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         nlohmann::json panel_meta = nlohmann::json::array();
@@ -193,8 +196,8 @@ private:
                  render::Align::centre, render::Baseline::baseline);
     }
 
-    render::Canvas& draw_frame(render::Canvas& canvas, const std::vector<sim::Seed>& spiral, int step) const {
-        canvas.clear({1, 1, 1, 1});
+    void draw_frame(render::Surface& canvas, const std::vector<sim::Seed>& spiral, int step) const {
+        canvas.background({1, 1, 1, 1});
         const auto rects = render::panel_row(canvas.width(), canvas.height(), 1, true, row_);
         render::Shapes shapes;
         draw_flower(shapes, rects[0], spiral, step, flowers_[0].divergence, look_, line_width_);
@@ -203,7 +206,6 @@ private:
         add_title(text, rects[0],
                   format_fixed(flowers_[0].divergence, 3) + "\u00b0, " + std::to_string(step) + " seeds");
         text.draw(canvas);
-        return canvas;
     }
 
     struct Page {

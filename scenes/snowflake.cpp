@@ -157,7 +157,7 @@ public:
         run.run({
             .check = {},
             .panel = [&](int step) { keep_panels(crystals, step, panels, panel_meta); },
-            .frame = [&](int step) -> render::Canvas& { return draw_frame(run, crystals, step); },
+            .frame = [&](int step) { return frame_drawing(run, crystals, step); },
             .advance =
                 [&] {
                     for (auto& c : crystals) c.step();
@@ -221,17 +221,17 @@ private:
         }
     }
 
-    render::Canvas& draw_frame(StepRunner& run, const std::vector<sim::Snowflake>& crystals, int step) const {
+    FrameDrawing frame_drawing(const StepRunner& run, const std::vector<sim::Snowflake>& crystals, int step) const {
         // A fixed view through the film: growth is at most one ring a step,
         // so the last step bounds the radius.
         std::vector<SnowflakePanel> frame;
         for (std::size_t i = 0; i < crystals.size(); ++i)
             frame.push_back(panel_of(crystals[i], runs_[i].params, run.last_step() + 1, caption_of(i, step)));
-        auto& canvas = run.frame_canvas();
-        canvas.clear({1, 1, 1, 1});
-        draw_snowflakes(canvas, {0, 0, float(canvas.width()), float(canvas.height())}, frame, colours_, options_.scale,
-                        int(frame.size()));
-        return canvas;
+        return {[this, frame = std::move(frame)](render::Surface& surface) {
+            surface.background({1, 1, 1, 1});
+            draw_snowflakes(surface, {0, 0, float(surface.width()), float(surface.height())}, frame, colours_,
+                            options_.scale, int(frame.size()));
+        }};
     }
 
     const std::vector<SnowflakeRun> runs_;

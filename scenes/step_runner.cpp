@@ -92,10 +92,13 @@ void StepRunner::final_frame(const StepHooks& hooks, int step) {
         frame(hooks.frame(step), step);
 }
 
-void StepRunner::frame(const render::Canvas& canvas, int step) {
+void StepRunner::frame(const FrameDrawing& drawing, int step) {
+    if (!frame_canvas_)
+        frame_canvas_ = std::make_unique<render::Canvas>(frame_width_, frame_height_, drawing.samples, drawing.depth);
+    drawing.draw(*frame_canvas_);
     if (!reader_) reader_ = std::make_unique<render::FrameReader>();
     reading_.push_back(step);
-    if (std::optional<render::Image> image = reader_->read(canvas)) {
+    if (std::optional<render::Image> image = reader_->read(*frame_canvas_)) {
         film_->add(std::move(*image), reading_.front());
         reading_.pop_front();
     }
@@ -110,17 +113,13 @@ void StepRunner::drain_frames() {
     }
 }
 
-render::Canvas& StepRunner::frame_canvas(bool depth) {
-    if (!frame_canvas_) frame_canvas_ = std::make_unique<render::Canvas>(frame_width_, frame_height_, 4, depth);
-    return *frame_canvas_;
-}
-
-render::Canvas& StepRunner::draw_field_frame(const std::vector<FieldPanel>& panels) {
-    if (!frame_canvas_)
-        frame_canvas_ = std::make_unique<render::Canvas>(
-            frame_width_, frame_height_, field_page_samples(panels, frame_width_, frame_height_, options_.scale));
-    paint_field_panels(*frame_canvas_, panels, options_.scale, LayerPasses::paired);
-    return *frame_canvas_;
+FrameDrawing StepRunner::field_frame(std::vector<FieldPanel> panels) const {
+    const int samples = field_page_samples(panels, frame_width_, frame_height_, options_.scale);
+    const double scale = options_.scale;
+    return {[panels = std::move(panels), scale](render::Surface& surface) {
+                paint_field_panels(surface, panels, scale, LayerPasses::paired);
+            },
+            samples};
 }
 
 void StepRunner::stepped() {

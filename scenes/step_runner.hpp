@@ -10,19 +10,27 @@
 #include <nlohmann/json.hpp>
 
 #include "render/gl/canvas.hpp"
+#include "render/surface.hpp"
 #include "render/image.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/scene.hpp"
 
 namespace scenes {
 
+// A film's frame: what it draws, on any surface, and the canvas it needs
+// (made once, from the first frame's; the runner reads it back).
+struct FrameDrawing {
+    std::function<void(render::Surface&)> draw;
+    int samples = 4;     // the canvas's multisampling
+    bool depth = false;  // a depth buffer, for 3-D scenes
+};
+
 // What a scene does at each step of the run.
 struct StepHooks {
     std::function<void(int step)> check;           // at every step: throws if the model went unstable
     std::function<void(int step)> panel;           // keep what a panel at this step shows
-    // Draws the animation frame of this step and returns the canvas it is
-    // on, to be read back (none: not filmed).
-    std::function<render::Canvas&(int step)> frame;
+    // The animation's frame at this step (none: not filmed).
+    std::function<FrameDrawing(int step)> frame;
     std::function<bool()> advance;                 // one model step; false when the model has stopped (a fixed point)
     std::function<bool()> stopped = {};            // optional: the model has reached its stop and takes no more steps
     // Optional, for a model stepped by a fast kernel: `steps` steps at once
@@ -38,12 +46,12 @@ public:
     StepRunner(const Description& d, const SceneOptions& options, Output& out);
 
     int last_step() const { return last_; }
-    // A canvas of the frame's size, made once and drawn on for every frame
-    // (with a depth buffer when `depth`, for 3-D scenes).
-    render::Canvas& frame_canvas(bool depth = false);
-    // A frame of field panels, on a canvas made once with the samples the
-    // first frame's page needs (field_page_samples; the layout stays).
-    render::Canvas& draw_field_frame(const std::vector<FieldPanel>& panels);
+    // The film's frame size in pixels.
+    int frame_width() const { return frame_width_; }
+    int frame_height() const { return frame_height_; }
+    // A frame of field panels, with the samples its page needs
+    // (field_page_samples; the first frame's make the canvas, the layout stays).
+    FrameDrawing field_frame(std::vector<FieldPanel> panels) const;
 
     // Runs from step 0 to last_step() or until the model stops (advance()
     // or stopped() says so); returns the last step reached.
@@ -79,7 +87,7 @@ private:
     // order, and a final frame at a stop between two of them comes after
     // the earlier one.
     int frame_index(int step) const;
-    void frame(const render::Canvas& canvas, int step);  // reads a drawn frame back for the sinks
+    void frame(const FrameDrawing& drawing, int step);  // draws a frame and reads it back for the sinks
     void drain_frames();                                 // every frame read back handed to the film
     void stepped();                             // counts one model step (progress bar and metadata)
 

@@ -41,10 +41,9 @@ description::Description film_of(std::vector<int> panels, int first, int last, i
     return d;
 }
 
-// The canvas every frame hook returns, read back by the runner.
-render::Canvas& frame_canvas() {
-    static render::Canvas canvas(8, 8, 1);
-    return canvas;
+// The frame every frame hook draws, read back by the runner.
+scenes::FrameDrawing frame_canvas() {
+    return {[](render::Surface& surface) { surface.background({1, 1, 1, 1}); }, 1};
 }
 
 // A model that counts its steps and stops changing at `fixed_point`.
@@ -65,7 +64,7 @@ TEST_CASE("the runner stops at the last step an output needs and films the anima
     std::vector<int> panels;
     const int reached = run.run({.check = {},
                                  .panel = [&](int step) { panels.push_back(step); },
-                                 .frame = [&](int) -> render::Canvas& { return frame_canvas(); },
+                                 .frame = [&](int) -> scenes::FrameDrawing { return frame_canvas(); },
                                  .advance = [&] { return model.step(); }});
     CHECK(reached == 9);
     CHECK(model.steps == 9);  // never past the last step any output needs
@@ -85,7 +84,7 @@ TEST_CASE("a model that stops early ends the film on its final state", "[step-ru
         Counter model{0, 7};
         const int reached = run.run({.check = {},
                                      .panel = {},
-                                     .frame = [&](int) -> render::Canvas& { return frame_canvas(); },
+                                     .frame = [&](int) -> scenes::FrameDrawing { return frame_canvas(); },
                                      .advance = [&] { return model.step(); }});
         CHECK(reached == 7);
         CHECK(model.steps == 7);
@@ -97,7 +96,7 @@ TEST_CASE("a model that stops early ends the film on its final state", "[step-ru
         Counter model{0, 1000};
         const int reached = run.run({.check = {},
                                      .panel = {},
-                                     .frame = [&](int) -> render::Canvas& { return frame_canvas(); },
+                                     .frame = [&](int) -> scenes::FrameDrawing { return frame_canvas(); },
                                      .advance = [&] { return model.step(); },
                                      .stopped = [&] { return model.steps == 5; }});
         CHECK(reached == 5);
@@ -117,7 +116,7 @@ TEST_CASE("run_to_stop goes past the last step to the model's stop, filming only
     CHECK(out.frames.empty());
     CHECK(run.run_to_stop({.check = {},
                            .panel = {},
-                           .frame = [&](int) -> render::Canvas& { return frame_canvas(); },
+                           .frame = [&](int) -> scenes::FrameDrawing { return frame_canvas(); },
                            .advance = [&] { return second.step(); }}) == 3);
     CHECK(out.frames == std::vector<int>{0, 2, 3});
     run.write_figure({8, 8, false, [](render::Surface&) {}}, {});
@@ -133,7 +132,7 @@ TEST_CASE("without a film the runner asks for no frame and runs only to the last
     int frames_drawn = 0;
     CHECK(run.run({.check = {},
                    .panel = {},
-                   .frame = [&](int) -> render::Canvas& { return ++frames_drawn, frame_canvas(); },
+                   .frame = [&](int) -> scenes::FrameDrawing { return ++frames_drawn, frame_canvas(); },
                    .advance = [&] { return model.step(); }}) == 4);
     CHECK(frames_drawn == 0);
     CHECK(out.frames.empty());
@@ -150,7 +149,7 @@ TEST_CASE("a kernel's leaps land on every step an output needs and count every s
     const int reached =
         run.run({.check = [&](int step) { checked.push_back(step); },
                  .panel = [&](int step) { panels.push_back(steps - step); },
-                 .frame = [&](int step) -> render::Canvas& { return drawn_at.push_back(steps - step), frame_canvas(); },
+                 .frame = [&](int step) -> scenes::FrameDrawing { return drawn_at.push_back(steps - step), frame_canvas(); },
                  .advance = {},
                  .leap = [&](int n) { leaps.push_back(n), steps += n; }});
     CHECK(reached == 30);
