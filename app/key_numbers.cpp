@@ -5,119 +5,13 @@
 #include <cstdlib>
 #include <algorithm>
 
+#include "scenes/scene.hpp"
+
 namespace app {
 namespace {
 
-// What the catalog says of a number: shown when `when` holds ("" always).
-struct Reference {
-    const char* when;
-    const char* text;  // as shown, e.g. "1.896 (91/48, the incipient cluster)"
-};
-
-// One key number of a scene's metadata.
-//
-// Conditions (Reference::when, Entry::only) are "field=value" tests joined
-// by ",", all of which must hold: `field` is a field of the array element a
-// "*" reached, or a pointer into the whole metadata when it starts with "/";
-// `value` may list alternatives, "q=0.55|0.6|0.65"; "!field" holds when the
-// field is absent. Numbers compare to 1e-9.
-//
-// Labels take "{field}" (the element's field), "{#}" (the element's place,
-// from 1) and "{field|text}" (text where the element has the field).
-struct Entry {
-    const char* scene;  // the scene whose metadata holds it ("cell_counts")
-    const char* path;   // JSON pointer; a "*" step runs over every element of an array
-    const char* label;
-    const char* kind;   // "number"; "integer"; "range": first to last of a list;
-                        // "bounds": [xmin, xmax, ymin, ymax]; "count": a list's length
-    const char* unit;   // after the value, or ""
-    std::vector<Reference> references = {};
-    const char* only = "";   // show only the elements for which this holds
-    const char* error = "";  // a sibling field holding the value's standard error: "value ± error"
-    int digits = 4;          // significant digits of a "number"
-};
-
-// Every scene's key numbers, with the catalog's reference values
-// (docs/catalog.md, the figures the descriptions reproduce). The order
-// here is the order on the card.
-const std::vector<Entry>& entries() {
-    static const std::vector<Entry> table = {
-        // Think Complexity, chapter 7
-        {"diffusion", "/panels/*/statistics/sum", "total at step {step}", "number", ""},
-        {"diffusion", "/panels/*/statistics/max", "peak at step {step}", "number", ""},
-        {"gray_scott", "/panels/*/statistics/B/mean", "mean B at step {step}", "number", ""},
-        {"gray_scott", "/panels/*/statistics/A/mean", "mean A at step {step}", "number", ""},
-        {"percolation", "/panels/*/statistics/wet", "wet cells after step {step}", "integer", ""},
-        {"cell1d", "/panels/*/statistics/on_cells", "on cells, rule {rule}", "integer", ""},
-        {"cell_counts", "/panels/*/slope", "slope, rule {rule}", "number", "",
-         {{"rule=20", "1.01 (book)"},
-          {"rule=50", "1.97 (book)"},
-          {"rule=18", "1.57 (book); log2 3 = 1.585 the exact limit"}}},
-        {"percolation_sizes", "/panels/*/step", "steps run, n = {n}", "integer", ""},
-        {"percolation_sizes", "/panels/*/statistics/wet", "wet cells, n = {n}", "integer", ""},
-        {"percolation_scaling", "/slope", "slope (fractal dimension)", "number", "",
-         {{"", "often near 1.85 (book); 91/48 = 1.896 (incipient cluster)"}}},
-        {"percolation_scaling", "/sizes", "sizes fitted", "range", ""},
-        {"percolation_scaling", "/percolating_runs", "runs that percolate", "integer", ""},
-        {"percolation_scaling", "/runs", "runs", "integer", ""},
-        {"percolation_phase", "/walk_mean", "find_critical mean q", "number", "",
-         {{"", "about 0.59 (book); p_c = 0.59274621 (Newman & Ziff 2000)"}}},
-        {"percolation_phase", "/probability/*/probability", "P(percolating), q = {q}", "number", "",
-         {{"q=0.55", "about 0 (book)"}, {"q=0.6", "about 0.7 (book)"}, {"q=0.65", "about 1 (book)"}},
-         "q=0.55|0.6|0.65"},
-        {"cell1d_survey", "/non_integer", "rules with non-integer slope", "count", "of 256"},
-        {"cell1d_survey", "/rules/*/slope_zero", "slope, rule {rule}", "number", "",
-         {{"", "1.57 (book, Fig 7.7); log2 3 = 1.585"}}, "rule=18"},
-        {"cell1d_survey", "/rules/*/slope_wrap", "slope, rule {rule} wrapped", "number", "",
-         {{"", "log2 3 = 1.585"}}, "rule=18"},
-        {"forest_fire", "/central_box_mass/slope", "dimension (trees in a central box)", "number", "",
-         {{"", "close to 2 (the book's solution)"}}},
-        {"forest_fire", "/box_counting/dimension", "dimension (box counting)", "number", "",
-         {{"", "close to 2 (the book's solution)"}}},
-        {"forest_fire", "/steady_state_trees", "steady-state trees", "number", ""},
-        // Liu & Zhang's snowflakes
-        {"snowflake", "/panels/*/statistics/ice", "ice cells, {label} {rule}, step {step}", "integer", ""},
-        {"snowflake_dimension", "/fits/*/dimension", "D, {rule}{restriction| restricted}", "number", "",
-         {{"", "1 < D < 2 (paper); tends to 2 (Gravner & Griffeath 2006)"}}},
-        {"snowflake_dimension", "/fits/*/fit_range", "fit range l, {rule}{restriction| restricted}", "range",
-         "cells"},
-        // Plants
-        {"phyllotaxis", "/panels/*/divergence_degrees", "divergence angle, panel {#}", "number", "degrees",
-         {{"", "137.508 (the golden angle)"}}, "", "", 6},
-        {"phyllotaxis", "/panels/*/seeds", "seeds, panel {#}", "integer", ""},
-        {"ifs", "/panels/*/points_bounds", "extent, {title}", "bounds", "",
-         {{"title=Barnsley fern", "x -2.18 to 2.66, y 0 to 9.96 (catalog)"}}},
-        {"ifs", "/panels/*/points", "points, {title}", "integer", ""},
-        {"lsystem", "/panels/*/segments", "segments, {title}", "integer", ""},
-        {"lsystem_3d", "/segments", "segments", "integer", ""},
-        {"lsystem_3d", "/symbols", "symbols", "integer", ""},
-        // Ballistic deposition
-        {"deposition", "/panels/*/particles", "particles", "integer", ""},
-        {"deposition", "/panels/*/statistics/mean_height", "mean height", "number", ""},
-        {"deposition", "/panels/*/statistics/roughness", "roughness W", "number", ""},
-        {"deposition", "/panels/*/packing_fraction", "packing fraction", "number", ""},
-        {"roughness", "/beta/value", "growth exponent beta", "number", "",
-         {{"", "1/3 (KPZ); about 0.30 at L <= 2000 (published)"}}},
-        {"roughness", "/beta/fit_range", "beta fitted over t", "range", "monolayers"},
-        {"roughness", "/beta/width", "beta fitted at L", "integer", ""},
-        {"roughness", "/alpha/value", "roughness exponent alpha", "number", "", {{"", "1/2 (KPZ)"}}},
-        {"roughness", "/alpha/widths", "alpha fitted over L", "range", ""},
-        // figgen's own
-        {"gray_scott_atlas", "/tiles", "tiles", "count", ""},
-        {"gray_scott_atlas", "/early_stop/tiles_stopped", "tiles stopped early", "integer", ""},
-        {"gray_scott_atlas", "/float_error/max_abs_B", "largest float error in B", "number", "", {}, "", "", 2},
-        {"percolation_threshold", "/extrapolation/p_c", "p_c, extrapolated", "number", "",
-         {{"", "0.59274621(13) (Newman & Ziff 2000)"}}, "", "standard_error"},
-        {"percolation_threshold", "/deviation_in_standard_errors", "from the reference", "number",
-         "standard errors", {}, "", "", 2},
-        {"percolation_threshold", "/estimates/*/p_c", "p_c(L), L = {L}", "number", "",
-         {{"", "0.59274621"}}, "", "standard_error"},
-        {"percolation_threshold", "/extrapolation/chi_squared", "chi squared of the fit", "number", "", {}, "",
-         "", 3},
-        {"percolation_threshold", "/extrapolation/degrees_of_freedom", "degrees of freedom", "integer", ""},
-    };
-    return table;
-}
+using Entry = scenes::KeyNumber;
+using Reference = scenes::KeyReference;
 
 // ---- reading the metadata -------------------------------------------------
 
@@ -327,8 +221,11 @@ std::vector<KeyNumberRow> key_numbers(const nlohmann::json& meta) {
     std::vector<KeyNumberRow> rows;
     const nlohmann::json* scene = child(meta, "scene");
     if (!scene || !scene->is_string()) return rows;
-    for (const Entry& entry : entries()) {
-        if (scene->get<std::string>() != entry.scene) continue;
+    const std::string name = scene->get<std::string>();
+    const auto info = std::find_if(scenes::all_scenes().begin(), scenes::all_scenes().end(),
+                                   [&](const scenes::SceneInfo& s) { return s.name == name; });
+    if (info == scenes::all_scenes().end()) return rows;
+    for (const Entry& entry : info->key_numbers) {
         std::vector<Found> found;
         expand(meta, steps_of(entry.path), 0, "", nullptr, 0, found);
         for (const Found& f : found) {

@@ -3,8 +3,8 @@
 // labelled numbers taken from its metadata (slopes, dimensions, p_c,
 // exponents, fitted ranges), each beside the catalog's reference value where
 // docs/catalog.md (the catalog) gives one. Which numbers a scene's
-// metadata holds, and what the catalog says of them, is one table in
-// key_numbers.cpp: data, not code.
+// metadata holds, and what the catalog says of them, each scene declares
+// beside its code (scenes::SceneInfo::key_numbers): data, not code.
 //
 // The metadata is untrusted (a hand-edited or foreign ID.json): a field that
 // is missing or of another type gives no row, never an exception.

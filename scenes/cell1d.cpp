@@ -115,10 +115,20 @@ private:
     const FieldSpec spec_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_cell1d(const Description& d, const SceneOptions& options) {
     return std::make_unique<Cell1DScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo cell1d_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"cell1d",
+            read_cell1d,
+            {"colormap"},
+            {
+                {"/panels/*/statistics/on_cells", "on cells, rule {rule}", "integer", ""},
+            }};
 }
 
 }  // namespace scenes

@@ -226,10 +226,28 @@ private:
     const render::PlotStyle plot_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_cell1d_survey(const Description& d, const SceneOptions& options) {
     return std::make_unique<Cell1DSurveyScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo cell1d_survey_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {
+        "cell1d_survey",
+        read_cell1d_survey,
+        {"colormap"},
+        {
+            {"/non_integer", "rules with non-integer slope", "count", "of 256"},
+            {"/rules/*/slope_zero",
+             "slope, rule {rule}",
+             "number",
+             "",
+             {{"", "1.57 (book, Fig 7.7); log2 3 = 1.585"}},
+             "rule=18"},
+            {"/rules/*/slope_wrap", "slope, rule {rule} wrapped", "number", "", {{"", "log2 3 = 1.585"}}, "rule=18"},
+        }};
 }
 
 }  // namespace scenes

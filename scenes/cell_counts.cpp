@@ -115,10 +115,26 @@ private:
     const render::PlotStyle plot_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_cell_counts(const Description& d, const SceneOptions& options) {
     return std::make_unique<CellCountsScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo cell_counts_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"cell_counts",
+            read_cell_counts,
+            {},
+            {
+                {"/panels/*/slope",
+                 "slope, rule {rule}",
+                 "number",
+                 "",
+                 {{"rule=20", "1.01 (book)"},
+                  {"rule=50", "1.97 (book)"},
+                  {"rule=18", "1.57 (book); log2 3 = 1.585 the exact limit"}}},
+            }};
 }
 
 }  // namespace scenes

@@ -199,10 +199,23 @@ private:
     Description plan_;  // d with one panel at the last monolayer: the run's length
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_deposition(const Description& d, const SceneOptions& options) {
     return std::make_unique<DepositionScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo deposition_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"deposition",
+            read_deposition,
+            {"band_colormap"},
+            {
+                {"/panels/*/particles", "particles", "integer", ""},
+                {"/panels/*/statistics/mean_height", "mean height", "number", ""},
+                {"/panels/*/statistics/roughness", "roughness W", "number", ""},
+                {"/panels/*/packing_fraction", "packing fraction", "number", ""},
+            }};
 }
 
 }  // namespace scenes

@@ -84,10 +84,21 @@ private:
     const FieldSpec spec_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_diffusion(const Description& d, const SceneOptions& options) {
     return std::make_unique<DiffusionScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo diffusion_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"diffusion",
+            read_diffusion,
+            {"colormap"},
+            {
+                {"/panels/*/statistics/sum", "total at step {step}", "number", ""},
+                {"/panels/*/statistics/max", "peak at step {step}", "number", ""},
+            }};
 }
 
 }  // namespace scenes

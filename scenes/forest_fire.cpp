@@ -228,10 +228,30 @@ private:
     const render::PlotStyle plot_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_forest_fire(const Description& d, const SceneOptions& options) {
     return std::make_unique<ForestFireScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo forest_fire_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"forest_fire",
+            read_forest_fire,
+            {"colormap"},
+            {
+                {"/central_box_mass/slope",
+                 "dimension (trees in a central box)",
+                 "number",
+                 "",
+                 {{"", "close to 2 (the book's solution)"}}},
+                {"/box_counting/dimension",
+                 "dimension (box counting)",
+                 "number",
+                 "",
+                 {{"", "close to 2 (the book's solution)"}}},
+                {"/steady_state_trees", "steady-state trees", "number", ""},
+            }};
 }
 
 }  // namespace scenes

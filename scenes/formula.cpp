@@ -186,10 +186,21 @@ private:
     bool upper_ = false;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_formula(const Description& d, const SceneOptions& options) {
     return std::make_unique<FormulaScene>(d, options);
+}
+
+}  // namespace
+
+// A formula figure's chemicals a .. z each have a colormap.
+static std::vector<std::string> formula_colormap_keys() {
+    std::vector<std::string> keys;
+    for (char c = 'a'; c <= 'z'; ++c) keys.push_back(std::string(1, c) + "_colormap");
+    return keys;
+}
+
+SceneInfo formula_scene() {
+    return {"formula", read_formula, formula_colormap_keys()};
 }
 
 }  // namespace scenes

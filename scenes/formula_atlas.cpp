@@ -316,10 +316,14 @@ private:
     mutable std::pair<double, double> range_{0.0, 1.0};  // every tile's values, once the tiles ran
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_formula_atlas(const Description& d, const SceneOptions& options) {
     return std::make_unique<FormulaAtlasScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo formula_atlas_scene() {
+    return {"formula_atlas", read_formula_atlas, {"colormap"}};
 }
 
 }  // namespace scenes

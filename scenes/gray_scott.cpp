@@ -176,10 +176,21 @@ private:
     const FieldSpec a_spec_, b_spec_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_gray_scott(const Description& d, const SceneOptions& options) {
     return std::make_unique<GrayScottScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo gray_scott_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"gray_scott",
+            read_gray_scott,
+            {"a_colormap", "b_colormap"},
+            {
+                {"/panels/*/statistics/B/mean", "mean B at step {step}", "number", ""},
+                {"/panels/*/statistics/A/mean", "mean A at step {step}", "number", ""},
+            }};
 }
 
 }  // namespace scenes

@@ -338,10 +338,22 @@ private:
     const render::PlotStyle plot_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_gray_scott_atlas(const Description& d, const SceneOptions& options) {
     return std::make_unique<GrayScottAtlasScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo gray_scott_atlas_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"gray_scott_atlas",
+            read_gray_scott_atlas,
+            {"colormap"},
+            {
+                {"/tiles", "tiles", "count", ""},
+                {"/early_stop/tiles_stopped", "tiles stopped early", "integer", ""},
+                {"/float_error/max_abs_B", "largest float error in B", "number", "", {}, "", "", 2},
+            }};
 }
 
 }  // namespace scenes

@@ -178,10 +178,14 @@ private:
     const std::vector<std::string> captions_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_hex_lattice(const Description& d, const SceneOptions& options) {
     return std::make_unique<HexLatticeScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo hex_lattice_scene() {
+    return {"hex_lattice", read_hex_lattice, {}};
 }
 
 }  // namespace scenes

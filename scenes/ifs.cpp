@@ -280,10 +280,25 @@ private:
     const std::vector<Variant> variants_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_ifs(const Description& d, const SceneOptions& options) {
     return std::make_unique<IfsScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo ifs_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"ifs",
+            read_ifs,
+            {"colormap"},
+            {
+                {"/panels/*/points_bounds",
+                 "extent, {title}",
+                 "bounds",
+                 "",
+                 {{"title=Barnsley fern", "x -2.18 to 2.66, y 0 to 9.96 (catalog)"}}},
+                {"/panels/*/points", "points, {title}", "integer", ""},
+            }};
 }
 
 }  // namespace scenes

@@ -401,10 +401,20 @@ private:
     const float min_width_;  // pixels, scaled
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_lsystem(const Description& d, const SceneOptions& options) {
     return std::make_unique<LSystemScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo lsystem_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"lsystem",
+            read_lsystem,
+            {},
+            {
+                {"/panels/*/segments", "segments, {title}", "integer", ""},
+            }};
 }
 
 }  // namespace scenes

@@ -411,10 +411,21 @@ private:
     const std::uint64_t vertices_;  // its polygons' vertices at most, likewise
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_lsystem_3d(const Description& d, const SceneOptions& options) {
     return std::make_unique<LSystem3dScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo lsystem_3d_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"lsystem_3d",
+            read_lsystem_3d,
+            {},
+            {
+                {"/segments", "segments", "integer", ""},
+                {"/symbols", "symbols", "integer", ""},
+            }};
 }
 
 }  // namespace scenes

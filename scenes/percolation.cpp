@@ -83,10 +83,20 @@ private:
     const FieldSpec spec_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_percolation(const Description& d, const SceneOptions& options) {
     return std::make_unique<PercolationScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo percolation_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"percolation",
+            read_percolation,
+            {"colormap"},
+            {
+                {"/panels/*/statistics/wet", "wet cells after step {step}", "integer", ""},
+            }};
 }
 
 }  // namespace scenes

@@ -211,10 +211,30 @@ private:
     const render::PlotStyle plot_style_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_percolation_phase(const Description& d, const SceneOptions& options) {
     return std::make_unique<PercolationPhaseScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo percolation_phase_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"percolation_phase",
+            read_percolation_phase,
+            {},
+            {
+                {"/walk_mean",
+                 "find_critical mean q",
+                 "number",
+                 "",
+                 {{"", "about 0.59 (book); p_c = 0.59274621 (Newman & Ziff 2000)"}}},
+                {"/probability/*/probability",
+                 "P(percolating), q = {q}",
+                 "number",
+                 "",
+                 {{"q=0.55", "about 0 (book)"}, {"q=0.6", "about 0.7 (book)"}, {"q=0.65", "about 1 (book)"}},
+                 "q=0.55|0.6|0.65"},
+            }};
 }
 
 }  // namespace scenes

@@ -130,10 +130,27 @@ private:
     const render::PlotStyle plot_style_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_percolation_scaling(const Description& d, const SceneOptions& options) {
     return std::make_unique<PercolationScalingScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo percolation_scaling_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"percolation_scaling",
+            read_percolation_scaling,
+            {},
+            {
+                {"/slope",
+                 "slope (fractal dimension)",
+                 "number",
+                 "",
+                 {{"", "often near 1.85 (book); 91/48 = 1.896 (incipient cluster)"}}},
+                {"/sizes", "sizes fitted", "range", ""},
+                {"/percolating_runs", "runs that percolate", "integer", ""},
+                {"/runs", "runs", "integer", ""},
+            }};
 }
 
 }  // namespace scenes

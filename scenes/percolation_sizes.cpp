@@ -105,10 +105,21 @@ private:
     const FieldSpec spec_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_percolation_sizes(const Description& d, const SceneOptions& options) {
     return std::make_unique<PercolationSizesScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo percolation_sizes_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"percolation_sizes",
+            read_percolation_sizes,
+            {"colormap"},
+            {
+                {"/panels/*/step", "steps run, n = {n}", "integer", ""},
+                {"/panels/*/statistics/wet", "wet cells, n = {n}", "integer", ""},
+            }};
 }
 
 }  // namespace scenes

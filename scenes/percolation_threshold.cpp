@@ -424,10 +424,30 @@ private:
     const render::PlotStyle plot_style_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_percolation_threshold(const Description& d, const SceneOptions& options) {
     return std::make_unique<PercolationThresholdScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo percolation_threshold_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"percolation_threshold",
+            read_percolation_threshold,
+            {},
+            {
+                {"/extrapolation/p_c",
+                 "p_c, extrapolated",
+                 "number",
+                 "",
+                 {{"", "0.59274621(13) (Newman & Ziff 2000)"}},
+                 "",
+                 "standard_error"},
+                {"/deviation_in_standard_errors", "from the reference", "number", "standard errors", {}, "", "", 2},
+                {"/estimates/*/p_c", "p_c(L), L = {L}", "number", "", {{"", "0.59274621"}}, "", "standard_error"},
+                {"/extrapolation/chi_squared", "chi squared of the fit", "number", "", {}, "", "", 3},
+                {"/extrapolation/degrees_of_freedom", "degrees of freedom", "integer", ""},
+            }};
 }
 
 }  // namespace scenes

@@ -250,10 +250,28 @@ private:
     const render::PanelRowStyle row_;  // the panels' layout and title font
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_phyllotaxis(const Description& d, const SceneOptions& options) {
     return std::make_unique<PhyllotaxisScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo phyllotaxis_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"phyllotaxis",
+            read_phyllotaxis,
+            {},
+            {
+                {"/panels/*/divergence_degrees",
+                 "divergence angle, panel {#}",
+                 "number",
+                 "degrees",
+                 {{"", "137.508 (the golden angle)"}},
+                 "",
+                 "",
+                 6},
+                {"/panels/*/seeds", "seeds, panel {#}", "integer", ""},
+            }};
 }
 
 }  // namespace scenes

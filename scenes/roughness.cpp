@@ -361,10 +361,28 @@ private:
     const render::PlotStyle plot_style_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_roughness(const Description& d, const SceneOptions& options) {
     return std::make_unique<RoughnessScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo roughness_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"roughness",
+            read_roughness,
+            {},
+            {
+                {"/beta/value",
+                 "growth exponent beta",
+                 "number",
+                 "",
+                 {{"", "1/3 (KPZ); about 0.30 at L <= 2000 (published)"}}},
+                {"/beta/fit_range", "beta fitted over t", "range", "monolayers"},
+                {"/beta/width", "beta fitted at L", "integer", ""},
+                {"/alpha/value", "roughness exponent alpha", "number", "", {{"", "1/2 (KPZ)"}}},
+                {"/alpha/widths", "alpha fitted over L", "range", ""},
+            }};
 }
 
 }  // namespace scenes

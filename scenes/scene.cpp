@@ -11,42 +11,16 @@
 
 namespace scenes {
 
-namespace {
-
-// A formula figure's chemicals a .. z each have a colormap.
-std::vector<std::string> formula_colormap_keys() {
-    std::vector<std::string> keys;
-    for (char c = 'a'; c <= 'z'; ++c) keys.push_back(std::string(1, c) + "_colormap");
-    return keys;
-}
-
-}  // namespace
+// Each scene file's SceneInfo.
+#define FIGGEN_SCENE(name) SceneInfo name##_scene();
+#include "scenes/registry.inc"
+#undef FIGGEN_SCENE
 
 const std::vector<SceneInfo>& all_scenes() {
     static const std::vector<SceneInfo> all = {
-        {"diffusion", read_diffusion, {"colormap"}},
-        {"gray_scott", read_gray_scott, {"a_colormap", "b_colormap"}},
-        {"gray_scott_atlas", read_gray_scott_atlas, {"colormap"}},
-        {"percolation", read_percolation, {"colormap"}},
-        {"percolation_sizes", read_percolation_sizes, {"colormap"}},
-        {"cell1d", read_cell1d, {"colormap"}},
-        {"cell_counts", read_cell_counts},
-        {"percolation_scaling", read_percolation_scaling},
-        {"percolation_phase", read_percolation_phase},
-        {"percolation_threshold", read_percolation_threshold},
-        {"forest_fire", read_forest_fire, {"colormap"}},
-        {"cell1d_survey", read_cell1d_survey, {"colormap"}},
-        {"snowflake", read_snowflake},
-        {"snowflake_dimension", read_snowflake_dimension},
-        {"hex_lattice", read_hex_lattice},
-        {"phyllotaxis", read_phyllotaxis},
-        {"ifs", read_ifs, {"colormap"}},
-        {"deposition", read_deposition, {"band_colormap"}},
-        {"roughness", read_roughness},
-        {"lsystem", read_lsystem},
-        {"lsystem_3d", read_lsystem_3d},
-        {"formula", read_formula, formula_colormap_keys()},
-        {"formula_atlas", read_formula_atlas, {"colormap"}},
+#define FIGGEN_SCENE(name) name##_scene(),
+#include "scenes/registry.inc"
+#undef FIGGEN_SCENE
     };
     return all;
 }

@@ -70,6 +70,37 @@ protected:
 // A scene's phase 1: reads and checks `d`'s settings.
 using SceneReader = std::unique_ptr<Scene> (*)(const Description& d, const SceneOptions& options);
 
+// What the catalog says of a key number: shown when `when` holds ("" always).
+struct KeyReference {
+    const char* when;
+    const char* text;  // as shown, e.g. "1.896 (91/48, the incipient cluster)"
+};
+
+// One key number of a scene's metadata, as a gallery card shows it
+// (app/key_numbers.hpp reads them).
+//
+// Conditions (KeyReference::when, KeyNumber::only) are "field=value" tests
+// joined by ",", all of which must hold: `field` is a field of the array
+// element a "*" reached, or a pointer into the whole metadata when it
+// starts with "/"; `value` may list alternatives, "q=0.55|0.6|0.65";
+// "!field" holds when the field is absent. Numbers compare to 1e-9.
+//
+// Labels take "{field}" (the element's field), "{#}" (the element's place,
+// from 1) and "{field|text}" (text where the element has the field).
+struct KeyNumber {
+    const char* path;  // JSON pointer; a "*" step runs over every element of an array
+    const char* label;
+    const char* kind;  // "number"; "integer"; "range": first to last of a list;
+                       // "bounds": [xmin, xmax, ymin, ymax]; "count": a list's length
+    const char* unit;  // after the value, or ""
+    std::vector<KeyReference> references = {};
+    const char* only = "";   // show only the elements for which this holds
+    const char* error = "";  // a sibling field holding the value's standard error: "value ± error"
+    int digits = 4;          // significant digits of a "number"
+};
+
+// A scene: each scene file defines its own (`SceneInfo diffusion_scene()`),
+// and scenes/registry.inc lists them, one line each.
 struct SceneInfo {
     std::string name;  // the description's `scene`
     SceneReader read;
@@ -77,6 +108,9 @@ struct SceneInfo {
     // (empty: the scene draws no field). A key "X" comes with "X"'s sibling
     // list of colours, "colours" or "a_colours", which --cmap removes.
     std::vector<std::string> colormap_keys = {};
+    // Its key numbers, in the order of the card, with the catalog's
+    // reference values (docs/catalog.md).
+    std::vector<KeyNumber> key_numbers = {};
 };
 
 const std::vector<SceneInfo>& all_scenes();
@@ -108,30 +142,5 @@ int scaled(int pixels, double scale);
 // yuv420p needs); the film's JSON says when that changed it (animation.size_rounded).
 int scaled_even(int pixels, double scale);
 using render::format_fixed;  // numbers shown on a figure, "1.57"
-
-// The readers, one per scene file.
-std::unique_ptr<Scene> read_diffusion(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_gray_scott(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_gray_scott_atlas(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_percolation(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_percolation_sizes(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_cell1d(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_cell_counts(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_percolation_scaling(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_percolation_phase(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_percolation_threshold(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_forest_fire(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_cell1d_survey(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_snowflake(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_snowflake_dimension(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_hex_lattice(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_phyllotaxis(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_ifs(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_deposition(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_roughness(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_lsystem(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_lsystem_3d(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_formula(const Description& d, const SceneOptions& options);
-std::unique_ptr<Scene> read_formula_atlas(const Description& d, const SceneOptions& options);
 
 }  // namespace scenes

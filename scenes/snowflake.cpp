@@ -241,10 +241,20 @@ private:
     const Description plan_;  // d_ with the panels the run shows
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_snowflake(const Description& d, const SceneOptions& options) {
     return std::make_unique<SnowflakeScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo snowflake_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"snowflake",
+            read_snowflake,
+            {},
+            {
+                {"/panels/*/statistics/ice", "ice cells, {label} {rule}, step {step}", "integer", ""},
+            }};
 }
 
 }  // namespace scenes

@@ -146,10 +146,25 @@ private:
     const render::PlotStyle plot_style_;
 };
 
-}  // namespace
-
 std::unique_ptr<Scene> read_snowflake_dimension(const Description& d, const SceneOptions& options) {
     return std::make_unique<SnowflakeDimensionScene>(d, options);
+}
+
+}  // namespace
+
+SceneInfo snowflake_dimension_scene() {
+    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    return {"snowflake_dimension",
+            read_snowflake_dimension,
+            {},
+            {
+                {"/fits/*/dimension",
+                 "D, {rule}{restriction| restricted}",
+                 "number",
+                 "",
+                 {{"", "1 < D < 2 (paper); tends to 2 (Gravner & Griffeath 2006)"}}},
+                {"/fits/*/fit_range", "fit range l, {rule}{restriction| restricted}", "range", "cells"},
+            }};
 }
 
 }  // namespace scenes

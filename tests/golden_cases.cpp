@@ -133,16 +133,14 @@ render::Image render_catalog_figure(const std::string& id, double scale, const s
 }
 
 std::vector<std::string> golden_overrides(const std::string& id) {
-    // The atlas at 6 x 6 tiles of 2,000 steps: 1/16 of the runs, 1/5 of the
-    // steps, the same layout, labels and colouring (the full one takes ~50 s).
-    if (id == "gs-atlas") return {"tiles=[6,6]", "steps=2000"};
-    // Roughness without L = 2000 and with 2 runs a width: about a tenth of
-    // the particles (the full one takes ~12 s), the same two panels and fits.
-    if (id == "bd-roughness") return {"widths=[100,200,500,1000]", "seeds=2"};
-    // The threshold from 1,500 samples per L in blocks of 250 (the full one
-    // draws 6,000): the same panels, fits and notes.
-    if (id == "pc-threshold") return {"samples=1500"};
-    return {};
+    std::vector<std::string> overrides;
+    std::ifstream in(std::filesystem::path(FIGGEN_TEST_GOLDEN_DIR) / (id + ".set"));
+    for (std::string line; std::getline(in, line);) {
+        const std::size_t first = line.find_first_not_of(" \t");
+        if (first == std::string::npos || line[first] == '#') continue;
+        overrides.push_back(line.substr(first, line.find_last_not_of(" \t\r") + 1 - first));
+    }
+    return overrides;
 }
 
 nlohmann::json comparable_metadata(nlohmann::json meta) {

@@ -52,7 +52,8 @@ render::Image test_pattern();
 render::Image render_catalog_figure(const std::string& id, double scale,
                                     const std::vector<std::string>& overrides = {});
 
-// --set overrides a figure's golden is rendered with: a smaller run of the same
+// --set overrides a figure's golden is rendered with, one a line in
+// tests/golden/<id>.set (# starts a comment): a smaller run of the same
 // scene for figures whose full run costs tens of seconds (gs-atlas), so the
 // image test checks the drawing, not the machine's speed. Empty for the rest.
 std::vector<std::string> golden_overrides(const std::string& id);
