@@ -50,9 +50,14 @@ std::unique_ptr<Cluster> Cluster::join() {
         "started by an MPI launcher, but this figgen was built without MPI: install libopenmpi-dev "
         "(scripts/deps.sh) and build again");
 #else
-    static constexpr render::ModuleSpec spec{FIGGEN_MPI_RELATIVE, FIGGEN_MPI_BUILT, "figgen_mpi_api", mpi::api_version,
-                                             "MPI module", "libopenmpi3 and openmpi-bin (scripts/deps.sh)", true};
-    const render::OpenedModule opened = render::open_module(spec);
+    static constexpr base::ModuleSpec spec{FIGGEN_MPI_RELATIVE,
+                                           FIGGEN_MPI_BUILT,
+                                           "figgen_mpi_api",
+                                           mpi::api_version,
+                                           "MPI module",
+                                           "libopenmpi3 and openmpi-bin (scripts/deps.sh)",
+                                           true};
+    const base::OpenedModule opened = base::open_module(spec);
     if (!opened.api) throw std::runtime_error(opened.error);
     const auto* api = static_cast<const mpi::Api*>(opened.api);
     std::unique_ptr<Cluster> cluster(new Cluster);

@@ -125,8 +125,8 @@ int ConvertCommand::run() {
     }
     OutputOptions options;
     options.dir = out_dir;
-    const render::Folder folder = open_output_folder(options);
-    render::write_file_atomically(folder, converted.id + ".toml", converted.toml);
+    const base::Folder folder = open_output_folder(options);
+    base::write_file_atomically(folder, converted.id + ".toml", converted.toml);
     std::printf("%s\n", description::printable((folder.path() / (converted.id + ".toml")).string()).c_str());
     return 0;
 }
@@ -323,7 +323,7 @@ std::vector<std::string> overrides_of(const RenderCommand& c) {
 
 // Renders a checked figure; what can only be a bug, or memory running out,
 // becomes a one-line error saying which figure and how far its run got.
-void render_reporting(const Description& d, const scenes::Scene& scene, const render::Folder& folder,
+void render_reporting(const Description& d, const scenes::Scene& scene, const base::Folder& folder,
                       const OutputOptions& options, ProgressBar& progress) {
     try {
         render_figure(d, scene, folder, options, progress);
@@ -429,7 +429,7 @@ int RenderCommand::run() {
 namespace {
 
 void render_all(const std::vector<CheckedFigure>& figures, const OutputOptions& options) {
-    const render::Folder folder = open_output_folder(options);
+    const base::Folder folder = open_output_folder(options);
     // Every input is accepted and drawing will follow: open the GL library
     // while the first model runs.
     render::preload_gl();
@@ -448,7 +448,7 @@ void render_all(const std::vector<CheckedFigure>& figures, const OutputOptions& 
 }
 
 int run_shards(const std::vector<CheckedFigure>& figures, const OutputOptions& options) {
-    const render::Folder folder = open_output_folder(options);
+    const base::Folder folder = open_output_folder(options);
     ProgressBar progress = ProgressBar::for_stderr();
     for (const CheckedFigure& f : figures) {
         const int computed = run_shard(*f.description, *f.scene->work(), folder, options.work, progress);

@@ -12,7 +12,7 @@
 
 namespace app {
 
-FigureLock::FigureLock(const render::Folder& folder, const std::string& id) : folder_(folder), name_("." + id + "~lock") {
+FigureLock::FigureLock(const base::Folder& folder, const std::string& id) : folder_(folder), name_("." + id + "~lock") {
     for (bool told = false;;) {
         fd_ = ::openat(folder_.fd(), name_.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0666);
         if (fd_ < 0 && errno == ELOOP) {
@@ -32,7 +32,7 @@ FigureLock::FigureLock(const render::Folder& folder, const std::string& id) : fo
         if (::fstat(fd_, &held) == 0 && ::fstatat(folder_.fd(), name_.c_str(), &named, AT_SYMLINK_NOFOLLOW) == 0 &&
             held.st_ino == named.st_ino && held.st_dev == named.st_dev)
         {
-            render::remove_on_signal(folder_, name_);
+            base::remove_on_signal(folder_, name_);
             return;  // the lock is ours and still the one the name leads to
         }
         ::close(fd_);
@@ -41,7 +41,7 @@ FigureLock::FigureLock(const render::Folder& folder, const std::string& id) : fo
 
 FigureLock::~FigureLock() {
     ::unlinkat(folder_.fd(), name_.c_str(), 0);  // while still held: see the constructor
-    render::keep_on_signal(folder_, name_);
+    base::keep_on_signal(folder_, name_);
     ::close(fd_);
 }
 

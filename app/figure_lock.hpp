@@ -17,13 +17,13 @@ class FigureLock {
 public:
     // Waits for the turn of figure `id` in `folder`. Throws std::runtime_error
     // when the lock cannot be made (a folder that cannot be written).
-    FigureLock(const render::Folder& folder, const std::string& id);
+    FigureLock(const base::Folder& folder, const std::string& id);
     ~FigureLock();
     FigureLock(const FigureLock&) = delete;
     FigureLock& operator=(const FigureLock&) = delete;
 
 private:
-    render::Folder folder_;
+    base::Folder folder_;
     std::string name_;
     int fd_ = -1;
 };

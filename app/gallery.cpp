@@ -38,7 +38,7 @@ constexpr std::size_t max_other_figures = 1000;
 
 // The gallery's folder (the rendered figures, index.html) and the two it makes.
 struct Folders {
-    render::Folder figures, thumbs, posters;
+    base::Folder figures, thumbs, posters;
 };
 
 // What decoding an image takes, to keep it within --max-memory: the
@@ -271,7 +271,7 @@ namespace {
 
 // Whether `name` in `folder` is a file of its own: not a symlink (which could
 // lead out of the folder), not a folder.
-bool is_file_in(const render::Folder& folder, const std::string& name) {
+bool is_file_in(const base::Folder& folder, const std::string& name) {
     struct stat st {};
     return ::fstatat(folder.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode);
 }
@@ -285,7 +285,7 @@ constexpr int max_metadata_depth = most_nesting;
 
 // Whether something other than a regular file (a FIFO, a folder, a
 // symlink) stands at `name` in `folder`.
-bool is_other_than_file(const render::Folder& folder, const std::string& name) {
+bool is_other_than_file(const base::Folder& folder, const std::string& name) {
     struct stat st {};
     return ::fstatat(folder.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && !S_ISREG(st.st_mode);
 }
@@ -294,7 +294,7 @@ bool is_other_than_file(const render::Folder& folder, const std::string& name) {
 // FIFO waited on); null when it is not there or is not JSON, and also when
 // it is not a regular file, is too large or nests too deep, which
 // `problem` then says.
-nlohmann::json read_metadata(const render::Folder& folder, const std::string& name, std::string* problem = nullptr) {
+nlohmann::json read_metadata(const base::Folder& folder, const std::string& name, std::string* problem = nullptr) {
     const auto refused = [&](const std::string& why) {
         if (problem) *problem = name + " " + why;
         return nullptr;
@@ -305,7 +305,7 @@ nlohmann::json read_metadata(const render::Folder& folder, const std::string& na
     if (st.st_size > static_cast<off_t>(max_metadata_bytes))
         return refused("holds more than " + std::to_string(max_metadata_bytes >> 20) + " MiB");
     // Read through a descriptor checked again: the name may have changed since.
-    const std::optional<std::string> text = render::read_file_at(folder, name, max_metadata_bytes);
+    const std::optional<std::string> text = base::read_file_at(folder, name, max_metadata_bytes);
     if (!text)
         return refused("could not be read as a regular file of at most " + std::to_string(max_metadata_bytes >> 20) +
                        " MiB");
@@ -322,7 +322,7 @@ nlohmann::json read_metadata(const render::Folder& folder, const std::string& na
 // which names the figgen that wrote it) beside its ID.png, in name order.
 // Names come from the folder's listing, never from a JSON; symlinks are
 // passed over, as everywhere in the gallery.
-std::vector<std::string> figures_outside(const render::Folder& folder, const std::vector<std::string>& catalog,
+std::vector<std::string> figures_outside(const base::Folder& folder, const std::vector<std::string>& catalog,
                                          std::vector<std::string>& unreadable) {
     std::vector<std::string> ids;
     const int fd = ::openat(folder.fd(), ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
@@ -356,7 +356,7 @@ std::vector<std::string> figures_outside(const render::Folder& folder, const std
 
 ThumbnailsWritten write_thumbnails(const std::filesystem::path& from, const std::filesystem::path& to, int max_width,
                                    int max_height, std::uint64_t max_memory) {
-    const render::Folder source(from), target(to, true);
+    const base::Folder source(from), target(to, true);
     ThumbnailsWritten made;
     // A file that cannot be read is named and passed over; the error
     // names the file and says why (not a regular file, not an image, or a
@@ -406,7 +406,7 @@ namespace {
 
 // Which film and frame a poster shows: the film's name, size, inode and
 // time of its last change (a render puts a new file in place), and the frame.
-std::string film_identity(const render::Folder& folder, const std::string& movie, int frame) {
+std::string film_identity(const base::Folder& folder, const std::string& movie, int frame) {
     struct stat st {};
     if (::fstatat(folder.fd(), movie.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0) return "";
     return movie + " frame " + std::to_string(frame) + ", " + std::to_string(st.st_size) + " bytes, file " +
@@ -416,7 +416,7 @@ std::string film_identity(const render::Folder& folder, const std::string& movie
 
 // The PNG's tEXt `key`, or "" (also for a PNG that cannot be read, or
 // whose header claims more than `max_pixels`).
-std::string png_text(const render::Folder& folder, const std::string& name, const std::string& key,
+std::string png_text(const base::Folder& folder, const std::string& name, const std::string& key,
                      std::uint64_t max_pixels) {
     try {
         for (const auto& [k, value] : render::read_png(folder, name, max_pixels).text)
@@ -546,7 +546,7 @@ void key_numbers_html(const nlohmann::json& meta, std::ostringstream& card) {
 }
 
 // The links and the collapsible tables below a card's pictures.
-void details_html(const render::Folder& figures, const std::string& id, const std::string& movie,
+void details_html(const base::Folder& figures, const std::string& id, const std::string& movie,
                   const nlohmann::json& meta, std::ostringstream& card) {
     card << "<div class=\"links\"><a href=\"" << escape(id) << ".png\">full PNG";
     const nlohmann::json& size = member(member(meta, "image"), "size");
@@ -625,8 +625,8 @@ std::string page_html(const std::string& cards, int shown, int missing, int othe
 }  // namespace
 
 int write_gallery(const std::filesystem::path& dir, std::uint64_t max_memory) {
-    const render::Folder figures(dir);
-    const Folders folders{figures, render::Folder(figures, "thumbs"), render::Folder(figures, "posters")};
+    const base::Folder figures(dir);
+    const Folders folders{figures, base::Folder(figures, "thumbs"), base::Folder(figures, "posters")};
     std::string cards;
     int shown = 0, missing = 0;
     std::vector<std::string> unreadable;
@@ -660,7 +660,7 @@ int write_gallery(const std::filesystem::path& dir, std::uint64_t max_memory) {
         show(id, read_metadata(figures, id + ".json"));
         ++others;
     }
-    render::write_file_atomically(figures, "index.html", page_html(cards, shown, missing, others, unreadable));
+    base::write_file_atomically(figures, "index.html", page_html(cards, shown, missing, others, unreadable));
     return shown;
 }
 

@@ -41,7 +41,7 @@ bool is_unknown_command(int argc, char** argv, const std::vector<app::Command*>&
         }
     }
     app::say("internal error", what);
-    render::remove_temporaries_now();
+    base::remove_temporaries_now();
     std::_Exit(app::exit_runtime_error);
 }
 
@@ -54,7 +54,7 @@ int run_command(int argc, char** argv);
 int main(int argc, char** argv) {
     const int status = run_command(argc, argv);
     // No library may still be loading on another thread while exit() runs.
-    render::wait_for_background();
+    base::wait_for_background();
     return status;
 }
 
@@ -63,7 +63,7 @@ namespace {
 int run_command(int argc, char** argv) {
     // First, before any thread starts: an interrupted render removes its
     // unfinished files and exits with 130 (SIGINT) or 143 (SIGTERM).
-    render::remove_temporaries_on_signals();
+    base::remove_temporaries_on_signals();
     std::set_terminate(on_terminate);
     CLI::App cli{"figgen: publication figures and animations of complex-systems models, headless."};
     cli.set_version_flag("--version", app::version());

@@ -187,7 +187,7 @@ void require_disk(const Description& d, const OutputOptions& options, double par
                          "; make it smaller, leave out the video or raise --max-disk");
 }
 
-FrameSink::FrameSink(const Description& d, const OutputOptions& options, const render::Folder& folder, int width,
+FrameSink::FrameSink(const Description& d, const OutputOptions& options, const base::Folder& folder, int width,
                      int height, const std::vector<nlohmann::json>* segments, int encoders)
     : description_(d), options_(options), folder_(folder), width_(width), height_(height), segments_(segments) {
     if (options.encodes()) {
@@ -199,7 +199,7 @@ FrameSink::FrameSink(const Description& d, const OutputOptions& options, const r
                                                           video, encoders, d.animation->frame_count(), preview_options);
     }
     if (options.frames) {
-        frames_ = std::make_unique<render::AtomicDir>(folder, d.id + "-frames");
+        frames_ = std::make_unique<base::AtomicDir>(folder, d.id + "-frames");
     }
     pipe_ = std::make_unique<FramePipe>([this](render::Image& frame, int step) { write(frame, step); }, frames_queued);
 }
@@ -216,7 +216,7 @@ void FrameSink::write(render::Image& frame, int step) {
         std::snprintf(name, sizeof name, "%05d.png", static_cast<int>(steps_.size()));
         render::write_png(frames_->folder(), name, frame,
                           {{"Title", description_.id + " " + description::format_step("step {step}", step)}},
-                          render::AtomicFile::Commit::now,  // inside the temporary folder
+                          base::AtomicFile::Commit::now,  // inside the temporary folder
                           render::PngCompression::fast);
     }
     if (encoders_)
@@ -322,7 +322,7 @@ void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json meta
         page.page().title = description_.title;
         page.page().creator = std::string("figgen ") + app::version();
         const std::string file_name = description_.id + f.suffix;
-        render::AtomicFile file(folder_, file_name);
+        base::AtomicFile file(folder_, file_name);
         render::vector::api().write(file.fd(), file.final_path(), *f.vector, page.page(),
                                     static_cast<std::uint64_t>(render::vector::file_bytes(drawing.width, drawing.height)));
         struct stat info {};
@@ -335,7 +335,7 @@ void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json meta
         if (!drawing.state_vti) throw std::logic_error(description_.id + ": its scene writes no VTI file");
         const std::string file_name = description_.id + ".vti";
         const std::string bytes = drawing.state_vti();
-        render::write_file_atomically(folder_, file_name, bytes);  // with the figure's other files
+        base::write_file_atomically(folder_, file_name, bytes);  // with the figure's other files
         metadata["vti"] = {{"file", file_name}, {"bytes", bytes.size()}};
     }
     write_figure(description_, options_, folder_, memory_, image, std::move(metadata));
@@ -367,7 +367,7 @@ nlohmann::json renderer_metadata(const render::GlContext& gl) {
 
 }  // namespace
 
-void write_figure(const Description& d, const OutputOptions& options, const render::Folder& folder,
+void write_figure(const Description& d, const OutputOptions& options, const base::Folder& folder,
                   const MemoryEstimate& memory, const render::Image& image, nlohmann::json metadata) {
     const auto& gl = render::GlContext::get();
     render::check_gl("the figure");  // in a debug context, what it reported since the last check
@@ -395,7 +395,7 @@ void write_figure(const Description& d, const OutputOptions& options, const rend
                        {"figgen:id", d.id},
                        {"figgen:seed", std::to_string(d.seed)},
                        {"figgen:params", meta.value("params", nlohmann::json::object()).dump()}});
-    render::write_file_atomically(folder, d.id + ".json", meta.dump(2) + "\n");
+    base::write_file_atomically(folder, d.id + ".json", meta.dump(2) + "\n");
 }
 
 }  // namespace app

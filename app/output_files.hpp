@@ -103,8 +103,8 @@ public:
     // `segments`, when given, are the whole film made elsewhere
     // (app/film_segments.hpp): no frame is added, finish() writes them.
     // `encoders`: the film's segments encoded side by side (MemoryEstimate::film_encoders).
-    FrameSink(const Description& d, const OutputOptions& options, const render::Folder& folder, int width,
-              int height, const std::vector<nlohmann::json>* segments = nullptr, int encoders = 1);
+    FrameSink(const Description& d, const OutputOptions& options, const base::Folder& folder, int width, int height,
+              const std::vector<nlohmann::json>* segments = nullptr, int encoders = 1);
     ~FrameSink() override;
     void add(render::Image frame, int step) override;
     nlohmann::json finish() override;  // completes the MP4; returns the animation's metadata
@@ -114,10 +114,10 @@ private:
 
     const Description& description_;
     const OutputOptions& options_;
-    render::Folder folder_;
+    base::Folder folder_;
     std::unique_ptr<render::VideoWriter> video_;
     std::unique_ptr<SegmentEncoders> encoders_;  // the film's segments side by side, into video_
-    std::unique_ptr<render::AtomicDir> frames_;  // the PNG sequence, in place at finish()
+    std::unique_ptr<base::AtomicDir> frames_;    // the PNG sequence, in place at finish()
     nlohmann::json steps_ = nlohmann::json::array();
     int width_, height_;
     const std::vector<nlohmann::json>* segments_;
@@ -129,9 +129,8 @@ class FigureFiles : public scenes::Output {
 public:
     // `film_segments`: the film's segments, made by other processes; the
     // scene then draws no frame (film_frames() is empty).
-    FigureFiles(const Description& d, const OutputOptions& options, render::Folder folder,
-                scenes::Progress& progress, MemoryEstimate memory,
-                const std::vector<nlohmann::json>* film_segments = nullptr)
+    FigureFiles(const Description& d, const OutputOptions& options, base::Folder folder, scenes::Progress& progress,
+                MemoryEstimate memory, const std::vector<nlohmann::json>* film_segments = nullptr)
         : description_(d),
           options_(options),
           folder_(std::move(folder)),
@@ -151,7 +150,7 @@ public:
 private:
     const Description& description_;
     const OutputOptions& options_;
-    render::Folder folder_;
+    base::Folder folder_;
     scenes::Progress& progress_;
     MemoryEstimate memory_;
     const std::vector<nlohmann::json>* film_segments_;
@@ -160,7 +159,7 @@ private:
 // Writes <id>.png and <id>.json. `metadata` holds what the scene knows
 // (params, panels with statistics and hashes, animation); the common fields
 // (id, title, source, seed, version, renderer, memory estimate) are added here.
-void write_figure(const Description& d, const OutputOptions& options, const render::Folder& folder,
+void write_figure(const Description& d, const OutputOptions& options, const base::Folder& folder,
                   const MemoryEstimate& memory, const render::Image& image, nlohmann::json metadata);
 
 // The names of figure `id`'s files in the output folder (one per format).

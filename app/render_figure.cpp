@@ -23,9 +23,9 @@ std::unique_ptr<scenes::Scene> check_figure(const Description& d, const OutputOp
     return scene;
 }
 
-render::Folder open_output_folder(const OutputOptions& options) {
+base::Folder open_output_folder(const OutputOptions& options) {
     try {
-        render::Folder folder(options.dir, true);
+        base::Folder folder(options.dir, true);
         if (::faccessat(folder.fd(), ".", W_OK | X_OK, AT_EACCESS) != 0)
             throw std::runtime_error("cannot write there: " + std::string(std::strerror(errno)));
         return folder;
@@ -34,15 +34,15 @@ render::Folder open_output_folder(const OutputOptions& options) {
     }
 }
 
-void render_figure(const Description& d, const scenes::Scene& scene, const render::Folder& folder,
+void render_figure(const Description& d, const scenes::Scene& scene, const base::Folder& folder,
                    const OutputOptions& options, scenes::Progress& progress) {
     const FigureLock turn(folder, d.id);
     // Holding the turn, no live process writes this figure here: any
     // temporaries of its files are a killed process's.
-    render::remove_stale_temporaries(folder, output_names(d.id));
+    base::remove_stale_temporaries(folder, output_names(d.id));
     render::clear_font_cache();  // same pixels whatever was rendered before in this process
     // The figure's files replace the earlier ones together, once all are written.
-    render::CommitGroup outputs;
+    base::CommitGroup outputs;
     // Under mpirun, the film's segments from every rank first (rank 0 takes
     // its share), then the figure's own run, which draws no frame.
     std::optional<std::vector<nlohmann::json>> segments;

@@ -21,12 +21,12 @@ std::unique_ptr<scenes::Scene> check_figure(const Description& d, const OutputOp
 // The output folder (options.dir), created if missing and open; UsageError
 // when it cannot be made or written. Call after every figure's phase 1: a
 // refused run creates nothing.
-render::Folder open_output_folder(const OutputOptions& options);
+base::Folder open_output_folder(const OutputOptions& options);
 
 // Phases 2 and 3 of a checked figure: takes the figure's turn against other
 // figgen processes (removing what a killed one left), runs the scene and
 // puts its files in place in `folder`, all together or none.
-void render_figure(const Description& d, const scenes::Scene& scene, const render::Folder& folder,
+void render_figure(const Description& d, const scenes::Scene& scene, const base::Folder& folder,
                    const OutputOptions& options, scenes::Progress& progress);
 
 // All three phases.

@@ -50,7 +50,9 @@ json manifest_of(const description::Description& d, const scenes::WorkItems& ite
             {"items", names}};
 }
 
-std::string sha256_of(const std::string& text) { return render::sha256_hex(text.data(), text.size()); }
+std::string sha256_of(const std::string& text) {
+    return base::sha256_hex(text.data(), text.size());
+}
 
 // A part as Parts::load found it.
 struct Part {
@@ -75,11 +77,10 @@ class Parts {
 public:
     // The parts folder of `d` in `out`, made when missing. Parts of another
     // manifest there are stale: they are removed, and the run says so.
-    static Parts in_output(const render::Folder& out, const description::Description& d,
-                           const scenes::WorkItems& items) {
+    static Parts in_output(const base::Folder& out, const description::Description& d, const scenes::WorkItems& items) {
         // Shards sharing an output folder may start together: one at a time checks the folder.
         const FigureLock turn(out, parts_name(d.id));
-        Parts parts(render::Folder(out, parts_name(d.id)), items, manifest_of(d, items));
+        Parts parts(base::Folder(out, parts_name(d.id)), items, manifest_of(d, items));
         std::string problem;
         const std::optional<json> found = parts.read_manifest(problem);
         if (found != parts.manifest_) {
@@ -88,10 +89,10 @@ public:
                 std::fprintf(stderr, "figgen: %s: the parts in %s are of another description or figgen%s; computing anew\n",
                              d.id.c_str(), description::printable(parts.folder_.path().string()).c_str(),
                              problem.empty() ? "" : (" (its manifest " + problem + ")").c_str());
-            render::remove_at(out, parts_name(d.id));
-            parts.folder_ = render::Folder(out, parts_name(d.id));
-            render::write_file_atomically(parts.folder_, "manifest.json", parts.manifest_.dump(1) + "\n",
-                                          render::AtomicFile::Commit::now);
+            base::remove_at(out, parts_name(d.id));
+            parts.folder_ = base::Folder(out, parts_name(d.id));
+            base::write_file_atomically(parts.folder_, "manifest.json", parts.manifest_.dump(1) + "\n",
+                                        base::AtomicFile::Commit::now);
         }
         return parts;
     }
@@ -104,14 +105,14 @@ public:
         const std::string option = "--from " + description::printable(path.string());
         const std::string allowed = "allowed: a parts folder (" + parts_name(d.id) +
                                     ") or the --out folder of a render --shard that holds one";
-        std::optional<render::Folder> folder;
+        std::optional<base::Folder> folder;
         try {
-            const render::Folder named(path);
+            const base::Folder named(path);
             struct stat st {};
             if (::fstatat(named.fd(), "manifest.json", &st, AT_SYMLINK_NOFOLLOW) == 0)
                 folder = named;  // a parts folder: its manifest is read (and refused) below
             else
-                folder = render::Folder::inside(named, parts_name(d.id));
+                folder = base::Folder::inside(named, parts_name(d.id));
         } catch (const std::runtime_error& e) {
             throw UsageError(option + ": " + e.what() + "; " + allowed);
         }
@@ -148,7 +149,7 @@ public:
         if (!has(item)) return {};
         const auto damaged = [](std::string problem) { return Part{Part::State::damaged, json(), std::move(problem)}; };
         const std::optional<std::string> bytes =
-            render::read_file_at(folder_, part_name(item), static_cast<std::size_t>(max_part_bytes_));
+            base::read_file_at(folder_, part_name(item), static_cast<std::size_t>(max_part_bytes_));
         if (!bytes)
             return damaged("cannot be read or holds more than the " + std::to_string(std::llround(max_part_bytes_)) +
                            " bytes its item's result takes");
@@ -168,8 +169,8 @@ public:
     void store(int item, const json& result) const {
         // Put in place at once, not with the figure's files: a run killed
         // before the figure is written keeps it.
-        render::write_file_atomically(folder_, part_name(item), part_bytes(item, result, items_, manifest_sha256_),
-                                      render::AtomicFile::Commit::now);
+        base::write_file_atomically(folder_, part_name(item), part_bytes(item, result, items_, manifest_sha256_),
+                                    base::AtomicFile::Commit::now);
     }
 
     // "<folder>/item-000017.cbor (tile 17)": what messages call a part.
@@ -177,10 +178,10 @@ public:
         return description::printable((folder_ / part_name(item)).string()) + " (" + items_.item_name(item) + ")";
     }
 
-    const render::Folder& folder() const { return folder_; }
+    const base::Folder& folder() const { return folder_; }
 
 private:
-    Parts(render::Folder folder, const scenes::WorkItems& items, json manifest)
+    Parts(base::Folder folder, const scenes::WorkItems& items, json manifest)
         : folder_(std::move(folder)),
           items_(items),
           manifest_(std::move(manifest)),
@@ -192,7 +193,7 @@ private:
     std::optional<json> read_manifest(std::string& problem) const {
         struct stat st {};
         if (::fstatat(folder_.fd(), "manifest.json", &st, AT_SYMLINK_NOFOLLOW) != 0) return std::nullopt;
-        const std::optional<std::string> text = render::read_file_at(folder_, "manifest.json", manifest_max_bytes);
+        const std::optional<std::string> text = base::read_file_at(folder_, "manifest.json", manifest_max_bytes);
         if (!text) {
             problem = "is not a regular file of at most " + std::to_string(manifest_max_bytes >> 20) + " MiB";
             return std::nullopt;
@@ -205,7 +206,7 @@ private:
         }
     }
 
-    render::Folder folder_;
+    base::Folder folder_;
     const scenes::WorkItems& items_;
     json manifest_;
     std::string manifest_sha256_;
@@ -308,7 +309,7 @@ json result_of_part(std::string_view bytes, int item, const scenes::WorkItems& i
     if (!result || !result->is_binary() || !hash || !hash->is_string())
         throw MalformedData("lacks its result or the result's SHA-256");
     const std::vector<std::uint8_t>& result_bytes = result->get_binary();
-    if (render::sha256_hex(result_bytes.data(), result_bytes.size()) != hash->get_ref<const std::string&>())
+    if (base::sha256_hex(result_bytes.data(), result_bytes.size()) != hash->get_ref<const std::string&>())
         throw MalformedData("has a result that does not match its SHA-256 (changed since it was written)");
     json decoded;
     try {
@@ -327,7 +328,7 @@ json result_of_part(std::string_view bytes, int item, const scenes::WorkItems& i
 std::string part_bytes(int item, const json& result, const scenes::WorkItems& items,
                        const std::string& manifest_sha256) {
     std::vector<std::uint8_t> result_bytes = json::to_cbor(result);
-    const std::string hash = render::sha256_hex(result_bytes.data(), result_bytes.size());
+    const std::string hash = base::sha256_hex(result_bytes.data(), result_bytes.size());
     // Moved, not copied: a result is as many copies of its numbers as the memory estimates count.
     const std::vector<std::uint8_t> bytes = json::to_cbor({{"item", item},
                                                            {"name", items.item_name(item)},
@@ -346,7 +347,7 @@ std::string work_hash(const description::Description& d, const scenes::WorkItems
     params << toml::json_formatter{d.params};
     const std::string text = std::string(version()) + "\n" + d.scene + "\n" + std::to_string(d.seed) + "\n" +
                              params.str() + "\n" + items.depends_on();
-    return render::sha256_hex(text.data(), text.size());
+    return base::sha256_hex(text.data(), text.size());
 }
 
 void check_merge_sources(const description::Description& d, const scenes::WorkItems& items,
@@ -483,7 +484,7 @@ void run_as_rank_zero(const description::Description& d, const scenes::WorkItems
 }  // namespace
 
 std::vector<json> run_work(const description::Description& d, const scenes::WorkItems& items,
-                           const render::Folder& folder, const WorkOptions& options, scenes::Progress& progress) {
+                           const base::Folder& folder, const WorkOptions& options, scenes::Progress& progress) {
     const int count = items.item_count();
     Results results(static_cast<std::size_t>(count));
     if (options.merging()) {
@@ -519,7 +520,7 @@ std::vector<json> run_work(const description::Description& d, const scenes::Work
     return out;
 }
 
-int run_shard(const description::Description& d, const scenes::WorkItems& items, const render::Folder& folder,
+int run_shard(const description::Description& d, const scenes::WorkItems& items, const base::Folder& folder,
               const WorkOptions& options, scenes::Progress& progress) {
     const Parts parts = Parts::in_output(folder, d, items);
     std::vector<int> missing;
@@ -589,8 +590,8 @@ void serve_work(const description::Description& d, const scenes::WorkItems& item
     cluster.send(0, tag_done, {});
 }
 
-void remove_parts(const render::Folder& folder, const std::string& id) {
-    render::remove_at(folder, parts_name(id));
+void remove_parts(const base::Folder& folder, const std::string& id) {
+    base::remove_at(folder, parts_name(id));
 }
 
 }  // namespace app

@@ -74,12 +74,12 @@ void check_merge_sources(const description::Description& d, const scenes::WorkIt
 // rank (in an MPI job), the item and the reason; UsageError for parts that
 // a merge cannot use.
 std::vector<nlohmann::json> run_work(const description::Description& d, const scenes::WorkItems& items,
-                                     const render::Folder& folder, const WorkOptions& options,
+                                     const base::Folder& folder, const WorkOptions& options,
                                      scenes::Progress& progress);
 
 // --shard K/N: computes the shard's items (item i when i mod N = K - 1) that
 // its parts folder lacks, keeping each as a part. Returns how many it computed.
-int run_shard(const description::Description& d, const scenes::WorkItems& items, const render::Folder& folder,
+int run_shard(const description::Description& d, const scenes::WorkItems& items, const base::Folder& folder,
               const WorkOptions& options, scenes::Progress& progress);
 
 // A rank other than 0: runs the items rank 0 gives it for figure `d`, and
@@ -87,6 +87,6 @@ int run_shard(const description::Description& d, const scenes::WorkItems& items,
 void serve_work(const description::Description& d, const scenes::WorkItems& items, const WorkOptions& options);
 
 // Removes figure `id`'s parts folder from `folder` (once its figure is in place).
-void remove_parts(const render::Folder& folder, const std::string& id);
+void remove_parts(const base::Folder& folder, const std::string& id);
 
 }  // namespace app

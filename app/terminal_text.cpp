@@ -43,7 +43,7 @@ int columns_of(char32_t c) {
 int display_width(std::string_view utf8) {
     const Utf8Locale locale;
     int columns = 0;
-    for (const char32_t c : render::decode_utf8(utf8)) columns += columns_of(c);
+    for (const char32_t c : base::decode_utf8(utf8)) columns += columns_of(c);
     return columns;
 }
 
@@ -54,7 +54,7 @@ std::string fit_columns(std::string_view utf8, int columns) {
     int used = 0;
     const int room = columns - 3;  // for "..."
     for (std::size_t at = 0; at < utf8.size();) {
-        const render::Utf8Char c = render::decode_utf8_at(utf8, at);
+        const base::Utf8Char c = base::decode_utf8_at(utf8, at);
         const std::size_t bytes = c.valid ? c.length : 1;  // a malformed byte, one column
         const int w = c.valid ? columns_of(c.code) : 1;
         if (used + w > room) break;

@@ -16,7 +16,7 @@
 #include <stdexcept>
 #include <thread>
 
-namespace render {
+namespace base {
 namespace {
 
 std::string system_reason(int error) { return std::strerror(error); }
@@ -431,4 +431,4 @@ void remove_temporaries_on_signals() {
     }).detach();
 }
 
-}  // namespace render
+}  // namespace base

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-namespace render {
+namespace base {
 
 // An open folder that outputs are made in.
 class Folder {
@@ -187,4 +187,4 @@ void remove_temporaries_now() noexcept;
 void remove_on_signal(const Folder& folder, const std::string& name);
 void keep_on_signal(const Folder& folder, const std::string& name);
 
-}  // namespace render
+}  // namespace base

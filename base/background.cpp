@@ -2,7 +2,7 @@
 
 #include <vector>
 
-namespace render {
+namespace base {
 namespace {
 
 struct Started {
@@ -33,4 +33,4 @@ void wait_for_background() {
     for (const auto& wait : waits) wait();
 }
 
-}  // namespace render
+}  // namespace base

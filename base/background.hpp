@@ -15,7 +15,7 @@
 #include <future>
 #include <mutex>
 
-namespace render {
+namespace base {
 
 // Waits for every Background value started in this process.
 void wait_for_background();
@@ -45,4 +45,4 @@ private:
     std::shared_future<T> value_;
 };
 
-}  // namespace render
+}  // namespace base

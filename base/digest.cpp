@@ -10,7 +10,7 @@ extern "C" {
 #include <memory>
 #include <stdexcept>
 
-namespace render {
+namespace base {
 
 std::string sha256_hex(const void* data, std::size_t size) {
     std::unique_ptr<AVSHA, decltype(&av_free)> sha(av_sha_alloc(), &av_free);
@@ -23,4 +23,4 @@ std::string sha256_hex(const void* data, std::size_t size) {
     return hex;
 }
 
-}  // namespace render
+}  // namespace base

@@ -5,8 +5,8 @@
 #include <cstddef>
 #include <string>
 
-namespace render {
+namespace base {
 
 std::string sha256_hex(const void* data, std::size_t size);
 
-}  // namespace render
+}  // namespace base

@@ -4,7 +4,7 @@
 
 #include <system_error>
 
-namespace render {
+namespace base {
 
 std::filesystem::path module_path(const char* relative, const char* built) {
     std::error_code error;
@@ -34,4 +34,4 @@ OpenedModule open_module(const ModuleSpec& spec) {
     return {api, {}};
 }
 
-}  // namespace render
+}  // namespace base

@@ -11,7 +11,7 @@
 
 #include "base/background.hpp"
 
-namespace render {
+namespace base {
 
 std::filesystem::path module_path(const char* relative, const char* built);
 
@@ -65,4 +65,4 @@ LoadedModule<Api>& module_of() {
     return module;
 }
 
-}  // namespace render
+}  // namespace base

@@ -1,6 +1,6 @@
 #include "base/utf8.hpp"
 
-namespace render {
+namespace base {
 namespace {
 
 bool is_continuation(unsigned char byte) { return (byte & 0xC0) == 0x80; }
@@ -66,4 +66,4 @@ std::string encode_utf8(char32_t c) {
     return out;
 }
 
-}  // namespace render
+}  // namespace base

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-namespace render {
+namespace base {
 
 // The replacement character, drawn wherever the input is not valid UTF-8.
 inline constexpr char32_t replacement_character = U'\uFFFD';
@@ -31,4 +31,4 @@ std::u32string decode_utf8(std::string_view utf8);
 // noncharacters too: what a careless writer would put in a file.
 std::string encode_utf8(char32_t c);
 
-}  // namespace render
+}  // namespace base

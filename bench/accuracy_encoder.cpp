@@ -258,8 +258,8 @@ nlohmann::json encoder_settings(const Paths& paths) {
     std::filesystem::remove_all(dir);
     for (auto& f : out["films"]) compare_to_reference(f, 0.005, 0.25);
     out["choice"] = choose(out);
-    render::write_file_atomically(paths.results / "encoder.json", out.dump(2) + "\n");
-    render::write_file_atomically(paths.results / "encoder.md", markdown(out));
+    base::write_file_atomically(paths.results / "encoder.json", out.dump(2) + "\n");
+    base::write_file_atomically(paths.results / "encoder.md", markdown(out));
     return out;
 }
 

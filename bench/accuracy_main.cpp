@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
         out["targets"] = bench::target_table(out, paths);
         // After the pipeline study, which starts out/ afresh.
         std::filesystem::create_directories(figure_dir);
-        render::write_file_atomically(paths.results / "latest.json", out.dump(2) + "\n");
+        base::write_file_atomically(paths.results / "latest.json", out.dump(2) + "\n");
         write_pareto(figure_dir / "bench-pareto.png", curves);
         std::printf("wrote %s and %s\n", (paths.results / "latest.json").c_str(), (figure_dir / "bench-pareto.png").c_str());
     } catch (const std::exception& e) {

@@ -280,7 +280,7 @@ nlohmann::json segment_lengths(const Paths& paths) {
         }
     }
     std::filesystem::remove_all(dir);
-    render::write_file_atomically(paths.results / "segments.md", table);
+    base::write_file_atomically(paths.results / "segments.md", table);
     std::printf("%s", table.c_str());
     return rows;
 }

@@ -104,7 +104,7 @@ nlohmann::json target_table(const nlohmann::json& latest, const Paths& paths) {
                  (r.at_least ? ">= " : "<= ") + number(r.target) + " " + r.unit + " | " +
                  (measured ? (met ? "yes" : "no") : "-") + " |\n";
     }
-    render::write_file_atomically(paths.results / "targets.md", table);
+    base::write_file_atomically(paths.results / "targets.md", table);
     std::printf("%s", table.c_str());
     return out;
 }

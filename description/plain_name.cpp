@@ -32,7 +32,7 @@ namespace {
 // The length of the UTF-8 sequence starting at text[at] and its code point,
 // or 0 when it is not valid UTF-8.
 std::size_t decode_utf8(std::string_view text, std::size_t at, std::uint32_t& code) {
-    const render::Utf8Char c = render::decode_utf8_at(text, at);
+    const base::Utf8Char c = base::decode_utf8_at(text, at);
     code = c.code;
     return c.valid ? c.length : 0;
 }

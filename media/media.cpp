@@ -4,11 +4,16 @@
 
 namespace render::media {
 namespace {
-constexpr ModuleSpec spec{FIGGEN_MEDIA_RELATIVE, FIGGEN_MEDIA_BUILT, "figgen_media_api", api_version, "video module",
-                          "libavcodec59, libavformat59 and libswscale6"};
+constexpr base::ModuleSpec spec{FIGGEN_MEDIA_RELATIVE, FIGGEN_MEDIA_BUILT,
+                                "figgen_media_api",    api_version,
+                                "video module",        "libavcodec59, libavformat59 and libswscale6"};
 }  // namespace
 
-const Api& api() { return module_of<Api, spec>().api(); }
-void preload() { module_of<Api, spec>().preload(); }
+const Api& api() {
+    return base::module_of<Api, spec>().api();
+}
+void preload() {
+    base::module_of<Api, spec>().preload();
+}
 
 }  // namespace render::media

@@ -178,12 +178,12 @@ bool decode(std::FILE* in, PngFile& result, ErrorState& state, std::uint64_t max
 
 }  // namespace
 
-void write_png(const Folder& folder, const std::string& name, const Image& image, const TextChunks& text,
-               AtomicFile::Commit when, PngCompression compression) {
+void write_png(const base::Folder& folder, const std::string& name, const Image& image, const TextChunks& text,
+               base::AtomicFile::Commit when, PngCompression compression) {
     if (image.width < 1 || image.height < 1 ||
         image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4)
         throw std::invalid_argument("write_png: image is empty or its pixel buffer has the wrong size");
-    AtomicFile file(folder, name, when);
+    base::AtomicFile file(folder, name, when);
     const std::filesystem::path path = file.final_path();
     File out(file.take_stream());
 
@@ -231,7 +231,7 @@ void write_png(const Folder& folder, const std::string& name, const Image& image
 }
 
 void write_png(const std::filesystem::path& path, const Image& image, const TextChunks& text) {
-    write_png(Folder::of(path), path.filename().string(), image, text);
+    write_png(base::Folder::of(path), path.filename().string(), image, text);
 }
 
 namespace {
@@ -250,9 +250,10 @@ PngFile read_png_from(std::FILE* stream, const std::filesystem::path& path, std:
 
 }  // namespace
 
-PngFile read_png(const Folder& folder, const std::string& name, std::uint64_t max_pixels) {
-    const int fd = open_regular_at(folder, name);
-    if (fd < 0) throw std::runtime_error("cannot read " + (folder / name).string() + ": " + not_opened_reason(errno));
+PngFile read_png(const base::Folder& folder, const std::string& name, std::uint64_t max_pixels) {
+    const int fd = base::open_regular_at(folder, name);
+    if (fd < 0)
+        throw std::runtime_error("cannot read " + (folder / name).string() + ": " + base::not_opened_reason(errno));
     std::FILE* stream = ::fdopen(fd, "rb");
     if (!stream) {
         ::close(fd);

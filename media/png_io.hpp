@@ -24,8 +24,8 @@ enum class PngCompression { smallest, fast };
 // Writes folder/name atomically (an exclusive temporary, then rename; see
 // atomic_file.hpp); throws std::runtime_error naming the file and the
 // reason, leaving nothing under the name on failure.
-void write_png(const Folder& folder, const std::string& name, const Image& image, const TextChunks& text = {},
-               AtomicFile::Commit when = AtomicFile::Commit::with_group,
+void write_png(const base::Folder& folder, const std::string& name, const Image& image, const TextChunks& text = {},
+               base::AtomicFile::Commit when = base::AtomicFile::Commit::with_group,
                PngCompression compression = PngCompression::smallest);
 // The same, for a path whose folder is the caller's.
 void write_png(const std::filesystem::path& path, const Image& image, const TextChunks& text = {});
@@ -39,6 +39,6 @@ PngFile read_png(const std::filesystem::path& path);
 // followed, a FIFO not waited on). An image whose header (png_read_info)
 // claims more than `max_pixels` pixels throws ImageTooLarge before any
 // pixel is allocated.
-PngFile read_png(const Folder& folder, const std::string& name, std::uint64_t max_pixels = any_pixels);
+PngFile read_png(const base::Folder& folder, const std::string& name, std::uint64_t max_pixels = any_pixels);
 
 }  // namespace render

@@ -19,11 +19,11 @@ namespace render {
 
 // The file, and the module's encoder writing into it.
 struct VideoWriter::Encoder {
-    Encoder(const Folder& folder, const std::string& name) : file(folder, name) {}
+    Encoder(const base::Folder& folder, const std::string& name) : file(folder, name) {}
 
     // Declared first so it is destroyed last: the encoder closes its I/O
     // before the temporary is removed.
-    AtomicFile file;
+    base::AtomicFile file;
     std::unique_ptr<media::Encoder> media;
     bool finished = false;
 };
@@ -65,8 +65,9 @@ void check_frame(const Image& frame, int width, int height) {
 // A file read by the media module: folder/name opened here, a regular file
 // (open_regular_at), and handed over as its descriptor.
 struct ReadOnly {
-    ReadOnly(const Folder& folder, const std::string& name) : shown(folder / name), fd(open_regular_at(folder, name)) {
-        if (fd < 0) throw std::runtime_error("cannot read " + shown.string() + ": " + not_opened_reason(errno));
+    ReadOnly(const base::Folder& folder, const std::string& name)
+        : shown(folder / name), fd(base::open_regular_at(folder, name)) {
+        if (fd < 0) throw std::runtime_error("cannot read " + shown.string() + ": " + base::not_opened_reason(errno));
     }
     ~ReadOnly() { ::close(fd); }
     ReadOnly(const ReadOnly&) = delete;
@@ -97,9 +98,9 @@ const std::vector<std::string>& x264_tunes() {
 }
 
 VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int height, const VideoOptions& options)
-    : VideoWriter(Folder::of(path), path.filename().string(), width, height, options) {}
+    : VideoWriter(base::Folder::of(path), path.filename().string(), width, height, options) {}
 
-VideoWriter::VideoWriter(const Folder& folder, const std::string& name, int width, int height,
+VideoWriter::VideoWriter(const base::Folder& folder, const std::string& name, int width, int height,
                          const VideoOptions& options)
     : path_(folder / name), width_(width), height_(height), fps_(options.fps) {
     validate(width, height, options);
@@ -212,12 +213,12 @@ void VideoWriter::finish() {
     encoder_->finished = true;
 }
 
-PreviewInfo VideoWriter::finish(const Folder& folder, const std::string& name, const PreviewOptions& options) {
+PreviewInfo VideoWriter::finish(const base::Folder& folder, const std::string& name, const PreviewOptions& options) {
     if (!encoder_ || encoder_->finished) throw std::logic_error("VideoWriter::finish called twice");
     if (frames_ == 0) throw std::logic_error("cannot write " + path_.string() + ": no frames were added");
     check_preview(options);
     encoder_->media->finish();
-    AtomicFile preview(folder, name);
+    base::AtomicFile preview(folder, name);
     const PreviewInfo info = preview_of_film(preview.fd(), folder / name, options);
     encoder_->file.commit();
     preview.commit();
@@ -225,7 +226,7 @@ PreviewInfo VideoWriter::finish(const Folder& folder, const std::string& name, c
     return info;
 }
 
-VideoWriter::Copies VideoWriter::finish(const Folder& folder, const std::string& preview_name,
+VideoWriter::Copies VideoWriter::finish(const base::Folder& folder, const std::string& preview_name,
                                         const PreviewOptions& preview_options, const std::string& webm_name,
                                         const WebmOptions& webm_options, bool keep_mp4) {
     if (!encoder_ || encoder_->finished) throw std::logic_error("VideoWriter::finish called twice");
@@ -235,9 +236,9 @@ VideoWriter::Copies VideoWriter::finish(const Folder& folder, const std::string&
         throw std::invalid_argument("WebM options out of range: crf 0..63, speed 0..8");
     encoder_->media->finish();
     Copies copies;
-    AtomicFile preview(folder, preview_name);
+    base::AtomicFile preview(folder, preview_name);
     copies.preview = preview_of_film(preview.fd(), folder / preview_name, preview_options);
-    std::optional<AtomicFile> webm;
+    std::optional<base::AtomicFile> webm;
     if (!webm_name.empty()) {
         webm.emplace(folder, webm_name);
         copies.webm_bytes =
@@ -259,18 +260,19 @@ Image decode_preview_frame(const std::filesystem::path& path, int index) {
     return media::api().decode_preview_frame(path, index);
 }
 
-PreviewInfo write_preview_thumbnail(const Folder& source, const std::string& source_name, const Folder& folder,
-                                    const std::string& name, const PreviewOptions& options, std::uint64_t max_pixels) {
+PreviewInfo write_preview_thumbnail(const base::Folder& source, const std::string& source_name,
+                                    const base::Folder& folder, const std::string& name, const PreviewOptions& options,
+                                    std::uint64_t max_pixels) {
     check_preview(options);
     const ReadOnly in(source, source_name);
-    AtomicFile file(folder, name);
+    base::AtomicFile file(folder, name);
     const PreviewInfo info =
         media::api().write_preview_thumbnail(file.fd(), folder / name, in.fd, in.shown, max_pixels, options);
     file.commit();
     return info;
 }
 
-PreviewInfo preview_canvas(const Folder& folder, const std::string& name) {
+PreviewInfo preview_canvas(const base::Folder& folder, const std::string& name) {
     const ReadOnly in(folder, name);
     return media::api().webp_canvas(in.fd, in.shown);
 }
@@ -285,7 +287,8 @@ Image decode_frame(const std::filesystem::path& path, int index, int threads) {
     return media::api().decode_frame(path, index, threads);
 }
 
-Image decode_frame(const Folder& folder, const std::string& name, int index, int threads, std::uint64_t max_pixels) {
+Image decode_frame(const base::Folder& folder, const std::string& name, int index, int threads,
+                   std::uint64_t max_pixels) {
     if (index < 0) throw std::out_of_range("video frame index " + std::to_string(index) + " is negative");
     if (threads < 0) throw std::invalid_argument("decoder threads " + std::to_string(threads) + " is negative");
     const ReadOnly in(folder, name);

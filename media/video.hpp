@@ -188,7 +188,8 @@ public:
     // Throws std::invalid_argument for an odd or non-positive size or bad
     // options, std::runtime_error (naming the path) when FFmpeg fails.
     // folder/name, written through an exclusive temporary (atomic_file.hpp).
-    VideoWriter(const Folder& folder, const std::string& name, int width, int height, const VideoOptions& options = {});
+    VideoWriter(const base::Folder& folder, const std::string& name, int width, int height,
+                const VideoOptions& options = {});
     VideoWriter(const std::filesystem::path& path, int width, int height, const VideoOptions& options = {});
     ~VideoWriter();  // without finish(), discards the temporary file: no half-written MP4 under the real name
     VideoWriter(const VideoWriter&) = delete;
@@ -208,7 +209,7 @@ public:
     // finish(), and also writes folder/name, the film's preview
     // (PreviewOptions), decoded back from the film just written; both
     // files are committed together.
-    PreviewInfo finish(const Folder& folder, const std::string& name, const PreviewOptions& options = {});
+    PreviewInfo finish(const base::Folder& folder, const std::string& name, const PreviewOptions& options = {});
     // The same, also writing folder/webm_name, the film in WebM
     // (WebmOptions), and keeping the MP4 only when `keep_mp4`: a film asked
     // for as WebM alone is encoded to MP4 first and that copy dropped. All
@@ -218,7 +219,7 @@ public:
         PreviewInfo preview;
         std::uint64_t webm_bytes = 0;
     };
-    Copies finish(const Folder& folder, const std::string& preview_name, const PreviewOptions& preview_options,
+    Copies finish(const base::Folder& folder, const std::string& preview_name, const PreviewOptions& preview_options,
                   const std::string& webm_name, const WebmOptions& webm_options, bool keep_mp4);
 
     const std::string& codec_name() const { return codec_name_; }  // "libx264" or "mpeg4"
@@ -289,12 +290,12 @@ Image decode_preview_frame(const std::filesystem::path& path, int index);
 // options.max_width x max_height, over the same duration. Only the frames
 // kept are held. A canvas whose header claims more than `max_pixels` throws
 // ImageTooLarge before anything is decoded.
-PreviewInfo write_preview_thumbnail(const Folder& source, const std::string& source_name, const Folder& folder,
-                                    const std::string& name, const PreviewOptions& options,
+PreviewInfo write_preview_thumbnail(const base::Folder& source, const std::string& source_name,
+                                    const base::Folder& folder, const std::string& name, const PreviewOptions& options,
                                     std::uint64_t max_pixels = any_pixels);
 // The canvas size (width, height) of the WebP folder/name as its header
 // says, nothing decoded; a regular file there, as above.
-PreviewInfo preview_canvas(const Folder& folder, const std::string& name);
+PreviewInfo preview_canvas(const base::Folder& folder, const std::string& name);
 
 // Decodes frame `index` (0-based, display order) back to RGBA on `threads`
 // decoder threads (0: as many as FFmpeg sees cores; the pixels do not depend
@@ -304,6 +305,7 @@ Image decode_frame(const std::filesystem::path& path, int index, int threads = 1
 // FIFO waited on, and libavformat reads the descriptor checked, never the
 // path). A film whose header claims frames of more than `max_pixels` pixels
 // throws ImageTooLarge before any frame is decoded.
-Image decode_frame(const Folder& folder, const std::string& name, int index, int threads, std::uint64_t max_pixels);
+Image decode_frame(const base::Folder& folder, const std::string& name, int index, int threads,
+                   std::uint64_t max_pixels);
 
 }  // namespace render

@@ -173,7 +173,7 @@ Font::Shaped Font::shape(std::string_view utf8, std::string_view language) const
 
 Font::Shaped Font::shape_anew(std::string_view utf8, std::string_view language) const {
     Shaped out;
-    const std::u32string codepoints = decode_utf8(utf8);
+    const std::u32string codepoints = base::decode_utf8(utf8);
     if (codepoints.empty()) return out;
     // Valid UTF-8 for the caller, where each character starts in it, and
     // each character's face: runs of one face are shaped together.
@@ -184,7 +184,7 @@ Font::Shaped Font::shape_anew(std::string_view utf8, std::string_view language) 
         const std::uint32_t face = (i > 0 && follows_base(c)) ? runs.back().second : face_for(c, language);
         if (runs.empty() || runs.back().second != face) runs.emplace_back(i, face);
         byte_of[i] = out.text.size();
-        out.text += encode_utf8(c);
+        out.text += base::encode_utf8(c);
     }
     byte_of[codepoints.size()] = out.text.size();
     // raqm is given code points, not UTF-8: for UTF-8 text raqm 0.7 turns
@@ -275,11 +275,11 @@ std::vector<std::string> wrap(const Font& font, std::string_view paragraph, floa
     };
     std::vector<Candidate> candidates;
     {
-        const std::u32string codepoints = decode_utf8(text);
+        const std::u32string codepoints = base::decode_utf8(text);
         const std::vector<LineBreak> breaks = line_breaks(codepoints, language);
         std::size_t end = 0;
         for (std::size_t i = 0; i < codepoints.size(); ++i) {
-            end += encode_utf8(codepoints[i]).size();
+            end += base::encode_utf8(codepoints[i]).size();
             if (breaks[i] != LineBreak::none) candidates.push_back({end, breaks[i] == LineBreak::must});
         }
     }

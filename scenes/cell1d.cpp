@@ -98,7 +98,7 @@ public:
                                   {"step", steps_},
                                   {"size", {cells.rows(), cells.cols()}},
                                   {"statistics", {{"on_cells", ca.on_cells()}}},
-                                  {"state_sha256", render::sha256_hex(cells.data(), cells.size())}});
+                                  {"state_sha256", base::sha256_hex(cells.data(), cells.size())}});
             progress.advance();
         }
         out.figure(field_figure(panels, d_, options_),

@@ -142,7 +142,7 @@ public:
                      {{"steps", gallery_steps_},
                       {"boundary", "wrap"},
                       {"rules", survey.fractal},
-                      {"state_sha256", render::sha256_hex(gallery.cells.data(), gallery.cells.size())}}}});
+                      {"state_sha256", base::sha256_hex(gallery.cells.data(), gallery.cells.size())}}}});
         progress.finish();
     }
 

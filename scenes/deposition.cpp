@@ -65,7 +65,7 @@ std::string deposit_hash(const sim::Deposition& deposit) {
     std::vector<std::int64_t> flat;
     for (const auto& p : deposit.particles())
         flat.insert(flat.end(), {std::int64_t(p.column), p.height, std::int64_t(p.arrival)});
-    return render::sha256_hex(flat.data(), flat.size() * sizeof(std::int64_t));
+    return base::sha256_hex(flat.data(), flat.size() * sizeof(std::int64_t));
 }
 
 std::int64_t max_height(const sim::Deposition& deposit) {

@@ -18,11 +18,11 @@ nlohmann::json field_statistics(const sim::Grid<double>& field) {
 }
 
 std::string state_hash(const sim::Grid<double>& field) {
-    return render::sha256_hex(field.data(), field.size() * sizeof(double));
+    return base::sha256_hex(field.data(), field.size() * sizeof(double));
 }
 
 std::string state_hash(const std::vector<double>& values) {
-    return render::sha256_hex(values.data(), values.size() * sizeof(double));
+    return base::sha256_hex(values.data(), values.size() * sizeof(double));
 }
 
 

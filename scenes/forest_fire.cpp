@@ -77,7 +77,7 @@ struct ForestDimension {
 nlohmann::json panel_metadata(const sim::ForestFire& model, int step) {
     return {{"step", step},
             {"statistics", {{"trees", model.trees()}, {"fires", model.fires()}, {"empty", model.empties()}}},
-            {"state_sha256", render::sha256_hex(model.cells().data(), model.cells().size())}};
+            {"state_sha256", base::sha256_hex(model.cells().data(), model.cells().size())}};
 }
 
 // Tree and fire counts over time on a log axis.

@@ -177,7 +177,7 @@ private:
         }
         return {{"step", step},
                 {"statistics", stats},
-                {"state_sha256", render::sha256_hex(state.data(), state.size() * sizeof(double))}};
+                {"state_sha256", base::sha256_hex(state.data(), state.size() * sizeof(double))}};
     }
 
     const FormulaModel m_;

@@ -123,7 +123,7 @@ nlohmann::json panel_metadata(const KernelRun& model, int step) {
     state.insert(state.end(), model.b().cells().begin(), model.b().cells().end());
     return {{"step", step},
             {"statistics", {{"A", summary(model.a())}, {"B", summary(model.b())}}},
-            {"state_sha256", render::sha256_hex(state.data(), state.size() * sizeof(double))}};
+            {"state_sha256", base::sha256_hex(state.data(), state.size() * sizeof(double))}};
 }
 
 class GrayScottScene : public SceneBase {

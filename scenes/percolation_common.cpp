@@ -28,7 +28,7 @@ nlohmann::json panel_metadata(const sim::Percolation& model, StopRule stop, bool
         {"step", model.steps()},
         {"n", cells.rows()},
         {"statistics", {{"wet", model.wet_count()}, {"porous_dry", porous}, {"percolates", model.bottom_row_wet()}}},
-        {"state_sha256", render::sha256_hex(cells.data(), cells.size())},
+        {"state_sha256", base::sha256_hex(cells.data(), cells.size())},
     };
     if (stopped)
         meta["stopped"] =

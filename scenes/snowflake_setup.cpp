@@ -137,7 +137,7 @@ std::string snowflake_hash(const sim::Snowflake& crystal) {
         flat.push_back(c.q);
         flat.push_back(c.r);
     }
-    return render::sha256_hex(flat.data(), flat.size() * sizeof(std::int32_t));
+    return base::sha256_hex(flat.data(), flat.size() * sizeof(std::int32_t));
 }
 
 }  // namespace scenes

@@ -34,7 +34,7 @@ render::Image diff_image(const render::Image& a, const render::Image& b) {
 }  // namespace
 
 std::string pixel_hash(const render::Image& image) {
-    return render::sha256_hex(image.rgba.data(), image.rgba.size());
+    return base::sha256_hex(image.rgba.data(), image.rgba.size());
 }
 
 GoldenCheck check_golden(const std::string& name, const render::Image& actual, const std::string& renderer) {

@@ -72,8 +72,8 @@ Opened open_chosen() {
     return opened;
 }
 
-Background<Opened>& loader() {
-    static Background<Opened> l(open_chosen);
+base::Background<Opened>& loader() {
+    static base::Background<Opened> l(open_chosen);
     return l;
 }
 

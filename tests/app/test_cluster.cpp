@@ -58,7 +58,8 @@ std::string small_descriptions(const fs::path& dir, bool film = false) {
             t["animation"].as_table()->insert_or_assign("segment_frames", 8);
         }
         std::ofstream(dir / (c.id + ".toml")) << t << "\n";
-        paths += " " + (dir / (c.id + ".toml")).string();
+        paths += ' ';  // appended apart: GCC 12 warns (-Wrestrict) on " " + string, wrongly
+        paths += (dir / (c.id + ".toml")).string();
     }
     return paths;
 }

@@ -36,7 +36,7 @@ std::map<std::string, std::string> tree(const fs::path& root) {
             what = "folder";
         } else if (fs::is_regular_file(status)) {
             const std::string bytes = slurp(it->path());
-            what = "file " + render::sha256_hex(bytes.data(), bytes.size());
+            what = "file " + base::sha256_hex(bytes.data(), bytes.size());
         } else {
             what = "other";
         }

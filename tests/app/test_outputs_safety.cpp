@@ -33,7 +33,7 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
     for (const auto& entry : fs::recursive_directory_iterator(dir))
         if (entry.is_regular_file()) {
             const std::string bytes = slurp(entry.path());
-            files[fs::relative(entry.path(), dir).string()] = render::sha256_hex(bytes.data(), bytes.size());
+            files[fs::relative(entry.path(), dir).string()] = base::sha256_hex(bytes.data(), bytes.size());
         }
     return files;
 }

@@ -50,7 +50,9 @@ Sharded sharded(const std::string& name) {
     return s;
 }
 
-std::string sha256_of(const std::vector<std::uint8_t>& bytes) { return render::sha256_hex(bytes.data(), bytes.size()); }
+std::string sha256_of(const std::vector<std::uint8_t>& bytes) {
+    return base::sha256_hex(bytes.data(), bytes.size());
+}
 
 std::string bytes_text(const std::vector<std::uint8_t>& bytes) { return std::string(bytes.begin(), bytes.end()); }
 

@@ -134,7 +134,7 @@ std::string preview_beside(const fs::path& dir, int workers, int planned, int gi
                                   preview);
     for (int i = 0; i < given; ++i) encoders.add(frame(i));
     encoders.finish();
-    writer.finish(render::Folder::of(dir / "x"), "film.webp", preview);
+    writer.finish(base::Folder::of(dir / "x"), "film.webp", preview);
     return testkit::slurp(dir / "film.webp");
 }
 
@@ -143,7 +143,7 @@ std::string preview_after(const fs::path& dir, int given, const render::PreviewO
     fs::create_directories(dir);
     render::VideoWriter writer(dir / "film.mp4", width, height, options());
     for (int i = 0; i < given; ++i) writer.add(frame(i));
-    writer.finish(render::Folder::of(dir / "x"), "film.webp", preview);
+    writer.finish(base::Folder::of(dir / "x"), "film.webp", preview);
     return testkit::slurp(dir / "film.webp");
 }
 

@@ -279,9 +279,9 @@ Outcome caption_text(const std::uint8_t* data, std::size_t size) {
     std::string text;
     if (data[0] & 1) {
         for (std::size_t i = 2; i + 4 <= size; i += 4)
-            text += render::encode_utf8(static_cast<char32_t>((data[i] | data[i + 1] << 8 | data[i + 2] << 16 |
-                                                      static_cast<std::uint32_t>(data[i + 3]) << 24) %
-                                                     0x110000u));
+            text += base::encode_utf8(static_cast<char32_t>(
+                (data[i] | data[i + 1] << 8 | data[i + 2] << 16 | static_cast<std::uint32_t>(data[i + 3]) << 24) %
+                0x110000u));
     } else {
         text.assign(reinterpret_cast<const char*>(data) + 2, size - 2);
     }

@@ -30,11 +30,11 @@ std::vector<std::string> named(const fs::path& dir, const std::string& prefix) {
 TEST_CASE("a temporary is never a name planted in advance", "[render][atomic]") {
     const fs::path dir = testkit::fresh_dir("atomic-planted");
     spill(dir / "secret.txt", "secret\n");
-    const render::Folder folder(dir);
+    const base::Folder folder(dir);
     // The first temporary shows the pattern: ".a.txt~tmp~PID~N".
     std::string first;
     {
-        render::AtomicFile probe(folder, "a.txt");
+        base::AtomicFile probe(folder, "a.txt");
         first = probe.temp_name();
     }
     const std::string pid = first.substr(first.find("~tmp~") + 5);    // "PID~N"
@@ -44,7 +44,7 @@ TEST_CASE("a temporary is never a name planted in advance", "[render][atomic]") 
     for (unsigned long n = next; n < next + 10; ++n)
         fs::create_symlink("secret.txt", dir / (".b.txt~tmp~" + pid_part + std::to_string(n)));
     fs::create_symlink("secret.txt", dir / "b.txt");
-    render::write_file_atomically(folder, "b.txt", "new\n");
+    base::write_file_atomically(folder, "b.txt", "new\n");
     CHECK(slurp(dir / "secret.txt") == "secret\n");
     CHECK(fs::is_regular_file(fs::symlink_status(dir / "b.txt")));  // the symlink replaced, not followed
     CHECK(slurp(dir / "b.txt") == "new\n");
@@ -53,14 +53,14 @@ TEST_CASE("a temporary is never a name planted in advance", "[render][atomic]") 
 
 TEST_CASE("a commit group puts every file in place or none", "[render][atomic]") {
     const fs::path dir = testkit::fresh_dir("atomic-group");
-    const render::Folder folder(dir);
+    const base::Folder folder(dir);
     for (const char* name : {"x.png", "x.json", "x.mp4"}) spill(dir / name, std::string("old ") + name);
 
     SECTION("a rename that fails after others undoes them") {
-        render::CommitGroup group;
-        render::write_file_atomically(folder, "x.png", "new png");
-        render::write_file_atomically(folder, "x.json", "new json");
-        render::AtomicFile mp4(folder, "x.mp4");
+        base::CommitGroup group;
+        base::write_file_atomically(folder, "x.png", "new png");
+        base::write_file_atomically(folder, "x.json", "new json");
+        base::AtomicFile mp4(folder, "x.mp4");
         mp4.commit();
         fs::remove(dir / mp4.temp_name());  // the third cannot be moved in
         CHECK_THROWS_WITH(group.commit(), Catch::Contains((dir / "x.mp4").string()));
@@ -68,9 +68,9 @@ TEST_CASE("a commit group puts every file in place or none", "[render][atomic]")
     SECTION("a folder where a file goes fails before anything moves") {
         fs::remove(dir / "x.json");
         fs::create_directory(dir / "x.json");
-        render::CommitGroup group;
-        render::write_file_atomically(folder, "x.png", "new png");
-        render::write_file_atomically(folder, "x.json", "new json");
+        base::CommitGroup group;
+        base::write_file_atomically(folder, "x.png", "new png");
+        base::write_file_atomically(folder, "x.json", "new json");
         CHECK_THROWS_WITH(group.commit(), Catch::Contains((dir / "x.json").string()) &&
                                               Catch::Contains("a folder stands where the file goes"));
         CHECK(fs::is_directory(dir / "x.json"));  // as it was
@@ -89,13 +89,13 @@ TEST_CASE("a commit group replaces files, folders and symlinks together", "[rend
     spill(dir / "elsewhere" / "kept.png", "kept");
     fs::create_symlink("elsewhere", dir / "x-frames");
     spill(dir / "x.png", "old");
-    const render::Folder folder(dir);
+    const base::Folder folder(dir);
     {
-        render::CommitGroup group;
-        render::AtomicDir frames(folder, "x-frames");
-        render::write_file_atomically(frames.folder(), "00000.png", "frame");
+        base::CommitGroup group;
+        base::AtomicDir frames(folder, "x-frames");
+        base::write_file_atomically(frames.folder(), "00000.png", "frame");
         frames.commit();
-        render::write_file_atomically(folder, "x.png", "new");
+        base::write_file_atomically(folder, "x.png", "new");
         CHECK(slurp(dir / "x.png") == "old");  // nothing in place before the group commits
         group.commit();
     }
@@ -113,8 +113,8 @@ TEST_CASE("stale temporaries are removed by name, never another output's", "[ren
     spill(dir / ".a.json~old~2~5", "");
     spill(dir / ".a.png.png~tmp~3~0", "");  // figure "a.png"'s, not figure "a"'s
     spill(dir / "a.png", "output");
-    const render::Folder folder(dir);
-    CHECK(render::remove_stale_temporaries(folder, {"a.png", "a.json", "a.mp4", "a-frames"}) == 2);
+    const base::Folder folder(dir);
+    CHECK(base::remove_stale_temporaries(folder, {"a.png", "a.json", "a.mp4", "a-frames"}) == 2);
     CHECK(named(dir, ".").size() == 1);
     CHECK(fs::exists(dir / ".a.png.png~tmp~3~0"));
     CHECK(slurp(dir / "a.png") == "output");

@@ -62,9 +62,9 @@ TEST_CASE("a PNG written fast holds the same pixels as one written smallest", "[
             p[3] = 255;
         }
     const fs::path dir = scratch("fast").parent_path();
-    const render::Folder folder(dir);
+    const base::Folder folder(dir);
     render::write_png(folder, "smallest.png", image);
-    render::write_png(folder, "fast.png", image, {}, render::AtomicFile::Commit::now, render::PngCompression::fast);
+    render::write_png(folder, "fast.png", image, {}, base::AtomicFile::Commit::now, render::PngCompression::fast);
     CHECK(render::read_png(dir / "fast.png").image.rgba == image.rgba);
     CHECK(render::read_png(dir / "smallest.png").image.rgba == image.rgba);
     CHECK(fs::file_size(dir / "fast.png") > fs::file_size(dir / "smallest.png"));

@@ -66,25 +66,26 @@ Image render_one(Font& font, const std::string& s, glm::vec2 at, Align align = A
 }  // namespace
 
 TEST_CASE("UTF-8 decoding gives the code points of tick labels, Greek and Latin-1", "[text]") {
-    CHECK(render::decode_utf8("10⁻³ α×β") == std::u32string{U'1', U'0', 0x207B, 0x00B3, U' ', 0x03B1, 0x00D7, 0x03B2});
-    CHECK(render::decode_utf8("−2 °C, µ²") == std::u32string{0x2212, U'2', U' ', 0x00B0, U'C', U',', U' ', 0x00B5, 0x00B2});
-    CHECK(render::decode_utf8("λμπστφγδ") == U"λμπστφγδ");
-    CHECK(render::decode_utf8("Ångström, naïve") == U"Ångström, naïve");
-    CHECK(render::decode_utf8("⁰¹²³⁴⁵⁶⁷⁸⁹") == std::u32string{0x2070, 0xB9, 0xB2, 0xB3, 0x2074, 0x2075, 0x2076,
-                                                               0x2077, 0x2078, 0x2079});
-    CHECK(render::decode_utf8("\xF0\x9F\x98\x80") == std::u32string{0x1F600});  // four bytes
-    CHECK(render::decode_utf8("").empty());
+    CHECK(base::decode_utf8("10⁻³ α×β") == std::u32string{U'1', U'0', 0x207B, 0x00B3, U' ', 0x03B1, 0x00D7, 0x03B2});
+    CHECK(base::decode_utf8("−2 °C, µ²") ==
+          std::u32string{0x2212, U'2', U' ', 0x00B0, U'C', U',', U' ', 0x00B5, 0x00B2});
+    CHECK(base::decode_utf8("λμπστφγδ") == U"λμπστφγδ");
+    CHECK(base::decode_utf8("Ångström, naïve") == U"Ångström, naïve");
+    CHECK(base::decode_utf8("⁰¹²³⁴⁵⁶⁷⁸⁹") ==
+          std::u32string{0x2070, 0xB9, 0xB2, 0xB3, 0x2074, 0x2075, 0x2076, 0x2077, 0x2078, 0x2079});
+    CHECK(base::decode_utf8("\xF0\x9F\x98\x80") == std::u32string{0x1F600});  // four bytes
+    CHECK(base::decode_utf8("").empty());
 }
 
 TEST_CASE("malformed UTF-8 becomes U+FFFD and decoding resumes", "[text]") {
-    const char32_t bad = render::replacement_character;
-    CHECK(render::decode_utf8("a\x80z") == std::u32string{U'a', bad, U'z'});          // stray continuation
-    CHECK(render::decode_utf8("a\xE2\x81z") == std::u32string{U'a', bad, U'z'});      // truncated by a new character
-    CHECK(render::decode_utf8("a\xE2\x81") == std::u32string{U'a', bad});             // truncated by the end
-    CHECK(render::decode_utf8("\xC0\xAF") == std::u32string{bad});                    // overlong '/'
-    CHECK(render::decode_utf8("\xED\xA0\x80") == std::u32string{bad});                // a surrogate
-    CHECK(render::decode_utf8("\xF4\x90\x80\x80") == std::u32string{bad});            // above U+10FFFF
-    CHECK(render::decode_utf8("\xFF!") == std::u32string{bad, U'!'});
+    const char32_t bad = base::replacement_character;
+    CHECK(base::decode_utf8("a\x80z") == std::u32string{U'a', bad, U'z'});      // stray continuation
+    CHECK(base::decode_utf8("a\xE2\x81z") == std::u32string{U'a', bad, U'z'});  // truncated by a new character
+    CHECK(base::decode_utf8("a\xE2\x81") == std::u32string{U'a', bad});         // truncated by the end
+    CHECK(base::decode_utf8("\xC0\xAF") == std::u32string{bad});                // overlong '/'
+    CHECK(base::decode_utf8("\xED\xA0\x80") == std::u32string{bad});            // a surrogate
+    CHECK(base::decode_utf8("\xF4\x90\x80\x80") == std::u32string{bad});        // above U+10FFFF
+    CHECK(base::decode_utf8("\xFF!") == std::u32string{bad, U'!'});
 }
 
 TEST_CASE("a font that cannot be loaded throws naming its path", "[text]") {
@@ -310,7 +311,7 @@ TEST_CASE("a Chinese caption is drawn from Noto Sans CJK with real glyphs and no
     // Liu and Zhang's caption of their Fig 3, with a Latin digit and CJK quotation marks.
     const std::string caption = "图3 “奇偶规则”生长出的雪花瞬时图象";
     const Font::Shaped shaped = font.shape(caption, "zh-cn");
-    REQUIRE(shaped.glyphs.size() == render::decode_utf8(caption).size());
+    REQUIRE(shaped.glyphs.size() == base::decode_utf8(caption).size());
     for (const Font::ShapedGlyph& g : shaped.glyphs) CHECK(g.index != 0);  // no .notdef
     // The ideographs come from the Simplified Chinese face of the collection
     // (index 2 of NotoSansCJK-Regular.ttc), the digit and space from DejaVu Sans.

@@ -320,7 +320,7 @@ TEST_CASE("a film's preview loops over evenly spread frames of the film scaled t
     render::PreviewOptions options;
     options.max_width = 32;  // half the film's width: 32 x 24
     options.max_frames = 5;  // frames 0, 6, 12, 18 and 24 of 25
-    const render::PreviewInfo written = writer.finish(render::Folder::of(preview), preview.filename().string(), options);
+    const render::PreviewInfo written = writer.finish(base::Folder::of(preview), preview.filename().string(), options);
     REQUIRE(fs::exists(film));
     CHECK(render::probe_video(film).frames == kFrames);  // the film is whole
 
@@ -368,7 +368,7 @@ TEST_CASE("a preview too big for its budget is made smaller until it fits", "[vi
     }
     render::PreviewOptions options;
     options.max_bytes = 20000;
-    const render::PreviewInfo written = writer.finish(render::Folder::of(preview), preview.filename().string(), options);
+    const render::PreviewInfo written = writer.finish(base::Folder::of(preview), preview.filename().string(), options);
     CHECK(fs::file_size(preview) <= options.max_bytes);
     CHECK(written.bytes == fs::file_size(preview));
     CHECK(written.quality < options.quality);
@@ -383,7 +383,7 @@ TEST_CASE("a film with a preview leaves neither file when the preview cannot be 
         for (int i = 0; i < kFrames; ++i) writer.add(moving_bar(i));
         render::PreviewOptions options;
         options.max_bytes = 10;  // no WebP is this small
-        CHECK_THROWS_WITH(writer.finish(render::Folder::of(preview), preview.filename().string(), options),
+        CHECK_THROWS_WITH(writer.finish(base::Folder::of(preview), preview.filename().string(), options),
                           Catch::Contains("cannot write") && Catch::Contains("preview-refused.webp"));
         CHECK_FALSE(fs::exists(film));
     }  // the writer gone, its temporary is too

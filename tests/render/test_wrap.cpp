@@ -22,7 +22,7 @@ namespace {
 std::vector<std::string> wrap_by_every_piece(const Font& font, const std::string& paragraph, float width,
                                              const std::string& language = "") {
     const std::string text = font.shape(paragraph, language).text;
-    const std::u32string codepoints = render::decode_utf8(text);
+    const std::u32string codepoints = base::decode_utf8(text);
     const std::vector<render::LineBreak> breaks = render::line_breaks(codepoints, language);
     auto trimmed = [](std::string line) {
         while (!line.empty() && (line.back() == ' ' || line.back() == '\n')) line.pop_back();
@@ -31,7 +31,7 @@ std::vector<std::string> wrap_by_every_piece(const Font& font, const std::string
     std::vector<std::string> lines;
     std::size_t start = 0, fits = std::string::npos, end = 0;
     for (std::size_t i = 0; i < codepoints.size(); ++i) {
-        end += render::encode_utf8(codepoints[i]).size();
+        end += base::encode_utf8(codepoints[i]).size();
         if (breaks[i] == render::LineBreak::none) continue;
         if (fits != std::string::npos && font.width(trimmed(text.substr(start, end - start)), language) > width) {
             lines.push_back(trimmed(text.substr(start, fits - start)));
@@ -103,7 +103,7 @@ TEST_CASE("flags, noncharacters, tags, surrogates and controls go through wrap a
     for (char32_t c = 0; c < 0xA0; ++c)
         if (c < 0x20 || c >= 0x7F) codes.push_back(c);
     std::string text;
-    for (const char32_t c : codes) text += "ab " + render::encode_utf8(c) + render::encode_utf8(c) + " ";
+    for (const char32_t c : codes) text += "ab " + base::encode_utf8(c) + base::encode_utf8(c) + " ";
     text += "\xED\xA0\x80 \xF4\x90\x80\x80 \xFF";  // U+D800 and U+110000 as UTF-8 would write them, a stray byte
     for (const float width : {1.0f, 30.0f, 300.0f, 3000.0f}) {
         const std::vector<std::string> lines = render::wrap(font, text, width);
