@@ -206,7 +206,8 @@ TEST_CASE("shards 1/3 2/3 3/3 and their merge give the bytes of one run", "[clus
             CHECK_FALSE(fs::exists(out / (id + ".png")));  // a shard draws nothing
             CHECK(fs::exists(out / (id + ".parts") / "manifest.json"));
         }
-        from += " " + out.string();
+        from += ' ';
+        from += out.string();
     }
     SECTION("merged from every shard: the same bytes; the shards' parts stay") {
         const Run merge = figgen("merge" + files + small + " --from" + from + " --out " + (dir / "merged").string());
