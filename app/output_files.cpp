@@ -323,7 +323,7 @@ void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json meta
         page.page().creator = std::string("figgen ") + app::version();
         const std::string file_name = description_.id + f.suffix;
         base::AtomicFile file(folder_, file_name);
-        render::vector::api().write(file.fd(), file.final_path(), *f.vector, page.page(),
+        render::vector::write(file.fd(), file.final_path(), *f.vector, page.page(),
                                     static_cast<std::uint64_t>(render::vector::file_bytes(drawing.width, drawing.height)));
         struct stat info {};
         const double bytes = ::fstat(file.fd(), &info) == 0 ? static_cast<double>(info.st_size) : 0.0;

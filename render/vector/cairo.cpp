@@ -20,15 +20,17 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <cstdio>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
-#include "render/vector/vector.hpp"
+#include "render/vector/vector_abi.h"
 
-namespace render::vector {
 namespace {
 
 // What the write callback needs: the descriptor, and the first error it met.
@@ -84,11 +86,11 @@ void mark_nearest(std::string& svg, const std::vector<bool>& nearest) {
         if (nearest[k]) svg.replace(at[k], 7, mark);
 }
 
-[[noreturn]] void fail(const std::filesystem::path& shown, const std::string& what) {
-    throw std::runtime_error("cannot write " + shown.string() + ": " + what);
+[[noreturn]] void fail(const std::string& shown, const std::string& what) {
+    throw std::runtime_error("cannot write " + shown + ": " + what);
 }
 
-void check(cairo_status_t status, const Sink& sink, const std::filesystem::path& shown) {
+void check(cairo_status_t status, const Sink& sink, const std::string& shown) {
     if (status == CAIRO_STATUS_SUCCESS) return;
     if (status == CAIRO_STATUS_WRITE_ERROR && sink.too_large)
         fail(shown, "it would take more than the " + std::to_string(sink.max_bytes) + " bytes allowed for it");
@@ -98,7 +100,7 @@ void check(cairo_status_t status, const Sink& sink, const std::filesystem::path&
 
 // FreeType's library for the module's faces, made on first use and kept:
 // cairo may hold a face in its cache past the page that loaded it.
-FT_Library freetype(const std::filesystem::path& shown) {
+FT_Library freetype(const std::string& shown) {
     static FT_Library library = [] {
         FT_Library l = nullptr;
         return FT_Init_FreeType(&l) == 0 ? l : nullptr;
@@ -111,7 +113,7 @@ FT_Library freetype(const std::filesystem::path& shown) {
 // released by cairo when its font face goes.
 class Fonts {
 public:
-    explicit Fonts(const std::filesystem::path& shown) : shown_(shown) {}
+    explicit Fonts(const std::string& shown) : shown_(shown) {}
     ~Fonts() {
         for (auto& [file, face] : faces_) cairo_font_face_destroy(face);
     }
@@ -135,76 +137,80 @@ public:
     }
 
 private:
-    const std::filesystem::path& shown_;
+    const std::string& shown_;
     std::map<std::pair<std::string, int>, cairo_font_face_t*> faces_;
 };
 
 // What painting a page needs besides the item.
 struct Context {
     Fonts fonts;
-    Format format;
+    int format;
+    std::vector<bool> nearest;  // per picture painted: whether it is nearest-sampled (mark_nearest)
 };
 
-void set_colour(cairo_t* cr, const glm::vec4& c) { cairo_set_source_rgba(cr, c.r, c.g, c.b, c.a); }
+void set_colour(cairo_t* cr, const float c[4]) { cairo_set_source_rgba(cr, c[0], c[1], c[2], c[3]); }
 
-void add_path(cairo_t* cr, const Path& path) {
-    for (const PathStep& step : path) {
+void add_path(cairo_t* cr, const figgen_vector_item& item) {
+    for (std::size_t k = 0; k < item.path_steps; ++k) {
+        const figgen_path_step& step = item.path[k];
         switch (step.kind) {
-            case PathStep::move: cairo_move_to(cr, step.at.x, step.at.y); break;
-            case PathStep::line: cairo_line_to(cr, step.at.x, step.at.y); break;
-            case PathStep::close: cairo_close_path(cr); break;
-            case PathStep::circle:
+            case FIGGEN_PATH_MOVE: cairo_move_to(cr, step.x, step.y); break;
+            case FIGGEN_PATH_LINE: cairo_line_to(cr, step.x, step.y); break;
+            case FIGGEN_PATH_CLOSE: cairo_close_path(cr); break;
+            case FIGGEN_PATH_CIRCLE:
                 // Counter-clockwise on screen is decreasing angle in y-down space: every
                 // circle winds the way the page's polygons are made to wind.
                 cairo_new_sub_path(cr);
-                cairo_arc_negative(cr, step.at.x, step.at.y, step.radius, 0, -2 * std::numbers::pi);
+                cairo_arc_negative(cr, step.x, step.y, step.radius, 0, -2 * std::numbers::pi);
                 cairo_close_path(cr);
                 break;
+            default: throw std::invalid_argument("a path step of unknown kind " + std::to_string(step.kind));
         }
     }
 }
 
-void draw(cairo_t* cr, const Fill& f, Context&) {
-    add_path(cr, f.path);
+void fill(cairo_t* cr, const figgen_vector_item& f) {
+    add_path(cr, f);
     set_colour(cr, f.colour);
-    cairo_set_fill_rule(cr, f.rule == FillRule::even_odd ? CAIRO_FILL_RULE_EVEN_ODD : CAIRO_FILL_RULE_WINDING);
+    cairo_set_fill_rule(cr, f.even_odd ? CAIRO_FILL_RULE_EVEN_ODD : CAIRO_FILL_RULE_WINDING);
     cairo_fill(cr);
 }
 
-void draw(cairo_t* cr, const Stroke& s, Context&) {
-    add_path(cr, s.path);
+void stroke(cairo_t* cr, const figgen_vector_item& s) {
+    add_path(cr, s);
     set_colour(cr, s.colour);
     cairo_set_line_width(cr, s.width);
-    cairo_set_line_cap(cr, s.cap == Cap::round    ? CAIRO_LINE_CAP_ROUND
-                           : s.cap == Cap::square ? CAIRO_LINE_CAP_SQUARE
-                                                  : CAIRO_LINE_CAP_BUTT);
+    cairo_set_line_cap(cr, s.cap == FIGGEN_CAP_ROUND    ? CAIRO_LINE_CAP_ROUND
+                           : s.cap == FIGGEN_CAP_SQUARE ? CAIRO_LINE_CAP_SQUARE
+                                                        : CAIRO_LINE_CAP_BUTT);
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-    std::vector<double> dash(s.dash.begin(), s.dash.end());
+    std::vector<double> dash(s.dash, s.dash + s.dash_count);
     cairo_set_dash(cr, dash.data(), static_cast<int>(dash.size()), s.dash_offset);
     cairo_stroke(cr);
     cairo_set_dash(cr, nullptr, 0, 0);
 }
 
-void draw(cairo_t* cr, const Glyphs& g, Context& c) {
+void glyphs(cairo_t* cr, const figgen_vector_item& g, Context& c) {
     cairo_save(cr);
-    cairo_set_font_face(cr, c.fonts.face(g.font_path, g.font_index));
+    cairo_set_font_face(cr, c.fonts.face(g.font_path ? g.font_path : "", g.font_index));
     cairo_set_font_size(cr, g.pixel_size);
-    cairo_translate(cr, g.origin.x, g.origin.y);
+    cairo_translate(cr, g.origin[0], g.origin[1]);
     cairo_rotate(cr, -g.rotation_degrees * std::numbers::pi / 180);
     std::vector<cairo_glyph_t> glyphs;
-    glyphs.reserve(g.glyphs.size());
-    for (const Glyphs::Glyph& glyph : g.glyphs) glyphs.push_back({glyph.index, glyph.position.x, glyph.position.y});
+    glyphs.reserve(g.glyph_count);
+    for (std::size_t k = 0; k < g.glyph_count; ++k) glyphs.push_back({g.glyphs[k].index, g.glyphs[k].x, g.glyphs[k].y});
     set_colour(cr, g.colour);
     // With the text and each glyph's cluster, a PDF's text can be searched and copied.
     std::vector<cairo_text_cluster_t> clusters;
     std::size_t bytes = 0, clustered = 0;
-    for (const auto& [b, n] : g.clusters) {
-        clusters.push_back({b, n});
-        bytes += static_cast<std::size_t>(std::max(b, 0));
-        clustered += static_cast<std::size_t>(std::max(n, 0));
+    for (std::size_t k = 0; k < g.cluster_count; ++k) {
+        const figgen_cluster& cluster = g.clusters[k];
+        clusters.push_back({cluster.bytes, cluster.glyphs});
+        bytes += static_cast<std::size_t>(std::max(cluster.bytes, 0));
+        clustered += static_cast<std::size_t>(std::max(cluster.glyphs, 0));
     }
-    if (!g.text.empty() && bytes == g.text.size() && clustered == glyphs.size())
-        cairo_show_text_glyphs(cr, g.text.data(), static_cast<int>(g.text.size()), glyphs.data(),
+    if (g.text_bytes > 0 && bytes == g.text_bytes && clustered == glyphs.size())
+        cairo_show_text_glyphs(cr, g.text, static_cast<int>(g.text_bytes), glyphs.data(),
                                static_cast<int>(glyphs.size()), clusters.data(), static_cast<int>(clusters.size()),
                                g.backward ? CAIRO_TEXT_CLUSTER_FLAG_BACKWARD : cairo_text_cluster_flags_t(0));
     else
@@ -212,43 +218,42 @@ void draw(cairo_t* cr, const Glyphs& g, Context& c) {
     cairo_restore(cr);
 }
 
-bool painted(const Picture& p) {
-    return p.image.width >= 1 && p.image.height >= 1 && p.where.w > 0 && p.where.h > 0;
-}
-
-void draw(cairo_t* cr, const Picture& p, Context& c) {
-    if (!painted(p)) return;
+void picture(cairo_t* cr, const figgen_vector_item& p, Context& c) {
+    const float x = p.box[0], y = p.box[1], w = p.box[2], h = p.box[3];
+    if (p.image_width < 1 || p.image_height < 1 || !p.pixels || !(w > 0) || !(h > 0)) return;
+    c.nearest.push_back(!p.smooth);
     // In SVG a nearest image is enlarged by whole pixels to about its
     // rectangle's size: librsvg, among other viewers, ignores image-rendering
     // and would blur each cell into its neighbours; enlarged, only the cells'
     // edges can soften. PDF keeps the cells, with /Interpolate false.
     int kx = 1, ky = 1;
-    if (!p.smooth && c.format == Format::svg) {
-        kx = std::max(1, static_cast<int>(std::ceil(p.where.w / float(p.image.width) - 1e-3f)));
-        ky = std::max(1, static_cast<int>(std::ceil(p.where.h / float(p.image.height) - 1e-3f)));
+    if (!p.smooth && c.format == FIGGEN_VECTOR_SVG) {
+        kx = std::max(1, static_cast<int>(std::ceil(w / float(p.image_width) - 1e-3f)));
+        ky = std::max(1, static_cast<int>(std::ceil(h / float(p.image_height) - 1e-3f)));
     }
-    const Image& im = p.image;
-    const int width = im.width * kx, height = im.height * ky;
+    const int width = p.image_width * kx, height = p.image_height * ky;
     cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height);
     cairo_surface_flush(surface);
     unsigned char* data = cairo_image_surface_get_data(surface);
     const int stride = cairo_image_surface_get_stride(surface);
-    for (int y = 0; y < height; ++y) {
-        auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
-        for (int x = 0; x < width; ++x) {
-            const std::uint8_t* px = im.pixel(x / kx, y / ky);
+    for (int row_y = 0; row_y < height; ++row_y) {
+        auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(row_y) * stride);
+        for (int col = 0; col < width; ++col) {
+            const std::uint8_t* px =
+                p.pixels + (static_cast<std::size_t>(row_y / ky) * static_cast<std::size_t>(p.image_width) +
+                            static_cast<std::size_t>(col / kx)) * 4;
             const unsigned a = px[3];
             auto pre = [a](unsigned v) { return (v * a + 127) / 255; };
             // ARGB32: premultiplied, in a native-endian 32-bit word.
-            row[x] = (a << 24) | (pre(px[0]) << 16) | (pre(px[1]) << 8) | pre(px[2]);
+            row[col] = (a << 24) | (pre(px[0]) << 16) | (pre(px[1]) << 8) | pre(px[2]);
         }
     }
     cairo_surface_mark_dirty(surface);
     cairo_save(cr);
-    cairo_rectangle(cr, p.where.x, p.where.y, p.where.w, p.where.h);
+    cairo_rectangle(cr, x, y, w, h);
     cairo_clip(cr);
-    cairo_translate(cr, p.where.x, p.where.y);
-    cairo_scale(cr, p.where.w / width, p.where.h / height);
+    cairo_translate(cr, x, y);
+    cairo_scale(cr, w / width, h / height);
     cairo_set_source_surface(cr, surface, 0, 0);
     cairo_pattern_t* pattern = cairo_get_source(cr);
     cairo_pattern_set_extend(pattern, CAIRO_EXTEND_PAD);
@@ -258,33 +263,40 @@ void draw(cairo_t* cr, const Picture& p, Context& c) {
     cairo_surface_destroy(surface);
 }
 
-void draw(cairo_t* cr, const Clip& clip, Context&) {
-    cairo_save(cr);
-    cairo_rectangle(cr, clip.box.x0, clip.box.y0, clip.box.x1 - clip.box.x0, clip.box.y1 - clip.box.y0);
-    cairo_clip(cr);
+void draw(cairo_t* cr, const figgen_vector_item& item, Context& c) {
+    switch (item.kind) {
+        case FIGGEN_ITEM_FILL: return fill(cr, item);
+        case FIGGEN_ITEM_STROKE: return stroke(cr, item);
+        case FIGGEN_ITEM_GLYPHS: return glyphs(cr, item, c);
+        case FIGGEN_ITEM_PICTURE: return picture(cr, item, c);
+        case FIGGEN_ITEM_CLIP:
+            cairo_save(cr);
+            cairo_rectangle(cr, item.box[0], item.box[1], item.box[2] - item.box[0], item.box[3] - item.box[1]);
+            cairo_clip(cr);
+            return;
+        case FIGGEN_ITEM_UNCLIP: cairo_restore(cr); return;
+        case FIGGEN_ITEM_GROUP_BEGIN: cairo_push_group(cr); return;
+        case FIGGEN_ITEM_GROUP_END:
+            cairo_pop_group_to_source(cr);
+            cairo_paint_with_alpha(cr, item.alpha);
+            return;
+        default: throw std::invalid_argument("an item of unknown kind " + std::to_string(item.kind));
+    }
 }
 
-void draw(cairo_t* cr, const Unclip&, Context&) { cairo_restore(cr); }
-
-void draw(cairo_t* cr, const GroupBegin&, Context&) { cairo_push_group(cr); }
-
-void draw(cairo_t* cr, const GroupEnd& g, Context&) {
-    cairo_pop_group_to_source(cr);
-    cairo_paint_with_alpha(cr, g.alpha);
-}
-
-void write(int fd, const std::filesystem::path& shown, Format format, const Page& page, std::uint64_t max_bytes) {
+void write(int fd, const std::string& shown, int format, const figgen_vector_page& page, std::uint64_t max_bytes) {
     if (page.width < 1 || page.height < 1) fail(shown, "the page is empty");
+    if (format != FIGGEN_VECTOR_PDF && format != FIGGEN_VECTOR_SVG) fail(shown, "an unknown format");
     Sink sink{fd, max_bytes};
     std::string svg;
     cairo_surface_t* surface = nullptr;
     double unit = 1;  // page units a pixel
-    if (format == Format::pdf) {
+    if (format == FIGGEN_VECTOR_PDF) {
         unit = 72.0 / 100.0;  // the PNG's pixels at 100 dpi
         surface = cairo_pdf_surface_create_for_stream(write_to_fd, &sink, page.width * unit, page.height * unit);
         cairo_pdf_surface_restrict_to_version(surface, CAIRO_PDF_VERSION_1_5);
-        cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE, page.title.c_str());
-        cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, page.creator.c_str());
+        cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE, page.title ? page.title : "");
+        cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, page.creator ? page.creator : "");
         // No creation date: the same figure gives the same bytes.
         cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATE_DATE, "");
     } else {
@@ -295,8 +307,9 @@ void write(int fd, const std::filesystem::path& shown, Format format, const Page
     }
     std::unique_ptr<cairo_surface_t, void (*)(cairo_surface_t*)> owned_surface(surface, cairo_surface_destroy);
     check(cairo_surface_status(surface), sink, shown);
+    std::vector<bool> nearest;
     {
-        Context context{Fonts(shown), format};
+        Context context{Fonts(shown), format, {}};
         cairo_t* cr = cairo_create(surface);
         std::unique_ptr<cairo_t, void (*)(cairo_t*)> owned_cr(cr, cairo_destroy);
         cairo_scale(cr, unit, unit);
@@ -305,8 +318,13 @@ void write(int fd, const std::filesystem::path& shown, Format format, const Page
         cairo_font_options_set_hint_metrics(options, CAIRO_HINT_METRICS_OFF);
         cairo_set_font_options(cr, options);
         cairo_font_options_destroy(options);
-        for (const Item& item : page.items) std::visit([&](const auto& i) { draw(cr, i, context); }, item);
+        for (std::size_t k = 0; k < page.item_count; ++k) {
+            figgen_vector_item item{};
+            if (page.item(page.items, k, &item) != 0) fail(shown, "the page has no item " + std::to_string(k));
+            draw(cr, item, context);
+        }
         check(cairo_status(cr), sink, shown);
+        nearest = std::move(context.nearest);
         owned_cr.reset();
     }
     cairo_surface_finish(surface);
@@ -314,11 +332,7 @@ void write(int fd, const std::filesystem::path& shown, Format format, const Page
     // cairo 1.16's PDF surface does not always carry a failed write into its
     // status: what the sink saw decides too.
     if (sink.too_large || sink.error != 0) check(CAIRO_STATUS_WRITE_ERROR, sink, shown);
-    if (format == Format::svg) {
-        std::vector<bool> nearest;
-        for (const Item& item : page.items)
-            if (const auto* picture = std::get_if<Picture>(&item); picture && painted(*picture))
-                nearest.push_back(!picture->smooth);
+    if (format == FIGGEN_VECTOR_SVG) {
         mark_nearest(svg, nearest);
         if (svg.size() > max_bytes) {
             sink.too_large = true;
@@ -329,11 +343,26 @@ void write(int fd, const std::filesystem::path& shown, Format format, const Page
     }
 }
 
-const Api functions{api_version, write};
+// The C entry: nothing thrown crosses it.
+int write_c(int fd, const char* shown, int32_t format, const figgen_vector_page* page, uint64_t max_bytes,
+            char* error, size_t error_size) {
+    const std::string path = shown ? shown : "the vector file";
+    try {
+        if (!page) fail(path, "no page");
+        write(fd, path, format, *page, max_bytes);
+        return 0;
+    } catch (const std::exception& e) {
+        if (error && error_size > 0) std::snprintf(error, error_size, "%s", e.what());
+    } catch (...) {
+        if (error && error_size > 0) std::snprintf(error, error_size, "cannot write %s", path.c_str());
+    }
+    return 1;
+}
+
+const figgen_vector_api functions{FIGGEN_VECTOR_ABI_VERSION, write_c};
 
 }  // namespace
-}  // namespace render::vector
 
-extern "C" const render::vector::Api* figgen_vector_api() {
-    return &render::vector::functions;
+extern "C" const figgen_vector_api* figgen_vector_module(void) {
+    return &functions;
 }

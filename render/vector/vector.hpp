@@ -27,9 +27,6 @@
 
 namespace render::vector {
 
-// Bumped whenever Api or the page's types change: a module of another build is refused.
-constexpr int api_version = 2;
-
 enum class Format { pdf, svg };
 
 // One piece of a path.
@@ -113,16 +110,6 @@ struct Page {
     std::string creator;        // "figgen 1.2.3"
 };
 
-struct Api {
-    int version;
-    // Writes `page` as `format` to `fd` (open for writing, at its start);
-    // `shown` is the path errors name. Throws std::runtime_error naming
-    // `shown` when cairo fails (a full disk included), or when the file
-    // would pass `max_bytes`, before writing more than that.
-    void (*write)(int fd, const std::filesystem::path& shown, Format format, const Page& page,
-                  std::uint64_t max_bytes);
-};
-
 // The PDF's and SVG's stage: a vector page (its paths, and its images at
 // most render::max_cells_per_pixel cells a pixel each way, hexagons under a
 // pixel drawn as one image) and cairo writing it, one format at a time,
@@ -135,20 +122,21 @@ constexpr double page_bytes = 16.0 * 1024 * 1024;
 constexpr double page_bytes_per_pixel = 64.0;
 // The most a PDF or SVG of width x height pixels may take: 16 bytes a pixel
 // and 1 MiB (docs/outputs.md lists what the catalog's take). A file that
-// would pass it stops with an error before more is written (Api::write's
+// would pass it stops with an error before more is written (write's
 // max_bytes), so the disk estimate holds.
 inline double file_bytes(int width, int height) {
     return 16.0 * width * height + 1024.0 * 1024.0;
 }
 
-// The module's functions, opening it on the first call (std::runtime_error
-// with one line saying what is missing when it cannot).
-const Api& api();
+// Writes `page` as `format` to `fd` (open for writing, at its start)
+// through the module, opened on the first call; `shown` is the path errors
+// name. Throws std::runtime_error with one line: the module cannot be
+// opened, cairo failed (a full disk included), or the file would pass
+// `max_bytes`, before writing more than that. The page crosses into the
+// module in plain C types (render/vector/vector_abi.h), one item at a time.
+void write(int fd, const std::filesystem::path& shown, Format format, const Page& page, std::uint64_t max_bytes);
 
 // Starts opening the module on a thread of its own (see render::preload_gl).
 void preload();
 
 }  // namespace render::vector
-
-// The module's one entry point.
-extern "C" const render::vector::Api* figgen_vector_api();

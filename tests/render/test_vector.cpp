@@ -46,7 +46,7 @@ int moves(const render::vector::Path& path) {
 fs::path write(const render::VectorPage& page, const fs::path& dir, const std::string& name,
                render::vector::Format format, std::uint64_t max_bytes = 1u << 30) {
     base::AtomicFile file(dir / name);
-    render::vector::api().write(file.fd(), file.final_path(), format, page.page(), max_bytes);
+    render::vector::write(file.fd(), file.final_path(), format, page.page(), max_bytes);
     file.commit();
     return dir / name;
 }
