@@ -875,14 +875,15 @@ PreviewInfo write_preview_thumbnail(int fd, const std::filesystem::path& shown, 
     return write_webp(fd, shown, frames, duration_ms / 1000.0, options);
 }
 
-const Api functions{api_version,       open_encoder, open_segment,      probe_video,
-                    decode_frame,      scale,        write_preview,     probe_webp,
-                    open_preview,      write_webm,   decode_webp_frame, write_preview_thumbnail,
+const Api functions{open_encoder,      open_segment, probe_video,       decode_frame,
+                    scale,             write_preview, probe_webp,       open_preview,
+                    write_webm,        decode_webp_frame, write_preview_thumbnail,
                     decode_film_frame, webp_canvas};
 
 }  // namespace
-}  // namespace render::media
 
-extern "C" const render::media::Api* figgen_media_api() {
-    return &render::media::functions;
+const Api& implementation() {
+    return functions;
 }
+
+}  // namespace render::media

@@ -20,9 +20,6 @@
 
 namespace render::media {
 
-// Bumped whenever Api or Encoder change: a module of another build is refused.
-constexpr int api_version = 7;
-
 using Packet = VideoPacket;
 
 // One segment of a film, encoded on its own: it starts with a key frame and
@@ -67,8 +64,10 @@ public:
     virtual std::string codec_name() const = 0;
 };
 
+// Both sides hold this C++ vocabulary; between them it crosses in plain C
+// types (media/media_abi.h): media.cpp turns it into C calls, the module's
+// media_module.cpp turns those back into calls of its implementation().
 struct Api {
-    int version;
     // An MP4 writer on `fd` (open for reading and writing; the muxer reads
     // back for faststart); `shown` is the path errors name. Throws
     // std::runtime_error naming `shown` when FFmpeg fails, and
@@ -124,7 +123,7 @@ const Api& api();
 // Starts opening the module on a thread of its own (see render::preload_gl).
 void preload();
 
-}  // namespace render::media
+// The module's own implementation (media/ffmpeg.cpp): defined in the module only.
+const Api& implementation();
 
-// The module's one entry point.
-extern "C" const render::media::Api* figgen_media_api();
+}  // namespace render::media

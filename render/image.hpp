@@ -29,14 +29,16 @@ constexpr std::uint64_t any_pixels = std::numeric_limits<std::uint64_t>::max();
 // decoded: its header claims more pixels than the reader was allowed, so
 // a few bytes of header cannot make the reader allocate gigabytes.
 struct ImageTooLarge : std::runtime_error {
-    ImageTooLarge(const std::string& file, std::uint64_t claimed_width, std::uint64_t claimed_height,
+    ImageTooLarge(const std::string& read, std::uint64_t claimed_width, std::uint64_t claimed_height,
                   std::uint64_t allowed)
-        : std::runtime_error("cannot read " + file + ": its header claims " + std::to_string(claimed_width) + " x " +
+        : std::runtime_error("cannot read " + read + ": its header claims " + std::to_string(claimed_width) + " x " +
                              std::to_string(claimed_height) + " pixels, more than the " + std::to_string(allowed) +
                              " allowed"),
+          file(read),
           width(claimed_width),
           height(claimed_height),
           max_pixels(allowed) {}
+    std::string file;             // what was read
     std::uint64_t width, height;  // what the header claims
     std::uint64_t max_pixels;     // what the reader allowed
 };

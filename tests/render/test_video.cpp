@@ -120,6 +120,28 @@ TEST_CASE("a decoded frame keeps the pattern's colours and position", "[video]")
     CHECK_THROWS_AS(render::decode_frame(path, kFrames), std::out_of_range);
 }
 
+// The media module returns its failures through a C error record
+// (media/media_abi.h); the program throws them again as what they were.
+TEST_CASE("the media module's failures come back as the exceptions they were", "[video]") {
+    const fs::path path = scratch("bar_too_large.mp4");
+    encode_bar(path);
+    const base::Folder folder = base::Folder::of(path);
+    const std::uint64_t allowed = static_cast<std::uint64_t>(kWidth) * kHeight - 1;
+    try {
+        render::decode_frame(folder, path.filename().string(), 0, 1, allowed);
+        FAIL("a film larger than max_pixels decoded");
+    } catch (const render::ImageTooLarge& e) {
+        CHECK(e.width == static_cast<std::uint64_t>(kWidth));
+        CHECK(e.height == static_cast<std::uint64_t>(kHeight));
+        CHECK(e.max_pixels == allowed);
+        CHECK_THAT(e.file, Catch::Contains("bar_too_large.mp4"));
+        CHECK_THAT(e.what(), Catch::Contains("more than the " + std::to_string(allowed) + " allowed"));
+    }
+    CHECK(render::decode_frame(folder, path.filename().string(), 0, 1, allowed + 1).width == kWidth);
+    CHECK_THROWS_AS(render::decode_frame(path, kFrames), std::out_of_range);
+    CHECK_THROWS_AS(render::probe_video(scratch("no-such-film.mp4")), std::runtime_error);
+}
+
 TEST_CASE("decoding on more threads gives the same pixels", "[video]") {
     const fs::path path = scratch("bar_threads.mp4");
     encode_bar(path);
