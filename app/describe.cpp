@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <sstream>
+#include <utility>
 
 #include "app/terminal_text.hpp"
 #include "description/description.hpp"
@@ -46,14 +47,15 @@ std::string shown(const nlohmann::json& value) {
     return fit_columns(value.is_string() ? "\"" + value.get<std::string>() + "\"" : value.dump(), 28);
 }
 
-std::string range_of(const std::string& key, const std::vector<sim::CheckedRange>& ranges) {
+// The range the model checks `key` against, and where its bound comes from ("" for none).
+std::pair<std::string, std::string> range_of(const std::string& key, const std::vector<sim::CheckedRange>& ranges) {
     for (const auto& r : ranges) {
         if (r.name != key) continue;
         char text[96];
         std::snprintf(text, sizeof text, r.integer ? "an integer from %.0f to %.0f" : "from %g to %g", r.low, r.high);
-        return text;
+        return {text, r.why};
     }
-    return "";
+    return {"", ""};
 }
 
 const SettingsLog::Section* find(const std::vector<SettingsLog::Section>& sections, const std::string& name) {
@@ -94,9 +96,11 @@ std::string describe(const std::filesystem::path& file) {
             const nlohmann::json value = s.used.contains(key.name) ? s.used[key.name] : nlohmann::json();
             const nlohmann::json fallback_value =
                 fallback && fallback->used.contains(key.name) ? fallback->used[key.name] : nlohmann::json();
-            std::string allowed = s.allowed.count(key.name) ? s.allowed.at(key.name) : range_of(key.name, ranges);
+            const auto [range, why] = range_of(key.name, ranges);
+            std::string allowed = s.allowed.count(key.name) ? s.allowed.at(key.name) : range;
             if (allowed.empty()) allowed = "see meaning";
-            row(key.name, shown(value), fallback ? shown(fallback_value) : "-", allowed, key.help);
+            row(key.name, shown(value), fallback ? shown(fallback_value) : "-", allowed,
+                why.empty() ? key.help : key.help + " (" + why + ")");
         }
     };
     std::vector<sim::CheckedRange> ranges = own.ranges;

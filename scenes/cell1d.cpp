@@ -13,7 +13,7 @@ namespace scenes {
 namespace {
 
 const std::vector<Key> param_keys = {
-    {"rules", "Wolfram rule numbers, one panel each, 0..255"},
+    {"rules", "Wolfram rule numbers, one panel each"},
     {"width", "cells per row; 0: 2 * steps + 1, the book's default"},
     {"boundary", "\"zero\" (the book's Cell1D) or \"wrap\" (its Wrap1D)"},
 };

@@ -22,16 +22,16 @@ bool is_key(const std::vector<Key>& keys, const std::string& name) {
 }
 
 const std::vector<Key> rule_keys = {
-    {"chemicals", "how many chemicals the rule has, 1..26: a, b, c, ..."},
+    {"chemicals", "how many chemicals the rule has: a, b, c, ..."},
     {"formula", "the rule: Ready's formula language, a part of OpenCL C (docs/formulas.md)"},
     {"accuracy", "the stencils' accuracy: \"low\", \"medium\" or \"high\" (Ready's)"},
     {"wrap", "true: the edges wrap around (a torus); false: they are clamped"},
     {"data_type", "the numbers: \"float\" (Ready's Float32) or \"double\" (Float64)"},
     {"block_x", "Ready's block_size_x: 4 (its default) or 1; see docs/formulas.md"},
     {"ready_edges", "true: edges as Ready computes them (its quirks); false: a true torus, each cell clamped"},
-    {"width", "grid width in cells, 1..4096 (a multiple of block_x)"},
-    {"height", "grid height in cells, 2..4096 (Ready's 1-D stencils are not figgen's)"},
-    {"steps", "how many steps the model runs, 0..10000000"},
+    {"width", "grid width in cells (a multiple of block_x)"},
+    {"height", "grid height in cells (Ready's 1-D stencils are not figgen's)"},
+    {"steps", "how many steps the model runs"},
     {"zero_first", "the start is all zero before the overlays (else zero, too: true or false)"},
     {"initial", "the start: Ready's overlays in order, [{chemical, operation, fill, ..., shapes}]"},
 };
@@ -89,7 +89,7 @@ const std::vector<Key> overlay_keys = {
     {"low", "white_noise: the least value"},
     {"high", "white_noise: the most value"},
     {"scale", "perlin_noise: cells a feature"},
-    {"octaves", "perlin_noise: octaves, 1..16"},
+    {"octaves", "perlin_noise: octaves"},
     {"val1", "linear_gradient, radial_gradient: the value at `from`"},
     {"val2", "linear_gradient, radial_gradient: the value at `to`"},
     {"from", "gradients and sine: [x, y], a fraction of the grid"},
