@@ -263,16 +263,8 @@ OutputOptions output_options(const RenderCommand& c) {
     options.video = c.formats.empty() && !c.no_video;
     options.frames = c.frames;
     options.formats_given = !c.formats.empty();
-    for (const std::string& name : c.formats) {
-        const OutputFormat* format = output_format(name);
-        if (!format || !format->choose)
-            throw UsageError("--format " + formats + " is not allowed: use a list of " + [] {
-                std::string all;
-                for (const std::string& n : format_names()) all += (all.empty() ? "" : ", ") + n;
-                return all;
-            }());
-        format->choose(options);
-    }
+    // --format's check (format_names) let through only names the table chooses by.
+    for (const std::string& name : c.formats) output_format(name)->choose(options);
     options.transparent = c.transparent;
     options.max_memory = parse_size("--max-memory", c.max_memory);
     options.max_disk = parse_size("--max-disk", c.max_disk);

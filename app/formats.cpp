@@ -84,8 +84,16 @@ std::vector<OutputFormat> make_table() {
                      return film::file_bytes_per_pixel_frame * film_pixels(d, o);
                  }});
     // The film's looping preview, with its MP4: at most its budget.
-    t.push_back({nullptr, ".webp", "the preview", nullptr, nullptr, {}, std::nullopt, Stage::film,
-                 [](const Description& d, const OutputOptions& o) { return films(d) && o.encodes(); }, nullptr,
+    t.push_back({nullptr,
+                 ".webp",
+                 "the preview",
+                 nullptr,
+                 nullptr,
+                 {},
+                 std::nullopt,
+                 Stage::film,
+                 [](const Description& d, const OutputOptions& o) { return films(d) && o.encodes(); },
+                 nullptr,
                  [](const Description&, const OutputOptions&) {
                      return static_cast<double>(render::PreviewOptions{}.max_bytes);
                  },
@@ -93,14 +101,21 @@ std::vector<OutputFormat> make_table() {
                  // from their segments' encoding to the film's end.
                  [](const Description& d, const OutputOptions& o) -> scenes::MemoryNeed {
                      const render::PreviewOptions preview;
-                     const double fit =
-                         std::min({1.0, double(preview.max_width) / std::max(1, scaled_even(d.animation->width, o.scale)),
-                                   double(preview.max_height) / std::max(1, scaled_even(d.animation->height, o.scale))});
+                     const double fit = std::min(
+                         {1.0, double(preview.max_width) / std::max(1, scaled_even(d.animation->width, o.scale)),
+                          double(preview.max_height) / std::max(1, scaled_even(d.animation->height, o.scale))});
                      return {"the preview's frames", 4.0 * std::min(preview.max_frames, d.animation->frame_count()) *
                                                          fit * fit * frame_pixels(d, o)};
                  }});
-    t.push_back({"webm", ".webm", "the WebM", "webm (the animation as VP9 in WebM)", "WebM", {"animation", "webm"},
-                 std::nullopt, Stage::film, [](const Description& d, const OutputOptions& o) { return films(d) && o.webm; },
+    t.push_back({"webm",
+                 ".webm",
+                 "the WebM",
+                 "webm (the animation as VP9 in WebM)",
+                 "WebM",
+                 {"animation", "webm"},
+                 std::nullopt,
+                 Stage::film,
+                 [](const Description& d, const OutputOptions& o) { return films(d) && o.webm; },
                  [](OutputOptions& o) { o.webm = true; },
                  [](const Description& d, const OutputOptions& o) {
                      return film::file_bytes_per_pixel_frame * film_pixels(d, o);

@@ -10,8 +10,8 @@
 namespace app {
 namespace {
 
-using Entry = scenes::KeyNumber;
-using Reference = scenes::KeyReference;
+using scenes::KeyNumber;
+using scenes::KeyReference;
 
 // ---- reading the metadata -------------------------------------------------
 
@@ -155,7 +155,8 @@ std::string with_error(double value, double error) {
 }
 
 // The value's text, or "" when the metadata holds no such value.
-std::string value_text(const Entry& entry, const Found& found, const nlohmann::json& meta, std::string& error_path) {
+std::string value_text(const KeyNumber& entry, const Found& found, const nlohmann::json& meta,
+                       std::string& error_path) {
     const nlohmann::json& value = *found.value;
     const std::string kind = entry.kind;
     std::string text;
@@ -225,7 +226,7 @@ std::vector<KeyNumberRow> key_numbers(const nlohmann::json& meta) {
     const auto info = std::find_if(scenes::all_scenes().begin(), scenes::all_scenes().end(),
                                    [&](const scenes::SceneInfo& s) { return s.name == name; });
     if (info == scenes::all_scenes().end()) return rows;
-    for (const Entry& entry : info->key_numbers) {
+    for (const KeyNumber& entry : info->key_numbers) {
         std::vector<Found> found;
         expand(meta, steps_of(entry.path), 0, "", nullptr, 0, found);
         for (const Found& f : found) {
@@ -236,7 +237,7 @@ std::vector<KeyNumberRow> key_numbers(const nlohmann::json& meta) {
             row.label = label_of(entry.label, f.element, f.index);
             row.path = f.pointer;
             row.kind = entry.kind;
-            for (const Reference& reference : entry.references)
+            for (const KeyReference& reference : entry.references)
                 if (holds(reference.when, meta, f.element)) {
                     row.reference = reference.text;
                     break;

@@ -4,16 +4,15 @@
 
 #include <cmath>
 #include <cstdio>
-#include <tuple>
 #include <utility>
 
 #include "app/film_segments.hpp"
 #include "app/formats.hpp"
 #include "app/version.hpp"
 #include "base/atomic_file.hpp"
+#include "media/png_io.hpp"
 #include "render/gl/canvas.hpp"
 #include "render/gl/gl_context.hpp"
-#include "media/png_io.hpp"
 #include "render/vector/vector.hpp"
 #include "render/vector/vector_page.hpp"
 #include "scenes/figure_caption.hpp"
@@ -133,8 +132,9 @@ MemoryEstimate estimate_memory(const Description& d, const OutputOptions& option
             const int frames = d.animation->frame_count(), per_segment = d.animation->segment_frames,
                       segment = per_segment > 0 && per_segment < frames ? per_segment : frames,
                       held = std::min(segment, film::x264_frames_held(options.video_options.preset));
-            const double encoder = film::x264_bytes + (film::x264_bytes_per_pixel + film::x264_bytes_per_pixel_frame * held) *
-                                                          frame_pixels(d, options),
+            const double encoder =
+                             film::x264_bytes + (film::x264_bytes_per_pixel + film::x264_bytes_per_pixel_frame * held) *
+                                                    frame_pixels(d, options),
                          frame = 4.0 * frame_pixels(d, options);
             double others = program_bytes;
             for (const MemoryNeed& need : all) others += need.bytes;
@@ -324,7 +324,7 @@ void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json meta
         const std::string file_name = description_.id + f.suffix;
         base::AtomicFile file(folder_, file_name);
         render::vector::write(file.fd(), file.final_path(), *f.vector, page.page(),
-                                    static_cast<std::uint64_t>(render::vector::file_bytes(drawing.width, drawing.height)));
+                              static_cast<std::uint64_t>(render::vector::file_bytes(drawing.width, drawing.height)));
         struct stat info {};
         const double bytes = ::fstat(file.fd(), &info) == 0 ? static_cast<double>(info.st_size) : 0.0;
         file.commit();  // with the figure's other files (render_figure's CommitGroup)

@@ -128,14 +128,15 @@ public:
     }
     std::vector<Packet> finish() override {
         std::vector<Packet> packets;
-        const figgen_media_packet_sink sink{&packets, [](void* context, const figgen_media_packet* p) {
-                                                Packet packet;
-                                                packet.data.assign(p->data, p->data + p->size);
-                                                packet.pts = p->pts;
-                                                packet.dts = p->dts;
-                                                packet.key = p->key != 0;
-                                                static_cast<std::vector<Packet>*>(context)->push_back(std::move(packet));
-                                            }};
+        const figgen_media_packet_sink sink{
+            &packets, [](void* context, const figgen_media_packet* p) {
+                Packet packet;
+                packet.data.assign(p->data, p->data + p->size);
+                packet.pts = p->pts;
+                packet.dts = p->dts;
+                packet.key = p->key != 0;
+                static_cast<std::vector<Packet>*>(context)->push_back(std::move(packet));
+            }};
         figgen_media_error error;
         check(c_api().segment_finish(s_, sink, &error), error);
         return packets;

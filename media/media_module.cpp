@@ -188,7 +188,8 @@ int segment_preview_frames(figgen_media_segment* s, const figgen_media_packet* p
                            figgen_media_image_sink sink, figgen_media_error* error) {
     return guard(error, [&] {
         const std::vector<int> wanted(indices, indices + index_count);
-        for (const Image& frame : s->segment->preview_frames(packets_of(packets, count), wanted, preview_options(options)))
+        for (const Image& frame :
+             s->segment->preview_frames(packets_of(packets, count), wanted, preview_options(options)))
             give(frame, sink);
     });
 }
@@ -240,8 +241,8 @@ int scale(const figgen_media_image* image, int32_t width, int32_t height, figgen
 int write_preview(int fd, const char* shown, int film_fd, int32_t film_frames, int32_t film_fps,
                   const figgen_preview_options* options, figgen_preview_info* info, figgen_media_error* error) {
     return guard(error, [&] {
-        set_info(info,
-                 implementation().write_preview(fd, text(shown), film_fd, film_frames, film_fps, preview_options(options)));
+        set_info(info, implementation().write_preview(fd, text(shown), film_fd, film_frames, film_fps,
+                                                      preview_options(options)));
     });
 }
 int probe_preview(const char* path, figgen_preview_info* info, figgen_media_error* error) {

@@ -47,8 +47,8 @@ void set_path(figgen_vector_item& item, const Path& path, std::vector<figgen_pat
     item.path_steps = steps.size();
 }
 
-int item_at(const void* items, std::size_t index, figgen_vector_item* out) {
-    auto& h = *static_cast<Handover*>(const_cast<void*>(items));
+int item_at(void* items, std::size_t index, figgen_vector_item* out) {
+    auto& h = *static_cast<Handover*>(items);
     if (index >= h.page->items.size()) return 1;
     figgen_vector_item item{};
     std::visit(
@@ -64,7 +64,9 @@ int item_at(const void* items, std::size_t index, figgen_vector_item* out) {
                 set_path(item, i.path, h.path);
                 set_colour(item.colour, i.colour);
                 item.width = i.width;
-                item.cap = i.cap == Cap::round ? FIGGEN_CAP_ROUND : i.cap == Cap::square ? FIGGEN_CAP_SQUARE : FIGGEN_CAP_BUTT;
+                item.cap = i.cap == Cap::round    ? FIGGEN_CAP_ROUND
+                           : i.cap == Cap::square ? FIGGEN_CAP_SQUARE
+                                                  : FIGGEN_CAP_BUTT;
                 item.dash = i.dash.data();
                 item.dash_count = i.dash.size();
                 item.dash_offset = i.dash_offset;

@@ -93,8 +93,8 @@ typedef struct figgen_vector_page {
     size_t item_count;     /* painted in order */
     /* Fills *item with item `index` (< item_count) of `items`; what it
      * points to stays valid until the next call. Returns 0. */
-    int (*item)(const void* items, size_t index, figgen_vector_item* item);
-    const void* items;
+    int (*item)(void* items, size_t index, figgen_vector_item* item);
+    void* items;
 } figgen_vector_page;
 
 typedef struct figgen_vector_api {
