@@ -21,9 +21,8 @@ struct Reading {
 };
 
 // The scene's phase 1 for `d`: every setting it reads and every range its
-// model checks. Nothing runs. An empty [params] can leave a scene without a
-// setting it needs (a list of plants, say): it stops there, and what it read
-// until then is listed.
+// model checks. Nothing runs. A description the scene refuses stops there,
+// and what it read until then is listed.
 Reading read_settings(const Description& d) {
     Reading reading;
     SettingsLog log;
@@ -70,10 +69,6 @@ std::string describe(const std::filesystem::path& file) {
     SettingsLog top;  // the description's own sections, read by load_description
     const Description d = description::load_description(file);
     const Reading own = read_settings(d);
-    Description bare = d;
-    bare.params = toml::table{};
-    bare.style = toml::table{};
-    const Reading defaults = read_settings(bare);
 
     std::ostringstream out;
     out << d.id << ": " << d.title << "\n"
@@ -88,26 +83,27 @@ std::string describe(const std::filesystem::path& file) {
         out << "  " << pad_columns(key, 20) << " " << pad_columns(value, 28) << " " << pad_columns(fallback, 28) << " "
             << pad_columns(allowed, 30) << " " << meaning << "\n";
     };
-    auto section = [&](const SettingsLog::Section& s, const SettingsLog::Section* fallback,
-                       const std::vector<sim::CheckedRange>& ranges) {
+    // Each key as its schema declares it (scenes/: description/schema.hpp):
+    // its default, and what it allows where the declaration states it; else
+    // the range a ranged read or the model checked.
+    auto section = [&](const SettingsLog::Section& s, const std::vector<sim::CheckedRange>& ranges) {
         out << "\n[" << s.name << "]\n";
         row("key", "this figure", "default", "allowed", "meaning");
         for (const Key& key : s.keys) {
             const nlohmann::json value = s.used.contains(key.name) ? s.used[key.name] : nlohmann::json();
-            const nlohmann::json fallback_value =
-                fallback && fallback->used.contains(key.name) ? fallback->used[key.name] : nlohmann::json();
             const auto [range, why] = range_of(key.name, ranges);
-            std::string allowed = s.allowed.count(key.name) ? s.allowed.at(key.name) : range;
+            std::string allowed = !key.allowed.empty()        ? key.allowed
+                                  : s.allowed.count(key.name) ? s.allowed.at(key.name)
+                                  : !range.empty()            ? range
+                                                              : key.type;
             if (allowed.empty()) allowed = "see meaning";
-            row(key.name, shown(value), fallback ? shown(fallback_value) : "-", allowed,
+            row(key.name, shown(value), shown(key.fallback), allowed,
                 why.empty() ? key.help : key.help + " (" + why + ")");
         }
     };
-    std::vector<sim::CheckedRange> ranges = own.ranges;
-    ranges.insert(ranges.end(), defaults.ranges.begin(), defaults.ranges.end());
-    for (const auto& s : own.sections) section(s, find(defaults.sections, s.name), ranges);
+    for (const auto& s : own.sections) section(s, own.ranges);
     for (const char* name : {"figure", "animation"})
-        if (const auto* s = find(top.sections, name)) section(*s, nullptr, {});
+        if (const auto* s = find(top.sections, name)) section(*s, {});
     out << "\nChange any of them with --set key=value ([params]) or --set section.key=value.\n";
     return out.str();
 }

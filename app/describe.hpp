@@ -1,10 +1,9 @@
 #pragma once
 // `figgen describe ID`: every setting a figure's scene reads, with the
-// figure's value, the model's default, the range the model checks and what
-// it means. Found by running the scene only as far as it reads its settings
-// (twice: with the description's [params] and [style], and with them empty,
-// for the defaults), noting each key read (SettingsLog) and each range
-// checked (sim::RangeLog): the listing cannot drift from the code.
+// figure's value, its default, what it allows and what it means. The keys,
+// defaults and meanings are the scene's schema (description/schema.hpp);
+// the values and the ranges the model checks come from running the scene
+// once as far as it reads its settings (SettingsLog, sim::RangeLog).
 
 #include <filesystem>
 #include <string>

@@ -121,8 +121,27 @@ void Settings::note_allowed(const std::string& key, const std::string& allowed) 
     if (current_settings_log) current_settings_log->section(section_, allowed_).allowed[key] = allowed;
 }
 
+std::string integers_allowed(long long low, long long high) {
+    return "an integer from " + std::to_string(low) + " to " + std::to_string(high);
+}
+
+std::string numbers_allowed(double low, double high) {
+    return "a number from " + shown(low) + " to " + shown(high);
+}
+
+std::string names_allowed(const std::vector<std::string>& names) {
+    std::string list;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        list += i == 0 ? "" : i + 1 == names.size() ? " or " : ", ";
+        list += '"';  // appended in steps: GCC 12 warns falsely (-Wrestrict) on "\"" + std::string
+        list += names[i];
+        list += '"';
+    }
+    return list;
+}
+
 int Settings::count_in(const std::string& key, int fallback, int low, int high) {
-    const std::string allowed = "an integer from " + std::to_string(low) + " to " + std::to_string(high);
+    const std::string allowed = integers_allowed(low, high);
     note_allowed(key, allowed);
     const long long value = integer(key, fallback);
     if (value < low || value > high) refuse(key, std::to_string(value), allowed);
@@ -130,7 +149,7 @@ int Settings::count_in(const std::string& key, int fallback, int low, int high) 
 }
 
 double Settings::number_in(const std::string& key, double fallback, double low, double high) {
-    const std::string allowed = "a number from " + shown(low) + " to " + shown(high);
+    const std::string allowed = numbers_allowed(low, high);
     note_allowed(key, allowed);
     const double value = number(key, fallback);
     if (!(value >= low && value <= high)) refuse(key, shown(value), allowed);

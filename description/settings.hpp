@@ -49,10 +49,20 @@ std::string as_written(const std::string& key);
 // A number as messages show it, at most 6 significant digits: "1e+308", "0.25".
 std::string shown(double value);
 
+// One key of a section, as its schema (description/schema.hpp) declares it.
 struct Key {
-    std::string name;  // as written in the description, e.g. "r"
-    std::string help;  // one line: meaning and allowed values
+    std::string name;           // as written in the description, e.g. "r"
+    std::string help;           // its meaning, one line
+    std::string type{};         // what it holds: "an integer", "a number", "text", ...
+    std::string allowed{};      // the range or set the declaration states; empty: the model checks it
+    nlohmann::json fallback{};  // its default; null where none, or where other keys decide it
 };
+
+// What a ranged read allows: "an integer from 1 to 64", "a number from 0 to 1".
+std::string integers_allowed(long long low, long long high);
+std::string numbers_allowed(double low, double high);
+// A set of names: "\"a\", \"b\" or \"c\"".
+std::string names_allowed(const std::vector<std::string>& names);
 
 // While a SettingsLog lives on a thread, every Settings made there leaves
 // its section's allowed keys and the values it read (`figgen describe`).
@@ -95,6 +105,8 @@ public:
     // each to be read through a Settings of its own.
     std::vector<toml::table> tables(const std::string& key);
     bool has(const std::string& key) const { return find(key) != nullptr; }
+    // The value as written, for a key read its own way (nested lists); null when absent.
+    const toml::node* node(const std::string& key) const { return find(key); }
 
     const std::string& section() const { return section_; }
     const std::vector<Key>& allowed() const { return allowed_; }

@@ -12,11 +12,42 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"rules", "Wolfram rule numbers, one panel each"},
-    {"width", "cells per row; 0: 2 * steps + 1, the book's default"},
-    {"boundary", "\"zero\" (the book's Cell1D) or \"wrap\" (its Wrap1D)"},
+struct Params {
+    std::vector<long long> rules{20, 50, 18};
+    int width = 0;
+    sim::Boundary boundary = sim::Boundary::zero;
+    int rows = 1;                             // figure.panels' step + 1, given before reading
+    std::vector<sim::Cell1DParams> automata;  // one per rule, each checked by the model
 };
+
+const Schema<Params> param_schema =
+    Schema<Params>()
+        .integers("rules", &Params::rules, "Wolfram rule numbers, one panel each")
+        .count("width", &Params::width, "cells per row; 0: 2 * steps + 1, the book's default")
+        .choice("boundary", &Params::boundary, sim::boundary_names(),
+                "beyond the edge: zero (the book's Cell1D) or the opposite edge (its Wrap1D)")
+        .check([](Settings& s, const std::string&, Params& p) {
+            for (long long rule : p.rules) {
+                // Checked before it becomes the model's int, which a huge number would wrap into range.
+                check_model(s, [&] { sim::require_integer("rules", rule, 0, 255); });
+                sim::Cell1DParams a;
+                a.rule = static_cast<int>(rule);
+                a.rows = p.rows;
+                a.width = p.width;
+                a.boundary = p.boundary;
+                check_model(s, [&] { a.validate(); }, {{"rule", "rules"}});
+                p.automata.push_back(a);
+            }
+            if (p.automata.empty()) s.refuse("rules", "one rule at least");
+        });
+
+Params rows_of(int rows) {
+    Params p;
+    p.rows = rows;
+    return p;
+}
+
+const FieldSpec style_defaults{render::colormap("Blues"), 0.0, 1.0, 0.7f, render::Sampling::nearest};
 
 // "[31]": figure.panels as written.
 std::string steps_text(const std::vector<int>& steps) {
@@ -31,28 +62,6 @@ int last_row(const Description& d) {
         throw SettingError("figure.panels", steps_text(d.panels),
                            "one step from 0 to 99999, the last row shown (e.g. [31] for 32 rows)");
     return d.panels.front();
-}
-
-// One automaton per rule, each of `rows` rows.
-std::vector<sim::Cell1DParams> read_automata(Settings& s, int rows) {
-    const std::string boundary_text = s.text("boundary", "zero");
-    sim::Boundary boundary = sim::Boundary::zero;
-    check_model(s, [&] { boundary = sim::parse_boundary(boundary_text); });
-    const int width = s.count("width", 0);
-    std::vector<sim::Cell1DParams> automata;
-    for (long long rule : s.integers("rules", {20, 50, 18})) {
-        // Checked before it becomes the model's int, which a huge number would wrap into range.
-        check_model(s, [&] { sim::require_integer("rules", rule, 0, 255); });
-        sim::Cell1DParams p;
-        p.rule = static_cast<int>(rule);
-        p.rows = rows;
-        p.width = width;
-        p.boundary = boundary;
-        check_model(s, [&] { p.validate(); }, {{"rule", "rules"}});
-        automata.push_back(p);
-    }
-    if (automata.empty()) s.refuse("rules", "one rule at least");
-    return automata;
 }
 
 // Each automaton is drawn as one field of rows x columns cells: the renderer
@@ -70,10 +79,10 @@ void require_automata_drawable(Settings& params, const Description& d, double ro
 class Cell1DScene : public SceneBase {
 public:
     Cell1DScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, field_spec_keys()),
+        : SceneBase(d, options, param_schema.keys(), field_spec_schema().keys(style_defaults)),
           steps_(last_row(d)),
-          automata_(read_automata(params_, steps_ + 1)),
-          spec_(read_field_spec(style_, {render::colormap("Blues"), 0.0, 1.0, 0.7f, render::Sampling::nearest})) {
+          automata_(param_schema.read(params_, rows_of(steps_ + 1)).automata),
+          spec_(field_spec_schema().read(style_, style_defaults)) {
         require_automata_drawable(params_, d, rows(), columns());
     }
 

@@ -21,20 +21,37 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"n", "rows per CA for the slope (the book's count_cells n)"},
-    {"fit_from", "first step of the fitted range (the book's Fig 7.7 fits from 1)"},
-    {"tolerance", "a slope between 1 + tolerance and 2 - tolerance counts as non-integer"},
-    {"gallery_steps", "steps drawn for each gallery panel"},
-    {"gallery_columns", "gallery panels per row"},
+struct Params {
+    int n = 500, fit_from = 10;
+    double tolerance = 0.1;
+    int gallery_steps = 63, columns = 8;
 };
 
-std::vector<Key> style_keys() {
-    auto keys = field_spec_keys();
-    keys.push_back({"zero_colour", "colour of the zero-boundary slopes"});
-    keys.push_back({"wrap_colour", "colour of the wrapped slopes"});
-    return with_plot_style_keys(keys);
-}
+const Schema<Params> param_schema =
+    Schema<Params>()
+        .count("n", &Params::n, "rows per CA for the slope (the book's count_cells n)", 3, 100000)
+        .key({"fit_from", "first step of the fitted range (the book's Fig 7.7 fits from 1)", "an integer",
+              "an integer from 1 to n - 2", 10},
+             [](Settings& s, const std::string& key, Params& p) {
+                 p.fit_from = s.count_in(key, p.fit_from, 1, p.n - 2);
+             })
+        .number("tolerance", &Params::tolerance,
+                "a slope between 1 + tolerance and 2 - tolerance counts as non-integer", 0.0, 0.5)
+        .count("gallery_steps", &Params::gallery_steps, "steps drawn for each gallery panel", 1, 10000)
+        .count("gallery_columns", &Params::columns, "gallery panels per row", 1, 64);
+
+struct Style {
+    FieldSpec field{render::colormap("Blues"), 0.0, 1.0, 0.7f, render::Sampling::nearest};
+    Colour zero = colour("#526e97"), wrap = colour("orange");
+    PlotSettings plot;
+};
+
+const Schema<Style> style_schema =
+    Schema<Style>()
+        .part(field_spec_schema(), &Style::field)
+        .field({"zero_colour", "colour of the zero-boundary slopes", "a colour"}, &Style::zero, read_colour)
+        .field({"wrap_colour", "colour of the wrapped slopes", "a colour"}, &Style::wrap, read_colour)
+        .part(plot_settings_schema(), &Style::plot);
 
 // The slope over i >= fit_from: the first rows are a transient that tilts a
 // fit over all of them (a rule filling whole rows has counts 1, 1002, 2003,
@@ -82,24 +99,18 @@ render::Axes survey_plot(const Survey& survey, glm::vec4 zero_colour, glm::vec4 
 class Cell1DSurveyScene : public SceneBase, public WorkItems {
 public:
     Cell1DSurveyScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, style_keys()),
-          n_(params_.count_in("n", 500, 3, 100000)),
-          fit_from_(params_.count_in("fit_from", 10, 1, n_ - 2)),
-          tolerance_(params_.number_in("tolerance", 0.1, 0.0, 0.5)),
-          gallery_steps_(params_.count_in("gallery_steps", 63, 1, 10000)),
-          columns_(params_.count_in("gallery_columns", 8, 1, 64)),
-          spec_(read_field_spec(style_, {render::colormap("Blues"), 0.0, 1.0, 0.7f, render::Sampling::nearest})),
-          zero_colour_(style_colour(style_, "zero_colour", "#526e97")),
-          wrap_colour_(style_colour(style_, "wrap_colour", "orange")),
-          plot_(read_plot_style(style_, options.scale)) {
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          s_(style_schema.read(style_)),
+          plot_(plot_style(s_.plot, options.scale)) {
         // A gallery automaton: gallery_steps + 1 rows of the default width, 2 * rows + 1.
-        const double rows = gallery_steps_ + 1.0;
+        const double rows = p_.gallery_steps + 1.0;
         require_drawable(params_, "gallery_steps", "each gallery panel", rows, 2.0 * rows + 1.0);
     }
 
     // count_cells' automaton: n rows of 2n + 1 cells, one rule at a time on each thread.
     std::vector<MemoryNeed> memory() const override {
-        return {grid_need("rows of cells of a byte, one automaton a thread", n_, 2.0 * n_ + 1.0, 1,
+        return {grid_need("rows of cells of a byte, one automaton a thread", p_.n, 2.0 * p_.n + 1.0, 1,
                           double(options_.threads))};
     }
 
@@ -109,9 +120,9 @@ public:
     double item_bytes() const override { return 256; }
     nlohmann::json run_item(int rule) const override {
         std::vector<double> steps;
-        for (int i = fit_from_; i < n_; ++i) steps.push_back(i);
-        return {{"slope_zero", slope_of(rule, n_, sim::Boundary::zero, steps, fit_from_)},
-                {"slope_wrap", slope_of(rule, n_, sim::Boundary::wrap, steps, fit_from_)}};
+        for (int i = p_.fit_from; i < p_.n; ++i) steps.push_back(i);
+        return {{"slope_zero", slope_of(rule, p_.n, sim::Boundary::zero, steps, p_.fit_from)},
+                {"slope_wrap", slope_of(rule, p_.n, sim::Boundary::wrap, steps, p_.fit_from)}};
     }
 
     // Two slopes of a log-log fit: finite numbers.
@@ -126,7 +137,7 @@ public:
         Progress& progress = out.progress();
         progress.start(d_.id, item_count() + 1);
         const Survey survey = survey_rules(out.results(*this));
-        const render::Axes plot = survey_plot(survey, zero_colour_, wrap_colour_);
+        const render::Axes plot = survey_plot(survey, s_.zero.rgba, s_.wrap.rgba);
         const Gallery gallery = gallery_of(survey);
         progress.advance();
         // The survey's plotted slopes: every rule's zero-boundary slope, then its wrapped one.
@@ -139,7 +150,7 @@ public:
                     {"non_integer", survey.fractal_meta},
                     {"state_sha256", state_hash(slopes)},
                     {"gallery",
-                     {{"steps", gallery_steps_},
+                     {{"steps", p_.gallery_steps},
                       {"boundary", "wrap"},
                       {"rules", survey.fractal},
                       {"state_sha256", base::sha256_hex(gallery.cells.data(), gallery.cells.size())}}}});
@@ -153,7 +164,7 @@ private:
         // A fractal pattern in the plane has 1 < D < 2: a slope at least
         // `tolerance` from both. (Rules that turn the background on give slopes
         // just under 1 from their edges; they are not fractal.)
-        auto non_integer = [&](double s) { return s > 1 + tolerance_ && s < 2 - tolerance_; };
+        auto non_integer = [&](double s) { return s > 1 + p_.tolerance && s < 2 - p_.tolerance; };
         for (int rule = 0; rule < 256; ++rule) {
             const double zero = results[rule].at("slope_zero").get<double>();
             const double wrap = results[rule].at("slope_wrap").get<double>();
@@ -181,14 +192,14 @@ private:
         for (std::size_t i = 0; i < survey.fractal.size(); ++i) {
             sim::Cell1DParams p;
             p.rule = survey.fractal[i];
-            p.rows = gallery_steps_ + 1;
+            p.rows = p_.gallery_steps + 1;
             p.boundary = sim::Boundary::wrap;
             sim::Cell1D ca(p);
-            for (int s = 0; s < gallery_steps_; ++s) ca.step();
+            for (int s = 0; s < p_.gallery_steps; ++s) ca.step();
             gallery.cells.insert(gallery.cells.end(), ca.cells().cells().begin(), ca.cells().cells().end());
             gallery.panels.push_back(
                 {"rule " + std::to_string(p.rule) + ", D = " + format_fixed(survey.wrap_slopes[survey.fractal[i]], 2),
-                 {field_layer(ca.cells(), spec_)}});
+                 {field_layer(ca.cells(), s_.field)}});
         }
         return gallery;
     }
@@ -202,7 +213,7 @@ private:
                 render::PageText page = plot_row_text({area.x, area.y, area.w, plot_height}, {plot}, plot_);
                 if (!gallery.panels.empty())
                     page.add(field_panels_text({area.x, area.y + plot_height, area.w, area.h - plot_height},
-                                               gallery.panels, columns_, options_.scale));
+                                               gallery.panels, p_.columns, options_.scale));
                 return page;
             },
             plot_remedy);
@@ -213,16 +224,13 @@ private:
                     const float plot_height = std::round(h * 0.45f);
                     draw_plot_row(surface, {0, 0, w, plot_height}, {plot}, plot_);
                     if (!gallery.panels.empty())
-                        draw_field_panels(surface, {0, plot_height, w, h - plot_height}, gallery.panels,
-                                          columns_, options_.scale);
+                        draw_field_panels(surface, {0, plot_height, w, h - plot_height}, gallery.panels, p_.columns,
+                                          options_.scale);
                 }};
     }
 
-    const int n_, fit_from_;
-    const double tolerance_;
-    const int gallery_steps_, columns_;
-    const FieldSpec spec_;
-    const glm::vec4 zero_colour_, wrap_colour_;
+    const Params p_;
+    const Style s_;
     const render::PlotStyle plot_;
 };
 

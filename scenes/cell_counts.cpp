@@ -14,71 +14,70 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"rules", "Wolfram rule numbers, one panel each"},
-    {"n", "rows of each CA; counts are taken at i = 1 .. n-1 (the book's count_cells)"},
-    {"boundary", "\"zero\" or \"wrap\""},
+struct Params {
+    std::vector<long long> rules{20, 50, 18};
+    int n = 500;
+    sim::Boundary boundary = sim::Boundary::zero;
 };
 
-std::vector<Key> style_keys() {
-    return with_plot_style_keys({{"d2_colour", "colour of the y = i^2 line"},
-                                 {"series_colour", "colour of the rule's counts"},
-                                 {"d1_colour", "colour of the y = i line"},
-                                 {"line_width", "line width in pixels at scale 1"}});
-}
+const Schema<Params> param_schema =
+    Schema<Params>()
+        .key(
+            {"rules", "Wolfram rule numbers, one panel each", "a list of integers"},
+            [](Settings& s, const std::string& key, Params& p) {
+                p.rules = s.integers(key, p.rules);
+                for (long long r : p.rules) check_model(s, [&] { sim::require_integer("rules", r, 0, 255); });
+                if (p.rules.empty()) s.refuse(key, "one rule at least");
+            },
+            [](const Params& d) { return nlohmann::json(d.rules); })
+        .count("n", &Params::n, "rows of each CA; counts are taken at i = 1 .. n-1 (the book's count_cells)", 3, 100000)
+        .choice("boundary", &Params::boundary, sim::boundary_names(), "beyond the edge: zero, or the opposite edge");
 
-std::vector<int> read_rules(Settings& s) {
-    std::vector<int> rules;
-    for (long long r : s.integers("rules", {20, 50, 18})) {
-        check_model(s, [&] { sim::require_integer("rules", r, 0, 255); });
-        rules.push_back(static_cast<int>(r));
-    }
-    if (rules.empty()) s.refuse("rules", "one rule at least");
-    return rules;
-}
+struct Style {
+    Colour d2 = colour("#526e97"), series = colour("#619aca"), d1 = colour("#96c5e1");
+    double line_width = 2.0;
+    PlotSettings plot;
+};
 
-sim::Boundary read_boundary(Settings& s) {
-    const std::string text = s.text("boundary", "zero");
-    sim::Boundary boundary = sim::Boundary::zero;
-    check_model(s, [&] { boundary = sim::parse_boundary(text); });
-    return boundary;
-}
+const Schema<Style> style_schema =
+    Schema<Style>()
+        .field({"d2_colour", "colour of the y = i^2 line", "a colour"}, &Style::d2, read_colour)
+        .field({"series_colour", "colour of the rule's counts", "a colour"}, &Style::series, read_colour)
+        .field({"d1_colour", "colour of the y = i line", "a colour"}, &Style::d1, read_colour)
+        .number("line_width", &Style::line_width, "line width in pixels at scale 1", 0.1, 50.0)
+        .part(plot_settings_schema(), &Style::plot);
 
 class CellCountsScene : public SceneBase {
 public:
     CellCountsScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, style_keys()),
-          rules_(read_rules(params_)),
-          n_(params_.count_in("n", 500, 3, 100000)),
-          boundary_(read_boundary(params_)),
-          d2_(style_colour(style_, "d2_colour", "#526e97")),
-          series_(style_colour(style_, "series_colour", "#619aca")),
-          d1_(style_colour(style_, "d1_colour", "#96c5e1")),
-          line_width_(static_cast<float>(style_.number_in("line_width", 2.0, 0.1, 50.0))),
-          plot_(read_plot_style(style_, options.scale)) {}
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          s_(style_schema.read(style_)),
+          line_width_(static_cast<float>(s_.line_width)),
+          plot_(plot_style(s_.plot, options.scale)) {}
 
     // count_cells' automaton: n rows of 2n + 1 cells, one rule at a time.
     std::vector<MemoryNeed> memory() const override {
-        return {grid_need("rows of cells of a byte", n_, 2.0 * n_ + 1.0, 1, 1)};
+        return {grid_need("rows of cells of a byte", p_.n, 2.0 * p_.n + 1.0, 1, 1)};
     }
 
     void render(Output& out) const override {
         Progress& progress = out.progress();
-        progress.start(d_.id, static_cast<long long>(rules_.size()));
+        progress.start(d_.id, static_cast<long long>(p_.rules.size()));
         std::vector<render::Axes> panels;
         nlohmann::json panel_meta = nlohmann::json::array();
         std::vector<double> steps, squares;
-        for (int i = 1; i < n_; ++i) {
+        for (int i = 1; i < p_.n; ++i) {
             steps.push_back(i);
             squares.push_back(double(i) * i);
         }
-        for (int rule : rules_) {
-            const std::vector<long> counts = sim::count_cells(rule, n_, boundary_);
+        for (int rule : p_.rules) {
+            const std::vector<long> counts = sim::count_cells(rule, p_.n, p_.boundary);
             const std::vector<double> cells(counts.begin(), counts.end());
             const sim::LineFit fit = sim::fit_log_log(steps, cells);
             panels.push_back(rule_plot(rule, steps, squares, cells, panels.empty()));
             panel_meta.push_back({{"rule", rule},
-                                  {"steps", n_ - 1},
+                                  {"steps", p_.n - 1},
                                   {"statistics", {{"on_cells", counts.back()}}},
                                   {"slope", fit.slope},
                                   {"intercept", fit.intercept},
@@ -101,16 +100,14 @@ private:
         axes.x_label = "Time Steps";
         if (first) axes.y_label = "Number of Cells";
         axes.legend = render::Legend::upper_left;
-        axes.series = {line_series(steps, squares, "d=2", d2_, line_width_, true),
-                       line_series(steps, cells, "rule=" + std::to_string(rule), series_, line_width_, false),
-                       line_series(steps, steps, "d=1", d1_, line_width_, true)};
+        axes.series = {line_series(steps, squares, "d=2", s_.d2.rgba, line_width_, true),
+                       line_series(steps, cells, "rule=" + std::to_string(rule), s_.series.rgba, line_width_, false),
+                       line_series(steps, steps, "d=1", s_.d1.rgba, line_width_, true)};
         return axes;
     }
 
-    const std::vector<int> rules_;
-    const int n_;
-    const sim::Boundary boundary_;
-    const glm::vec4 d2_, series_, d1_;
+    const Params p_;
+    const Style s_;
     const float line_width_;
     const render::PlotStyle plot_;
 };

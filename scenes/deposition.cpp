@@ -15,40 +15,46 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"width", "columns L (periodic)"},
-    {"particles", "particles dropped; the catalog: L^2"},
-};
-const std::vector<Key> style_keys = {
-    {"bands", "arrival-time bands, coloured in turn"},
-    {"band_colormap", "colormap the bands run through"},
-    {"colour_bar", "the bands' colour bar beside the deposit, in monolayers of arrival time: true or false"},
-    {"colour_bar_label", "the colour bar's label"},
+using P = sim::DepositionParams;
+const Schema<P> param_schema =
+    Schema<P>()
+        .count("width", &P::width, "columns L (periodic)")
+        .count("particles", &P::particles, "particles dropped; the catalog: L^2", 1, 50'000'000)
+        .check(validated<P>());
+
+struct Style {
+    int bands = 20;
+    std::string band_colormap = "viridis";
+    bool colour_bar = true;
+    std::string colour_bar_label = "arrival time (monolayers)";
+    FieldSpec spec;  // white for empty cells, then the bands alternating light and dark along the ramp
 };
 
-sim::DepositionParams read_params(Settings& s) {
-    sim::DepositionParams p;
-    p.width = s.count("width", 500);
-    p.particles = static_cast<std::uint64_t>(s.count_in("particles", 250000, 1, 50'000'000));
-    check_model(s, [&] { p.validate(); });
-    return p;
-}
-
-// White for empty cells, then the bands alternating light and dark along the ramp.
-FieldSpec band_spec(Settings& style, int bands) {
-    const render::Colormap* ramp = render::find_colormap(style.text("band_colormap", "viridis"));
-    if (!ramp) {
-        std::string allowed;
-        for (const auto& name : render::colormap_names()) allowed += (allowed.empty() ? "" : ", ") + name;
-        style.refuse("band_colormap", "one of " + allowed);
-    }
-    std::vector<glm::vec3> colours = {{1, 1, 1}};
-    for (int b = 0; b < bands; ++b) {
-        const glm::vec3 c = ramp->at((b + 0.5) / bands);
-        colours.push_back(b % 2 ? glm::mix(c, glm::vec3(1), 0.35f) : c);
-    }
-    return {render::listed_colormap("bands", colours), 0.0, double(bands), 1.0f, render::Sampling::nearest};
-}
+const Schema<Style> style_schema = Schema<Style>()
+                                       .count("bands", &Style::bands, "arrival-time bands, coloured in turn", 1, 255)
+                                       .key(
+                                           {"band_colormap", "colormap the bands run through", "text"},
+                                           [](Settings& style, const std::string& key, Style& s) {
+                                               s.band_colormap = style.text(key, s.band_colormap);
+                                               const render::Colormap* ramp = render::find_colormap(s.band_colormap);
+                                               if (!ramp) {
+                                                   std::string allowed;
+                                                   for (const auto& name : render::colormap_names())
+                                                       allowed += (allowed.empty() ? "" : ", ") + name;
+                                                   style.refuse(key, "one of " + allowed);
+                                               }
+                                               std::vector<glm::vec3> colours = {{1, 1, 1}};
+                                               for (int b = 0; b < s.bands; ++b) {
+                                                   const glm::vec3 c = ramp->at((b + 0.5) / s.bands);
+                                                   colours.push_back(b % 2 ? glm::mix(c, glm::vec3(1), 0.35f) : c);
+                                               }
+                                               s.spec = {render::listed_colormap("bands", colours), 0.0,
+                                                         double(s.bands), 1.0f, render::Sampling::nearest};
+                                           },
+                                           [](const Style& d) { return nlohmann::json(d.band_colormap); })
+                                       .flag("colour_bar", &Style::colour_bar,
+                                             "the bands' colour bar beside the deposit, in monolayers of arrival time")
+                                       .text("colour_bar_label", &Style::colour_bar_label, "the colour bar's label");
 
 // The deposit as a field: 0 empty, band + 1 for a particle of that arrival band.
 sim::Grid<double> deposit_field(const sim::Deposition& deposit, int rows, std::uint64_t band_size) {
@@ -105,13 +111,10 @@ private:
 class DepositionScene : public SceneBase {
 public:
     DepositionScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, style_keys),
-          p_(read_params(params_)),
-          bands_(style_.count_in("bands", 20, 1, 255)),
-          spec_(band_spec(style_, bands_)),
-          band_size_((p_.particles + bands_ - 1) / std::uint64_t(bands_)),
-          colour_bar_(style_.flag("colour_bar", true)),
-          colour_bar_label_(style_.text("colour_bar_label", "arrival time (monolayers)")),
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          s_(style_schema.read(style_)),
+          band_size_((p_.particles + s_.bands - 1) / std::uint64_t(s_.bands)),
           // Steps of the film are monolayers (L particles); the view is tall
           // enough for the last one: ballistic deposits fill about half their cells.
           monolayers_(int((p_.particles + p_.width - 1) / p_.width)),
@@ -141,11 +144,10 @@ public:
         run.run(
             {.check = {},
              .panel = {},
-             .frame =
-                 [&](int step) -> FrameDrawing {
-                     return run.field_frame(
-                         {{format_step(d_.animation->title, step), {field_layer(film.field(), spec_, Cells::viewed)}}});
-                 },
+             .frame = [&](int step) -> FrameDrawing {
+                 return run.field_frame(
+                     {{format_step(d_.animation->title, step), {field_layer(film.field(), s_.spec, Cells::viewed)}}});
+             },
              .advance =
                  [&] {
                      const std::uint64_t left = p_.particles - deposit.dropped();
@@ -156,8 +158,8 @@ public:
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         const std::int64_t top = max_height(deposit);
         const auto field = deposit_field(deposit, int(top) + 2, band_size_);
-        std::vector<FieldPanel> panels = {{d_.panel_title, {field_layer(field, spec_)}}};
-        if (colour_bar_) panels[0].layers[0].colour_bar = band_bar();
+        std::vector<FieldPanel> panels = {{d_.panel_title, {field_layer(field, s_.spec)}}};
+        if (s_.colour_bar) panels[0].layers[0].colour_bar = band_bar();
         run.write_figure(field_figure(panels, d_, options_),
                          metadata(deposit, top));
     }
@@ -176,7 +178,7 @@ private:
                {"band_particles", band_size_},
                {"state_sha256", deposit_hash(deposit)}}}},
         };
-        if (colour_bar_) meta["colour_bar"] = colour_bar_metadata(band_bar());
+        if (s_.colour_bar) meta["colour_bar"] = colour_bar_metadata(band_bar());
         return meta;
     }
 
@@ -185,16 +187,13 @@ private:
     // cells) over the arrival times they stand for, in monolayers: band b
     // holds the particles that arrived from b to b + 1 band sizes.
     render::ColourBar band_bar() const {
-        const auto& colours = spec_.colormap.colours;
+        const auto& colours = s_.spec.colormap.colours;
         return {render::listed_colormap("bands", {colours.begin() + 1, colours.end()}), 0.0,
-                double(bands_) * double(band_size_) / double(p_.width), colour_bar_label_};
+                double(s_.bands) * double(band_size_) / double(p_.width), s_.colour_bar_label};
     }
 
-    const int bands_;
-    const FieldSpec spec_;
+    const Style s_;
     const std::uint64_t band_size_;
-    const bool colour_bar_;
-    const std::string colour_bar_label_;
     const int monolayers_, view_rows_;
     Description plan_;  // d with one panel at the last monolayer: the run's length
 };

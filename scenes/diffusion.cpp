@@ -12,36 +12,26 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"n", "grid size in cells"},
-    {"r", "diffusion rate per step"},
-    {"boundary", "\"zero\" (the book) or \"wrap\""},
-    {"block_row", "row of the initial block's top-left cell"},
-    {"block_col", "column of the initial block's top-left cell"},
-    {"block_size", "side of the initial block, cells"},
-    {"block_value", "value of the initial block's cells"},
-};
+using P = sim::DiffusionParams;
+const Schema<P> param_schema = Schema<P>()
+                                   .count("n", &P::n, "grid size in cells")
+                                   .number("r", &P::r, "diffusion rate per step")
+                                   .choice("boundary", &P::boundary, sim::boundary_names(),
+                                           "beyond the edge: zero (the book) or the opposite edge (a torus)")
+                                   .count("block_row", &P::block_row, "row of the initial block's top-left cell")
+                                   .count("block_col", &P::block_col, "column of the initial block's top-left cell")
+                                   .count("block_size", &P::block_size, "side of the initial block, cells")
+                                   .number("block_value", &P::block_value, "value of the initial block's cells")
+                                   .check(validated<P>());
 
-sim::DiffusionParams read_params(Settings& s) {
-    sim::DiffusionParams p;
-    p.n = s.count("n", p.n);
-    p.r = s.number("r", p.r);
-    const std::string boundary = s.text("boundary", sim::to_string(p.boundary));
-    check_model(s, [&] { p.boundary = sim::parse_boundary(boundary); });
-    p.block_row = s.count("block_row", p.block_row);
-    p.block_col = s.count("block_col", p.block_col);
-    p.block_size = s.count("block_size", p.block_size);
-    p.block_value = s.number("block_value", p.block_value);
-    check_model(s, [&] { p.validate(); });
-    return p;
-}
+const FieldSpec style_defaults{render::colormap("Reds"), 0.0, 1.0, 0.7f, render::Sampling::nearest};
 
 class DiffusionScene : public SceneBase {
 public:
     DiffusionScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, field_spec_keys()),
-          p_(read_params(params_)),
-          spec_(read_field_spec(style_, {render::colormap("Reds"), 0.0, 1.0, 0.7f, render::Sampling::nearest})) {
+        : SceneBase(d, options, param_schema.keys(), field_spec_schema().keys(style_defaults)),
+          p_(param_schema.read(params_)),
+          spec_(field_spec_schema().read(style_, style_defaults)) {
         if (d.panels.empty()) throw SettingError("figure.panels", "[]", "one step at least");
     }
 

@@ -6,21 +6,6 @@
 
 namespace scenes {
 
-std::vector<Key> field_spec_keys(const std::string& prefix) {
-    return {
-        {prefix + "colormap", "Reds, Blues, Greens, viridis, inferno, magma, plasma or cividis (--cmap)"},
-        {prefix + "colours", "a list of colours for the states 0, 1, ... (#rrggbb or names), instead of colormap"},
-        {prefix + "blend", "\"none\": one colour of colours a state; \"rgb\" or \"hsv\": colours are stops of a smooth "
-                           "ramp, blended in RGB or HSV (Ready's \"HSV blend\")"},
-        {prefix + "vmin", "value of the first colour; absent: the panel's minimum"},
-        {prefix + "vmax", "value of the last colour; absent: the panel's maximum"},
-        {prefix + "alpha", "opacity over what lies below, 0..1"},
-        {prefix + "sampling", "\"nearest\" or \"smooth\""},
-        {prefix + "colour_bar", "a colour bar with ticks beside each panel, true or false"},
-        {prefix + "colour_bar_label", "the colour bar's label"},
-    };
-}
-
 namespace {
 
 glm::vec3 to_hsv(glm::vec3 c) {
@@ -65,61 +50,86 @@ std::vector<glm::vec3> ramp(const std::vector<glm::vec3>& stops, bool hsv) {
     return out;
 }
 
-render::Colormap read_colormap(Settings& style, const FieldSpec& defaults, const std::string& prefix) {
-    std::optional<render::Colormap> listed;
-    if (style.has(prefix + "colours")) {
-        std::vector<glm::vec3> colours;
-        for (const std::string& c : style.texts(prefix + "colours", {})) {
-            const auto colour = render::find_colour(c);
-            if (!colour)
-                style.refuse(prefix + "colours", "\"" + c + "\"", "colours, each " + render::colours_allowed());
-            colours.push_back(*colour);
-        }
-        if (colours.empty() || colours.size() > 4096) style.refuse(prefix + "colours", "1 to 4096 colours");
-        // Read only when given: figures without it keep their metadata.
-        const std::string blend = style.has(prefix + "blend") ? style.text(prefix + "blend", "none") : "none";
-        if (blend != "none" && blend != "rgb" && blend != "hsv")
-            style.refuse(prefix + "blend", "\"none\", \"rgb\" or \"hsv\"");
-        listed = render::listed_colormap("listed", blend == "none" ? colours : ramp(colours, blend == "hsv"));
-    } else if (style.has(prefix + "blend")) {
-        style.refuse(prefix + "blend", "only beside " + prefix + "colours, the stops it blends");
+// The key beside `key` in its part: "b_colours" for ("b_blend", "blend", "colours").
+std::string sibling(const std::string& key, const std::string& own, const std::string& other) {
+    return key.substr(0, key.size() - own.size()) + other;
+}
+
+render::Colormap listed_colours(Settings& style, const std::string& key) {
+    std::vector<glm::vec3> colours;
+    for (const std::string& c : style.texts(key, {})) {
+        const auto colour = render::find_colour(c);
+        if (!colour) style.refuse(key, "\"" + c + "\"", "colours, each " + render::colours_allowed());
+        colours.push_back(*colour);
     }
-    // Read whenever given, so that a bad name is refused beside colours too.
-    if (!listed || style.has(prefix + "colormap")) {
-        const std::string name = style.text(prefix + "colormap", defaults.colormap.name);
-        const render::Colormap* map = render::find_colormap(name);
-        if (!map && name != defaults.colormap.name) {  // not a scene's own listed map either
-            std::string allowed;
-            for (const auto& n : render::colormap_names()) allowed += (allowed.empty() ? "" : ", ") + n;
-            style.refuse(prefix + "colormap", "one of " + allowed);
-        }
-        // One of the two: a colormap given beside colours would be ignored in silence.
-        if (listed)
-            style.refuse(prefix + "colormap", "no colormap where " + prefix +
-                                                   "colours gives the colours: give one of the two (--cmap replaces "
-                                                   "colours)");
-        return map ? *map : defaults.colormap;
-    }
-    return *listed;
+    if (colours.empty() || colours.size() > 4096) style.refuse(key, "1 to 4096 colours");
+    return render::listed_colormap("listed", colours);
+}
+
+// Read in this order: colours make a listed map, blend turns its colours into
+// a ramp's stops, and colormap (read whenever given, so that a bad name is
+// refused beside colours too) names a map where no colours are listed.
+description::Schema<FieldSpec> make_field_spec_schema() {
+    description::Schema<FieldSpec> schema;
+    schema.key({"colours", "a list of colours for the states 0, 1, ... (#rrggbb or names), instead of colormap",
+                "a list of colours"},
+               [](Settings& style, const std::string& key, FieldSpec& spec) {
+                   if (style.has(key)) spec.colormap = listed_colours(style, key);
+               });
+    schema.key({"blend",
+                "\"none\": one colour of colours a state; \"rgb\" or \"hsv\": colours are stops of a smooth ramp, "
+                "blended in RGB or HSV (Ready's \"HSV blend\")",
+                "text", description::names_allowed({"none", "rgb", "hsv"}), "none"},
+               [](Settings& style, const std::string& key, FieldSpec& spec) {
+                   if (!style.has(key)) return;  // read only when given: figures without it keep their metadata
+                   const std::string colours = sibling(key, "blend", "colours");
+                   if (!style.has(colours)) style.refuse(key, "only beside " + colours + ", the stops it blends");
+                   const std::string blend = style.text(key, "none");
+                   if (blend != "none" && blend != "rgb" && blend != "hsv")
+                       style.refuse(key, description::names_allowed({"none", "rgb", "hsv"}));
+                   if (blend != "none")
+                       spec.colormap = render::listed_colormap("listed", ramp(spec.colormap.colours, blend == "hsv"));
+               });
+    schema.key(
+        {"colormap", "Reds, Blues, Greens, viridis, inferno, magma, plasma or cividis (--cmap)", "text"},
+        [](Settings& style, const std::string& key, FieldSpec& spec) {
+            const bool listed = style.has(sibling(key, "colormap", "colours"));
+            if (listed && !style.has(key)) return;
+            const std::string name = style.text(key, spec.colormap.name);
+            const render::Colormap* map = render::find_colormap(name);
+            if (!map && name != spec.colormap.name) {  // not a scene's own listed map either
+                std::string allowed;
+                for (const auto& n : render::colormap_names()) allowed += (allowed.empty() ? "" : ", ") + n;
+                style.refuse(key, "one of " + allowed);
+            }
+            // One of the two: a colormap given beside colours would be ignored in silence.
+            if (listed)
+                style.refuse(key, "no colormap where " + sibling(key, "colormap", "colours") +
+                                      " gives the colours: give one of the two (--cmap replaces colours)");
+            if (map) spec.colormap = *map;
+        },
+        [](const FieldSpec& d) { return nlohmann::json(d.colormap.name); });
+    schema.optional_number("vmin", &FieldSpec::vmin, "value of the first colour; absent: the panel's minimum");
+    schema.optional_number("vmax", &FieldSpec::vmax, "value of the last colour; absent: the panel's maximum");
+    schema.check([](Settings& style, const std::string& prefix, FieldSpec& spec) {
+        if (spec.vmin && spec.vmax && !(*spec.vmax > *spec.vmin))
+            style.refuse(prefix + "vmax",
+                         "a number greater than " + prefix + "vmin = " + description::shown(*spec.vmin));
+    });
+    schema.number("alpha", &FieldSpec::alpha, "opacity over what lies below", 0.0, 1.0);
+    schema.choice("sampling", &FieldSpec::sampling,
+                  {{"nearest", render::Sampling::nearest}, {"smooth", render::Sampling::smooth}},
+                  "cells drawn as squares, or smoothed between their centres");
+    schema.flag("colour_bar", &FieldSpec::colour_bar, "a colour bar with ticks beside each panel");
+    schema.text("colour_bar_label", &FieldSpec::colour_bar_label, "the colour bar's label");
+    return schema;
 }
 
 }  // namespace
 
-FieldSpec read_field_spec(Settings& style, const FieldSpec& defaults, const std::string& prefix) {
-    FieldSpec spec = defaults;
-    spec.colormap = read_colormap(style, defaults, prefix);
-    if (style.has(prefix + "vmin")) spec.vmin = style.number(prefix + "vmin", 0);
-    if (style.has(prefix + "vmax")) spec.vmax = style.number(prefix + "vmax", 1);
-    if (spec.vmin && spec.vmax && !(*spec.vmax > *spec.vmin))
-        style.refuse(prefix + "vmax", "a number greater than " + prefix + "vmin = " + description::shown(*spec.vmin));
-    spec.alpha = static_cast<float>(style.number_in(prefix + "alpha", defaults.alpha, 0.0, 1.0));
-    const std::string sampling =
-        style.text(prefix + "sampling", defaults.sampling == render::Sampling::smooth ? "smooth" : "nearest");
-    if (sampling != "nearest" && sampling != "smooth") style.refuse(prefix + "sampling", "\"nearest\" or \"smooth\"");
-    spec.sampling = sampling == "smooth" ? render::Sampling::smooth : render::Sampling::nearest;
-    spec.colour_bar = style.flag(prefix + "colour_bar", defaults.colour_bar);
-    spec.colour_bar_label = style.text(prefix + "colour_bar_label", defaults.colour_bar_label);
-    return spec;
+const description::Schema<FieldSpec>& field_spec_schema() {
+    static const description::Schema<FieldSpec> schema = make_field_spec_schema();
+    return schema;
 }
 
 namespace {

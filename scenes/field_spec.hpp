@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "description/settings.hpp"
+#include "description/schema.hpp"
 #include "render/colormap.hpp"
 #include "scenes/description_names.hpp"
 #include "scenes/field_panels.hpp"
@@ -24,11 +24,9 @@ struct FieldSpec {
     std::string colour_bar_label = {};  // and this label beside it
 };
 
-// The [style] keys a FieldSpec reads, each name prefixed (e.g. "b_" gives b_colormap).
-std::vector<Key> field_spec_keys(const std::string& prefix = "");
-
-// Reads the keys; absent ones keep `defaults`. Throws UsageError for bad values.
-FieldSpec read_field_spec(Settings& style, const FieldSpec& defaults, const std::string& prefix = "");
+// The [style] keys of a FieldSpec; a scene with several fields gives each
+// its prefix (Schema::part: "b_" gives b_colormap).
+const description::Schema<FieldSpec>& field_spec_schema();
 
 // Whether a layer copies its grid's cells (a panel kept while the model runs
 // on) or looks at them where they are (a frame drawn at once, the grid

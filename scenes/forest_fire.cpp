@@ -20,29 +20,29 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"n", "grid size (a torus)"},
-    {"p", "probability that an empty cell grows a tree"},
-    {"f", "probability that a tree ignites by itself"},
-    {"initial_density", "probability that a cell starts as a tree"},
+using P = sim::ForestFireParams;
+const Schema<P> param_schema =
+    Schema<P>()
+        .count("n", &P::n, "grid size (a torus)")
+        .number("p", &P::p, "probability that an empty cell grows a tree")
+        .number("f", &P::f, "probability that a tree ignites by itself")
+        .key({"initial_density", "probability that a cell starts as a tree; absent: p", "a number"},
+             [](Settings& s, const std::string& key, P& v) { v.initial_density = s.number(key, v.p); })
+        .check(validated<P>());
+
+struct Style {
+    FieldSpec field{render::listed_colormap("forest", {{1, 1, 1}, {0, 0.5f, 0}, {1, 0.65f, 0}}), 0.0, 2.0, 1.0f,
+                    render::Sampling::nearest};
+    Colour trees = colour("green"), fires = colour("orange");
+    PlotSettings plot;
 };
 
-std::vector<Key> style_keys() {
-    auto keys = field_spec_keys();
-    keys.push_back({"trees_colour", "colour of the tree count"});
-    keys.push_back({"fires_colour", "colour of the fire count"});
-    return with_plot_style_keys(keys);
-}
-
-sim::ForestFireParams read_params(Settings& s) {
-    sim::ForestFireParams p;
-    p.n = s.count("n", p.n);
-    p.p = s.number("p", p.p);
-    p.f = s.number("f", p.f);
-    p.initial_density = s.number("initial_density", p.p);  // absent: as dense as p
-    check_model(s, [&] { p.validate(); });
-    return p;
-}
+const Schema<Style> style_schema =
+    Schema<Style>()
+        .part(field_spec_schema(), &Style::field)
+        .field({"trees_colour", "colour of the tree count", "a colour"}, &Style::trees, read_colour)
+        .field({"fires_colour", "colour of the fire count", "a colour"}, &Style::fires, read_colour)
+        .part(plot_settings_schema(), &Style::plot);
 
 // States 0, 1, 5 as colour indices 0, 1, 2 of a three-colour listed map.
 sim::Grid<std::uint8_t> colour_index(const sim::Grid<std::uint8_t>& cells) {
@@ -121,13 +121,10 @@ render::Axes dimension_plot(const ForestDimension& dim, double cells, glm::vec4 
 class ForestFireScene : public SceneBase {
 public:
     ForestFireScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, style_keys()),
-          p_(read_params(params_)),
-          spec_(read_field_spec(style_, {render::listed_colormap("forest", {{1, 1, 1}, {0, 0.5f, 0}, {1, 0.65f, 0}}),
-                                         0.0, 2.0, 1.0f, render::Sampling::nearest})),
-          trees_colour_(style_colour(style_, "trees_colour", "green")),
-          fires_colour_(style_colour(style_, "fires_colour", "orange")),
-          plot_(read_plot_style(style_, options.scale)) {
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          s_(style_schema.read(style_)),
+          plot_(plot_style(s_.plot, options.scale)) {
         if (d.panels.empty()) throw SettingError("figure.panels", "[]", "one step at least");
         require_drawable(params_, "n", "the forest", p_.n, p_.n);
     }
@@ -146,8 +143,8 @@ public:
         if (run.film_only()) return run.finish_film();  // a film segment's run: no figure
         const ForestDimension dim{sim::box_count(model.cells(), sim::ForestFire::tree),
                                   sim::central_box_mass(model.cells(), sim::ForestFire::tree)};
-        const render::Axes counts = counts_plot(history, trees_colour_, fires_colour_);
-        const render::Axes dimension = dimension_plot(dim, double(model.cells().size()), trees_colour_);
+        const render::Axes counts = counts_plot(history, s_.trees.rgba, s_.fires.rgba);
+        const render::Axes dimension = dimension_plot(dim, double(model.cells().size()), s_.trees.rgba);
         run.write_figure(draw_figure(history, counts, dimension), metadata(history, dim));
     }
 
@@ -156,7 +153,7 @@ private:
     ForestHistory run_forest(StepRunner& run, sim::ForestFire& model) const {
         ForestHistory history;
         auto panel = [&](const std::string& pattern, int step) {
-            return FieldPanel{format_step(pattern, step), {field_layer(colour_index(model.cells()), spec_)}};
+            return FieldPanel{format_step(pattern, step), {field_layer(colour_index(model.cells()), s_.field)}};
         };
         run.run({
             .check = {},
@@ -223,8 +220,7 @@ private:
     }
 
     const sim::ForestFireParams p_;
-    const FieldSpec spec_;
-    const glm::vec4 trees_colour_, fires_colour_;
+    const Style s_;
     const render::PlotStyle plot_;
 };
 

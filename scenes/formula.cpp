@@ -25,15 +25,57 @@ namespace {
 
 namespace formula = sim::formula;
 
-std::vector<Key> style_keys(const Description& d) {
-    std::vector<Key> keys = {
-        {"show", "the chemicals each panel shows, stacked in this order, e.g. [\"a\", \"b\"]"},
-        {"origin", "where y = 0 is drawn: \"lower\" (Ready's, y up) or \"upper\" (the book's arrays, row 0 on top)"}};
-    for (int i = 0; i < formula_chemicals(d); ++i) {
-        const auto k = field_spec_keys(formula::chemical_name(i) + "_");
-        keys.insert(keys.end(), k.begin(), k.end());
-    }
-    return keys;
+// How chemical c is drawn unless [style] says otherwise: one chemical shown
+// through viridis, or several stacked in Reds, Blues, Greens, Purples.
+FieldSpec default_spec(const std::vector<int>& shown, int c) {
+    static const char* stacked[] = {"Reds", "Blues", "Greens", "Purples"};
+    const auto at = std::find(shown.begin(), shown.end(), c);
+    const std::size_t place = at == shown.end() ? 0 : static_cast<std::size_t>(at - shown.begin());
+    return shown.size() == 1 ? FieldSpec{render::colormap("viridis"), {}, {}, 1.0f, render::Sampling::smooth}
+                             : FieldSpec{render::colormap(stacked[place]), {}, {}, 0.7f, render::Sampling::smooth};
+}
+
+struct Style {
+    std::vector<std::string> show{"a"};
+    std::vector<int> shown{0};
+    bool upper = false;
+    std::vector<FieldSpec> chemicals;  // each chemical's drawing, read and checked; those shown are drawn
+};
+
+Style style_defaults(int chemicals) {
+    Style s;
+    for (int c = 0; c < chemicals; ++c) s.chemicals.push_back(default_spec(s.shown, c));
+    return s;
+}
+
+// The rule's chemicals as the description gives them: a drawing for each.
+Schema<Style> style_schema(int chemicals) {
+    Schema<Style> s;
+    s.key(
+        {"show", "the chemicals each panel shows, stacked in this order, e.g. [\"a\", \"b\"]", "a list of strings",
+         "one to four chemicals of the rule"},
+        [chemicals](Settings& style, const std::string& key, Style& v) {
+            v.show = style.texts(key, v.show);
+            v.shown.clear();
+            for (const std::string& name : v.show) v.shown.push_back(chemical_index(style, key, name, chemicals, true));
+            if (v.shown.empty() || v.shown.size() > 4) style.refuse(key, "one to four chemicals, e.g. [\"a\"]");
+            // The drawings' defaults follow what is shown.
+            for (int c = 0; c < chemicals; ++c) v.chemicals[static_cast<std::size_t>(c)] = default_spec(v.shown, c);
+        },
+        [](const Style& d) { return nlohmann::json(d.show); });
+    s.choice("origin", &Style::upper, {{"lower", false}, {"upper", true}},
+             "where y = 0 is drawn: lower (Ready's, y up) or upper (the book's arrays, row 0 on top)");
+    for (int c = 0; c < chemicals; ++c)
+        s.part_at(
+            field_spec_schema(), [c](auto& v) -> auto& { return v.chemicals[static_cast<std::size_t>(c)]; },
+            formula::chemical_name(c) + "_");
+    return s;
+}
+
+std::vector<FieldSpec> shown_specs(const Style& s) {
+    std::vector<FieldSpec> specs;
+    for (int c : s.shown) specs.push_back(s.chemicals[static_cast<std::size_t>(c)]);
+    return specs;
 }
 
 // The grid as drawn with y = 0 at the bottom (Ready's y runs up the
@@ -49,7 +91,11 @@ sim::Grid<double> flipped(const sim::Grid<double>& g) {
 class FormulaScene : public SceneBase {
 public:
     FormulaScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, formula_param_keys(d), style_keys(d)), m_(read_formula_model(params_, d)) {
+        : SceneBase(d, options, formula_param_keys(d),
+                    style_schema(formula_chemicals(d)).keys(style_defaults(formula_chemicals(d)))),
+          m_(read_formula_model(params_, d)),
+          s_(style_schema(m_.rule.chemicals).read(style_, style_defaults(m_.rule.chemicals))),
+          specs_(shown_specs(s_)) {
         if (d.panels.empty()) throw SettingError("figure.panels", "[]", "the steps to show, e.g. [0, 500, 1000]");
         if (d.panels.back() > m_.steps)
             throw SettingError("figure.panels", shown_steps(d.panels), "steps up to params.steps (" +
@@ -57,25 +103,6 @@ public:
         if (d.animation && d.animation->last > m_.steps)
             throw SettingError("animation.steps", std::to_string(d.animation->last),
                                "steps up to params.steps (" + std::to_string(m_.steps) + ")");
-        for (const std::string& name : style_.texts("show", {"a"}))
-            shown_.push_back(chemical_index(style_, "show", name, m_.rule.chemicals, true));
-        if (shown_.empty() || shown_.size() > 4) style_.refuse("show", "one to four chemicals, e.g. [\"a\"]");
-        // Every chemical's drawing is read (and checked), those shown kept.
-        static const char* stacked[] = {"Reds", "Blues", "Greens", "Purples"};
-        std::vector<FieldSpec> all;
-        for (int c = 0; c < m_.rule.chemicals; ++c) {
-            const auto at = std::find(shown_.begin(), shown_.end(), c);
-            const std::size_t place = at == shown_.end() ? 0 : static_cast<std::size_t>(at - shown_.begin());
-            const FieldSpec defaults =
-                shown_.size() == 1
-                    ? FieldSpec{render::colormap("viridis"), {}, {}, 1.0f, render::Sampling::smooth}
-                    : FieldSpec{render::colormap(stacked[place]), {}, {}, 0.7f, render::Sampling::smooth};
-            all.push_back(read_field_spec(style_, defaults, formula::chemical_name(c) + "_"));
-        }
-        for (int c : shown_) specs_.push_back(all[static_cast<std::size_t>(c)]);
-        const std::string origin = style_.text("origin", "lower");
-        if (origin != "lower" && origin != "upper") style_.refuse("origin", "\"lower\" or \"upper\"");
-        upper_ = origin == "upper";
         require_drawable(params_, "width", "the grid", m_.height, m_.width);
     }
 
@@ -91,10 +118,11 @@ public:
         const double threads = model_threads() > 0 ? model_threads() : std::max(1u, std::thread::hardware_concurrency());
         return {grid_need("the arrays a Ready pattern stores", m_.height, m_.width, 8, d_.stored_start ? chemicals : 0),
                 grid_need("the chemicals' grids", m_.height + 3, row, cell, 2 * chemicals),
-                grid_need("the formula's registers", threads * (m_.registers + 1), sim::formula::chunk_lanes + 64 / cell, cell, 1),
+                grid_need("the formula's registers", threads * (m_.registers + 1),
+                          sim::formula::chunk_lanes + 64 / cell, cell, 1),
                 grid_need("the start and the grids read", m_.height, m_.width, 8, 2 * chemicals),
                 grid_need("panels' copies", m_.height, m_.width, 8 + field_layer_bytes_per_cell,
-                          panels * static_cast<double>(shown_.size()))};
+                          panels * static_cast<double>(s_.shown.size()))};
     }
 
     // One thread below 256^2 cells (the frame is drawn meanwhile), every core (0) above.
@@ -107,14 +135,14 @@ public:
         std::vector<sim::Grid<double>> now, drawn;  // every chemical where the run is, and those shown as drawn
         auto layers = [&](Cells cells) {
             std::vector<FieldLayer> l;
-            for (std::size_t i = 0; i < shown_.size(); ++i) l.push_back(field_layer(drawn[i], specs_[i], cells));
+            for (std::size_t i = 0; i < s_.shown.size(); ++i) l.push_back(field_layer(drawn[i], specs_[i], cells));
             return l;
         };
         auto look = [&] {
             now.clear();
             for (int c = 0; c < m_.rule.chemicals; ++c) now.push_back(model.chemical(c));
             drawn.clear();
-            for (int c : shown_) drawn.push_back(upper_ ? now[c] : flipped(now[c]));
+            for (int c : s_.shown) drawn.push_back(s_.upper ? now[c] : flipped(now[c]));
         };
         look();
         std::vector<FieldPanel> panels;
@@ -156,7 +184,7 @@ private:
         s.wrap = m_.rule.wrap;
         s.block_x = m_.rule.block_x;
         s.parameters = m_.rule.parameters;
-        s.active_chemical = formula::chemical_name(shown_.front());
+        s.active_chemical = formula::chemical_name(s_.shown.front());
         s.low = specs_.front().vmin;
         s.high = specs_.front().vmax;
         s.width = m_.width;
@@ -181,9 +209,8 @@ private:
     }
 
     const FormulaModel m_;
-    std::vector<int> shown_;
-    std::vector<FieldSpec> specs_;
-    bool upper_ = false;
+    const Style s_;
+    const std::vector<FieldSpec> specs_;  // of the chemicals shown
 };
 
 std::unique_ptr<Scene> read_formula(const Description& d, const SceneOptions& options) {

@@ -36,23 +36,6 @@ namespace {
 
 namespace formula = sim::formula;
 
-const std::vector<Key> atlas_keys = {
-    {"x_parameter", "the rule's parameter swept across, left to right"},
-    {"x_range", "[lowest, highest] of x_parameter, the tiles' centres spread over it"},
-    {"y_parameter", "the rule's parameter swept up, bottom to top"},
-    {"y_range", "[lowest, highest] of y_parameter"},
-    {"tiles", "[columns, rows] of the map, each 1..64"},
-};
-
-std::vector<Key> style_keys() {
-    std::vector<Key> keys = {{"show", "the chemical each tile shows, e.g. \"b\""},
-                             {"tile_range", "without vmin and vmax, the colours span: \"all\" the tiles' values (one "
-                                            "range) or \"each\" tile's own"}};
-    const auto field = field_spec_keys();
-    keys.insert(keys.end(), field.begin(), field.end());
-    return with_plot_style_keys(keys);
-}
-
 struct Sweep {
     std::string x, y;  // the parameters
     double x_low = 0, x_high = 1, y_low = 0, y_high = 1;
@@ -61,34 +44,77 @@ struct Sweep {
 
 const char* const parameter_allowed = "the name of a parameter the formula uses (not timestep or dx)";
 
-// The sweep; whether the formula uses its parameters is checked once the
-// formula itself has been (words_of_formula).
-Sweep read_sweep(Settings& s) {
-    Sweep w;
-    w.x = s.text("x_parameter", "");
-    w.y = s.text("y_parameter", "");
-    for (const auto& [key, name] : {std::pair{"x_parameter", w.x}, std::pair{"y_parameter", w.y}}) {
+// A swept parameter's name; whether the formula uses it is checked once the
+// formula itself has been.
+Schema<Sweep>::Read parameter_name(std::string Sweep::*member) {
+    return [member](Settings& s, const std::string& key, Sweep& w) {
+        const std::string name = s.text(key, w.*member);
         bool plain = !name.empty() && name.size() <= 64 && !std::isdigit(static_cast<unsigned char>(name[0]));
         for (char c : name) plain &= std::isalnum(static_cast<unsigned char>(c)) || c == '_';
         if (!plain || name == "timestep" || name == "dx") s.refuse(key, parameter_allowed);
-    }
-    if (w.x == w.y) s.refuse("y_parameter", "a parameter other than x_parameter (" + w.x + ")");
-    const auto range = [&](const char* key, double& low, double& high) {
-        const std::vector<double> r = s.numbers(key, {0, 1});
+        w.*member = name;
+    };
+}
+
+Schema<Sweep>::Read parameter_range(double Sweep::*low, double Sweep::*high) {
+    return [low, high](Settings& s, const std::string& key, Sweep& w) {
+        const std::vector<double> r = s.numbers(key, {w.*low, w.*high});
         if (r.size() != 2 || !std::isfinite(r[0]) || !std::isfinite(r[1]) || !(r[1] > r[0]) ||
             std::fabs(r[0]) > 1e30 || std::fabs(r[1]) > 1e30)
             s.refuse(key, "[lowest, highest]: two finite numbers, the second greater");
-        low = r[0];
-        high = r[1];
+        w.*low = r[0];
+        w.*high = r[1];
     };
-    range("x_range", w.x_low, w.x_high);
-    range("y_range", w.y_low, w.y_high);
-    const std::vector<long long> tiles = s.integers("tiles", {8, 8});
-    if (tiles.size() != 2 || tiles[0] < 1 || tiles[0] > 64 || tiles[1] < 1 || tiles[1] > 64)
-        s.refuse("tiles", "[columns, rows], each an integer from 1 to 64");
-    w.columns = static_cast<int>(tiles[0]);
-    w.rows = static_cast<int>(tiles[1]);
-    return w;
+}
+
+const std::string range_allowed = "[lowest, highest]: two finite numbers, the second greater";
+
+const Schema<Sweep> sweep_schema =
+    Schema<Sweep>()
+        .key({"x_parameter", "the rule's parameter swept across, left to right", "text", parameter_allowed},
+             parameter_name(&Sweep::x))
+        .key({"x_range", "[lowest, highest] of x_parameter, the tiles' centres spread over it", "a list of numbers",
+              range_allowed, nlohmann::json({0, 1})},
+             parameter_range(&Sweep::x_low, &Sweep::x_high))
+        .key({"y_parameter", "the rule's parameter swept up, bottom to top", "text",
+              std::string(parameter_allowed) + ", other than x_parameter"},
+             parameter_name(&Sweep::y))
+        .key(
+            {"y_range", "[lowest, highest] of y_parameter", "a list of numbers", range_allowed, nlohmann::json({0, 1})},
+            parameter_range(&Sweep::y_low, &Sweep::y_high))
+        .key({"tiles", "[columns, rows] of the map", "a list of integers",
+              "[columns, rows], each an integer from 1 to 64", nlohmann::json({8, 8})},
+             [](Settings& s, const std::string& key, Sweep& w) {
+                 const std::vector<long long> tiles = s.integers(key, {w.columns, w.rows});
+                 if (tiles.size() != 2 || tiles[0] < 1 || tiles[0] > 64 || tiles[1] < 1 || tiles[1] > 64)
+                     s.refuse(key, "[columns, rows], each an integer from 1 to 64");
+                 w.columns = static_cast<int>(tiles[0]);
+                 w.rows = static_cast<int>(tiles[1]);
+             })
+        .check([](Settings& s, const std::string&, Sweep& w) {
+            if (w.x == w.y) s.refuse("y_parameter", "a parameter other than x_parameter (" + w.x + ")");
+        });
+
+struct Style {
+    std::string show = "a";
+    int shown = 0;
+    bool each_tile = false;  // tile_range = "each"
+    FieldSpec field{render::colormap("viridis"), {}, {}, 1.0f, render::Sampling::smooth, true, ""};
+    PlotSettings plot;
+};
+
+// The rule's chemicals as the description gives them: `show` names one.
+Schema<Style> style_schema(int chemicals) {
+    return Schema<Style>()
+        .key({"show", "the chemical each tile shows, e.g. \"b\"", "text", "a chemical of the rule", "a"},
+             [chemicals](Settings& s, const std::string& key, Style& v) {
+                 v.show = s.text(key, v.show);
+                 v.shown = chemical_index(s, key, v.show, chemicals);
+             })
+        .choice("tile_range", &Style::each_tile, {{"all", false}, {"each", true}},
+                "without vmin and vmax, the colours span all the tiles' values (one range) or each tile's own")
+        .part(field_spec_schema(), &Style::field)
+        .part(plot_settings_schema(), &Style::plot);
 }
 
 // The tile's parameter values: at the tiles' centres, y rising up the rows
@@ -103,13 +129,11 @@ std::pair<double, double> tile_values(const Sweep& w, int tile) {
 class FormulaAtlasScene : public SceneBase, public WorkItems {
 public:
     FormulaAtlasScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, formula_param_keys(d, atlas_keys), style_keys()),
-          sweep_(read_sweep(params_)),
-          m_(read_formula_model(params_, d, atlas_keys, {{sweep_.x, sweep_.x_low}, {sweep_.y, sweep_.y_low}})),
-          shown_(chemical_index(style_, "show", style_.text("show", "a"), m_.rule.chemicals)),
-          spec_(read_field_spec(style_, {render::colormap("viridis"), {}, {}, 1.0f, render::Sampling::smooth, true, ""})),
-          plot_(read_plot_style(style_, options.scale)),
-          each_tile_(read_tile_range()) {
+        : SceneBase(d, options, formula_param_keys(d, sweep_schema.keys()), style_schema(formula_chemicals(d)).keys()),
+          sweep_(sweep_schema.read(params_)),
+          m_(read_formula_model(params_, d, sweep_schema.keys(), {{sweep_.x, sweep_.x_low}, {sweep_.y, sweep_.y_low}})),
+          s_(style_schema(m_.rule.chemicals).read(style_)),
+          plot_(plot_style(s_.plot, options.scale)) {
         const std::set<std::string> words = description::formula_words(m_.rule.code);
         if (!words.count(sweep_.x)) params_.refuse("x_parameter", parameter_allowed);
         if (!words.count(sweep_.y)) params_.refuse("y_parameter", parameter_allowed);
@@ -152,7 +176,7 @@ public:
         try {
             formula::Run run(rule, m_.width, m_.height, start());
             run.step(m_.steps, 1);  // one thread a tile: the tiles run side by side
-            const sim::Grid<double> g = run.chemical(shown_);
+            const sim::Grid<double> g = run.chemical(s_.shown);
             if (m_.rule.double_precision) {
                 r["values"] = binary_of<double>(g.cells());
             } else {
@@ -227,22 +251,19 @@ public:
         for (Tile& tile : tiles_) {
             if (tile.values.empty()) continue;
             double lo = all_lo, hi = all_hi;
-            if (each_tile_) {
+            if (s_.each_tile) {
                 const auto [l, h] = std::minmax_element(tile.values.begin(), tile.values.end());
                 lo = *l;
                 hi = *h;
             }
-            double vmin = spec_.vmin.value_or(lo), vmax = spec_.vmax.value_or(hi);
+            double vmin = s_.field.vmin.value_or(lo), vmax = s_.field.vmax.value_or(hi);
             if (!(vmax > vmin)) vmax = vmin + 1;
-            tile.style = {&spec_.colormap, vmin, vmax, spec_.alpha, spec_.sampling};
+            tile.style = {&s_.field.colormap, vmin, vmax, s_.field.alpha, s_.field.sampling};
         }
         range_ = {all_lo, any && all_hi > all_lo ? all_hi : all_lo + 1};
-        nlohmann::json meta = {{"params", params_.used()},
-                               {"style", style_.used()},
-                               {"shows", formula::chemical_name(shown_)},
-                               {"tiles_unstable", unstable},
-                               {"tiles", tile_meta},
-                               {"model_operations", m_.operations}};
+        nlohmann::json meta = {
+            {"params", params_.used()},   {"style", style_.used()}, {"shows", formula::chemical_name(s_.shown)},
+            {"tiles_unstable", unstable}, {"tiles", tile_meta},     {"model_operations", m_.operations}};
         if (const auto bar = colour_bar()) meta["colour_bar"] = colour_bar_metadata(*bar);
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         out.figure({width, height, false, [this](render::Surface& s) { draw(s); }}, std::move(meta));
@@ -254,12 +275,6 @@ private:
         std::vector<double> values;  // empty: the run went unstable
         render::FieldStyle style;
     };
-
-    bool read_tile_range() {
-        const std::string range = style_.text("tile_range", "all");
-        if (range != "all" && range != "each") style_.refuse("tile_range", "\"all\" or \"each\"");
-        return range == "each";
-    }
 
     int tile_count() const { return sweep_.columns * sweep_.rows; }
 
@@ -292,26 +307,24 @@ private:
     }
 
     std::optional<render::ColourBar> colour_bar() const {
-        if (!spec_.colour_bar) return std::nullopt;
-        const std::string chem = formula::chemical_name(shown_);
-        const std::string& label = spec_.colour_bar_label;
-        if (spec_.vmin && spec_.vmax)
-            return render::ColourBar{spec_.colormap, *spec_.vmin, *spec_.vmax, label.empty() ? chem : label};
-        if (!each_tile_)
-            return render::ColourBar{spec_.colormap, spec_.vmin.value_or(range_.first),
-                                     spec_.vmax.value_or(range_.second), label.empty() ? chem : label};
-        return render::ColourBar{spec_.colormap, 0.0, 1.0,
+        if (!s_.field.colour_bar) return std::nullopt;
+        const std::string chem = formula::chemical_name(s_.shown);
+        const std::string& label = s_.field.colour_bar_label;
+        if (s_.field.vmin && s_.field.vmax)
+            return render::ColourBar{s_.field.colormap, *s_.field.vmin, *s_.field.vmax, label.empty() ? chem : label};
+        if (!s_.each_tile)
+            return render::ColourBar{s_.field.colormap, s_.field.vmin.value_or(range_.first),
+                                     s_.field.vmax.value_or(range_.second), label.empty() ? chem : label};
+        return render::ColourBar{s_.field.colormap, 0.0, 1.0,
                                  label.empty() ? chem + ", each tile from its minimum (0) to its maximum (1)" : label};
     }
 
     const Sweep sweep_;
     const FormulaModel m_;
-    const int shown_;
-    const FieldSpec spec_;
+    const Style s_;
     const render::PlotStyle plot_;
     mutable std::once_flag start_made_;
     mutable std::vector<sim::Grid<double>> start_;
-    const bool each_tile_;  // tile_range = "each"
     mutable std::vector<Tile> tiles_;
     mutable std::pair<double, double> range_{0.0, 1.0};  // every tile's values, once the tiles ran
 };

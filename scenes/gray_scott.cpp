@@ -16,35 +16,24 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"n", "grid size in cells"},
-    {"ra", "diffusion rate of A"},
-    {"rb", "diffusion rate of B"},
-    {"f", "feed rate"},
-    {"k", "kill rate"},
-    {"noise", "B starts uniform in [0, noise)"},
-    {"island", "added to B on the central square of side 2*(n/20)"},
+using P = sim::GrayScottParams;
+const Schema<P> param_schema = Schema<P>()
+                                   .count("n", &P::n, "grid size in cells")
+                                   .number("ra", &P::ra, "diffusion rate of A")
+                                   .number("rb", &P::rb, "diffusion rate of B")
+                                   .number("f", &P::f, "feed rate")
+                                   .number("k", &P::k, "kill rate")
+                                   .number("noise", &P::noise, "B starts uniform in [0, noise)")
+                                   .number("island", &P::island, "added to B on the central square of side 2*(n/20)")
+                                   .check(validated<P>());
+
+// A through Reds and B through Blues.
+struct Style {
+    FieldSpec a{render::colormap("Reds"), {}, {}, 0.7f, render::Sampling::smooth};
+    FieldSpec b{render::colormap("Blues"), {}, {}, 0.7f, render::Sampling::smooth};
 };
-
-sim::GrayScottParams read_params(Settings& s) {
-    sim::GrayScottParams p;
-    p.n = s.count("n", p.n);
-    p.ra = s.number("ra", p.ra);
-    p.rb = s.number("rb", p.rb);
-    p.f = s.number("f", p.f);
-    p.k = s.number("k", p.k);
-    p.noise = s.number("noise", p.noise);
-    p.island = s.number("island", p.island);
-    check_model(s, [&] { p.validate(); });
-    return p;
-}
-
-std::vector<Key> style_keys() {
-    auto keys = field_spec_keys("a_");
-    const auto b = field_spec_keys("b_");
-    keys.insert(keys.end(), b.begin(), b.end());
-    return keys;
-}
+const Schema<Style> style_schema =
+    Schema<Style>().part(field_spec_schema(), &Style::a, "a_").part(field_spec_schema(), &Style::b, "b_");
 
 // The run on the fast double kernel (sim/gray_scott_kernels.hpp), which
 // equals sim::GrayScott bit for bit on any number of threads: it leaps from
@@ -129,10 +118,9 @@ nlohmann::json panel_metadata(const KernelRun& model, int step) {
 class GrayScottScene : public SceneBase {
 public:
     GrayScottScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, style_keys()),
-          p_(read_params(params_)),
-          a_spec_(read_field_spec(style_, {render::colormap("Reds"), {}, {}, 0.7f, render::Sampling::smooth}, "a_")),
-          b_spec_(read_field_spec(style_, {render::colormap("Blues"), {}, {}, 0.7f, render::Sampling::smooth}, "b_")) {
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          spec_(style_schema.read(style_)) {
         if (d.panels.empty()) throw SettingError("figure.panels", "[]", "one step at least");
         require_drawable(params_, "n", "the field", p_.n, p_.n);
     }
@@ -156,14 +144,13 @@ public:
             .panel =
                 [&](int step) {
                     panels.push_back(
-                        panel_of(model, a_spec_, b_spec_, format_step(d_.panel_title, step), Cells::copied));
+                        panel_of(model, spec_.a, spec_.b, format_step(d_.panel_title, step), Cells::copied));
                     panel_meta.push_back(panel_metadata(model, step));
                 },
-            .frame =
-                [&](int step) -> FrameDrawing {
-                    return run.field_frame(
-                        {panel_of(model, a_spec_, b_spec_, format_step(d_.animation->title, step), Cells::viewed)});
-                },
+            .frame = [&](int step) -> FrameDrawing {
+                return run.field_frame(
+                    {panel_of(model, spec_.a, spec_.b, format_step(d_.animation->title, step), Cells::viewed)});
+            },
             .advance = {},
             .leap = [&](int steps) { model.leap(steps); },
         });
@@ -173,7 +160,7 @@ public:
 
 private:
     const sim::GrayScottParams p_;
-    const FieldSpec a_spec_, b_spec_;
+    const Style spec_;
 };
 
 std::unique_ptr<Scene> read_gray_scott(const Description& d, const SceneOptions& options) {

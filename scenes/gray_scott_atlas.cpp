@@ -6,10 +6,13 @@
 // runs themselves are sim/gray_scott_atlas; the scene keeps only the tiles'
 // float B (no double copies of 576 fields: on this VM each fresh page costs
 // a fault) and summarises them on all threads.
+#include "sim/gray_scott_atlas.hpp"
+
 #include <algorithm>
+#include <climits>
+#include <cmath>
 #include <mutex>
 #include <optional>
-#include <cmath>
 #include <stdexcept>
 #include <thread>
 #include <tuple>
@@ -17,58 +20,80 @@
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/field_stats.hpp"
+#include "scenes/figure_caption.hpp"
 #include "scenes/model_check.hpp"
 #include "scenes/panel_grid.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/tile_map.hpp"
 #include "scenes/work_codec.hpp"
-#include "scenes/figure_caption.hpp"
-#include "sim/gray_scott_atlas.hpp"
 
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"n", "cells a side of each run"},
-    {"steps", "steps of each run"},
-    {"f_range", "[lowest, highest] feed rate, rows from bottom to top"},
-    {"k_range", "[lowest, highest] kill rate, columns from left to right"},
-    {"tiles", "[columns, rows] of the map"},
-    {"ra", "diffusion rate of A"},
-    {"rb", "diffusion rate of B"},
-    {"noise", "B starts uniform in [0, noise)"},
-    {"island", "added to B on the central square"},
-};
+using A = sim::GrayScottAtlasParams;
 
-// A [low, high] pair of rates; the model checks their values.
-std::pair<double, double> read_range(Settings& s, const std::string& key, std::vector<double> fallback) {
-    const std::vector<double> range = s.numbers(key, fallback);
-    if (range.size() != 2) s.refuse(key, "[lowest, highest], each a number from 0 to 0.2");
-    return {range[0], range[1]};
+// A [low, high] pair of rates, read into two members; the model checks their values.
+Schema<A>::Read rate_range(double A::*low, double A::*high) {
+    return [low, high](Settings& s, const std::string& key, A& atlas) {
+        const std::vector<double> range = s.numbers(key, {atlas.*low, atlas.*high});
+        if (range.size() != 2) s.refuse(key, "[lowest, highest]");
+        atlas.*low = range[0];
+        atlas.*high = range[1];
+    };
 }
 
-sim::GrayScottAtlasParams read_params(Settings& s) {
-    sim::GrayScottAtlasParams atlas;
-    sim::GrayScottParams& base = atlas.base;
-    base.n = s.count("n", 128);
-    base.ra = s.number("ra", base.ra);
-    base.rb = s.number("rb", base.rb);
-    base.noise = s.number("noise", base.noise);
-    base.island = s.number("island", base.island);
-    atlas.steps = s.count("steps", 10000);
-    std::tie(atlas.f_low, atlas.f_high) = read_range(s, "f_range", {0.01, 0.07});
-    std::tie(atlas.k_low, atlas.k_high) = read_range(s, "k_range", {0.04, 0.07});
-    const std::vector<long long> tiles = s.integers("tiles", {24, 24});
-    const char* tiles_allowed = "[columns, rows], each an integer from 1 to 256";
-    if (tiles.size() != 2) s.refuse("tiles", tiles_allowed);
-    for (long long t : tiles)
-        if (t < 1 || t > 256) s.refuse("tiles", tiles_allowed);
-    atlas.columns = int(tiles[0]);
-    atlas.rows = int(tiles[1]);
-    check_model(s, [&] { atlas.validate(); }, {{"columns", "tiles"}, {"rows", "tiles"}});
+const Schema<A> param_schema = [] {
+    using G = sim::GrayScottParams;
+    Schema<G> base;
+    base.count("n", &G::n, "cells a side of each run");
+    base.number("ra", &G::ra, "diffusion rate of A");
+    base.number("rb", &G::rb, "diffusion rate of B");
+    base.number("noise", &G::noise, "B starts uniform in [0, noise)");
+    base.number("island", &G::island, "added to B on the central square");
+    Schema<A> s;
+    s.part(base, &A::base);
+    s.count("steps", &A::steps, "steps of each run");
+    s.key({"f_range", "[lowest, highest] feed rate, rows from bottom to top", "a list of numbers", "[lowest, highest]"},
+          rate_range(&A::f_low, &A::f_high), [](const A& d) {
+              return nlohmann::json({d.f_low, d.f_high});
+          });
+    s.key({"k_range", "[lowest, highest] kill rate, columns from left to right", "a list of numbers",
+           "[lowest, highest]"},
+          rate_range(&A::k_low, &A::k_high), [](const A& d) {
+              return nlohmann::json({d.k_low, d.k_high});
+          });
+    s.key(
+        {"tiles", "[columns, rows] of the map", "a list of integers", "[columns, rows]"},
+        [](Settings& section, const std::string& key, A& atlas) {
+            const std::vector<long long> tiles = section.integers(key, {atlas.columns, atlas.rows});
+            if (tiles.size() != 2) section.refuse(key, "[columns, rows]");
+            // Clamped only so that the model sees (and refuses) a count beyond an int.
+            atlas.columns = static_cast<int>(std::clamp<long long>(tiles[0], INT_MIN, INT_MAX));
+            atlas.rows = static_cast<int>(std::clamp<long long>(tiles[1], INT_MIN, INT_MAX));
+        },
+        [](const A& d) {
+            return nlohmann::json({d.columns, d.rows});
+        });
+    s.check(validated<A>({{"columns", "tiles"}, {"rows", "tiles"}}));
+    return s;
+}();
+
+A atlas_defaults() {
+    A atlas;
+    atlas.base.n = 128;
     return atlas;
 }
+
+const FieldSpec field_defaults{render::colormap("Blues"), {}, {}, 1.0f, render::Sampling::smooth, true, ""};
+
+struct Style {
+    FieldSpec field = field_defaults;
+    PlotSettings plot;
+};
+
+const Schema<Style> style_schema =
+    Schema<Style>().part(field_spec_schema(), &Style::field).part(plot_settings_schema(), &Style::plot);
 
 // The tile a stop's name gives back (a part's "stop"); `ran` for an unknown one is refused.
 sim::TileStop tile_stop(const std::string& name) {
@@ -82,10 +107,10 @@ sim::TileStop tile_stop(const std::string& name) {
 class GrayScottAtlasScene : public SceneBase, public WorkItems {
 public:
     GrayScottAtlasScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, with_plot_style_keys(field_spec_keys())),
-          atlas_(read_params(params_)),
-          spec_(read_field_spec(style_, {render::colormap("Blues"), {}, {}, 1.0f, render::Sampling::smooth, true, ""})),
-          plot_(read_plot_style(style_, options.scale)) {
+        : SceneBase(d, options, param_schema.keys(atlas_defaults()), style_schema.keys()),
+          atlas_(param_schema.read(params_, atlas_defaults())),
+          s_(style_schema.read(style_)),
+          plot_(plot_style(s_.plot, options.scale)) {
         require_drawable(params_, "n", "each tile", atlas_.base.n, atlas_.base.n);
         // Its axes span the atlas's (k, f) ranges, known before any tile runs.
         require_text_fits(
@@ -283,9 +308,9 @@ private:
         // (the float kernel flushes subnormals: f + k times B rounds to 0):
         // a tile whose B is below 1e-20 everywhere holds no chemical, and is
         // drawn flat, not as an autoscaled picture of rounding.
-        double vmin = spec_.vmin.value_or(lo), vmax = spec_.vmax.value_or(hi);
-        if (!(vmax > vmin) || (!spec_.vmin && !spec_.vmax && vmax < 1e-20)) vmax = vmin + 1;
-        summary.style = {&spec_.colormap, vmin, vmax, spec_.alpha, spec_.sampling};
+        double vmin = s_.field.vmin.value_or(lo), vmax = s_.field.vmax.value_or(hi);
+        if (!(vmax > vmin) || (!s_.field.vmin && !s_.field.vmax && vmax < 1e-20)) vmax = vmin + 1;
+        summary.style = {&s_.field.colormap, vmin, vmax, s_.field.alpha, s_.field.sampling};
         return summary;
     }
 
@@ -323,18 +348,18 @@ private:
     // The colour bar, when [style] colour_bar: in B's units when vmin and vmax
     // fix one range for every tile; else each tile's own range, 0 to 1.
     std::optional<render::ColourBar> colour_bar() const {
-        if (!spec_.colour_bar) return std::nullopt;
-        const std::string& label = spec_.colour_bar_label;
-        if (spec_.vmin && spec_.vmax)
-            return render::ColourBar{spec_.colormap, *spec_.vmin, *spec_.vmax, label.empty() ? "B" : label};
-        return render::ColourBar{spec_.colormap, 0.0, 1.0,
+        if (!s_.field.colour_bar) return std::nullopt;
+        const std::string& label = s_.field.colour_bar_label;
+        if (s_.field.vmin && s_.field.vmax)
+            return render::ColourBar{s_.field.colormap, *s_.field.vmin, *s_.field.vmax, label.empty() ? "B" : label};
+        return render::ColourBar{s_.field.colormap, 0.0, 1.0,
                                  label.empty() ? "B, each tile from its minimum (0) to its maximum (1)" : label};
     }
 
     const sim::GrayScottAtlasParams atlas_;
     mutable std::once_flag start_made_;
     mutable std::optional<sim::GrayScott> start_;
-    const FieldSpec spec_;
+    const Style s_;
     const render::PlotStyle plot_;
 };
 

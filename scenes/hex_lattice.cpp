@@ -13,30 +13,36 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"row_cells", "cells in the 1-D row, odd, 3..41"},
-    {"radius", "rings of the hexagonal patch"},
+struct Params {
+    int row_cells = 7, radius = 2;
 };
 
-const std::vector<Key> style_keys = {
-    {"line_colour", "cell outlines"},
-    {"fill_colour", "the centre and its neighbours"},
-    {"captions", "captions of the two panels"},
+const Schema<Params> param_schema =
+    Schema<Params>()
+        .key({"row_cells", "cells in the 1-D row", "an integer", "an odd number from 3 to 41", 7},
+             [](Settings& s, const std::string& key, Params& p) {
+                 p.row_cells = s.count(key, p.row_cells);
+                 if (p.row_cells < 3 || p.row_cells > 41 || p.row_cells % 2 == 0)
+                     s.refuse(key, "an odd number from 3 to 41");
+             })
+        .count("radius", &Params::radius, "rings of the hexagonal patch", 1, 10);
+
+struct Style {
+    Colour line = colour("black"), fill = colour("#dde8f3");
+    std::vector<std::string> captions{"(a) one-dimensional", "(b) two-dimensional (hexagonal)"};
 };
 
-// A list of steps as messages show it: "[16, 200]".
-
-int read_row_cells(Settings& params) {
-    const int row_cells = params.count("row_cells", 7);
-    if (row_cells < 3 || row_cells > 41 || row_cells % 2 == 0) params.refuse("row_cells", "an odd number from 3 to 41");
-    return row_cells;
-}
-
-std::vector<std::string> read_captions(Settings& style) {
-    auto captions = style.texts("captions", {"(a) one-dimensional", "(b) two-dimensional (hexagonal)"});
-    if (captions.size() != 2) style.refuse("captions", "two captions, (a)'s and (b)'s");
-    return captions;
-}
+const Schema<Style> style_schema =
+    Schema<Style>()
+        .field({"line_colour", "cell outlines", "a colour"}, &Style::line, read_colour)
+        .field({"fill_colour", "the centre and its neighbours", "a colour"}, &Style::fill, read_colour)
+        .key(
+            {"captions", "captions of the two panels", "a list of strings", "two captions, (a)'s and (b)'s"},
+            [](Settings& s, const std::string& key, Style& v) {
+                v.captions = s.texts(key, v.captions);
+                if (v.captions.size() != 2) s.refuse(key, "two captions, (a)'s and (b)'s");
+            },
+            [](const Style& d) { return nlohmann::json(d.captions); });
 
 // What both panels draw into: cells, shapes and text gathered, drawn at the end.
 struct Drawing {
@@ -76,12 +82,9 @@ struct Drawing {
 class HexLatticeScene : public SceneBase {
 public:
     HexLatticeScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, style_keys),
-          row_cells_(read_row_cells(params_)),
-          radius_(params_.count_in("radius", 2, 1, 10)),
-          line_(style_colour(style_, "line_colour", "black")),
-          fill_(style_colour(style_, "fill_colour", "#dde8f3")),
-          captions_(read_captions(style_)) {
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          s_(style_schema.read(style_)) {
         refuse_steps(d, "a schematic has no steps", true);
         require_text_fits(d, options, [&](const render::Rect& area) {
             Drawing draw(static_cast<int>(area.w), static_cast<int>(area.h), static_cast<float>(options.scale));
@@ -100,17 +103,16 @@ public:
         const std::vector<double> patch_state = draw_patch(draw);
         const FigureDrawing figure{width, height, false, [this, &draw](render::Surface& surface) {
                                        surface.background({1, 1, 1, 1});
-                                       render::draw_hex_cells(surface, draw.view, draw.cells, fill_);
+                                       render::draw_hex_cells(surface, draw.view, draw.cells, s_.fill.rgba);
                                        draw.fills.draw(surface);
                                        draw.outlines.draw(surface);
                                        draw.text.draw(surface);
                                    }};
-        out.figure(figure,
-                   {{"params", params_.used()},
-                    {"style", style_.used()},
-                    {"panels",
-                     {{{"label", "(a)"}, {"cells", row_cells_}, {"state_sha256", state_hash(row_state)}},
-                      {{"label", "(b)"}, {"rings", radius_}, {"state_sha256", state_hash(patch_state)}}}}});
+        out.figure(figure, {{"params", params_.used()},
+                            {"style", style_.used()},
+                            {"panels",
+                             {{{"label", "(a)"}, {"cells", p_.row_cells}, {"state_sha256", state_hash(row_state)}},
+                              {{"label", "(b)"}, {"rings", p_.radius}, {"state_sha256", state_hash(patch_state)}}}}});
         progress.finish();
     }
 
@@ -119,24 +121,24 @@ private:
     // Returns what it is drawn from: each cell's rect and whether it is named.
     std::vector<double> draw_row(Drawing& draw) const {
         const float s = draw.s, half = draw.half, height = float(draw.height);
-        const float cell = std::min((half - 40 * s) / float(row_cells_), (height - draw.caption_band) / 3);
+        const float cell = std::min((half - 40 * s) / float(p_.row_cells), (height - draw.caption_band) / 3);
         const float row_y = (height - draw.caption_band) / 2 - cell / 2;
-        const float row_x = (half - cell * float(row_cells_)) / 2;
-        const int mid = row_cells_ / 2;
-        draw.shape({row_x, row_y, cell * float(row_cells_), cell}, "the row of cells of (a)");
+        const float row_x = (half - cell * float(p_.row_cells)) / 2;
+        const int mid = p_.row_cells / 2;
+        draw.shape({row_x, row_y, cell * float(p_.row_cells), cell}, "the row of cells of (a)");
         std::vector<double> row_state;
-        for (int i = 0; i < row_cells_; ++i) {
+        for (int i = 0; i < p_.row_cells; ++i) {
             const render::Rect r{row_x + float(i) * cell, row_y, cell, cell};
             row_state.insert(row_state.end(), {r.x, r.y, r.w, r.h, double(std::abs(i - mid) <= 1)});
-            if (std::abs(i - mid) <= 1) draw.fills.rect(r, fill_);
-            draw.outlines.frame(r, 1.5f * s, line_);
+            if (std::abs(i - mid) <= 1) draw.fills.rect(r, s_.fill.rgba);
+            draw.outlines.frame(r, 1.5f * s, s_.line.rgba);
             if (std::abs(i - mid) <= 1) {
                 const std::string name = i == mid ? "i" : i < mid ? "i\u22121" : "i+1";
                 draw.label(draw.label_font, name, r.centre(), "the label " + name + " of (a)",
                            draw.shape(r, "its cell"));
             }
         }
-        draw.label(draw.caption_font, captions_[0], {half / 2, height - draw.caption_band / 2}, "the caption of (a)");
+        draw.label(draw.caption_font, s_.captions[0], {half / 2, height - draw.caption_band / 2}, "the caption of (a)");
         return row_state;
     }
 
@@ -145,7 +147,7 @@ private:
     std::vector<double> draw_patch(Drawing& draw) const {
         const float s = draw.s, half = draw.half, height = float(draw.height);
         const render::Rect patch{half + 20 * s, 20 * s, half - 40 * s, height - draw.caption_band - 30 * s};
-        const auto view = render::fit_hex_view(patch, radius_);
+        const auto view = render::fit_hex_view(patch, p_.radius);
         draw.shape(patch, "the hexagons of (b)");
         // Neighbour k at 30 + 60 (k - 1) degrees, counter-clockwise from the right.
         const glm::ivec2 numbered[7] = {{0, 0}, {1, 0}, {0, 1}, {-1, 1}, {-1, 0}, {0, -1}, {1, -1}};
@@ -153,10 +155,10 @@ private:
         draw.view = view;
         draw.cells = filled;
         std::vector<double> patch_state;
-        for (int q = -radius_; q <= radius_; ++q)
-            for (int r = -radius_; r <= radius_; ++r)
-                if (std::max({std::abs(q), std::abs(r), std::abs(q + r)}) <= radius_) {
-                    render::hex_outline(draw.outlines, view, {q, r}, 1.5f * s, line_);
+        for (int q = -p_.radius; q <= p_.radius; ++q)
+            for (int r = -p_.radius; r <= p_.radius; ++r)
+                if (std::max({std::abs(q), std::abs(r), std::abs(q + r)}) <= p_.radius) {
+                    render::hex_outline(draw.outlines, view, {q, r}, 1.5f * s, s_.line.rgba);
                     const glm::vec2 centre = render::hex_centre(view, {q, r});
                     patch_state.insert(patch_state.end(), {double(q), double(r), centre.x, centre.y, view.size});
                 }
@@ -168,14 +170,13 @@ private:
             const int inside = draw.shape({c.x - half_side, c.y - half_side, 2 * half_side, 2 * half_side}, "its hexagon");
             draw.label(draw.label_font, std::to_string(k), c, "the label " + std::to_string(k) + " of (b)", inside);
         }
-        draw.label(draw.caption_font, captions_[1], {half + half / 2, height - draw.caption_band / 2},
+        draw.label(draw.caption_font, s_.captions[1], {half + half / 2, height - draw.caption_band / 2},
                    "the caption of (b)");
         return patch_state;
     }
 
-    const int row_cells_, radius_;
-    const glm::vec4 line_, fill_;
-    const std::vector<std::string> captions_;
+    const Params p_;
+    const Style s_;
 };
 
 std::unique_ptr<Scene> read_hex_lattice(const Description& d, const SceneOptions& options) {

@@ -18,26 +18,6 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"variants", "list of {title, maps = [[a, b, c, d, e, f, p], ...]}, one panel each"},
-    {"points", "points per panel"},
-    {"discard", "first points dropped"},
-    {"bounds", "[xmin, xmax, ymin, ymax] drawn in every panel; absent: the points' own bounds"},
-    {"shared_bounds", "true: every panel shows the box of all panels' points, at one scale; false (default): each "
-                      "panel its own points' box"},
-};
-
-const std::vector<Key> variant_keys = {
-    {"title", "panel title"},
-    {"maps", "[[a, b, c, d, e, f, p], ...]: x' = a x + b y + e, y' = c x + d y + f, picked with probability p"},
-};
-
-std::vector<Key> style_keys() {
-    auto keys = field_spec_keys();
-    keys.push_back({"mode", "\"density\" (log count through the colormap) or \"points\""});
-    return keys;
-}
-
 constexpr std::size_t max_maps = 64;      // what sim::Ifs takes
 constexpr int max_points = 20'000'000;    // per panel, kept until the figure is drawn: 320 MB
 constexpr int max_discard = 100'000'000;  // the model's own bound
@@ -64,10 +44,11 @@ std::string one_line(const toml::node& node) {
 }
 
 // [[a, b, c, d, e, f, p], ...] from a variant's table; a bad map is refused by its index ("maps[1]").
-sim::Ifs read_maps(Settings& variant, const toml::table& table) {
-    const toml::array* maps = table["maps"].as_array();
+sim::Ifs read_maps(Settings& variant, const std::string& key) {
+    const toml::node* given = variant.node(key);
+    const toml::array* maps = given ? given->as_array() : nullptr;
     if (!maps)
-        variant.refuse("maps", variant.has("maps") ? one_line(*table.get("maps")) : "(missing)",
+        variant.refuse(key, given ? one_line(*given) : "(missing)",
                        "a list of maps [a, b, c, d, e, f, p], seven numbers each");
     if (maps->empty() || maps->size() > max_maps)
         variant.refuse("maps", std::to_string(maps->size()) + " maps",
@@ -79,7 +60,7 @@ sim::Ifs read_maps(Settings& variant, const toml::table& table) {
         for (std::size_t i = 0; i < 7; ++i) {
             const auto number = values && values->size() == 7 ? (*values)[i].value<double>() : std::nullopt;
             if (!number)
-                variant.refuse("maps[" + std::to_string(m) + "]", one_line((*maps)[m]),
+                variant.refuse(key + "[" + std::to_string(m) + "]", one_line((*maps)[m]),
                                "seven numbers [a, b, c, d, e, f, p]");
             v[i] = *number;
         }
@@ -88,50 +69,72 @@ sim::Ifs read_maps(Settings& variant, const toml::table& table) {
     return ifs;
 }
 
-// Each variant's title and maps, the maps checked by the model under the
-// variant's keys ("variants[1].maps[2].p").
-std::vector<Variant> read_variants(Settings& params) {
-    const auto tables = params.tables("variants");
-    if (tables.empty())
-        params.refuse("variants", "[]", "one variant at least, {title, maps = [[a, b, c, d, e, f, p], ...]}");
+const Schema<Variant> variant_schema =
+    Schema<Variant>()
+        .text("title", &Variant::title, "panel title")
+        .key({"maps", "[[a, b, c, d, e, f, p], ...]: x' = a x + b y + e, y' = c x + d y + f, picked with probability p",
+              "a list of lists of numbers", "1 to " + std::to_string(max_maps) + " maps [a, b, c, d, e, f, p]"},
+             [](Settings& s, const std::string& key, Variant& v) { v.ifs = read_maps(s, key); })
+        .check([](Settings& s, const std::string&, Variant& v) { check_model(s, [&] { v.ifs.validate(); }); });
+
+struct Params {
     std::vector<Variant> variants;
-    for (std::size_t i = 0; i < tables.size(); ++i) {
-        Settings variant("params.variants[" + std::to_string(i) + "]", tables[i], variant_keys);
-        Variant v{variant.text("title", ""), read_maps(variant, tables[i])};
-        check_model(variant, [&] { v.ifs.validate(); });
-        variants.push_back(std::move(v));
-    }
-    return variants;
-}
-
-sim::ChaosGameParams read_game(Settings& params) {
     sim::ChaosGameParams game;
-    game.points = static_cast<std::uint64_t>(params.count_in("points", 200000, 1, max_points));
-    game.discard = static_cast<std::uint64_t>(params.count_in("discard", 100, 0, max_discard));
-    check_model(params, [&] { game.validate(); });
-    return game;
-}
+    std::vector<double> bounds;  // [xmin, xmax, ymin, ymax]; empty: the points' own box
+    bool shared_bounds = false;  // without bounds: one box for every panel
+};
 
-// [xmin, xmax, ymin, ymax], or empty for the points' own bounds.
-std::vector<double> read_bounds(Settings& params) {
-    const auto bounds = params.numbers("bounds", {});
-    if (bounds.empty()) return bounds;
-    bool box = bounds.size() == 4 && bounds[1] > bounds[0] && bounds[3] > bounds[2];
-    for (const double b : bounds) box = box && std::abs(b) <= max_coordinate;
-    if (box) return bounds;
-    std::string value;  // on one line, however many numbers
-    for (const double b : bounds) value += (value.empty() ? "[" : ", ") + sim::shown(b);
-    params.refuse("bounds", value + "]",
-                  "[xmin, xmax, ymin, ymax] with xmin < xmax and ymin < ymax, each from " + sim::shown(-max_coordinate) +
-                      " to " + sim::shown(max_coordinate));
-}
+const std::string bounds_allowed = "[xmin, xmax, ymin, ymax] with xmin < xmax and ymin < ymax, each from " +
+                                   sim::shown(-max_coordinate) + " to " + sim::shown(max_coordinate);
 
-// True for "points" (a pixel is on or off), false for "density".
-bool read_points_mode(Settings& style) {
-    const std::string mode = style.text("mode", "density");
-    if (mode != "density" && mode != "points") style.refuse("mode", "\"density\" or \"points\"");
-    return mode == "points";
-}
+const Schema<Params> param_schema = [] {
+    using G = sim::ChaosGameParams;
+    Schema<G> game;
+    game.count("points", &G::points, "points per panel", 1, max_points);
+    game.count("discard", &G::discard, "first points dropped", 0, max_discard);
+    game.check(validated<G>());
+    Schema<Params> s;
+    // Each variant's title and maps, the maps checked by the model under the
+    // variant's keys ("variants[1].maps[2].p").
+    s.key({"variants", "list of {title, maps = [[a, b, c, d, e, f, p], ...]}, one panel each", "a list of tables",
+           "one variant at least"},
+          [](Settings& section, const std::string& key, Params& p) {
+              const auto tables = section.tables(key);
+              if (tables.empty())
+                  section.refuse(key, "[]", "one variant at least, {title, maps = [[a, b, c, d, e, f, p], ...]}");
+              for (std::size_t i = 0; i < tables.size(); ++i) {
+                  Settings variant("params." + key + "[" + std::to_string(i) + "]", tables[i], variant_schema.keys());
+                  p.variants.push_back(variant_schema.read(variant));
+              }
+          });
+    s.part(game, &Params::game);
+    s.key({"bounds", "[xmin, xmax, ymin, ymax] drawn in every panel; absent: the points' own bounds",
+           "a list of numbers", bounds_allowed},
+          [](Settings& section, const std::string& key, Params& p) {
+              p.bounds = section.numbers(key, {});
+              if (p.bounds.empty()) return;
+              bool box = p.bounds.size() == 4 && p.bounds[1] > p.bounds[0] && p.bounds[3] > p.bounds[2];
+              for (const double b : p.bounds) box = box && std::abs(b) <= max_coordinate;
+              if (box) return;
+              std::string value;  // on one line, however many numbers
+              for (const double b : p.bounds) value += (value.empty() ? "[" : ", ") + sim::shown(b);
+              section.refuse(key, value + "]", bounds_allowed);
+          });
+    s.flag("shared_bounds", &Params::shared_bounds,
+           "true: every panel shows the box of all panels' points, at one scale; false: each panel its own points' "
+           "box");
+    return s;
+}();
+
+struct Style {
+    FieldSpec field{render::colormap("Greens"), 0.0, {}, 1.0f, render::Sampling::nearest};
+    bool points_mode = false;  // a pixel is on or off, not a log count
+};
+
+const Schema<Style> style_schema = Schema<Style>()
+                                       .part(field_spec_schema(), &Style::field)
+                                       .choice("mode", &Style::points_mode, {{"density", false}, {"points", true}},
+                                               "density (log count through the colormap) or points");
 
 // SHA-256 of the points' x and y, in the order the game made them.
 std::string points_hash(const std::vector<glm::dvec2>& points) {
@@ -174,35 +177,31 @@ std::pair<glm::dvec2, glm::dvec2> with_aspect(std::pair<glm::dvec2, glm::dvec2> 
 class IfsScene : public SceneBase {
 public:
     IfsScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, style_keys()),
-          game_(read_game(params_)),
-          bounds_(read_bounds(params_)),
-          shared_bounds_(params_.flag("shared_bounds", false)),
-          points_mode_(read_points_mode(style_)),
-          spec_(read_field_spec(style_, {render::colormap("Greens"), 0.0, {}, 1.0f, render::Sampling::nearest})),
-          variants_(read_variants(params_)) {}
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          s_(style_schema.read(style_)) {}
 
     // Every panel's points, two doubles each, kept until the figure is drawn,
     // and one panel's copy for its hash. Measured at 20,000,000 points, 3
     // panels: 19.2 bytes a point above the program.
     std::vector<MemoryNeed> memory() const override {
-        return {{std::to_string(variants_.size()) + " x " + std::to_string(game_.points) + " points",
-                 16.0 * double(game_.points) * double(variants_.size())},
-                {"a panel's points hashed", 16.0 * double(game_.points)}};
+        return {{std::to_string(p_.variants.size()) + " x " + std::to_string(p_.game.points) + " points",
+                 16.0 * double(p_.game.points) * double(p_.variants.size())},
+                {"a panel's points hashed", 16.0 * double(p_.game.points)}};
     }
 
     void render(Output& out) const override {
         Progress& progress = out.progress();
-        progress.start(d_.id, static_cast<long long>(variants_.size()));
+        progress.start(d_.id, static_cast<long long>(p_.variants.size()));
         Clouds clouds = play(progress);
         // The box each panel shows: [params] bounds, else all the points' box
         // when shared, else each panel's own points' box, widened to the
         // panels' common aspect (the geometric mean of theirs) so that each
         // cloud keeps its shape and fills its panel one way.
         std::vector<std::pair<glm::dvec2, glm::dvec2>> boxes(clouds.points.size(), {clouds.lo, clouds.hi});
-        if (!bounds_.empty()) {
-            boxes.assign(clouds.points.size(), {{bounds_[0], bounds_[2]}, {bounds_[1], bounds_[3]}});
-        } else if (!shared_bounds_ && boxes.size() > 1) {  // one panel: its own box is all the points
+        if (!p_.bounds.empty()) {
+            boxes.assign(clouds.points.size(), {{p_.bounds[0], p_.bounds[2]}, {p_.bounds[1], p_.bounds[3]}});
+        } else if (!p_.shared_bounds && boxes.size() > 1) {  // one panel: its own box is all the points
             double log_aspect = 0;
             for (const auto& [lo, hi] : clouds.own) {
                 const glm::dvec2 size = glm::max(hi - lo, glm::dvec2(1e-300));
@@ -221,9 +220,9 @@ private:
     Clouds play(Progress& progress) const {
         sim::Random rng(d_.seed);  // one stream for all panels, in order
         Clouds clouds;
-        for (const Variant& v : variants_) {
+        for (const Variant& v : p_.variants) {
             std::vector<std::uint64_t> counts;
-            clouds.points.push_back(sim::chaos_game(v.ifs, game_, rng, &counts));
+            clouds.points.push_back(sim::chaos_game(v.ifs, p_.game, rng, &counts));
             glm::dvec2 own_lo{1e300, 1e300}, own_hi{-1e300, -1e300};
             for (const auto& p : clouds.points.back()) {
                 own_lo = glm::min(own_lo, p);
@@ -257,27 +256,22 @@ private:
         row.scale = float(options_.scale);
         row.aspect = float((boxes[0].second.x - boxes[0].first.x) / (boxes[0].second.y - boxes[0].first.y));
         const auto rects = render::panel_row(width, height, int(clouds.points.size()), true, row);
-        Page page{std::vector<FieldSpec>(clouds.points.size(), spec_), {}};
+        Page page{std::vector<FieldSpec>(clouds.points.size(), s_.field), {}};
         std::vector<FieldSpec>& specs = page.specs;
         std::vector<FieldPanel>& panels = page.panels;
         for (std::size_t i = 0; i < clouds.points.size(); ++i) {
             const int cols = std::max(1, int(rects[i].w)), rows = std::max(1, int(rects[i].h));
             const auto& [lo, hi] = boxes[i];
-            const sim::Grid<double> field = binned(clouds.points[i], cols, rows, lo, hi, points_mode_);
-            if (points_mode_)
-                specs[i].colormap = render::listed_colormap("points", {{1, 1, 1}, {0.0f, 0.45f, 0.1f}});
-            panels.push_back({variants_[i].title, {field_layer(field, specs[i])}});
+            const sim::Grid<double> field = binned(clouds.points[i], cols, rows, lo, hi, s_.points_mode);
+            if (s_.points_mode) specs[i].colormap = render::listed_colormap("points", {{1, 1, 1}, {0.0f, 0.45f, 0.1f}});
+            panels.push_back({p_.variants[i].title, {field_layer(field, specs[i])}});
             clouds.meta[i]["drawn_bounds"] = {lo.x, hi.x, lo.y, hi.y};
         }
         return page;
     }
 
-    const sim::ChaosGameParams game_;
-    const std::vector<double> bounds_;  // [xmin, xmax, ymin, ymax]; empty: the points' own box
-    const bool shared_bounds_;          // without bounds_: one box for every panel
-    const bool points_mode_;
-    const FieldSpec spec_;
-    const std::vector<Variant> variants_;
+    const Params p_;
+    const Style s_;
 };
 
 std::unique_ptr<Scene> read_ifs(const Description& d, const SceneOptions& options) {

@@ -21,34 +21,68 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> plant_keys = {
-    {"title", "panel title"},
-    {"axiom", "the depth-0 string"},
-    {"rules", "rewriting rules, e.g. [\"F -> FF+[+F-F]-[-F+F]\"]"},
-    {"rule", "a single rule, replacing rules (--set rule=\"F -> FF\")"},
-    {"depth", "rewriting depth"},
-    {"angle", "turn of + and - in degrees"},
-    {"plus", "\"right\" (the article's turtle: + is rt) or \"left\" (ABOP)"},
-    {"length", "segment length at level 0"},
-    {"length_scale", "segment length factor per level"},
-    {"width", "pen width (rewrite reading)"},
-    {"width_per_level", "pen width per level (the article's pensize(2n))"},
-    {"reading", "\"article\" (its recursive turtle) or \"rewrite\" (rewrite depth times, then draw)"},
-    {"draw", "the symbols that draw a step, e.g. \"FG\" (default \"F\")"},
-    {"move", "the symbols that move a step without drawing (default \"f\")"},
+constexpr int max_depth = 64;  // far past any budget: the counts are cheap, the drawing is not
+
+// A plant's keys, as its own table or the figure's [params] gives them.
+struct PlantValues {
+    std::string title;
+    std::string axiom = "F";
+    std::vector<std::string> rules;
+    double depth = 3;  // checked to be an integer
+    sim::Turtle2Params turtle;
+    bool plus_left = false;  // ABOP's '+': the angle negated
+    bool article = false;    // the article's recursive turtle, not the rewrite reading
 };
+
+const Schema<PlantValues> plant_schema = [] {
+    using T = sim::Turtle2Params;
+    Schema<T> turtle;
+    turtle.number("angle", &T::angle_degrees, "turn of + and - in degrees");
+    turtle.number("length", &T::length, "segment length at level 0");
+    turtle.number("length_scale", &T::length_scale, "segment length factor per level");
+    turtle.number("width", &T::width, "pen width (rewrite reading)");
+    turtle.number("width_per_level", &T::width_per_level, "pen width per level (the article's pensize(2n))");
+    turtle.text("draw", &T::draw, "the symbols that draw a step, e.g. \"FG\"");
+    turtle.text("move", &T::move, "the symbols that move a step without drawing");
+    Schema<PlantValues> s;
+    s.text("title", &PlantValues::title, "panel title");
+    s.text("axiom", &PlantValues::axiom, "the depth-0 string");
+    s.texts("rules", &PlantValues::rules, "rewriting rules, e.g. [\"F -> FF+[+F-F]-[-F+F]\"]");
+    s.key({"rule", "a single rule, replacing rules (--set rule=\"F -> FF\")", "text"},
+          [](Settings& section, const std::string& key, PlantValues& v) {
+              if (section.has(key)) v.rules = {section.text(key, "")};
+          });
+    // An integer, read as a number so that 2.5 is refused as not one.
+    s.key({"depth", "rewriting depth", "an integer", integers_allowed(0, max_depth), 3},
+          [](Settings& section, const std::string& key, PlantValues& v) {
+              v.depth = section.number(key, v.depth);
+              if (v.depth != std::floor(v.depth) || !(std::abs(v.depth) <= 1e9))
+                  section.refuse(key, "an integer from 0 to " + std::to_string(max_depth));
+          });
+    s.choice("plus", &PlantValues::plus_left, {{"left", true}, {"right", false}},
+             "right (the article's turtle: + is rt) or left (ABOP)");
+    s.part(turtle, &PlantValues::turtle);
+    s.choice("reading", &PlantValues::article, {{"article", true}, {"rewrite", false}},
+             "article (its recursive turtle) or rewrite (rewrite depth times, then draw)");
+    return s;
+}();
 
 // [params]: every plant key but the title, shared by all plants, and the plants.
 std::vector<Key> param_keys() {
-    std::vector<Key> keys = plant_keys;
+    std::vector<Key> keys = plant_schema.keys();
     keys.erase(keys.begin());  // no shared title
     keys.push_back({"plants", "list of plants, one panel each, each a table of the keys above"});
     return keys;
 }
 
-const std::vector<Key> style_keys = {{"colour", "line colour"}, {"min_width", "thinnest line, pixels at scale 1"}};
-
-constexpr int max_depth = 64;  // far past any budget: the counts are cheap, the drawing is not
+struct Style {
+    Colour colour = scenes::colour("green");
+    double min_width = 0.6;
+};
+const Schema<Style> style_schema =
+    Schema<Style>()
+        .field({"colour", "line colour", "a colour"}, &Style::colour, read_colour)
+        .number("min_width", &Style::min_width, "thinnest line, pixels at scale 1", 0.0, 100.0);
 
 // The most segments a plant may draw (the turtle's own budget, 5,000,000,
 // would take minutes to draw on llvmpipe and hundreds of MB of PDF).
@@ -84,7 +118,7 @@ public:
     // [params] overrides (see check_overridden).
     PlantKeys(const toml::table& own, Settings& shared, std::size_t index, bool own_first = false)
         : where_("plants[" + std::to_string(index) + "]"),
-          own_("params." + where_, own, plant_keys),
+          own_("params." + where_, own, plant_schema.keys()),
           shared_(shared),
           own_first_(own_first) {}
 
@@ -95,13 +129,11 @@ public:
     }
     // Whether [params] gives a key that the plant's own table gives too.
     bool overridden() const {
-        for (const Key& k : plant_keys)
+        for (const Key& k : own_.allowed())
             if (k.name != "title" && shared_.has(k.name) && own_.has(k.name)) return true;
         return false;
     }
     Settings& own() { return own_; }
-    std::string text(const std::string& key, const std::string& fallback) { return from(key).text(key, fallback); }
-    double number(const std::string& key, double fallback) { return from(key).number(key, fallback); }
 
     // The model's check; `names` maps every parameter name it can refuse to
     // the plant's key ("rules[1]" to "rules[1]" or "rule", "angle_degrees" to "angle").
@@ -124,57 +156,6 @@ private:
     bool own_first_;
 };
 
-// The rules, a single "rule" replacing the list; `names` gets the key that gave each, for the parser's messages.
-std::vector<std::string> read_rules(PlantKeys& keys, KeyNames& names) {
-    std::vector<std::string> rules = keys.from("rules").texts("rules", {});
-    const bool single = keys.from("rule").has("rule");
-    if (single) rules = {keys.from("rule").text("rule", "")};
-    for (std::size_t i = 0; i < rules.size(); ++i) {
-        const std::string model_name = "rules[" + std::to_string(i) + "]";
-        names.push_back({model_name, single ? "rule" : model_name});
-    }
-    return rules;
-}
-
-// The turtle's numbers, checked by the turtle with the angle as written: ABOP's '+' (plus = "left") negates it.
-sim::Turtle2Params read_turtle(PlantKeys& keys, bool plus_left) {
-    sim::Turtle2Params turtle;
-    turtle.angle_degrees = keys.number("angle", 22);
-    turtle.length = keys.number("length", 12);
-    turtle.length_scale = keys.number("length_scale", 1);
-    turtle.width = keys.number("width", 2);
-    turtle.width_per_level = keys.number("width_per_level", 2);
-    turtle.draw = keys.text("draw", "F");
-    turtle.move = keys.text("move", "f");
-    keys.check([&] { turtle.validate(); }, {{"angle_degrees", "angle"},
-                                            {"length", "length"},
-                                            {"length_scale", "length_scale"},
-                                            {"width", "width"},
-                                            {"width_per_level", "width_per_level"},
-                                            {"draw", "draw"},
-                                            {"move", "move"}});
-    turtle.angle_degrees *= plus_left ? -1 : 1;
-    return turtle;
-}
-
-// An integer depth 0..max_depth; the model's range check once the number fits a long long.
-int read_depth(PlantKeys& keys) {
-    const double depth = keys.number("depth", 3);
-    if (depth != std::floor(depth) || !(std::abs(depth) <= 1e9))
-        keys.from("depth").refuse("depth", "an integer from 0 to " + std::to_string(max_depth));
-    keys.check([&] { sim::require_integer("depth", static_cast<long long>(depth), 0, max_depth); },
-               {{"depth", "depth"}});
-    return static_cast<int>(depth);
-}
-
-// One text key of two choices: true for `yes`, false for `no`.
-bool read_choice(PlantKeys& keys, const std::string& key, const std::string& fallback, const std::string& yes,
-                 const std::string& no) {
-    const std::string value = keys.text(key, fallback);
-    if (value != yes && value != no) keys.from(key).refuse(key, "\"" + yes + "\" or \"" + no + "\"");
-    return value == yes;
-}
-
 // A plant whose string holds none of its drawing symbols would be an empty
 // panel: refused, naming the symbols its string has and the key that draws.
 [[noreturn]] void refuse_drawing_nothing(PlantKeys& keys, const Plant& p) {
@@ -192,16 +173,35 @@ bool read_choice(PlantKeys& keys, const std::string& key, const std::string& fal
                               symbols + "\"; move = \"...\" for those that move without drawing)");
 }
 
-// The plant's system, depth, turtle and reading from `keys`, each checked.
+// The plant's system, depth, turtle and reading from `keys`, each checked
+// by the model with the names as written: the angle as given, before ABOP's
+// '+' (plus = "left") negates it.
 void read_checked(PlantKeys& keys, Plant& p, std::vector<std::string>& rules) {
+    const PlantValues v = plant_schema.read_each(
+        [&](const std::string& key) -> Settings& { return key == "title" ? keys.own() : keys.from(key); });
+    rules = v.rules;
+    const bool single = keys.from("rule").has("rule");
     KeyNames names;
-    rules = read_rules(keys, names);
-    const std::string axiom = keys.text("axiom", "F");
+    for (std::size_t i = 0; i < rules.size(); ++i) {
+        const std::string model_name = "rules[" + std::to_string(i) + "]";
+        names.push_back({model_name, single ? "rule" : model_name});
+    }
     names.push_back({"axiom", "axiom"});
-    keys.check([&] { p.system = sim::LSystem::parse(axiom, rules); }, names);
-    p.depth = read_depth(keys);
-    p.turtle = read_turtle(keys, read_choice(keys, "plus", "right", "left", "right"));
-    p.article = read_choice(keys, "reading", "rewrite", "article", "rewrite");
+    keys.check([&] { p.system = sim::LSystem::parse(v.axiom, rules); }, names);
+    keys.check([&] { sim::require_integer("depth", static_cast<long long>(v.depth), 0, max_depth); },
+               {{"depth", "depth"}});
+    p.depth = static_cast<int>(v.depth);
+    p.turtle = v.turtle;
+    keys.check([&] { p.turtle.validate(); }, {{"angle_degrees", "angle"},
+                                              {"length", "length"},
+                                              {"length_scale", "length_scale"},
+                                              {"width", "width"},
+                                              {"width_per_level", "width_per_level"},
+                                              {"draw", "draw"},
+                                              {"move", "move"}});
+    p.turtle.angle_degrees *= v.plus_left ? -1 : 1;
+    p.article = v.article;
+    p.title = v.title;
 }
 
 // A plant's own values that [params] overrides (--set depth=5 sets every
@@ -220,7 +220,6 @@ Plant read_plant(const toml::table& own, Settings& shared, std::size_t index) {
     check_overridden(own, shared, index);
     PlantKeys keys(own, shared, index);
     Plant p;
-    p.title = keys.own().text("title", "");
     std::vector<std::string> rules;
     read_checked(keys, p, rules);
     p.turtle.segment_budget = plant_segment_budget;
@@ -286,10 +285,10 @@ float panel_aspect(const Drawings& drawings) {
 class LSystemScene : public SceneBase {
 public:
     LSystemScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys(), style_keys),
+        : SceneBase(d, options, param_keys(), style_schema.keys()),
           plants_(read_plants(params_)),
-          colour_(style_colour(style_, "colour", "green")),
-          min_width_(float(style_.number_in("min_width", 0.6, 0.0, 100.0) * options.scale)) {
+          s_(style_schema.read(style_)),
+          min_width_(float(s_.min_width * options.scale)) {
         // The titles must fit before anything runs; the plants' shapes are
         // not known yet, so square panels stand in for them.
         require_text_fits(d, options, [&](const render::Rect& area) { return render::page_text(title_layout(area, 1.0f)); });
@@ -371,7 +370,7 @@ private:
         nlohmann::json panel_meta = nlohmann::json::array();
         for (std::size_t i = 0; i < plants_.size(); ++i) {
             const Plant& p = plants_[i];
-            add_plant(shapes, rects[i], drawings[i], colour_, min_width_);
+            add_plant(shapes, rects[i], drawings[i], s_.colour.rgba, min_width_);
             const auto box = sim::bounds(drawings[i]);
             const std::uint64_t symbols = p.article ? p.system.length_recursive(p.depth) : p.system.length(p.depth);
             panel_meta.push_back({{"title", p.title},
@@ -397,7 +396,7 @@ private:
     }
 
     const std::vector<Plant> plants_;
-    const glm::vec4 colour_;
+    const Style s_;
     const float min_width_;  // pixels, scaled
 };
 

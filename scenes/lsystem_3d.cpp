@@ -24,25 +24,6 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"axiom", "the depth-0 string"},
-    {"rules", "rewriting rules"},
-    {"rule", "a single rule, replacing rules"},
-    {"depth", "rewriting depth"},
-    {"angle", "every turn, pitch and roll, degrees"},
-    {"length", "segment length"},
-    {"width", "trunk width"},
-    {"width_decay", "factor of '!'"},
-};
-
-const std::vector<Key> style_keys = {
-    {"bark_colour", "colour of colour index 0"},
-    {"leaf_colour", "colour of colour index leaf_index and above"},
-    {"leaf_index", "colour index drawn in leaf_colour"},
-    {"views", "azimuths of the panels, degrees"}, {"elevation", "camera elevation, degrees"},
-    {"sides", "facets around each tube"},
-};
-
 constexpr int max_depth = 64;                  // far past any budget: the counts are cheap, the drawing is not
 constexpr int min_sides = 3, max_sides = 256;  // what render::draw_tubes draws
 constexpr double max_azimuth = 360;            // degrees either way: one turn
@@ -61,34 +42,6 @@ void require_drawn_segments(Settings& params, int depth, std::uint64_t segments,
     check_model(params, [&] { sim::require_vertex_budget(depth, vertices, turtle.vertex_budget); });
 }
 
-// The axiom and rules, a single "rule" replacing the list; the parser's
-// messages name the key that gave each rule.
-sim::LSystem read_system(Settings& params) {
-    std::vector<std::string> rules = params.texts("rules", {});
-    const bool single = params.has("rule");
-    if (single) rules = {params.text("rule", "")};
-    const std::string axiom = params.text("axiom", "A");
-    KeyNames names;
-    for (std::size_t i = 0; i < rules.size(); ++i) {
-        const std::string model_name = "rules[" + std::to_string(i) + "]";
-        names.push_back({model_name, single ? "rule" : model_name});
-    }
-    sim::LSystem system;
-    check_model(
-        params, [&] { system = sim::LSystem::parse(axiom, rules); }, names);
-    return system;
-}
-
-sim::Turtle3Params read_turtle(Settings& params) {
-    sim::Turtle3Params turtle;
-    turtle.angle_degrees = params.number("angle", 22.5);
-    turtle.length = params.number("length", 1);
-    turtle.width = params.number("width", 0.1);
-    turtle.width_decay = params.number("width_decay", 0.7);
-    check_model(params, [&] { turtle.validate(); }, {{"angle_degrees", "angle"}});
-    return turtle;
-}
-
 // Whether `count` panels in a row of the figure are each a pixel at least
 // both ways, for any box the plant may have: the narrowest panels come with
 // the least aspect, the flattest with the greatest.
@@ -104,21 +57,6 @@ bool views_fit(int count, int width, int height, float scale) {
 }
 
 // The panels' azimuths: each within a turn either way, and no more panels than the figure has pixels for.
-std::vector<double> read_views(Settings& style, int width, int height, float scale) {
-    const auto views = style.numbers("views", {30, 150});
-    const std::string each =
-        "azimuths in degrees, each from " + sim::shown(-max_azimuth) + " to " + sim::shown(max_azimuth);
-    for (const double azimuth : views)
-        if (!(std::abs(azimuth) <= max_azimuth)) style.refuse("views", sim::shown(azimuth), each);
-    if (views.empty() || !views_fit(int(views.size()), width, height, scale)) {
-        int most = 0;
-        while (most < width && views_fit(most + 1, width, height, scale)) ++most;
-        style.refuse("views", std::to_string(views.size()) + " azimuths",
-                     "1 to " + std::to_string(most) + " " + each + " (the figure's panels a pixel at least)");
-    }
-    return views;
-}
-
 // ABOP's colour table, made of two colours: index 0 is bark, leaf_index and
 // above leaf, the indices between a mix (each ' a step from bark to leaf).
 struct Palette {
@@ -206,6 +144,90 @@ render::Light studio_light(const render::Camera& camera) {
     return light;
 }
 
+struct Params {
+    std::string axiom = "A";
+    std::vector<std::string> rules;
+    int depth = 7;
+    sim::Turtle3Params turtle;
+    sim::LSystem system;  // the axiom and rules, parsed
+};
+
+// The axiom and rules, a single "rule" replacing the list; the parser's
+// messages name the key that gave each rule.
+const Schema<Params> param_schema = [] {
+    using T = sim::Turtle3Params;
+    Schema<T> turtle;
+    turtle.number("angle", &T::angle_degrees, "every turn, pitch and roll, degrees");
+    turtle.number("length", &T::length, "segment length");
+    turtle.number("width", &T::width, "trunk width");
+    turtle.number("width_decay", &T::width_decay, "factor of '!'");
+    turtle.check(validated<T>({{"angle_degrees", "angle"}}));
+    Schema<Params> s;
+    s.text("axiom", &Params::axiom, "the depth-0 string");
+    s.texts("rules", &Params::rules, "rewriting rules");
+    s.key({"rule", "a single rule, replacing rules", "text"}, [](Settings& section, const std::string& key, Params& p) {
+        if (section.has(key)) p.rules = {section.text(key, "")};
+    });
+    s.count("depth", &Params::depth, "rewriting depth", 0, max_depth);
+    s.part(turtle, &Params::turtle);
+    s.check([](Settings& section, const std::string&, Params& p) {
+        const bool single = section.has("rule");
+        KeyNames names;
+        for (std::size_t i = 0; i < p.rules.size(); ++i) {
+            const std::string model_name = "rules[" + std::to_string(i) + "]";
+            names.push_back({model_name, single ? "rule" : model_name});
+        }
+        check_model(
+            section, [&] { p.system = sim::LSystem::parse(p.axiom, p.rules); }, names);
+    });
+    return s;
+}();
+
+// The figure's size, given before reading: how many views it has pixels for.
+struct Style {
+    Colour bark = colour("#6b4a2b"), leaf = colour("#3c8d2f");
+    int leaf_index = 3;
+    std::vector<double> views{30, 150};  // azimuths, degrees
+    double elevation = 12;
+    int sides = 12;
+    int width = 0, height = 0;
+    float scale = 1;
+};
+
+// The panels' azimuths: each within a turn either way, and no more panels than the figure has pixels for.
+void read_views(Settings& style, const std::string& key, Style& s) {
+    s.views = style.numbers(key, s.views);
+    const std::string each =
+        "azimuths in degrees, each from " + sim::shown(-max_azimuth) + " to " + sim::shown(max_azimuth);
+    for (const double azimuth : s.views)
+        if (!(std::abs(azimuth) <= max_azimuth)) style.refuse(key, sim::shown(azimuth), each);
+    if (s.views.empty() || !views_fit(int(s.views.size()), s.width, s.height, s.scale)) {
+        int most = 0;
+        while (most < s.width && views_fit(most + 1, s.width, s.height, s.scale)) ++most;
+        style.refuse(key, std::to_string(s.views.size()) + " azimuths",
+                     "1 to " + std::to_string(most) + " " + each + " (the figure's panels a pixel at least)");
+    }
+}
+
+const Schema<Style> style_schema =
+    Schema<Style>()
+        .field({"bark_colour", "colour of colour index 0", "a colour"}, &Style::bark, read_colour)
+        .field({"leaf_colour", "colour of colour index leaf_index and above", "a colour"}, &Style::leaf, read_colour)
+        .count("leaf_index", &Style::leaf_index, "colour index drawn in leaf_colour", 1, max_leaf_index)
+        .key({"views", "azimuths of the panels, degrees", "a list of numbers",
+              "azimuths from -360 to 360, as many as the figure has pixels for", nlohmann::json({30, 150})},
+             read_views)
+        .number("elevation", &Style::elevation, "camera elevation, degrees", -max_elevation, max_elevation)
+        .count("sides", &Style::sides, "facets around each tube", min_sides, max_sides);
+
+Style sized(const Description& d, const SceneOptions& options) {
+    Style s;
+    s.width = figure_width(d, options);
+    s.height = figure_height(d, options);
+    s.scale = float(options.scale);
+    return s;
+}
+
 // The share of its viewport's height or width the plant fills, whichever it
 // reaches first, leaving a margin on the tighter sides.
 constexpr float fill = 0.94f;
@@ -213,19 +235,13 @@ constexpr float fill = 0.94f;
 class LSystem3dScene : public SceneBase {
 public:
     LSystem3dScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, style_keys),
-          system_(read_system(params_)),
-          depth_(params_.count_in("depth", 7, 0, max_depth)),
-          turtle_(read_turtle(params_)),
-          palette_{style_colour(style_, "bark_colour", "#6b4a2b"), style_colour(style_, "leaf_colour", "#3c8d2f"),
-                   style_.count_in("leaf_index", 3, 1, max_leaf_index)},
-          views_(read_views(style_, figure_width(d, options), figure_height(d, options),
-                            float(options.scale))),
-          elevation_(float(style_.number_in("elevation", 12, -max_elevation, max_elevation))),
-          sides_(style_.count_in("sides", 12, min_sides, max_sides)),
-          segments_(sim::segment_count(system_, depth_, false)),
-          vertices_(sim::polygon_vertex_count(system_, depth_)) {
-        require_drawn_segments(params_, depth_, segments_, vertices_, turtle_);
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          s_(style_schema.read(style_, sized(d, options))),
+          palette_{s_.bark.rgba, s_.leaf.rgba, s_.leaf_index},
+          segments_(sim::segment_count(p_.system, p_.depth, false)),
+          vertices_(sim::polygon_vertex_count(p_.system, p_.depth)) {
+        require_drawn_segments(params_, p_.depth, segments_, vertices_, p_.turtle);
     }
 
     // Each segment: the turtle's Segment3, its 9 doubles hashed, its tube
@@ -237,15 +253,15 @@ public:
     // copy). And llvmpipe's queue of binned triangles. Measured at depths 8
     // to 11 (up to 318,552 segments): 1.0 to 1.5 times below this.
     std::vector<MemoryNeed> memory() const override {
-        return {{"plant of depth " + std::to_string(depth_) + ", " + std::to_string(segments_) + " segments",
-                 static_cast<double>(segments_) * (sizeof(sim::Segment3) + 9 * sizeof(double) +
-                                                   2.0 * sizeof(render::Tube) + 2.0 * sizeof(render::Ball))},
-                {"its polygons, " + std::to_string(vertices_) + " vertices at most",
-                 static_cast<double>(vertices_) *
-                     (2.0 * sizeof(glm::dvec3) + 3 * sizeof(double) + sizeof(render::Facet) +
-                      3.0 * sizeof(render::Ball) + 2.0 * 3 * (10 * sizeof(float)))},
-                {"llvmpipe's queue of binned triangles", render::queued_triangles_bytes},
-                {"depth samples of the figure and film canvases", depth_bytes()}};
+        return {
+            {"plant of depth " + std::to_string(p_.depth) + ", " + std::to_string(segments_) + " segments",
+             static_cast<double>(segments_) * (sizeof(sim::Segment3) + 9 * sizeof(double) + 2.0 * sizeof(render::Tube) +
+                                               2.0 * sizeof(render::Ball))},
+            {"its polygons, " + std::to_string(vertices_) + " vertices at most",
+             static_cast<double>(vertices_) * (2.0 * sizeof(glm::dvec3) + 3 * sizeof(double) + sizeof(render::Facet) +
+                                               3.0 * sizeof(render::Ball) + 2.0 * 3 * (10 * sizeof(float)))},
+            {"llvmpipe's queue of binned triangles", render::queued_triangles_bytes},
+            {"depth samples of the figure and film canvases", depth_bytes()}};
     }
 
     // The 3-D canvases' 4x multisampled depth buffers (24-bit depth with its
@@ -260,7 +276,7 @@ public:
     }
 
     void render(Output& out) const override {
-        const sim::Drawing3 drawing = sim::interpret_3d(system_, depth_, turtle_);
+        const sim::Drawing3 drawing = sim::interpret_3d(p_.system, p_.depth, p_.turtle);
         Plant plant;
         plant.tubes = tubes_of(drawing.segments, palette_);
         plant.facets = facets_of(drawing, palette_);
@@ -307,12 +323,12 @@ public:
         // Each panel, its camera and the plant's projected box in it, in the figure's pixels.
         std::vector<render::Camera> cameras;
         nlohmann::json panel_meta = nlohmann::json::array();
-        for (std::size_t i = 0; i < views_.size(); ++i) {
+        for (std::size_t i = 0; i < s_.views.size(); ++i) {
             const render::Rect& r = panels[i];
             cameras.push_back(view_camera(plant, i, r.w / r.h));
             const render::Extent e = render::projected_extent(plant.balls, cameras.back(), r.w / r.h);
-            panel_meta.push_back({{"azimuth_degrees", views_[i]},
-                                  {"elevation_degrees", elevation_},
+            panel_meta.push_back({{"azimuth_degrees", s_.views[i]},
+                                  {"elevation_degrees", float(s_.elevation)},
                                   {"rect", {r.x, r.y, r.w, r.h}},
                                   {"plant_box",
                                    {r.x + (e.lo.x + 1) / 2 * r.w, r.y + (1 - e.hi.y) / 2 * r.h,
@@ -329,14 +345,14 @@ public:
                                   {"polygons", drawing.polygons.size()},
                                   {"polygon_vertices", drawing.vertices.size()},
                                   {"state_sha256", drawing_hash(drawing)},
-                                  {"symbols", system_.length(depth_)},
+                                  {"symbols", p_.system.length(p_.depth)},
                                   {"bounds", {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}}});
     }
 
 private:
     // The figure's view i in a panel of `aspect`.
     render::Camera view_camera(const Plant& plant, std::size_t i, float aspect) const {
-        return render::frame_balls(plant.balls, float(views_[i]), elevation_, aspect, fill);
+        return render::frame_balls(plant.balls, float(s_.views[i]), float(s_.elevation), aspect, fill);
     }
 
     // The film's cameras, one a frame: each frame's share of one turn, every
@@ -347,12 +363,13 @@ private:
         auto azimuth = [&](int step) { return 360.0f * float(step) / float(frames); };
         float distance = 0;
         for (int step = 0; step < frames; ++step) {
-            const render::Camera c = render::frame_balls(plant.balls, azimuth(step), elevation_, aspect, fill);
+            const render::Camera c = render::frame_balls(plant.balls, azimuth(step), float(s_.elevation), aspect, fill);
             distance = std::max(distance, glm::length(c.eye - c.target));
         }
         std::vector<render::Camera> cameras;
         for (int step = 0; step < frames; ++step)
-            cameras.push_back(render::frame_balls(plant.balls, azimuth(step), elevation_, aspect, fill, distance));
+            cameras.push_back(
+                render::frame_balls(plant.balls, azimuth(step), float(s_.elevation), aspect, fill, distance));
         return cameras;
     }
 
@@ -360,7 +377,7 @@ private:
     void turntable_frame(render::Surface& canvas, const Plant& plant, const render::Camera& camera) const {
         canvas.background({1, 1, 1, 1});
         const render::Rect view{0, 0, float(canvas.width()), float(canvas.height())};
-        render::draw_tubes(canvas, view, plant.tubes, plant.facets, camera, studio_light(camera), sides_);
+        render::draw_tubes(canvas, view, plant.tubes, plant.facets, camera, studio_light(camera), s_.sides);
     }
 
     // One panel per azimuth, as wide as the widest view of the plant needs
@@ -368,13 +385,13 @@ private:
     // each.
     std::vector<render::Rect> panel_rects(const Plant& plant, render::PanelRowStyle row, int width, int height) const {
         float widest = min_aspect;
-        for (std::size_t i = 0; i < views_.size(); ++i) {
+        for (std::size_t i = 0; i < s_.views.size(); ++i) {
             const render::Extent e = render::projected_extent(plant.balls, view_camera(plant, i, 1), 1);
             const glm::vec2 size = e.hi - e.lo;
             if (size.y > 0) widest = std::max(widest, size.x / size.y);
         }
         row.aspect = std::clamp(widest, min_aspect, max_aspect);
-        return render::panel_row(width, height, int(views_.size()), true, row);
+        return render::panel_row(width, height, int(s_.views.size()), true, row);
     }
 
     // The figure: the plant in each panel through its camera, titled.
@@ -384,9 +401,9 @@ private:
         canvas.background({1, 1, 1, 1});
         render::Text text;
         const std::vector<std::string> title = titles();
-        for (std::size_t i = 0; i < views_.size(); ++i) {
+        for (std::size_t i = 0; i < s_.views.size(); ++i) {
             render::draw_tubes(canvas, panels[i], plant.tubes, plant.facets, cameras[i], studio_light(cameras[i]),
-                               sides_);
+                               s_.sides);
             text.add(font, title[i], {panels[i].centre().x, panels[i].y - row.title_pad * row.scale}, {0, 0, 0, 1},
                      render::Align::centre, render::Baseline::baseline);
         }
@@ -396,17 +413,13 @@ private:
     // Each panel's title: its azimuth.
     std::vector<std::string> titles() const {
         std::vector<std::string> out;
-        for (const double azimuth : views_) out.push_back("azimuth " + format_fixed(azimuth, 0) + "\u00b0");
+        for (const double azimuth : s_.views) out.push_back("azimuth " + format_fixed(azimuth, 0) + "\u00b0");
         return out;
     }
 
-    const sim::LSystem system_;
-    const int depth_;
-    const sim::Turtle3Params turtle_;
+    const Params p_;
+    const Style s_;
     const Palette palette_;
-    const std::vector<double> views_;  // azimuths, degrees
-    const float elevation_;            // degrees
-    const int sides_;
     const std::uint64_t segments_;  // what the turtle will draw, counted without drawing
     const std::uint64_t vertices_;  // its polygons' vertices at most, likewise
 };

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "description/schema.hpp"
 #include "scenes/description_names.hpp"
 
 namespace scenes {
@@ -18,5 +19,14 @@ using KeyNames = std::vector<std::pair<std::string, std::string>>;
 // Runs `check`; a sim::ParameterError it throws becomes the SettingError of
 // `section`'s key named in `names` (else the key of the model's own name).
 void check_model(Settings& section, const std::function<void()>& check, const KeyNames& names = {});
+
+// A schema's check that runs the model's own, P::validate(), after its keys are read.
+template <class P>
+typename description::Schema<P>::Check validated(const KeyNames& names = {}) {
+    return [names](Settings& section, const std::string&, P& p) {
+        check_model(
+            section, [&] { p.validate(); }, names);
+    };
+}
 
 }  // namespace scenes

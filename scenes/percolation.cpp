@@ -11,40 +11,37 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"n", "grid size"},
-    {"q", "probability that a cell is porous"},
-    stop_key(),
+struct Params {
+    sim::PercolationParams model;
+    StopRule stop = StopRule::bottom_or_fixed_point;
 };
-
-sim::PercolationParams read_params(Settings& s) {
-    sim::PercolationParams p;
-    p.n = s.count("n", p.n);
-    p.q = s.number("q", p.q);
-    check_model(s, [&] { p.validate(); });
-    return p;
-}
+const Schema<Params> param_schema = [] {
+    Schema<Params> s;
+    s.part(percolation_schema(), &Params::model);
+    add_stop_key(s, &Params::stop);
+    return s;
+}();
 
 class PercolationScene : public SceneBase {
 public:
     PercolationScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, field_spec_keys()),
-          p_(read_params(params_)),
-          stop_(read_stop(params_)),
-          spec_(read_field_spec(style_, default_percolation_spec())) {
+        : SceneBase(d, options, param_schema.keys(), field_spec_schema().keys(default_percolation_spec())),
+          p_(param_schema.read(params_)),
+          spec_(field_spec_schema().read(style_, default_percolation_spec())) {
         if (d.panels.empty()) throw SettingError("figure.panels", "[]", "one step at least");
     }
 
     // The cells, their next step and a copy per panel.
     std::vector<MemoryNeed> memory() const override {
         // The model's grids, each panel's values as doubles and its texture.
-        return {grid_need("grids of bytes", p_.n, p_.n, 1, 2.0 + double(d_.panels.size())),
-                grid_need("field panels", p_.n, p_.n, 8 + field_layer_bytes_per_cell, double(d_.panels.size()))};
+        return {grid_need("grids of bytes", p_.model.n, p_.model.n, 1, 2.0 + double(d_.panels.size())),
+                grid_need("field panels", p_.model.n, p_.model.n, 8 + field_layer_bytes_per_cell,
+                          double(d_.panels.size()))};
     }
 
     void render(Output& out) const override {
         sim::Random rng(d_.seed);
-        sim::Percolation model(p_, rng);
+        sim::Percolation model(p_.model, rng);
         bool stopped = false;
 
         StepRunner run(d_, options_, out);
@@ -55,18 +52,17 @@ public:
         };
         auto panel = [&] {
             panels.push_back({title(d_.panel_title), {field_layer(model.cells(), spec_)}});
-            panel_meta.push_back(panel_metadata(model, stop_, stopped));
+            panel_meta.push_back(panel_metadata(model, p_.stop, stopped));
         };
         const int reached = run.run({
             .check = {},
             .panel = [&](int) { panel(); },
-            .frame =
-                [&](int) -> FrameDrawing {
-                    return run.field_frame({{title(d_.animation->title), {field_layer(model.cells(), spec_)}}});
-                },
+            .frame = [&](int) -> FrameDrawing {
+                return run.field_frame({{title(d_.animation->title), {field_layer(model.cells(), spec_)}}});
+            },
             .advance =
                 [&] {
-                    stopped = !step_until_stop(model, stop_);
+                    stopped = !step_until_stop(model, p_.stop);
                     return !stopped;
                 },
         });
@@ -78,8 +74,7 @@ public:
     }
 
 private:
-    const sim::PercolationParams p_;
-    const StopRule stop_;
+    const Params p_;
     const FieldSpec spec_;
 };
 

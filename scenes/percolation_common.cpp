@@ -1,18 +1,17 @@
 #include "scenes/percolation_common.hpp"
 
 #include "base/digest.hpp"
+#include "scenes/model_check.hpp"
 
 namespace scenes {
 
-Key stop_key() {
-    return {"stop", "\"bottom_or_fixed_point\" or \"fixed_point\""};
-}
-
-StopRule read_stop(Settings& params) {
-    const std::string stop = params.text("stop", "bottom_or_fixed_point");
-    if (stop == "bottom_or_fixed_point") return StopRule::bottom_or_fixed_point;
-    if (stop == "fixed_point") return StopRule::fixed_point;
-    params.refuse("stop", "\"bottom_or_fixed_point\" (the book's test_perc) or \"fixed_point\"");
+const Schema<sim::PercolationParams>& percolation_schema() {
+    using P = sim::PercolationParams;
+    static const Schema<P> schema = Schema<P>()
+                                        .count("n", &P::n, "grid size")
+                                        .number("q", &P::q, "probability that a cell is porous")
+                                        .check(validated<P>());
+    return schema;
 }
 
 bool step_until_stop(sim::Percolation& model, StopRule stop) {

@@ -17,11 +17,27 @@ namespace scenes {
 // the model's own fixed point comes later. Each figure says which it shows.
 enum class StopRule { bottom_or_fixed_point, fixed_point };
 
-// The [params] key `stop` as the scenes list it.
-Key stop_key();
+// The [params] key `stop`, declared in `schema` and read into `member`.
+template <class T>
+void add_stop_key(Schema<T>& schema, StopRule T::*member) {
+    schema.choice("stop", member,
+                  {{"bottom_or_fixed_point", StopRule::bottom_or_fixed_point}, {"fixed_point", StopRule::fixed_point}},
+                  "the book's test_perc (stop once the bottom row is wet) or the model's fixed point");
+}
 
-// Reads `stop` from [params]; refuses (SettingError) any other rule.
-StopRule read_stop(Settings& params);
+// The [params] key `p_c`: a known threshold, drawn as a line, so strictly inside (0, 1).
+template <class T>
+void add_p_c_key(Schema<T>& schema, double T::*member, const std::string& meaning) {
+    const std::string allowed = "a number between 0 and 1, both excluded (a probability)";
+    schema.key({"p_c", meaning, "a number", allowed, 0.59274621},
+               [member, allowed](Settings& s, const std::string& key, T& v) {
+                   v.*member = s.number_in(key, v.*member, 0.0, 1.0);
+                   if (!(v.*member > 0 && v.*member < 1)) s.refuse(key, allowed);
+               });
+}
+
+// The model's [params], n and q, checked by the model.
+const Schema<sim::PercolationParams>& percolation_schema();
 
 // One step under the stop rule: false once the run is over.
 bool step_until_stop(sim::Percolation& model, StopRule stop);

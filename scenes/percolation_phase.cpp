@@ -15,46 +15,58 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"n", "array size"},
-    {"trials", "runs per q"},
-    {"qs", "[first, last, step] of the q values tried"},
-    {"walk_start", "find_critical's first q"},
-    {"walk_step", "find_critical's step in q"},
-    {"walk_iterations", "find_critical's runs"},
-    {"p_c", "the known threshold drawn for reference (Newman & Ziff 2000)"},
-};
-
-std::vector<Key> style_keys() {
-    return with_plot_style_keys(
-        {{"series_colour", "colour of the measured curves"}, {"reference_colour", "colour of the reference lines"}});
-}
-
 constexpr double most_q_values = 10000;
 
-// The q values tried, [first, last, step] inside [0, 1].
-std::vector<double> read_qs(Settings& s) {
-    const auto range = s.numbers("qs", {0.50, 0.70, 0.01});
-    const std::string allowed = "[first, last, step] with 0 <= first <= last <= 1 and 0 < step <= 1, at most " +
-                                std::to_string(int(most_q_values)) + " values";
-    if (range.size() != 3 || !(range[0] >= 0 && range[0] <= range[1] && range[1] <= 1) ||
-        !(range[2] > 0 && range[2] <= 1))
-        s.refuse("qs", allowed);
-    // Computed from an integer count so 0.55, 0.60, 0.65 come out as written.
-    const double steps = std::floor((range[1] - range[0]) / range[2] + 1e-9);
-    if (steps + 1 > most_q_values) s.refuse("qs", allowed);
-    const int count = static_cast<int>(steps) + 1;
-    std::vector<double> qs;
-    for (int i = 0; i < count; ++i) qs.push_back(std::round((range[0] + i * range[2]) * 1e9) / 1e9);
-    return qs;
-}
+// What [first, last, step] allows for qs.
+const std::string qs_allowed = "[first, last, step] with 0 <= first <= last <= 1 and 0 < step <= 1, at most " +
+                               std::to_string(int(most_q_values)) + " values";
 
-// A probability drawn as a vertical line: strictly inside (0, 1).
-double read_p_c(Settings& s) {
-    const double p_c = s.number_in("p_c", 0.59274621, 0.0, 1.0);
-    if (!(p_c > 0 && p_c < 1)) s.refuse("p_c", "a number between 0 and 1, both excluded (a probability)");
-    return p_c;
-}
+struct Params {
+    int n = 100, trials = 100;
+    std::vector<double> qs_range{0.50, 0.70, 0.01};
+    std::vector<double> qs;  // the q values tried, from qs_range
+    double walk_start = 0.6, walk_step = 0.005;
+    int iterations = 100;
+    double p_c = 0.59274621;
+};
+
+const Schema<Params> params_read =
+    Schema<Params>()
+        .count("n", &Params::n, "array size", 2, 4096)
+        .count("trials", &Params::trials, "runs per q", 1, 100000)
+        .key({"qs", "[first, last, step] of the q values tried", "a list of numbers", qs_allowed,
+              nlohmann::json({0.50, 0.70, 0.01})},
+             [](Settings& s, const std::string& key, Params& p) {
+                 const auto range = s.numbers(key, p.qs_range);
+                 if (range.size() != 3 || !(range[0] >= 0 && range[0] <= range[1] && range[1] <= 1) ||
+                     !(range[2] > 0 && range[2] <= 1))
+                     s.refuse(key, qs_allowed);
+                 // Computed from an integer count so 0.55, 0.60, 0.65 come out as written.
+                 const double steps = std::floor((range[1] - range[0]) / range[2] + 1e-9);
+                 if (steps + 1 > most_q_values) s.refuse(key, qs_allowed);
+                 const int count = static_cast<int>(steps) + 1;
+                 for (int i = 0; i < count; ++i) p.qs.push_back(std::round((range[0] + i * range[2]) * 1e9) / 1e9);
+             })
+        .number("walk_start", &Params::walk_start, "find_critical's first q", 0.0, 1.0)
+        .number("walk_step", &Params::walk_step, "find_critical's step in q", 1e-6, 0.5)
+        .count("walk_iterations", &Params::iterations, "find_critical's runs", 1, 100000);
+
+const Schema<Params> param_schema = [] {
+    Schema<Params> s = params_read;
+    add_p_c_key(s, &Params::p_c, "the known threshold drawn for reference (Newman & Ziff 2000)");
+    return s;
+}();
+
+struct Style {
+    Colour series = colour("#619aca"), reference = colour("#526e97");
+    PlotSettings plot;
+};
+
+const Schema<Style> style_schema =
+    Schema<Style>()
+        .field({"series_colour", "colour of the measured curves", "a colour"}, &Style::series, read_colour)
+        .field({"reference_colour", "colour of the reference lines", "a colour"}, &Style::reference, read_colour)
+        .part(plot_settings_schema(), &Style::plot);
 
 // The sweep's numbers: per q, the fraction of trials that percolated.
 struct Sweep {
@@ -73,36 +85,30 @@ struct Walk {
 class PercolationPhaseScene : public SceneBase, public WorkItems {
 public:
     PercolationPhaseScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, style_keys()),
-          n_(params_.count_in("n", 100, 2, 4096)),
-          trials_(params_.count_in("trials", 100, 1, 100000)),
-          qs_(read_qs(params_)),
-          walk_start_(params_.number_in("walk_start", 0.6, 0.0, 1.0)),
-          walk_step_(params_.number_in("walk_step", 0.005, 1e-6, 0.5)),
-          iterations_(params_.count_in("walk_iterations", 100, 1, 100000)),
-          p_c_(read_p_c(params_)),
-          colour_(style_colour(style_, "series_colour", "#619aca")),
-          reference_(style_colour(style_, "reference_colour", "#526e97")),
-          plot_style_(read_plot_style(style_, options.scale)) {}
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          s_(style_schema.read(style_)),
+          plot_style_(plot_style(s_.plot, options.scale)) {}
 
     // One run at a time: its cells, a byte each, and as much again for
     // its wet fronts (the cells wetted in one step, a small share of the
     // grid: tc7-phase at n = 4096 peaked 17 MiB over the program).
     std::vector<MemoryNeed> memory() const override {
-        return {grid_need("a run's cells and wet fronts", n_, n_, 2, 1)};
+        return {grid_need("a run's cells and wet fronts", p_.n, p_.n, 2, 1)};
     }
 
     const WorkItems* work() const override { return this; }
-    int item_count() const override { return static_cast<int>(qs_.size()) + 1; }
+    int item_count() const override { return static_cast<int>(p_.qs.size()) + 1; }
     std::string item_name(int item) const override {
-        return item < walk_item() ? "q = " + format_fixed(qs_[item], 4) : "find_critical's walk";
+        return item < walk_item() ? "q = " + format_fixed(p_.qs[item], 4) : "find_critical's walk";
     }
-    double item_bytes() const override { return 64 + 9.0 * iterations_; }
+    double item_bytes() const override { return 64 + 9.0 * p_.iterations; }
     nlohmann::json run_item(int item) const override {
         sim::Random rng = sim::Random::for_item(d_.seed, static_cast<std::uint64_t>(item));
-        if (item == walk_item()) return {{"walk", sim::find_critical(n_, walk_start_, walk_step_, iterations_, rng)}};
+        if (item == walk_item())
+            return {{"walk", sim::find_critical(p_.n, p_.walk_start, p_.walk_step, p_.iterations, rng)}};
         int percolating = 0;
-        for (int t = 0; t < trials_; ++t) percolating += test_perc(n_, qs_[item], rng).percolates;
+        for (int t = 0; t < p_.trials; ++t) percolating += test_perc(p_.n, p_.qs[item], rng).percolates;
         return {{"percolating", percolating}};
     }
 
@@ -111,10 +117,10 @@ public:
     void check_result(int item, const nlohmann::json& r) const override {
         namespace rc = result_check;
         if (item < walk_item()) {
-            rc::integer_in(rc::member(r, "percolating"), "percolating", 0, trials_);
+            rc::integer_in(rc::member(r, "percolating"), "percolating", 0, p_.trials);
             return;
         }
-        for (const nlohmann::json& q : rc::array_of(rc::member(r, "walk"), "walk", iterations_ + 1LL))
+        for (const nlohmann::json& q : rc::array_of(rc::member(r, "walk"), "walk", p_.iterations + 1LL))
             rc::number_in(q, "walk", 0, 1);
     }
 
@@ -125,7 +131,7 @@ public:
         const Sweep sweep = sweep_q(results);
         const Walk walk = walk_of(results[walk_item()].at("walk").get<std::vector<double>>());
         // The plotted numbers: the q values, their fractions percolating, then the walk.
-        std::vector<double> plotted(qs_);
+        std::vector<double> plotted(p_.qs);
         plotted.insert(plotted.end(), sweep.probability.begin(), sweep.probability.end());
         plotted.insert(plotted.end(), walk.q.begin(), walk.q.end());
         nlohmann::json meta = {
@@ -134,7 +140,7 @@ public:
             {"probability", sweep.table},
             {"walk", walk.q},
             {"walk_mean", walk.mean},
-            {"p_c", p_c_},
+            {"p_c", p_.p_c},
             {"state_sha256", state_hash(plotted)},
         };
         out.figure(plot_figure({phase_axes(sweep), walk_axes(walk)}, d_, options_, plot_style_),
@@ -143,22 +149,22 @@ public:
     }
 
 private:
-    int walk_item() const { return static_cast<int>(qs_.size()); }
+    int walk_item() const { return static_cast<int>(p_.qs.size()); }
 
     Sweep sweep_q(const std::vector<nlohmann::json>& results) const {
         Sweep sweep;
-        for (std::size_t i = 0; i < qs_.size(); ++i) {
+        for (std::size_t i = 0; i < p_.qs.size(); ++i) {
             const int percolating = results[i].at("percolating").get<int>();
-            sweep.probability.push_back(double(percolating) / trials_);
-            sweep.table.push_back({{"q", qs_[i]}, {"probability", sweep.probability.back()}});
+            sweep.probability.push_back(double(percolating) / p_.trials);
+            sweep.table.push_back({{"q", p_.qs[i]}, {"probability", sweep.probability.back()}});
         }
         return sweep;
     }
 
     Walk walk_of(std::vector<double> q) const {
-        if (q.size() != static_cast<std::size_t>(iterations_) + 1)  // the start, then a q a run
+        if (q.size() != static_cast<std::size_t>(p_.iterations) + 1)  // the start, then a q a run
             throw std::runtime_error("find_critical's result holds " + std::to_string(q.size()) + " of " +
-                                     std::to_string(iterations_ + 1) + " values");
+                                     std::to_string(p_.iterations + 1) + " values");
         Walk walk;
         walk.q = std::move(q);
         for (std::size_t i = 0; i < walk.q.size(); ++i) walk.index.push_back(double(i));
@@ -175,14 +181,15 @@ private:
         phase.y_range = std::pair{-0.05, 1.05};
         phase.legend = render::Legend::lower_right;
         phase.series = {
-            line_series({p_c_, p_c_}, {-0.05, 1.05}, "p_c = " + format_fixed(p_c_, 4), reference_, 1.5f, true),
-            line_series(qs_, sweep.probability, std::to_string(trials_) + " runs of n = " + std::to_string(n_), colour_,
-                        2.0f, false),
-            dot_series(qs_, sweep.probability, "", colour_, 6.0f)};
+            line_series({p_.p_c, p_.p_c}, {-0.05, 1.05}, "p_c = " + format_fixed(p_.p_c, 4), s_.reference.rgba, 1.5f,
+                        true),
+            line_series(p_.qs, sweep.probability, std::to_string(p_.trials) + " runs of n = " + std::to_string(p_.n),
+                        s_.series.rgba, 2.0f, false),
+            dot_series(p_.qs, sweep.probability, "", s_.series.rgba, 6.0f)};
         // The book's three quoted numbers, when those q values were tried.
         for (double quoted : {0.55, 0.60, 0.65})
-            for (std::size_t i = 0; i < qs_.size(); ++i)
-                if (std::abs(qs_[i] - quoted) < 1e-9)
+            for (std::size_t i = 0; i < p_.qs.size(); ++i)
+                if (std::abs(p_.qs[i] - quoted) < 1e-9)
                     phase.notes.push_back(
                         {"P(" + format_fixed(quoted, 2) + ") = " + format_fixed(sweep.probability[i], 2),
                          {0.04f, 0.86f - 0.08f * float(phase.notes.size())},
@@ -196,18 +203,14 @@ private:
         axes.x_label = "Iteration";
         axes.y_label = "q";
         axes.legend = render::Legend::upper_right;
-        axes.series = {line_series(walk.index, walk.q, "find_critical walk", colour_, 1.5f, false),
-                       line_series({0, double(iterations_)}, {walk.mean, walk.mean},
-                                   "mean " + format_fixed(walk.mean, 4), reference_, 1.5f, true)};
+        axes.series = {line_series(walk.index, walk.q, "find_critical walk", s_.series.rgba, 1.5f, false),
+                       line_series({0, double(p_.iterations)}, {walk.mean, walk.mean},
+                                   "mean " + format_fixed(walk.mean, 4), s_.reference.rgba, 1.5f, true)};
         return axes;
     }
 
-    const int n_, trials_;
-    const std::vector<double> qs_;
-    const double walk_start_, walk_step_;
-    const int iterations_;
-    const double p_c_;
-    const glm::vec4 colour_, reference_;
+    const Params p_;
+    const Style s_;
     const render::PlotStyle plot_style_;
 };
 

@@ -13,31 +13,41 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"q", "probability that a cell is porous"},
-    {"sizes", "[first, last]: every array size in between is tried once"},
-};
-
-std::vector<Key> style_keys() {
-    return with_plot_style_keys({{"d2_colour", "colour of the size^2 line"},
-                                 {"dots_colour", "colour of the cluster sizes"},
-                                 {"d1_colour", "colour of the size line"},
-                                 {"line_width", "reference line width, pixels at scale 1"},
-                                 {"marker_size", "dot diameter, pixels at scale 1"}});
-}
-
 constexpr long long most_size = 4096;  // 16 MB a model, and sum n^2 runs of test_perc
 
-struct SizeRange {
-    int first, last;
+struct Params {
+    double q = 0.59;
+    std::vector<long long> sizes{10, 100};
+    int first = 10, last = 100;  // the sizes, checked
 };
 
-SizeRange read_sizes(Settings& s) {
-    const auto sizes = s.integers("sizes", {10, 100});
-    if (sizes.size() != 2 || sizes[0] < 2 || sizes[1] < sizes[0] || sizes[1] > most_size)
-        s.refuse("sizes", "[first, last] with 2 <= first <= last <= " + std::to_string(most_size));
-    return {static_cast<int>(sizes[0]), static_cast<int>(sizes[1])};
-}
+const Schema<Params> param_schema =
+    Schema<Params>()
+        .number("q", &Params::q, "probability that a cell is porous", 0.0, 1.0)
+        .key({"sizes", "[first, last]: every array size in between is tried once", "a list of integers",
+              "[first, last] with 2 <= first <= last <= " + std::to_string(most_size), nlohmann::json({10, 100})},
+             [](Settings& s, const std::string& key, Params& p) {
+                 p.sizes = s.integers(key, p.sizes);
+                 if (p.sizes.size() != 2 || p.sizes[0] < 2 || p.sizes[1] < p.sizes[0] || p.sizes[1] > most_size)
+                     s.refuse(key, "[first, last] with 2 <= first <= last <= " + std::to_string(most_size));
+                 p.first = static_cast<int>(p.sizes[0]);
+                 p.last = static_cast<int>(p.sizes[1]);
+             });
+
+struct Style {
+    Colour d2 = colour("#526e97"), dots = colour("#4f80b8"), d1 = colour("#7ab2d7");
+    double line_width = 3.0, marker_size = 5.0;
+    PlotSettings plot;
+};
+
+const Schema<Style> style_schema =
+    Schema<Style>()
+        .field({"d2_colour", "colour of the size^2 line", "a colour"}, &Style::d2, read_colour)
+        .field({"dots_colour", "colour of the cluster sizes", "a colour"}, &Style::dots, read_colour)
+        .field({"d1_colour", "colour of the size line", "a colour"}, &Style::d1, read_colour)
+        .number("line_width", &Style::line_width, "reference line width, pixels at scale 1", 0.1, 20.0)
+        .number("marker_size", &Style::marker_size, "dot diameter, pixels at scale 1", 0.5, 50.0)
+        .part(plot_settings_schema(), &Style::plot);
 
 // What one run per size measured: the sizes that percolated, their squares
 // and their cluster cells.
@@ -48,26 +58,21 @@ struct Clusters {
 class PercolationScalingScene : public SceneBase {
 public:
     PercolationScalingScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, style_keys()),
-          q_(params_.number_in("q", 0.59, 0.0, 1.0)),
-          sizes_(read_sizes(params_)),
-          d2_colour_(style_colour(style_, "d2_colour", "#526e97")),
-          dots_colour_(style_colour(style_, "dots_colour", "#4f80b8")),
-          d1_colour_(style_colour(style_, "d1_colour", "#7ab2d7")),
-          line_width_(static_cast<float>(style_.number_in("line_width", 3.0, 0.1, 20.0))),
-          marker_size_(static_cast<float>(style_.number_in("marker_size", 5.0, 0.5, 50.0))),
-          plot_style_(read_plot_style(style_, options.scale)) {}
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          s_(style_schema.read(style_)),
+          plot_style_(plot_style(s_.plot, options.scale)) {}
 
     // One run at a time, the largest last: its cells, a byte each, and as much again for
     // its wet fronts (the cells wetted in one step, a small share of the
     // grid: tc7-phase at n = 4096 peaked 17 MiB over the program).
     std::vector<MemoryNeed> memory() const override {
-        return {grid_need("a run's cells and wet fronts", sizes_.last, sizes_.last, 2, 1)};
+        return {grid_need("a run's cells and wet fronts", p_.last, p_.last, 2, 1)};
     }
 
     void render(Output& out) const override {
         Progress& progress = out.progress();
-        progress.start(d_.id, sizes_.last - sizes_.first + 1);
+        progress.start(d_.id, p_.last - p_.first + 1);
         const Clusters c = measure(progress);
         if (c.kept.size() < 2) throw std::runtime_error(d_.id + ": fewer than two runs percolated; no slope to fit");
         const sim::LineFit fit = sim::fit_log_log(c.kept, c.filled);
@@ -77,7 +82,7 @@ public:
         nlohmann::json meta = {
             {"params", params_.used()},
             {"style", style_.used()},
-            {"runs", sizes_.last - sizes_.first + 1},
+            {"runs", p_.last - p_.first + 1},
             {"percolating_runs", c.kept.size()},
             {"sizes", c.kept},
             {"cluster_cells", c.filled},
@@ -96,9 +101,9 @@ private:
     Clusters measure(Progress& progress) const {
         sim::Random rng(d_.seed);
         Clusters c;
-        for (int size = sizes_.first; size <= sizes_.last; ++size) {
+        for (int size = p_.first; size <= p_.last; ++size) {
             long wet = 0;
-            if (test_perc(size, q_, rng, &wet).percolates) {
+            if (test_perc(size, p_.q, rng, &wet).percolates) {
                 c.kept.push_back(size);
                 c.squares.push_back(double(size) * size);
                 c.filled.push_back(double(wet - size));  // the book: num_wet minus the initial top row
@@ -117,16 +122,14 @@ private:
         axes.x_label = "Array Size";
         axes.y_label = "Cell Count";
         axes.legend = render::Legend::upper_left;
-        axes.series = {line_series(c.kept, c.squares, "d=2", d2_colour_, line_width_, false),
-                       dot_series(c.kept, c.filled, "filled", dots_colour_, marker_size_),
-                       line_series(c.kept, c.kept, "d=1", d1_colour_, line_width_, false)};
+        axes.series = {line_series(c.kept, c.squares, "d=2", s_.d2.rgba, float(s_.line_width), false),
+                       dot_series(c.kept, c.filled, "filled", s_.dots.rgba, float(s_.marker_size)),
+                       line_series(c.kept, c.kept, "d=1", s_.d1.rgba, float(s_.line_width), false)};
         return axes;
     }
 
-    const double q_;
-    const SizeRange sizes_;
-    const glm::vec4 d2_colour_, dots_colour_, d1_colour_;
-    const float line_width_, marker_size_;
+    const Params p_;
+    const Style s_;
     const render::PlotStyle plot_style_;
 };
 

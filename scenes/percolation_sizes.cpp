@@ -14,47 +14,55 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"sizes", "grid sizes, one panel each (1 to 16 of them)"},
-    {"q", "probability that a cell is porous"},
-    stop_key(),
-};
-
 // Panels side by side in one row: more than this leaves each too small to read.
 constexpr std::size_t most_sizes = 16;
 
-// One model's parameters per size, each checked by the model itself.
-std::vector<sim::PercolationParams> read_runs(Settings& s) {
-    const double q = s.number("q", 0.6);
-    const std::vector<long long> sizes = s.integers("sizes", {100, 200, 300});
-    if (sizes.empty() || sizes.size() > most_sizes)
-        s.refuse("sizes", "1 to " + std::to_string(most_sizes) + " grid sizes, one panel each");
-    std::vector<sim::PercolationParams> runs;
-    for (long long n : sizes) {
-        sim::PercolationParams p;
-        // Clamped only so that the model sees (and refuses) a size beyond an int.
-        p.n = static_cast<int>(std::clamp<long long>(n, INT_MIN, INT_MAX));
-        p.q = q;
-        check_model(s, [&] { p.validate(); }, {{"n", "sizes"}});
-        runs.push_back(p);
-    }
-    return runs;
-}
+struct Params {
+    std::vector<long long> sizes{100, 200, 300};
+    double q = 0.6;
+    StopRule stop = StopRule::bottom_or_fixed_point;
+    std::vector<sim::PercolationParams> runs;  // one per size, each checked by the model itself
+};
+
+const Schema<Params> param_schema = [] {
+    Schema<Params> s;
+    s.key(
+        {"sizes", "grid sizes, one panel each", "a list of integers",
+         "1 to " + std::to_string(most_sizes) + " grid sizes, one panel each"},
+        [](Settings& section, const std::string& key, Params& p) {
+            p.sizes = section.integers(key, p.sizes);
+            if (p.sizes.empty() || p.sizes.size() > most_sizes)
+                section.refuse(key, "1 to " + std::to_string(most_sizes) + " grid sizes, one panel each");
+        },
+        [](const Params& d) { return nlohmann::json(d.sizes); });
+    s.number("q", &Params::q, "probability that a cell is porous");
+    add_stop_key(s, &Params::stop);
+    s.check([](Settings& section, const std::string&, Params& p) {
+        for (long long n : p.sizes) {
+            sim::PercolationParams run;
+            // Clamped only so that the model sees (and refuses) a size beyond an int.
+            run.n = static_cast<int>(std::clamp<long long>(n, INT_MIN, INT_MAX));
+            run.q = p.q;
+            check_model(section, [&] { run.validate(); }, {{"n", "sizes"}});
+            p.runs.push_back(run);
+        }
+    });
+    return s;
+}();
 
 class PercolationSizesScene : public SceneBase {
 public:
     PercolationSizesScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, field_spec_keys()),
-          runs_(read_runs(params_)),
-          stop_(read_stop(params_)),
-          spec_(read_field_spec(style_, default_percolation_spec())) {}
+        : SceneBase(d, options, param_schema.keys(), field_spec_schema().keys(default_percolation_spec())),
+          p_(param_schema.read(params_)),
+          spec_(field_spec_schema().read(style_, default_percolation_spec())) {}
 
     // The largest run's cells and their next step; each panel's field, kept
     // as doubles until the figure is drawn.
     std::vector<MemoryNeed> memory() const override {
         int largest = 0;
         std::vector<MemoryNeed> needs;
-        for (const sim::PercolationParams& run : runs_) {
+        for (const sim::PercolationParams& run : p_.runs) {
             largest = std::max(largest, run.n);
             needs.push_back(
                 grid_need("a panel's doubles and texture", run.n, run.n, 8 + field_layer_bytes_per_cell, 1));
@@ -70,12 +78,12 @@ public:
         sim::Random rng(d_.seed);  // the runs draw from one stream, in order
         std::vector<FieldPanel> panels;
         nlohmann::json panel_meta = nlohmann::json::array();
-        for (std::size_t i = 0; i < runs_.size(); ++i) {
-            sim::Percolation model(runs_[i], rng);
-            const bool filmed = i + 1 == runs_.size();
-            run.run_to_stop(hooks(model, runs_[i].n, filmed, run));
-            panels.push_back({titled(d_.panel_title, runs_[i].n, model), {field_layer(model.cells(), spec_)}});
-            panel_meta.push_back(panel_metadata(model, stop_, true));
+        for (std::size_t i = 0; i < p_.runs.size(); ++i) {
+            sim::Percolation model(p_.runs[i], rng);
+            const bool filmed = i + 1 == p_.runs.size();
+            run.run_to_stop(hooks(model, p_.runs[i].n, filmed, run));
+            panels.push_back({titled(d_.panel_title, p_.runs[i].n, model), {field_layer(model.cells(), spec_)}});
+            panel_meta.push_back(panel_metadata(model, p_.stop, true));
         }
         run.write_field_figure(panels, {{"params", params_.used()}, {"style", style_.used()}, {"panels", panel_meta}});
     }
@@ -90,7 +98,7 @@ private:
     // that rule) or when a step changes nothing.
     StepHooks hooks(sim::Percolation& model, int n, bool filmed, StepRunner& run) const {
         StepHooks h;
-        h.stopped = [&model, this] { return stop_ == StopRule::bottom_or_fixed_point && model.bottom_row_wet(); };
+        h.stopped = [&model, this] { return p_.stop == StopRule::bottom_or_fixed_point && model.bottom_row_wet(); };
         h.advance = [&model] { return model.step() > 0; };
         if (filmed)
             h.frame = [&model, &run, n, this](int) -> FrameDrawing {
@@ -100,8 +108,7 @@ private:
         return h;
     }
 
-    const std::vector<sim::PercolationParams> runs_;
-    const StopRule stop_;
+    const Params p_;
     const FieldSpec spec_;
 };
 

@@ -20,33 +20,14 @@
 #include <thread>
 
 #include "scenes/field_stats.hpp"
+#include "scenes/figure_caption.hpp"
+#include "scenes/percolation_common.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/work_codec.hpp"
-#include "scenes/figure_caption.hpp"
 
 namespace scenes {
 namespace {
-
-const std::vector<Key> param_keys = {
-    {"sizes", "lattice sizes L (each an L x L torus), ascending"},
-    {"samples", "samples per L"},
-    {"samples_per_item",
-     "samples in one work item, a block of one L: what a thread, an MPI rank or a shard computes at once"},
-    {"criterion",
-     "what counts as wrapping: \"one_direction\" (R^(h), a cluster wraps a given way), \"either_direction\" "
-     "(R^(e)) or \"both_directions\" (R^(b))"},
-    {"p_c", "the known threshold drawn for reference (Newman & Ziff 2000: 0.59274621)"},
-    {"p_range", "[low, high]: the occupation probabilities of the left panel, where the curves' crossings are sought"},
-};
-
-std::vector<Key> style_keys() {
-    return with_plot_style_keys({{"colours", "one colour per L, used in turn"},
-                                 {"estimate_colour", "colour of the estimates p_c(L) and their error bars"},
-                                 {"crossing_colour", "colour of the crossings of successive L's curves"},
-                                 {"fit_colour", "colour of the extrapolation line and its intercept"},
-                                 {"reference_colour", "colour of the reference lines"}});
-}
 
 constexpr int most_sizes = 16;
 constexpr int largest_size = 4096;           // sim's bound: N = 2^24 sites
@@ -55,17 +36,6 @@ constexpr int most_per_item = 1'000'000;     // an item's result: 8 MB
 constexpr long long most_items = 1'000'000;  // parts are files: a million at most
 constexpr int curve_points = 161;            // p values a curve is drawn through
 constexpr double exponent = sim::threshold_correction_exponent;
-
-std::vector<int> read_sizes(Settings& s) {
-    const std::string allowed = "2 to " + std::to_string(most_sizes) +
-                                " lattice sizes (two at least, to extrapolate), ascending, each an integer from 2 to " +
-                                std::to_string(largest_size);
-    const std::vector<long long> sizes = s.integers("sizes", {16, 32, 64, 128});
-    if (sizes.size() < 2 || sizes.size() > static_cast<std::size_t>(most_sizes)) s.refuse("sizes", allowed);
-    for (std::size_t i = 0; i < sizes.size(); ++i)
-        if (sizes[i] < 2 || sizes[i] > largest_size || (i > 0 && sizes[i] <= sizes[i - 1])) s.refuse("sizes", allowed);
-    return {sizes.begin(), sizes.end()};
-}
 
 // Each criterion: its name in the description, and what the left panel's title says it counts.
 struct CriterionInfo {
@@ -85,13 +55,6 @@ const CriterionInfo& info_of(sim::WrapCriterion c) {
     return criteria[0];  // every enumerator is in the table
 }
 
-sim::WrapCriterion read_criterion(Settings& s) {
-    const std::string name = s.text("criterion", "one_direction");
-    for (const CriterionInfo& i : criteria)
-        if (name == i.name) return i.criterion;
-    s.refuse("criterion", "\"one_direction\", \"either_direction\" or \"both_directions\"");
-}
-
 const char* criterion_name(sim::WrapCriterion c) {
     return info_of(c).name;
 }
@@ -99,18 +62,83 @@ const char* criterion_words(sim::WrapCriterion c) {
     return info_of(c).words;
 }
 
-// A probability drawn as a line: strictly inside (0, 1).
-double read_p_c(Settings& s) {
-    const double p_c = s.number_in("p_c", 0.59274621, 0.0, 1.0);
-    if (!(p_c > 0 && p_c < 1)) s.refuse("p_c", "a number between 0 and 1, both excluded (a probability)");
-    return p_c;
+const std::string sizes_allowed =
+    "2 to " + std::to_string(most_sizes) +
+    " lattice sizes (two at least, to extrapolate), ascending, each an integer from 2 to " +
+    std::to_string(largest_size);
+
+struct Params {
+    std::vector<long long> sizes{16, 32, 64, 128};
+    int samples = 6000, per_item = 250;
+    sim::WrapCriterion criterion = sim::WrapCriterion::one_direction;
+    double p_c = 0.59274621;
+    std::vector<double> p_range{0.55, 0.64};
+};
+
+const Schema<Params> param_schema = [] {
+    Schema<Params> s;
+    s.key(
+        {"sizes", "lattice sizes L (each an L x L torus), ascending", "a list of integers", sizes_allowed},
+        [](Settings& section, const std::string& key, Params& p) {
+            p.sizes = section.integers(key, p.sizes);
+            if (p.sizes.size() < 2 || p.sizes.size() > static_cast<std::size_t>(most_sizes))
+                section.refuse(key, sizes_allowed);
+            for (std::size_t i = 0; i < p.sizes.size(); ++i)
+                if (p.sizes[i] < 2 || p.sizes[i] > largest_size || (i > 0 && p.sizes[i] <= p.sizes[i - 1]))
+                    section.refuse(key, sizes_allowed);
+        },
+        [](const Params& d) { return nlohmann::json(d.sizes); });
+    s.count("samples", &Params::samples, "samples per L", 2, most_samples);
+    s.count("samples_per_item", &Params::per_item,
+            "samples in one work item, a block of one L: what a thread, an MPI rank or a shard computes at once", 1,
+            most_per_item);
+    std::vector<std::pair<std::string, sim::WrapCriterion>> names;
+    for (const CriterionInfo& i : criteria) names.push_back({i.name, i.criterion});
+    s.choice("criterion", &Params::criterion, names,
+             "what counts as wrapping: one_direction (R^(h), a cluster wraps a given way), either_direction (R^(e)) "
+             "or both_directions (R^(b))");
+    add_p_c_key(s, &Params::p_c, "the known threshold drawn for reference (Newman & Ziff 2000: 0.59274621)");
+    s.key(
+        {"p_range",
+         "[low, high]: the occupation probabilities of the left panel, where the curves' crossings are sought",
+         "a list of numbers", "[low, high] with 0 < low < high < 1"},
+        [](Settings& section, const std::string& key, Params& p) {
+            p.p_range = section.numbers(key, p.p_range);
+            if (p.p_range.size() != 2 || !(p.p_range[0] > 0 && p.p_range[0] < p.p_range[1] && p.p_range[1] < 1))
+                section.refuse(key, "[low, high] with 0 < low < high < 1");
+        },
+        [](const Params& d) { return nlohmann::json(d.p_range); });
+    return s;
+}();
+
+struct Style {
+    std::vector<Colour> colours{colour("#9ecae1"), colour("#4292c6"), colour("#08519c"), colour("#08306b")};
+    Colour estimate = colour("#252525"), crossing = colour("#e6550d"), fit = colour("#d62728"),
+           reference = colour("#737373");
+    PlotSettings plot;
+};
+
+const Schema<Style> style_schema =
+    Schema<Style>()
+        .field({"colours", "one colour per L, used in turn", "a list of colours"}, &Style::colours, read_colours)
+        .field({"estimate_colour", "colour of the estimates p_c(L) and their error bars", "a colour"}, &Style::estimate,
+               read_colour)
+        .field({"crossing_colour", "colour of the crossings of successive L's curves", "a colour"}, &Style::crossing,
+               read_colour)
+        .field({"fit_colour", "colour of the extrapolation line and its intercept", "a colour"}, &Style::fit,
+               read_colour)
+        .field({"reference_colour", "colour of the reference lines", "a colour"}, &Style::reference, read_colour)
+        .part(plot_settings_schema(), &Style::plot);
+
+// Each size as the scene works with it.
+std::vector<int> sizes_of(const Params& p) {
+    return {p.sizes.begin(), p.sizes.end()};
 }
 
-std::pair<double, double> read_p_range(Settings& s) {
-    const std::vector<double> range = s.numbers("p_range", {0.55, 0.64});
-    if (range.size() != 2 || !(range[0] > 0 && range[0] < range[1] && range[1] < 1))
-        s.refuse("p_range", "[low, high] with 0 < low < high < 1");
-    return {range[0], range[1]};
+std::vector<glm::vec4> rgba(const std::vector<Colour>& colours) {
+    std::vector<glm::vec4> out;
+    for (const Colour& c : colours) out.push_back(c.rgba);
+    return out;
 }
 
 // L^(-11/4): where an estimate at L sits on the extrapolation's axis.
@@ -136,19 +164,12 @@ struct Crossing {
 class PercolationThresholdScene : public SceneBase, public WorkItems {
 public:
     PercolationThresholdScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, style_keys()),
-          sizes_(read_sizes(params_)),
-          samples_(params_.count_in("samples", 6000, 2, most_samples)),
-          per_item_(params_.count_in("samples_per_item", 250, 1, most_per_item)),
-          criterion_(read_criterion(params_)),
-          p_c_(read_p_c(params_)),
-          p_range_(read_p_range(params_)),
-          colours_(style_colours(style_, "colours", {"#9ecae1", "#4292c6", "#08519c", "#08306b"})),
-          estimate_colour_(style_colour(style_, "estimate_colour", "#252525")),
-          crossing_colour_(style_colour(style_, "crossing_colour", "#e6550d")),
-          fit_colour_(style_colour(style_, "fit_colour", "#d62728")),
-          reference_colour_(style_colour(style_, "reference_colour", "#737373")),
-          plot_style_(read_plot_style(style_, options.scale)) {
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          s_(style_schema.read(style_)),
+          sizes_(sizes_of(p_)),
+          colours_(rgba(s_.colours)),
+          plot_style_(plot_style(s_.plot, options.scale)) {
         refuse_steps(d, "the plot shows the samples' wrapping curves and estimates, not steps", true);
         const long long items = static_cast<long long>(sizes_.size()) * blocks();
         if (items > most_items)
@@ -169,21 +190,21 @@ public:
         const double largest = sizes_.back();
         const double threads = options_.threads;
         return {grid_need("a lattice of the largest L per thread", largest, largest, 20, threads),
-                {"a block's points per thread, four copies", 4.0 * 8 * per_item_ * threads},
+                {"a block's points per thread, four copies", 4.0 * 8 * p_.per_item * threads},
                 {"the wrapping points of every sample, as results and decoded",
-                 2.0 * 8 * static_cast<double>(samples_) * static_cast<double>(sizes_.size())},
+                 2.0 * 8 * static_cast<double>(p_.samples) * static_cast<double>(sizes_.size())},
                 grid_need("binomial convolution tables of the largest L", largest, largest, 16, 2)};
     }
 
     const WorkItems* work() const override { return this; }
     int item_count() const override { return static_cast<int>(sizes_.size()) * blocks(); }
     std::string item_name(int item) const override {
-        const int first = (item % blocks()) * per_item_;
+        const int first = (item % blocks()) * p_.per_item;
         return "L = " + std::to_string(size_of(item)) + ", samples " + std::to_string(first) + " to " +
                std::to_string(first + samples_in(item) - 1);
     }
     // Two CBOR byte strings of 4 bytes a sample, their keys and headers.
-    double item_bytes() const override { return 8.0 * per_item_ + 64; }
+    double item_bytes() const override { return 8.0 * p_.per_item + 64; }
 
     nlohmann::json run_item(int item) const override {
         sim::Random rng = sim::Random::for_item(d_.seed, static_cast<std::uint64_t>(item));
@@ -215,8 +236,8 @@ public:
         const std::vector<double> ps = curve_ps();
         try {
             for (SizeResult& r : sizes) {
-                r.estimate = sim::threshold_from_wrapping(r.points, r.size, criterion_);
-                r.curve = sim::wrapping_probability(r.points, r.size, criterion_, ps);
+                r.estimate = sim::threshold_from_wrapping(r.points, r.size, p_.criterion);
+                r.curve = sim::wrapping_probability(r.points, r.size, p_.criterion, ps);
             }
         } catch (const std::invalid_argument& e) {
             throw std::runtime_error(d_.id + ": " + e.what());
@@ -231,16 +252,16 @@ public:
     }
 
 private:
-    int blocks() const { return (samples_ + per_item_ - 1) / per_item_; }
+    int blocks() const { return (p_.samples + p_.per_item - 1) / p_.per_item; }
     int size_of(int item) const { return sizes_[static_cast<std::size_t>(item / blocks())]; }
-    int samples_in(int item) const { return std::min(per_item_, samples_ - (item % blocks()) * per_item_); }
+    int samples_in(int item) const { return std::min(p_.per_item, p_.samples - (item % blocks()) * p_.per_item); }
 
     // Every L's points, its blocks' in item order; each result is released as it is read.
     std::vector<SizeResult> decode(std::vector<nlohmann::json>& results) const {
         std::vector<SizeResult> sizes;
         for (std::size_t i = 0; i < sizes_.size(); ++i) {
             SizeResult r{sizes_[i], {}, {}, {}};
-            r.points.reserve(static_cast<std::size_t>(samples_));
+            r.points.reserve(static_cast<std::size_t>(p_.samples));
             for (int b = 0; b < blocks(); ++b) {
                 const int item = static_cast<int>(i) * blocks() + b;
                 nlohmann::json& result = results[static_cast<std::size_t>(item)];
@@ -259,7 +280,7 @@ private:
     std::vector<double> curve_ps() const {
         std::vector<double> ps;
         for (int i = 0; i < curve_points; ++i)
-            ps.push_back(p_range_.first + (p_range_.second - p_range_.first) * i / (curve_points - 1));
+            ps.push_back(p_.p_range[0] + (p_.p_range[1] - p_.p_range[0]) * i / (curve_points - 1));
         return ps;
     }
 
@@ -267,10 +288,10 @@ private:
         std::vector<Crossing> crossings;
         for (std::size_t i = 0; i + 1 < sizes.size(); ++i) {
             const SizeResult &a = sizes[i], &b = sizes[i + 1];
-            crossings.push_back({a.size, b.size,
-                                 sim::wrapping_crossing(a.points, a.size, b.points, b.size, criterion_, p_range_.first,
-                                                        p_range_.second),
-                                 correction_x(std::sqrt(double(a.size) * b.size))});
+            crossings.push_back(
+                {a.size, b.size,
+                 sim::wrapping_crossing(a.points, a.size, b.points, b.size, p_.criterion, p_.p_range[0], p_.p_range[1]),
+                 correction_x(std::sqrt(double(a.size) * b.size))});
         }
         return crossings;
     }
@@ -288,20 +309,20 @@ private:
     // R_L(p) for each L over p_range, the level R_infinity(p_c) dashed and
     // the reference p_c as a thin vertical line.
     render::Axes curves_axes(const std::vector<SizeResult>& sizes, const std::vector<double>& ps) const {
-        const double level = sim::wrapping_probability_at_threshold(criterion_);
+        const double level = sim::wrapping_probability_at_threshold(p_.criterion);
         render::Axes axes;
         axes.x_label = "occupation probability p";
         axes.y_label = "wrapping probability R_L(p)";
-        axes.title = std::string("R_L(p): ") + criterion_words(criterion_);
-        axes.x_range = p_range_;
+        axes.title = std::string("R_L(p): ") + criterion_words(p_.criterion);
+        axes.x_range = std::pair{p_.p_range[0], p_.p_range[1]};
         axes.y_range = std::pair{-0.03, 1.03};
         axes.legend = render::Legend::upper_left;
         for (std::size_t i = 0; i < sizes.size(); ++i)
             axes.series.push_back(line_series(ps, sizes[i].curve, "L = " + std::to_string(sizes[i].size),
                                               colours_[i % colours_.size()], 2.0f, false));
-        axes.series.push_back(line_series({p_range_.first, p_range_.second}, {level, level},
-                                          "R\u221e(p_c) = " + format_fixed(level, 5), reference_colour_, 1.5f, true));
-        axes.reference_lines.push_back({render::Direction::vertical, p_c_, reference_colour_, 1.0f, {}});
+        axes.series.push_back(line_series({p_.p_range[0], p_.p_range[1]}, {level, level},
+                                          "R\u221e(p_c) = " + format_fixed(level, 5), s_.reference.rgba, 1.5f, true));
+        axes.reference_lines.push_back({render::Direction::vertical, p_.p_c, s_.reference.rgba, 1.0f, {}});
         return axes;
     }
 
@@ -337,21 +358,21 @@ private:
         axes.y_range = extrapolation_y_range(sizes, cross_y, fit);
         axes.legend = render::Legend::upper_right;
         axes.series = {
-            line_series({left, right}, {p_c_, p_c_}, "reference", reference_colour_, 1.5f, true),
-            line_series({0.0, right}, {fit.p_c, fit.p_c + fit.slope * right * unit}, "weighted fit", fit_colour_, 1.8f,
+            line_series({left, right}, {p_.p_c, p_.p_c}, "reference", s_.reference.rgba, 1.5f, true),
+            line_series({0.0, right}, {fit.p_c, fit.p_c + fit.slope * right * unit}, "weighted fit", s_.fit.rgba, 1.8f,
                         false),
-            line_series({0.0, 0.0}, {fit.p_c - fit.standard_error, fit.p_c + fit.standard_error}, "", fit_colour_, 1.8f,
+            line_series({0.0, 0.0}, {fit.p_c - fit.standard_error, fit.p_c + fit.standard_error}, "", s_.fit.rgba, 1.8f,
                         false),
-            dot_series({0.0}, {fit.p_c}, "", fit_colour_, 7.0f),
-            line_series(bar_x, bar_y, "", estimate_colour_, 1.5f, false),
-            dot_series(x, y, "p_c(L) \u00b1 1 s.e.", estimate_colour_, 7.0f),
+            dot_series({0.0}, {fit.p_c}, "", s_.fit.rgba, 7.0f),
+            line_series(bar_x, bar_y, "", s_.estimate.rgba, 1.5f, false),
+            dot_series(x, y, "p_c(L) \u00b1 1 s.e.", s_.estimate.rgba, 7.0f),
         };
         if (!cross_x.empty())
-            axes.series.push_back(dot_series(cross_x, cross_y, "curve crossings", crossing_colour_, 6.0f));
+            axes.series.push_back(dot_series(cross_x, cross_y, "curve crossings", s_.crossing.rgba, 6.0f));
         axes.notes = {{"p_c = " + format_fixed(fit.p_c, 5) + " \u00b1 " + format_fixed(fit.standard_error, 5),
                        {0.04f, 0.91f},
                        render::Align::left},
-                      {"reference " + format_fixed(p_c_, 8), {0.04f, 0.84f}, render::Align::left}};
+                      {"reference " + format_fixed(p_.p_c, 8), {0.04f, 0.84f}, render::Align::left}};
         return axes;
     }
 
@@ -360,7 +381,8 @@ private:
     std::pair<double, double> extrapolation_y_range(const std::vector<SizeResult>& sizes,
                                                     const std::vector<double>& cross_y,
                                                     const sim::ThresholdExtrapolation& fit) const {
-        double low = std::min(p_c_, fit.p_c - fit.standard_error), high = std::max(p_c_, fit.p_c + fit.standard_error);
+        double low = std::min(p_.p_c, fit.p_c - fit.standard_error),
+               high = std::max(p_.p_c, fit.p_c + fit.standard_error);
         for (const SizeResult& r : sizes) {
             low = std::min(low, r.estimate.p_c - r.estimate.standard_error);
             high = std::max(high, r.estimate.p_c + r.estimate.standard_error);
@@ -395,9 +417,9 @@ private:
         plotted.insert(plotted.end(), {fit.p_c, fit.standard_error, fit.slope});
         return {{"params", params_.used()},
                 {"style", style_.used()},
-                {"criterion", criterion_name(criterion_)},
-                {"R_infinity_at_p_c", sim::wrapping_probability_at_threshold(criterion_)},
-                {"work_items", {{"count", item_count()}, {"samples_per_item", per_item_}}},
+                {"criterion", criterion_name(p_.criterion)},
+                {"R_infinity_at_p_c", sim::wrapping_probability_at_threshold(p_.criterion)},
+                {"work_items", {{"count", item_count()}, {"samples_per_item", p_.per_item}}},
                 {"estimates", per_size},
                 {"crossings", crossing_list},
                 {"extrapolation",
@@ -409,18 +431,15 @@ private:
                   {"degrees_of_freedom", fit.degrees_of_freedom},
                   {"exponent", exponent},
                   {"weights", "1 / standard_error^2 of each L's estimate"}}},
-                {"p_c_reference", p_c_},
-                {"deviation_in_standard_errors", (fit.p_c - p_c_) / fit.standard_error},
+                {"p_c_reference", p_.p_c},
+                {"deviation_in_standard_errors", (fit.p_c - p_.p_c) / fit.standard_error},
                 {"state_sha256", state_hash(plotted)}};
     }
 
+    const Params p_;
+    const Style s_;
     const std::vector<int> sizes_;
-    const int samples_, per_item_;
-    const sim::WrapCriterion criterion_;
-    const double p_c_;
-    const std::pair<double, double> p_range_;
     const std::vector<glm::vec4> colours_;
-    const glm::vec4 estimate_colour_, crossing_colour_, fit_colour_, reference_colour_;
     const render::PlotStyle plot_style_;
 };
 

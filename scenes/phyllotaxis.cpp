@@ -68,40 +68,47 @@ std::string seeds_hash(const std::vector<sim::Seed>& seeds) {
     return state_hash(values);
 }
 
-const std::vector<Key> param_keys = {
-    {"seeds", "seeds placed (the article's t)"},
-    {"divergences", "divergence angle of each panel, degrees"},
-    {"spacing", "radius factor d: seed n at d sqrt(n)"},
-    {"petal_start", "seeds from this one on are drawn as petals"},
-    {"seed_radius", "seed disc radius in the article's turtle units"},
-    {"petal_size", "petal side in turtle units"},
-};
-
-// One flower per divergence, all with the same seeds and spacing.
-std::vector<sim::PhyllotaxisParams> read_flowers(Settings& params) {
+struct Params {
     // At most what --max-memory 4G serves for the default three flowers at the
     // figure's size (50,000 seeds: 2.0 GiB; the model's 100,000 would need 4.1).
-    const int seeds = params.count_in("seeds", 240, 1, 50000);
-    const double spacing = params.number("spacing", 7);
-    const std::vector<double> divergences = params.numbers("divergences", {137.508, 137.3, 137.6});
-    if (divergences.empty()) params.refuse("divergences", "one divergence angle at least, in degrees");
-    std::vector<sim::PhyllotaxisParams> flowers;
-    for (std::size_t i = 0; i < divergences.size(); ++i) {
-        flowers.push_back({seeds, divergences[i], spacing});
-        check_model(params, [&] { flowers.back().validate(); },
-                    {{"divergence", "divergences[" + std::to_string(i) + "]"}});
-    }
-    return flowers;
-}
-
-FlowerStyle read_look(Settings& params) {
+    int seeds = 240;
+    std::vector<double> divergences{137.508, 137.3, 137.6};
+    double spacing = 7;
     FlowerStyle look;
-    look.petal_start = params.count_in("petal_start", 200, 0, 100000);
-    look.seed_radius = params.number_in("seed_radius", 10, 0.1, 1000);
-    look.petal_size = params.number_in("petal_size", 60, 0.1, 1000);
-    return look;
-}
+    std::vector<sim::PhyllotaxisParams> flowers;  // one per divergence, all with the same seeds and spacing
+};
 
+const Schema<Params> param_schema = [] {
+    Schema<FlowerStyle> look;
+    look.count("petal_start", &FlowerStyle::petal_start, "seeds from this one on are drawn as petals", 0, 100000);
+    look.number("seed_radius", &FlowerStyle::seed_radius, "seed disc radius in the article's turtle units", 0.1, 1000);
+    look.number("petal_size", &FlowerStyle::petal_size, "petal side in turtle units", 0.1, 1000);
+    Schema<Params> s;
+    s.count("seeds", &Params::seeds, "seeds placed (the article's t)", 1, 50000);
+    s.key(
+        {"divergences", "divergence angle of each panel, degrees", "a list of numbers"},
+        [](Settings& section, const std::string& key, Params& p) {
+            p.divergences = section.numbers(key, p.divergences);
+            if (p.divergences.empty()) section.refuse(key, "one divergence angle at least, in degrees");
+        },
+        [](const Params& d) { return nlohmann::json(d.divergences); });
+    s.number("spacing", &Params::spacing, "radius factor d: seed n at d sqrt(n)");
+    s.part(look, &Params::look);
+    s.check([](Settings& section, const std::string&, Params& p) {
+        for (std::size_t i = 0; i < p.divergences.size(); ++i) {
+            p.flowers.push_back({p.seeds, p.divergences[i], p.spacing});
+            check_model(section, [&] { p.flowers.back().validate(); },
+                        {{"divergence", "divergences[" + std::to_string(i) + "]"}});
+        }
+    });
+    return s;
+}();
+
+struct Style {
+    double line_width = 1.0;
+};
+const Schema<Style> style_schema =
+    Schema<Style>().number("line_width", &Style::line_width, "outline width in pixels at scale 1", 0.0, 20.0);
 
 render::PanelRowStyle row_style(double scale) {
     render::PanelRowStyle row;
@@ -112,10 +119,9 @@ render::PanelRowStyle row_style(double scale) {
 class PhyllotaxisScene : public SceneBase {
 public:
     PhyllotaxisScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, {{"line_width", "outline width in pixels at scale 1"}}),
-          flowers_(read_flowers(params_)),
-          look_(read_look(params_)),
-          line_width_(float(style_.number_in("line_width", 1.0, 0.0, 20.0) * options.scale)),
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          line_width_(float(style_schema.read(style_).line_width * options.scale)),
           row_(row_style(options.scale)) {
         refuse_steps(d, "each panel shows a whole flower (the film places the seeds one a step)", false);
         require_text_fits(d, options, [&](const render::Rect& area) { return render::page_text(figure_layout(area)); });
@@ -123,7 +129,7 @@ public:
 
     void render(Output& out) const override {
         std::vector<std::vector<sim::Seed>> spirals;
-        for (const auto& f : flowers_) spirals.push_back(sim::vogel_spiral(f));
+        for (const auto& f : p_.flowers) spirals.push_back(sim::vogel_spiral(f));
         // The animation places the first flower's seeds one by one: frame k shows k seeds.
         StepRunner run(d_, options_, out);
         run.run({.check = {},
@@ -159,7 +165,7 @@ public:
         // A seed's disc and outline ring at their largest (a panel the figure's
         // size); a petal's two triangles and its outline of four segments, each
         // joint at most a bevel and a fan of 12.
-        const float radius = float(look_.seed_radius * most / look_.window);
+        const float radius = float(p_.look.seed_radius * most / p_.look.window);
         const double seed = double(render::Shapes::disc_vertices(radius) +
                                    2 * render::Shapes::disc_vertices(radius + line_width_ / 2));
         const double petal = 6.0 + 4 * 6.0 + 3 * (6.0 + render::Shapes::min_disc_vertices);
@@ -168,8 +174,8 @@ public:
         constexpr double op = sizeof(render::Shapes::Op), point = sizeof(glm::vec2);
         const double seed_ops = 2 * (op + point), petal_ops = 2 * op + 9 * point;
         double vertices = 0, seeds = 0, recorded = 0;
-        for (const auto& f : flowers_) {
-            const double discs = std::min(f.seeds, look_.petal_start);
+        for (const auto& f : p_.flowers) {
+            const double discs = std::min(f.seeds, p_.look.petal_start);
             vertices += discs * seed + (f.seeds - discs) * petal;
             recorded += discs * seed_ops + (f.seeds - discs) * petal_ops;
             seeds += f.seeds;
@@ -182,10 +188,11 @@ public:
         // Peak RSS against this estimate: 237 MiB / 295 for 50,000 seeds as
         // discs (with twice over, 242: too close), 196 / 283 for 30,000
         // petals, 215 / 384 for the catalog figure with its film.
-        return {{std::to_string(flowers_.size()) + " flowers of " + std::to_string(flowers_.front().seeds) + " seeds",
-                 2.0 * (seeds * (sizeof(sim::Seed) + 4 * sizeof(double)) + recorded) +
-                     4.0 * render::Shapes::bytes_per_vertex *
-                         std::min(vertices, 3.0 * static_cast<double>(render::triangles_per_finish))}};
+        return {
+            {std::to_string(p_.flowers.size()) + " flowers of " + std::to_string(p_.flowers.front().seeds) + " seeds",
+             2.0 * (seeds * (sizeof(sim::Seed) + 4 * sizeof(double)) + recorded) +
+                 4.0 * render::Shapes::bytes_per_vertex *
+                     std::min(vertices, 3.0 * static_cast<double>(render::triangles_per_finish))}};
     }
 
 private:
@@ -200,11 +207,11 @@ private:
         canvas.background({1, 1, 1, 1});
         const auto rects = render::panel_row(canvas.width(), canvas.height(), 1, true, row_);
         render::Shapes shapes;
-        draw_flower(shapes, rects[0], spiral, step, flowers_[0].divergence, look_, line_width_);
+        draw_flower(shapes, rects[0], spiral, step, p_.flowers[0].divergence, p_.look, line_width_);
         shapes.draw(canvas);
         render::Text text;
         add_title(text, rects[0],
-                  format_fixed(flowers_[0].divergence, 3) + "\u00b0, " + std::to_string(step) + " seeds");
+                  format_fixed(p_.flowers[0].divergence, 3) + "\u00b0, " + std::to_string(step) + " seeds");
         text.draw(canvas);
     }
 
@@ -216,13 +223,14 @@ private:
     // Each flower's title: its divergence angle.
     std::vector<std::string> titles() const {
         std::vector<std::string> titles;
-        for (const sim::PhyllotaxisParams& f : flowers_) titles.push_back(format_fixed(f.divergence, 3) + "\u00b0");
+        for (const sim::PhyllotaxisParams& f : p_.flowers) titles.push_back(format_fixed(f.divergence, 3) + "\u00b0");
         return titles;
     }
 
     // The flowers' panels in `area`, in the grid chosen for it, and their titles.
     render::GridText figure_layout(const render::Rect& area) const {
-        return titled_grid_text(area, titles(), figure_columns(d_, area, int(flowers_.size()), true, row_), true, row_);
+        return titled_grid_text(area, titles(), figure_columns(d_, area, int(p_.flowers.size()), true, row_), true,
+                                row_);
     }
 
     // Every flower whole, a panel each, into `page`; their metadata into `panel_meta`.
@@ -231,12 +239,12 @@ private:
         const std::vector<render::Rect> rects = figure_layout({0, 0, float(width), float(height)}).panels;
         render::Shapes& shapes = page.shapes;
         const std::vector<std::string> titles = this->titles();
-        for (std::size_t i = 0; i < flowers_.size(); ++i) {
-            const sim::PhyllotaxisParams& f = flowers_[i];
-            draw_flower(shapes, rects[i], spirals[i], f.seeds, f.divergence, look_, line_width_);
+        for (std::size_t i = 0; i < p_.flowers.size(); ++i) {
+            const sim::PhyllotaxisParams& f = p_.flowers[i];
+            draw_flower(shapes, rects[i], spirals[i], f.seeds, f.divergence, p_.look, line_width_);
             panel_meta.push_back({{"divergence_degrees", f.divergence},
                                   {"seeds", f.seeds},
-                                  {"petals", std::max(0, f.seeds - look_.petal_start)},
+                                  {"petals", std::max(0, f.seeds - p_.look.petal_start)},
                                   {"outer_radius", f.spacing * std::sqrt(double(f.seeds - 1))},
                                   {"state_sha256", seeds_hash(spirals[i])}});
         }
@@ -244,8 +252,7 @@ private:
         for (std::size_t i = 0; i < rects.size(); ++i) add_title(page.text, rects[i], titles[i]);
     }
 
-    const std::vector<sim::PhyllotaxisParams> flowers_;
-    const FlowerStyle look_;
+    const Params p_;
     const float line_width_;           // pixels, scaled
     const render::PanelRowStyle row_;  // the panels' layout and title font
 };

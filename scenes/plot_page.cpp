@@ -8,22 +8,28 @@
 
 namespace scenes {
 
-std::vector<Key> with_plot_style_keys(std::vector<Key> keys) {
-    keys.insert(keys.end(), {{"plot_scale", "dpi of the printed figure / 100: scales fonts, ticks and lines"},
-                             {"font_size", "tick label size in pixels at 100 dpi (matplotlib: 10 pt = 14)"},
-                             {"label_size", "axis label and legend size in pixels at 100 dpi"},
-                             {"bottom", "bottom edge of the plots, as a fraction of the page (matplotlib: 0.11)"}});
-    return keys;
+const description::Schema<PlotSettings>& plot_settings_schema() {
+    static const description::Schema<PlotSettings> schema = [] {
+        using P = render::PlotStyle;
+        description::Schema<P> plot;
+        plot.number("font_size", &P::font_size, "tick label size in pixels at 100 dpi (matplotlib: 10 pt = 14)", 4.0,
+                    100.0);
+        plot.number("label_size", &P::label_size, "axis label and legend size in pixels at 100 dpi", 4.0, 100.0);
+        // Strictly below the top margin: a float just under it, not the double.
+        plot.number("bottom", &P::bottom, "bottom edge of the plots, as a fraction of the page (matplotlib: 0.11)", 0.0,
+                    std::nextafter(P{}.top, 0.0f));
+        description::Schema<PlotSettings> s;
+        s.number("plot_scale", &PlotSettings::plot_scale,
+                 "dpi of the printed figure / 100: scales fonts, ticks and lines", 0.25, 8.0);
+        s.part(plot, &PlotSettings::plot);
+        return s;
+    }();
+    return schema;
 }
 
-render::PlotStyle read_plot_style(Settings& style, double output_scale) {
-    render::PlotStyle plot;
-    const double plot_scale = style.number_in("plot_scale", 1.0, 0.25, 8.0);
-    plot.scale = static_cast<float>(plot_scale * output_scale);
-    plot.font_size = static_cast<float>(style.number_in("font_size", plot.font_size, 4.0, 100.0));
-    plot.label_size = static_cast<float>(style.number_in("label_size", plot.label_size, 4.0, 100.0));
-    // Strictly below the top margin: a float just under it, not the double.
-    plot.bottom = static_cast<float>(style.number_in("bottom", plot.bottom, 0.0, std::nextafter(plot.top, 0.0f)));
+render::PlotStyle plot_style(const PlotSettings& settings, double output_scale) {
+    render::PlotStyle plot = settings.plot;
+    plot.scale = static_cast<float>(settings.plot_scale * output_scale);
     return plot;
 }
 
@@ -87,20 +93,31 @@ FigureDrawing plot_figure(std::vector<render::Axes> axes, const Description& d, 
             }};
 }
 
-glm::vec4 style_colour(Settings& style, const std::string& key, const std::string& fallback) {
-    const std::string name = style.text(key, fallback);
-    const auto colour = render::find_colour(name);
-    if (!colour) style.refuse(key, render::colours_allowed());
-    return glm::vec4(*colour, 1.0f);
+Colour colour(const std::string& name) {
+    const auto rgb = render::find_colour(name);
+    if (!rgb) throw std::logic_error("no colour " + name);
+    return {name, glm::vec4(*rgb, 1.0f)};
 }
 
-std::vector<glm::vec4> style_colours(Settings& style, const std::string& key,
-                                     const std::vector<std::string>& fallback) {
-    std::vector<glm::vec4> colours;
-    for (const std::string& name : style.texts(key, fallback)) {
-        const auto colour = render::find_colour(name);
-        if (!colour) style.refuse(key, "\"" + name + "\"", "a list of colours, each " + render::colours_allowed());
-        colours.push_back(glm::vec4(*colour, 1.0f));
+void to_json(nlohmann::json& json, const Colour& colour) {
+    json = colour.name;
+}
+
+Colour read_colour(Settings& style, const std::string& key, const Colour& fallback) {
+    const std::string name = style.text(key, fallback.name);
+    const auto rgb = render::find_colour(name);
+    if (!rgb) style.refuse(key, render::colours_allowed());
+    return {name, glm::vec4(*rgb, 1.0f)};
+}
+
+std::vector<Colour> read_colours(Settings& style, const std::string& key, const std::vector<Colour>& fallback) {
+    std::vector<std::string> names;
+    for (const Colour& c : fallback) names.push_back(c.name);
+    std::vector<Colour> colours;
+    for (const std::string& name : style.texts(key, names)) {
+        const auto rgb = render::find_colour(name);
+        if (!rgb) style.refuse(key, "\"" + name + "\"", "a list of colours, each " + render::colours_allowed());
+        colours.push_back({name, glm::vec4(*rgb, 1.0f)});
     }
     if (colours.empty()) style.refuse(key, "[]", "one colour at least");
     return colours;

@@ -6,24 +6,27 @@
 #include <string>
 #include <vector>
 
-#include "scenes/description_names.hpp"
-#include "description/settings.hpp"
+#include "description/schema.hpp"
 #include "render/gl/canvas.hpp"
 #include "render/image.hpp"
+#include "render/plot.hpp"
+#include "scenes/description_names.hpp"
 #include "scenes/output.hpp"
 #include "scenes/scene.hpp"
-#include "render/plot.hpp"
 
 namespace scenes {
 
-// The [style] keys of a plot page (the printed figure's dpi and margins)
-// added to a scene's own.
-std::vector<Key> with_plot_style_keys(std::vector<Key> keys);
+// A plot page's [style] keys, as read: the printed figure's dpi and margins.
+struct PlotSettings {
+    double plot_scale = 1.0;  // dpi / 100: 1.5 for a figure printed at 150 dpi
+    render::PlotStyle plot;   // font_size, label_size and bottom as given
+};
+// Their schema, for a scene's style schema to take as a part.
+const description::Schema<PlotSettings>& plot_settings_schema();
 
-// matplotlib's look at the page's dpi: `plot_scale` (dpi / 100; 1.5 for a
-// figure printed at 150 dpi) times the output scale multiplies every font,
-// tick and line; `font_size`, `label_size` and `bottom` override the defaults.
-render::PlotStyle read_plot_style(Settings& style, double output_scale);
+// matplotlib's look at the page's dpi: plot_scale times the output scale
+// multiplies every font, tick and line.
+render::PlotStyle plot_style(const PlotSettings& settings, double output_scale);
 
 // A row of plots on a white page of the figure's size
 // (scenes/figure_caption.hpp): the figure. Throws a SettingError for
@@ -43,10 +46,18 @@ render::PageText plot_row_text(const render::Rect& area, const std::vector<rende
                                const render::PlotStyle& style);
 
 // A colour from [style] ("#rrggbb" or a name), opaque.
-glm::vec4 style_colour(Settings& style, const std::string& key, const std::string& fallback);
+// A colour of [style]: as written, and what it names.
+struct Colour {
+    std::string name;  // "#526e97", "orange"
+    glm::vec4 rgba;
+};
+// A known colour, for a scene's defaults (std::logic_error for a name that is not).
+Colour colour(const std::string& name);
+void to_json(nlohmann::json& json, const Colour& colour);  // the metadata keeps the name
 
-// A list of colours from [style], one per series, used in turn.
-std::vector<glm::vec4> style_colours(Settings& style, const std::string& key, const std::vector<std::string>& fallback);
+// Schema::field readers: a colour, and a list of them, one per series, used in turn.
+Colour read_colour(Settings& style, const std::string& key, const Colour& fallback);
+std::vector<Colour> read_colours(Settings& style, const std::string& key, const std::vector<Colour>& fallback);
 
 // Series shorthands in the book's terms.
 render::Series line_series(std::vector<double> x, std::vector<double> y, std::string label, glm::vec4 colour,

@@ -10,65 +10,89 @@
 #include <stdexcept>
 
 #include "scenes/field_stats.hpp"
+#include "scenes/figure_caption.hpp"
+#include "scenes/model_check.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/work_codec.hpp"
-#include "scenes/figure_caption.hpp"
 #include "sim/deposition.hpp"
 #include "sim/fractal.hpp"
 
 namespace scenes {
 namespace {
 
-const std::vector<Key> param_keys = {
-    {"widths", "system sizes L"},
-    {"seeds", "runs averaged per L"},
-    {"saturation_factor",
-     "the bound: an L's runs stop at t = factor * L^1.5 monolayers at the latest, saturated or not "
-     "(KPZ: saturation at L^z, z = 3/2)"},
-    {"points_per_decade", "W samples per decade of t"},
-    {"beta_range", "[t1, t2]: growth-regime times fitted for beta, monolayers; no run stops before t2"},
-    {"saturation_window",
-     "r: at each sample time T the runs' mean W over (T/r, T] is compared with their mean over (T/r^2, T/r]"},
-    {"saturation_tolerance",
-     "the two windows agree when their means differ by less than this many standard errors (from the spread of "
-     "the runs' own differences)"},
-    {"saturation_hold",
-     "an L's runs stop once the windows have agreed at every sample for this factor in time; W_sat is the runs' "
-     "mean W over the last window, (T/r, T] at the stop"},
-    {"saturation_samples", "samples each window needs before the two are compared"},
-};
-
 // A run's last time, monolayers: what sim::roughness_curve accepts.
 constexpr double longest_run = 1e9;
 
-std::vector<int> read_widths(Settings& s) {
-    std::vector<int> widths;
-    for (long long w : s.integers("widths", {100, 200, 500, 1000, 2000})) {
-        if (w < 8 || w > 100000) s.refuse("widths", "system sizes, each an integer from 8 to 100000");
-        widths.push_back(int(w));
-    }
-    // Two different sizes at least: alpha is the slope of W_sat against L.
-    if (widths.size() < 2 || std::adjacent_find(widths.begin(), widths.end(), std::not_equal_to<>()) == widths.end())
-        s.refuse("widths", "two different sizes at least, to fit alpha");
-    return widths;
-}
+struct Params {
+    std::vector<long long> widths{100, 200, 500, 1000, 2000};
+    int seeds = 4;
+    double factor = 3.0;
+    int per_decade = 10;
+    std::vector<double> beta_range{2, 50};
+    sim::SaturationRule rule{3.0, 2.0, 2.0, 3};
+};
 
-std::vector<double> read_beta_range(Settings& s) {
-    const std::vector<double> range = s.numbers("beta_range", {2, 50});
-    if (range.size() != 2 || !(range[1] > range[0]) || range[0] <= 0)
-        s.refuse("beta_range", "[t1, t2] with 0 < t1 < t2");
-    return range;
-}
+const Schema<Params> param_schema = [] {
+    using R = sim::SaturationRule;
+    Schema<R> rule;
+    rule.number("saturation_window", &R::window,
+                "r: at each sample time T the runs' mean W over (T/r, T] is compared with their mean over (T/r^2, "
+                "T/r]");
+    rule.number("saturation_tolerance", &R::tolerance,
+                "the two windows agree when their means differ by less than this many standard errors (from the "
+                "spread of the runs' own differences)");
+    rule.number("saturation_hold", &R::hold,
+                "an L's runs stop once the windows have agreed at every sample for this factor in time; W_sat is the "
+                "runs' mean W over the last window, (T/r, T] at the stop");
+    rule.count("saturation_samples", &R::min_samples, "samples each window needs before the two are compared");
+    rule.check(validated<R>({{"window", "saturation_window"},
+                             {"tolerance", "saturation_tolerance"},
+                             {"hold", "saturation_hold"},
+                             {"min_samples", "saturation_samples"}}));
+    Schema<Params> s;
+    s.key(
+        {"widths", "system sizes L", "a list of integers",
+         "system sizes, each an integer from 8 to 100000, two different at least"},
+        [](Settings& section, const std::string& key, Params& p) {
+            p.widths = section.integers(key, p.widths);
+            for (long long w : p.widths)
+                if (w < 8 || w > 100000) section.refuse(key, "system sizes, each an integer from 8 to 100000");
+            // Two different sizes at least: alpha is the slope of W_sat against L.
+            if (p.widths.size() < 2 ||
+                std::adjacent_find(p.widths.begin(), p.widths.end(), std::not_equal_to<>()) == p.widths.end())
+                section.refuse(key, "two different sizes at least, to fit alpha");
+        },
+        [](const Params& d) { return nlohmann::json(d.widths); });
+    s.count("seeds", &Params::seeds, "runs averaged per L", 1, 1000);
+    s.number("saturation_factor", &Params::factor,
+             "the bound: an L's runs stop at t = factor * L^1.5 monolayers at the latest, saturated or not (KPZ: "
+             "saturation at L^z, z = 3/2)",
+             0.01, 100);
+    s.count("points_per_decade", &Params::per_decade, "W samples per decade of t", 1, 100);
+    s.key(
+        {"beta_range", "[t1, t2]: growth-regime times fitted for beta, monolayers; no run stops before t2",
+         "a list of numbers", "[t1, t2] with 0 < t1 < t2"},
+        [](Settings& section, const std::string& key, Params& p) {
+            p.beta_range = section.numbers(key, p.beta_range);
+            if (p.beta_range.size() != 2 || !(p.beta_range[1] > p.beta_range[0]) || p.beta_range[0] <= 0)
+                section.refuse(key, "[t1, t2] with 0 < t1 < t2");
+        },
+        [](const Params& d) { return nlohmann::json(d.beta_range); });
+    s.part(rule, &Params::rule);
+    return s;
+}();
 
-sim::SaturationRule read_rule(Settings& s) {
-    sim::SaturationRule rule;
-    rule.window = s.number_in("saturation_window", 3.0, 1.1, 100);
-    rule.tolerance = s.number_in("saturation_tolerance", 2.0, 0.01, 100);
-    rule.hold = s.number_in("saturation_hold", 2.0, 1, 100);
-    rule.min_samples = s.count_in("saturation_samples", 3, 2, 1000);
-    return rule;
-}
+struct Style {
+    std::vector<Colour> colours{colour("#c6dbef"), colour("#6baed6"), colour("#2171b5"), colour("#08519c"),
+                                colour("#08306b")};
+    PlotSettings plot;
+};
+
+const Schema<Style> style_schema =
+    Schema<Style>()
+        .field({"colours", "one colour per L", "a list of colours"}, &Style::colours, read_colours)
+        .part(plot_settings_schema(), &Style::plot);
 
 // SHA-256 of the sampled times and every run's W, run by run: the whole
 // state the figure is drawn from.
@@ -156,15 +180,11 @@ sim::RoughnessEnsemble ensemble_of(const nlohmann::json& j, int width, int runs)
 class RoughnessScene : public SceneBase, public WorkItems {
 public:
     RoughnessScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, param_keys, with_plot_style_keys({{"colours", "one colour per L"}})),
-          widths_(read_widths(params_)),
-          seeds_(params_.count_in("seeds", 4, 1, 1000)),
-          factor_(params_.number_in("saturation_factor", 3.0, 0.01, 100)),
-          per_decade_(params_.count_in("points_per_decade", 10, 1, 100)),
-          beta_range_(read_beta_range(params_)),
-          rule_(read_rule(params_)),
-          colours_(style_colours(style_, "colours", {"#c6dbef", "#6baed6", "#2171b5", "#08519c", "#08306b"})),
-          plot_style_(read_plot_style(style_, options.scale)) {
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
+          s_(style_schema.read(style_)),
+          widths_(p_.widths.begin(), p_.widths.end()),
+          plot_style_(plot_style(s_.plot, options.scale)) {
         check_run_lengths();
         check_beta_times();
     }
@@ -174,15 +194,16 @@ public:
     std::string item_name(int item) const override { return "L = " + std::to_string(widths_[item]); }
     // The runs' W at every sampled time: points_per_decade a decade up to the longest run, as doubles.
     double item_bytes() const override {
-        const double samples = per_decade_ * (std::log10(run_length(*std::max_element(widths_.begin(), widths_.end()))) + 2);
-        return 9.0 * samples * (seeds_ + 1) + 12.0 * seeds_ + 1024;
+        const double samples =
+            p_.per_decade * (std::log10(run_length(*std::max_element(widths_.begin(), widths_.end()))) + 2);
+        return 9.0 * samples * (p_.seeds + 1) + 12.0 * p_.seeds + 1024;
     }
     // L's runs are seeded from seed + item (the item's index), as before items.
     nlohmann::json run_item(int item) const override {
         const int L = widths_[item];
-        const double max_time = run_length(L), min_time = std::min(beta_range_[1], max_time);
-        return ensemble_json(sim::roughness_until_saturated(L, min_time, max_time, per_decade_, seeds_,
-                                                            d_.seed + static_cast<std::uint64_t>(item), rule_));
+        const double max_time = run_length(L), min_time = std::min(p_.beta_range[1], max_time);
+        return ensemble_json(sim::roughness_until_saturated(L, min_time, max_time, p_.per_decade, p_.seeds,
+                                                            d_.seed + static_cast<std::uint64_t>(item), p_.rule));
     }
 
     // An ensemble of this L and runs, its times increasing up to the stop
@@ -194,7 +215,7 @@ public:
         const double max_time = run_length(L);
         if (rc::integer_in(rc::member(r, "width"), "width", 1, 10000000) != L)
             throw std::invalid_argument("it is the ensemble of another L than " + std::to_string(L));
-        for (const nlohmann::json& s : rc::array_of(rc::member(r, "seeds"), "seeds", seeds_))
+        for (const nlohmann::json& s : rc::array_of(rc::member(r, "seeds"), "seeds", p_.seeds))
             if (!s.is_number_unsigned()) throw std::invalid_argument("seeds holds a value that is not a seed");
         const nlohmann::json& t = rc::member(r, "times");
         const std::size_t samples = t.is_binary() ? t.get_binary().size() / sizeof(double) : 0;
@@ -202,7 +223,7 @@ public:
         const std::vector<double> times = rc::values_in<double>(t, "times", samples, 0, max_time);
         for (std::size_t k = 1; k < times.size(); ++k)
             if (!(times[k] > times[k - 1])) throw std::invalid_argument("times do not increase at " + std::to_string(k));
-        for (const nlohmann::json& run : rc::array_of(rc::member(r, "w"), "w", seeds_))
+        for (const nlohmann::json& run : rc::array_of(rc::member(r, "w"), "w", p_.seeds))
             rc::values_in<double>(run, "w", samples, 0, std::numeric_limits<double>::max());
         rc::boolean(rc::member(r, "saturated"), "saturated");
         if (rc::number_in(rc::member(r, "stop_time"), "stop_time", 0, max_time) != times.back())
@@ -231,9 +252,9 @@ public:
         for (std::size_t i = 0; i < widths_.size(); ++i) {
             const int L = widths_[i];
             const double max_time = run_length(L);
-            const sim::RoughnessEnsemble runs = ensemble_of(results[i], L, seeds_);
+            const sim::RoughnessEnsemble runs = ensemble_of(results[i], L, p_.seeds);
             const sim::RoughnessCurve curve = sim::mean_over_runs(runs);
-            const glm::vec4 colour = colours_[i % colours_.size()];
+            const glm::vec4 colour = s_.colours[i % s_.colours.size()].rgba;
             growth.series.push_back(
                 line_series(curve.times, curve.mean_w, "L = " + std::to_string(L), colour, 1.8f, false));
             record(curve, runs, max_time, i + 1 == widths_.size(), m);
@@ -251,7 +272,7 @@ public:
     }
 
 private:
-    double run_length(int L) const { return factor_ * std::pow(double(L), 1.5); }
+    double run_length(int L) const { return p_.factor * std::pow(double(L), 1.5); }
 
     // Every run must be one sim::roughness_until_saturated accepts: 1 to 1e9 monolayers.
     void check_run_lengths() {
@@ -267,15 +288,15 @@ private:
     void check_beta_times() {
         const int L = widths_.back();
         int inside = 0;
-        for (std::uint64_t n : sim::roughness_sample_counts(L, run_length(L), per_decade_)) {
+        for (std::uint64_t n : sim::roughness_sample_counts(L, run_length(L), p_.per_decade)) {
             const double t = static_cast<double>(n) / L;  // as roughness_curve's times
-            inside += t >= beta_range_[0] && t <= beta_range_[1];
+            inside += t >= p_.beta_range[0] && t <= p_.beta_range[1];
         }
         if (inside < 2)
             params_.refuse("beta_range",
                            "[t1, t2] with 0 < t1 < t2 holding two sampled times at least (L = " + std::to_string(L) +
                                " is sampled from 1 to " + description::shown(run_length(L)) + " monolayers, " +
-                               std::to_string(per_decade_) + " times a decade)");
+                               std::to_string(p_.per_decade) + " times a decade)");
     }
 
     // Adds one L: its saturated W (the runs' mean over the last window at
@@ -287,13 +308,13 @@ private:
         m.saturated.push_back(runs.saturated_w);
         if (last) {
             for (std::size_t k = 0; k < curve.times.size(); ++k)
-                if (curve.times[k] >= beta_range_[0] && curve.times[k] <= beta_range_[1]) {
+                if (curve.times[k] >= p_.beta_range[0] && curve.times[k] <= p_.beta_range[1]) {
                     m.beta_t.push_back(curve.times[k]);
                     m.beta_w.push_back(curve.mean_w[k]);
                 }
         }
         m.curves.push_back({{"width", curve.width},
-                            {"seeds", seeds_},
+                            {"seeds", p_.seeds},
                             {"run_seeds", runs.seeds},
                             {"max_time", max_time},
                             {"stop", stop_json(runs)},
@@ -331,33 +352,30 @@ private:
     }
 
     nlohmann::json metadata(const Measured& m, const sim::LineFit& beta, const sim::LineFit& alpha) const {
-        return {{"params", params_.used()},
-                {"style", style_.used()},
-                {"saturation_rule",
-                 {{"rule",
-                   "an L's runs advance side by side; at each sample time T (t >= beta_range's end) each run's "
-                   "mean W over (T/r, T] and over (T/r^2, T/r] is taken; the windows agree when the mean over "
-                   "runs of (last - previous) is below tolerance times its standard error across runs; all runs "
-                   "of that L stop once they have agreed at every sample since T/hold, or at "
-                   "saturation_factor * L^1.5; W_sat is the mean over runs of the last window, its error the "
-                   "standard error across runs"},
-                  {"window", rule_.window},
-                  {"tolerance", rule_.tolerance},
-                  {"hold", rule_.hold},
-                  {"min_samples", rule_.min_samples},
-                  {"max_factor", factor_}}},
-                {"curves", m.curves},
-                {"beta", {{"value", beta.slope}, {"fit_range", beta_range_}, {"width", widths_.back()}, {"r", beta.r}}},
-                {"alpha", {{"value", alpha.slope}, {"widths", m.sizes}, {"saturated_w", m.saturated}, {"r", alpha.r}}}};
+        return {
+            {"params", params_.used()},
+            {"style", style_.used()},
+            {"saturation_rule",
+             {{"rule",
+               "an L's runs advance side by side; at each sample time T (t >= beta_range's end) each run's "
+               "mean W over (T/r, T] and over (T/r^2, T/r] is taken; the windows agree when the mean over "
+               "runs of (last - previous) is below tolerance times its standard error across runs; all runs "
+               "of that L stop once they have agreed at every sample since T/hold, or at "
+               "saturation_factor * L^1.5; W_sat is the mean over runs of the last window, its error the "
+               "standard error across runs"},
+              {"window", p_.rule.window},
+              {"tolerance", p_.rule.tolerance},
+              {"hold", p_.rule.hold},
+              {"min_samples", p_.rule.min_samples},
+              {"max_factor", p_.factor}}},
+            {"curves", m.curves},
+            {"beta", {{"value", beta.slope}, {"fit_range", p_.beta_range}, {"width", widths_.back()}, {"r", beta.r}}},
+            {"alpha", {{"value", alpha.slope}, {"widths", m.sizes}, {"saturated_w", m.saturated}, {"r", alpha.r}}}};
     }
 
+    const Params p_;
+    const Style s_;
     const std::vector<int> widths_;
-    const int seeds_;
-    const double factor_;
-    const int per_decade_;
-    const std::vector<double> beta_range_;
-    const sim::SaturationRule rule_;
-    const std::vector<glm::vec4> colours_;
     const render::PlotStyle plot_style_;
 };
 

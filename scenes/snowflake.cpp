@@ -106,22 +106,25 @@ Description plan_of(const Description& d, int steps) {
     return plan;
 }
 
-const std::vector<Key> style_keys = {
-    {"ice_colour", "colour of the ice cells"},
-    {"tint_colour", "colour of the restriction's forbidden region"},
-    {"caption", "caption under each panel: {label}, {rule}, {step}"},
+struct Style {
+    Colour ice = colour("#1d4e89"), tint = colour("#dde8f3");
+    std::string caption = "{label} {rule}";
 };
+
+const Schema<Style> style_schema =
+    Schema<Style>()
+        .field({"ice_colour", "colour of the ice cells", "a colour"}, &Style::ice, read_colour)
+        .field({"tint_colour", "colour of the restriction's forbidden region", "a colour"}, &Style::tint, read_colour)
+        .text("caption", &Style::caption, "caption under each panel: {label}, {rule}, {step}");
 
 class SnowflakeScene : public SceneBase {
 public:
     SnowflakeScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, snowflake_keys(), style_keys),
+        : SceneBase(d, options, snowflake_keys(), style_schema.keys()),
           runs_(read_snowflake_runs(params_)),
           steps_(params_.count_in("steps", 40, 0, snowflake_most_steps)),
-          colours_{style_colour(style_, "ice_colour", "#1d4e89"),
-                   style_colour(style_, "tint_colour", "#dde8f3"),
-                   {0, 0, 0, 1}},
-          caption_(style_.text("caption", "{label} {rule}")),
+          s_(style_schema.read(style_)),
+          colours_{s_.ice.rgba, s_.tint.rgba, {0, 0, 0, 1}},
           plan_(plan_of(d, steps_)) {
         require_text_fits(d, options, [&](const render::Rect& area) {
             return render::page_text(snowflake_layout(area, figure_captions(), figure_columns(area), options_.scale));
@@ -201,7 +204,7 @@ private:
 
     std::string caption_of(std::size_t i, int step) const {
         return expand(
-            caption_,
+            s_.caption,
             {{"label", runs_[i].label}, {"rule", runs_[i].params.rule.code()}, {"step", std::to_string(step)}});
     }
 
@@ -236,8 +239,8 @@ private:
 
     const std::vector<SnowflakeRun> runs_;
     const int steps_;
+    const Style s_;
     const SnowflakeColours colours_;
-    const std::string caption_;
     const Description plan_;  // d_ with the panels the run shows
 };
 

@@ -23,6 +23,17 @@ const std::vector<Key> extra_param_keys = {
     {"fit_to", "largest distance fitted, as a fraction of the crystal's radius"},
 };
 
+struct Style {
+    std::vector<Colour> colours{colour("#08306b"), colour("#2171b5"), colour("#6baed6"), colour("#e6550d"),
+                                colour("#31a354"), colour("#756bb1"), colour("#636363")};
+    PlotSettings plot;
+};
+
+const Schema<Style> style_schema =
+    Schema<Style>()
+        .field({"colours", "one colour per run", "a list of colours"}, &Style::colours, read_colours)
+        .part(plot_settings_schema(), &Style::plot);
+
 // A list of steps as messages show it: "[16, 200]".
 
 // A run's legend: its rule, and its restriction and priority if any.
@@ -38,14 +49,13 @@ std::string legend_of(const sim::SnowflakeParams& p) {
 class SnowflakeDimensionScene : public SceneBase {
 public:
     SnowflakeDimensionScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, snowflake_keys(extra_param_keys), with_plot_style_keys({{"colours", "one colour per run"}})),
+        : SceneBase(d, options, snowflake_keys(extra_param_keys), style_schema.keys()),
           runs_(read_snowflake_runs(params_)),
           steps_(params_.count_in("steps", 200, 8, snowflake_most_steps)),
           fit_from_(params_.count_in("fit_from", 4, 1, steps_)),
           fit_to_(params_.number_in("fit_to", 0.5, 0.05, 1.0)),
-          colours_(style_colours(style_, "colours",
-                                 {"#08306b", "#2171b5", "#6baed6", "#e6550d", "#31a354", "#756bb1", "#636363"})),
-          plot_style_(read_plot_style(style_, options.scale)) {
+          s_(style_schema.read(style_)),
+          plot_style_(plot_style(s_.plot, options.scale)) {
         refuse_empty_fit();
         refuse_steps(d, "the plot shows every crystal at params.steps", true);
     }
@@ -122,7 +132,7 @@ private:
                                      std::to_string(fit_from_) + " to " + std::to_string(fit_last) +
                                      " (two distances at least); raise steps or fit_to; no image written");
         const sim::LineFit fit = sim::fit_log_log(fit_l, fit_m);
-        const glm::vec4 colour = colours_[i % colours_.size()];
+        const glm::vec4 colour = s_.colours[i % s_.colours.size()].rgba;
         axes.series.push_back(
             line_series(l, m, legend_of(runs_[i].params) + ", D = " + format_fixed(fit.slope, 2), colour, 2.0f, false));
         // The fitted line over its range, dashed.
@@ -142,7 +152,7 @@ private:
     const std::vector<SnowflakeRun> runs_;
     const int steps_, fit_from_;
     const double fit_to_;
-    const std::vector<glm::vec4> colours_;
+    const Style s_;
     const render::PlotStyle plot_style_;
 };
 

@@ -2,7 +2,8 @@
 // What lies beyond the edge of a lattice.
 
 #include <string>
-#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace sim {
 
@@ -11,9 +12,13 @@ enum class Boundary {
     wrap,  // periodic: the grid is a torus
 };
 
-inline const char* to_string(Boundary b) { return b == Boundary::zero ? "zero" : "wrap"; }
+// Each boundary by the name a description gives it.
+inline std::vector<std::pair<std::string, Boundary>> boundary_names() {
+    return {{"zero", Boundary::zero}, {"wrap", Boundary::wrap}};
+}
 
-// "zero" or "wrap"; throws std::invalid_argument naming what is allowed.
-Boundary parse_boundary(std::string_view text);
+inline const char* to_string(Boundary b) {
+    return b == Boundary::zero ? "zero" : "wrap";
+}
 
 }  // namespace sim

@@ -5,8 +5,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "sim/boundary.hpp"
-
 namespace sim {
 
 namespace {
@@ -68,12 +66,6 @@ void require_square_field(const char* name, const Grid<double>& g, int n) {
     for (double v : g.cells())
         if (!std::isfinite(v))
             throw std::invalid_argument(std::string("initial ") + name + " holds a non-finite value");
-}
-
-Boundary parse_boundary(std::string_view text) {
-    if (text == "zero") return Boundary::zero;
-    if (text == "wrap") return Boundary::wrap;
-    throw ParameterError("boundary", "\"" + std::string(text) + "\"", "\"zero\" or \"wrap\"");
 }
 
 }  // namespace sim

@@ -17,7 +17,6 @@ TEST_CASE("a parameter error names the parameter, its value, short, and what is 
         CHECK(std::string(e.what()) == "r = 1e+308 is not allowed: a number from 0 to 0.25 (the stability bound)");
     }
     CHECK_THROWS_WITH(sim::require_integer("n", -3, 1, 8192), "n = -3 is not allowed: an integer from 1 to 8192");
-    CHECK_THROWS_WITH(sim::parse_boundary("torus"), "boundary = \"torus\" is not allowed: \"zero\" or \"wrap\"");
     CHECK_NOTHROW(sim::require_number("r", 0.25, 0.0, 0.25));
     CHECK_THROWS_AS(sim::require_number("r", std::nan(""), 0.0, 0.25), sim::ParameterError);
     CHECK(sim::shown(0.1 + 0.2) == "0.3");
