@@ -18,7 +18,7 @@ const std::vector<Key> top_level_keys = {
     {"source", "the printed figure reproduced"},
     {"scene", "the scene that draws it"},
     {"model", "old name of scene"},
-    {"seed", "seed of the random generator, 0..2^63-1"},
+    {"seed", "seed of the random generator", "an integer", "an integer from 0 to 2^63-1"},
     {"caption", "decisions and notes"},
     {"original_caption", "the printed figure's own caption, in its document's language and script"},
     {"language", "the document's language, a fontconfig tag such as \"zh-cn\", \"ja\" or \"en\""},
@@ -33,20 +33,23 @@ const std::vector<Key> figure_keys = {
     {"size", "[width, height] in pixels"},
     {"panel_title", "title above each panel; {step} is the step shown"},
     {"formats", "vector files written besides the PNG: a list of \"pdf\" and \"svg\" (--format decides instead)"},
-    {"columns", "panels a row, 1..64; absent: as many as make the panels largest on the figure's size"},
+    {"columns", "panels a row; absent: as many as make the panels largest on the figure's size", "an integer",
+     "an integer from 1 to 64"},
     {"caption", "a caption drawn beneath the figure: \"none\", \"title\" or \"original\" (original_caption)"},
 };
 
 const std::vector<Key> animation_keys = {
     {"steps", "[first, last] steps of the animation"},
-    {"stride", "steps between frames, >= 1"},
-    {"fps", "frames per second, 1..120"},
-    {"segment_frames", "frames per film segment, each encoded on its own (from a key frame) and joined by stream "
-                       "copy: the unit spread over MPI ranks; 0 = one segment"},
+    {"stride", "steps between frames", "an integer", "an integer from 1 to 100000000"},
+    {"fps", "frames per second", "an integer", "an integer from 1 to 120"},
+    {"segment_frames",
+     "frames per film segment, each encoded on its own (from a key frame) and joined by stream "
+     "copy: the unit spread over MPI ranks; 0 = one segment"},
     {"size", "[width, height] in pixels"},
     {"title", "title above each frame; {step} is the step shown"},
-    {"poster", "the step whose frame is the film's poster (the still shown before it plays): the frame at that "
-               "step or the last before it; default its last frame"},
+    {"poster",
+     "the step whose frame is the film's poster (the still shown before it plays): the frame at that "
+     "step or the last before it; default its last frame"},
 };
 
 // A command-line value as TOML would read it ("0.2" a float, "[1,2]" a list,

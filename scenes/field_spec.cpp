@@ -90,18 +90,18 @@ description::Schema<FieldSpec> make_field_spec_schema() {
                    if (blend != "none")
                        spec.colormap = render::listed_colormap("listed", ramp(spec.colormap.colours, blend == "hsv"));
                });
+    std::string maps;
+    for (const auto& n : render::colormap_names()) maps += (maps.empty() ? "" : ", ") + n;
+    const std::string maps_allowed = "one of " + maps;
     schema.key(
-        {"colormap", "Reds, Blues, Greens, viridis, inferno, magma, plasma or cividis (--cmap)", "text"},
-        [](Settings& style, const std::string& key, FieldSpec& spec) {
+        {"colormap", "the field's colormap (--cmap sets it)", "text", maps_allowed},
+        [maps_allowed](Settings& style, const std::string& key, FieldSpec& spec) {
             const bool listed = style.has(sibling(key, "colormap", "colours"));
             if (listed && !style.has(key)) return;
             const std::string name = style.text(key, spec.colormap.name);
             const render::Colormap* map = render::find_colormap(name);
-            if (!map && name != spec.colormap.name) {  // not a scene's own listed map either
-                std::string allowed;
-                for (const auto& n : render::colormap_names()) allowed += (allowed.empty() ? "" : ", ") + n;
-                style.refuse(key, "one of " + allowed);
-            }
+            if (!map && name != spec.colormap.name)  // not a scene's own listed map either
+                style.refuse(key, maps_allowed);
             // One of the two: a colormap given beside colours would be ignored in silence.
             if (listed)
                 style.refuse(key, "no colormap where " + sibling(key, "colormap", "colours") +

@@ -21,36 +21,234 @@ bool is_key(const std::vector<Key>& keys, const std::string& name) {
     return std::any_of(keys.begin(), keys.end(), [&](const Key& k) { return k.name == name; });
 }
 
-const std::vector<Key> rule_keys = {
-    {"chemicals", "how many chemicals the rule has: a, b, c, ..."},
-    {"formula", "the rule: Ready's formula language, a part of OpenCL C (docs/formulas.md)"},
-    {"accuracy", "the stencils' accuracy: \"low\", \"medium\" or \"high\" (Ready's)"},
-    {"wrap", "true: the edges wrap around (a torus); false: they are clamped"},
-    {"data_type", "the numbers: \"float\" (Ready's Float32) or \"double\" (Float64)"},
-    {"block_x", "Ready's block_size_x: 4 (its default) or 1; see docs/formulas.md"},
-    {"ready_edges", "true: edges as Ready computes them (its quirks); false: a true torus, each cell clamped"},
-    {"width", "grid width in cells (a multiple of block_x)"},
-    {"height", "grid height in cells (Ready's 1-D stencils are not figgen's)"},
-    {"steps", "how many steps the model runs"},
-    {"zero_first", "the start is all zero before the overlays (else zero, too: true or false)"},
-    {"initial", "the start: Ready's overlays in order, [{chemical, operation, fill, ..., shapes}]"},
-};
-
-bool is_rule_key(const std::string& key) {
-    for (const Key& k : rule_keys)
-        if (k.name == key) return true;
-    return false;
+// A point [x, y] or [x, y, z], fractions of the grid.
+std::array<double, 3> point(Settings& s, const std::string& key, std::array<double, 3> fallback) {
+    const std::vector<double> v = s.numbers(key, {fallback[0], fallback[1]});
+    if (v.size() < 2 || v.size() > 3) s.refuse(key, "[x, y] or [x, y, z]: fractions of the grid");
+    for (double x : v)
+        if (!std::isfinite(x) || std::fabs(x) > 1e6) s.refuse(key, "finite numbers, fractions of the grid");
+    return {v[0], v[1], v.size() > 2 ? v[2] : 0.0};
 }
 
-// The rule's own parameters: every other key of [params].
+// A point key read into `member`, with its default.
+template <class T>
+void point_key(Schema<T>& schema, const std::string& name, std::array<double, 3> T::*member,
+               const std::string& meaning) {
+    schema.key(
+        {name, meaning, "a list of numbers", "[x, y] or [x, y, z], fractions of the grid"},
+        [member](Settings& s, const std::string& key, T& v) { v.*member = point(s, key, v.*member); },
+        [member](const T& d) {
+            return nlohmann::json({(d.*member)[0], (d.*member)[1]});
+        });
+}
+
+// One shape of an overlay: where it applies. Every key is read and
+// checked, whichever the shape uses.
+struct ShapeValues {
+    formula::Shape shape;
+    std::array<double, 3> centre{0.5, 0.5, 0}, from{0, 0, 0}, to{1, 1, 0};
+    std::vector<long long> at{0, 0};
+};
+
+const Schema<ShapeValues> shape_schema = [] {
+    using S = ShapeValues;
+    Schema<S> s;
+    s.key({"shape", "where the overlay applies", "text", names_allowed({"everywhere", "rectangle", "circle", "pixel"}),
+           "everywhere"},
+          [](Settings& section, const std::string& key, S& v) {
+              const std::string name = section.text(key, "everywhere");
+              for (const auto& [word, kind] : formula::shape_names())
+                  if (word == name) {
+                      v.shape.kind = kind;
+                      return;
+                  }
+              section.refuse(key, "everywhere, rectangle, circle or pixel");
+          });
+    point_key(s, "from", &S::from, "rectangle: [x, y], its lower corner, a fraction of the grid");
+    point_key(s, "to", &S::to, "rectangle: [x, y], its upper corner, a fraction of the grid");
+    point_key(s, "centre", &S::centre, "circle: [x, y], a fraction of the grid");
+    s.key(
+        {"radius", "circle: a fraction of the grid's larger side", "a number", numbers_allowed(0, 1e6), 0.1},
+        [](Settings& section, const std::string& key, S& v) { v.shape.radius = section.number_in(key, 0.1, 0, 1e6); });
+    s.key(
+        {"at", "pixel: [x, y], the cell", "a list of integers", "[x, y]: a cell of the grid"},
+        [](Settings& section, const std::string& key, S& v) {
+            v.at = section.integers(key, v.at);
+            if (v.at.size() != 2 || v.at[0] < 0 || v.at[1] < 0 || v.at[0] > 100000 || v.at[1] > 100000)
+                section.refuse(key, "[x, y]: a cell of the grid");
+        },
+        [](const S& d) { return nlohmann::json(d.at); });
+    s.check([](Settings&, const std::string&, S& v) {
+        v.shape.a = v.shape.kind == formula::Shape::Kind::circle ? v.centre : v.from;
+        v.shape.b = v.to;
+        v.shape.pixel = {static_cast<int>(v.at[0]), static_cast<int>(v.at[1]), 0};
+    });
+    return s;
+}();
+
+// One of Ready's overlays: the chemical it changes, how, with what fill,
+// where. Read over a rule already compiled: its chemicals and parameters
+// bound the overlay's.
+struct OverlayValues {
+    formula::Overlay overlay;
+    std::array<double, 3> centre{0.5, 0.5, 0}, from{0, 0, 0}, to{1, 1, 0};
+    std::string where;                    // "params.initial[2]", for its shapes' sections
+    const formula::Rule* rule = nullptr;  // the rule it starts
+};
+
+const Schema<OverlayValues> overlay_schema = [] {
+    using O = OverlayValues;
+    using F = formula::Fill;
+    const double big = 1e12;
+    Schema<F> fill;
+    fill.number("value", &F::value, "constant: the value", -big, big);
+    fill.number("low", &F::low, "white_noise: the least value", -big, big);
+    fill.number("high", &F::high, "white_noise: the most value", -big, big);
+    fill.number("scale", &F::scale, "perlin_noise: cells a feature", 1e-6, big);
+    fill.count("octaves", &F::octaves, "perlin_noise: octaves", 1, 16);
+    fill.number("val1", &F::val1, "linear_gradient, radial_gradient: the value at `from`", -big, big);
+    fill.number("val2", &F::val2, "linear_gradient, radial_gradient: the value at `to`", -big, big);
+    fill.number("height", &F::height, "gaussian: its height", -big, big);
+    fill.number("sigma", &F::sigma, "gaussian: its width, a fraction of the grid's larger side", 1e-9, big);
+    fill.number("phase", &F::phase, "sine: its phase, radians", -big, big);
+    fill.number("amplitude", &F::amplitude, "sine: its amplitude", -big, big);
+    std::vector<std::string> fills;
+    for (const auto& n : formula::fill_names()) fills.push_back(n.first);
+    const std::string fills_allowed = names_allowed(fills);
+    std::vector<std::string> operations;
+    for (const auto& n : formula::operation_names()) operations.push_back(n.first);
+
+    Schema<O> s;
+    s.key({"chemical", "the chemical it changes: \"a\", \"b\", ...", "text", "a chemical of the rule", "a"},
+          [](Settings& section, const std::string& key, O& v) {
+              v.overlay.chemical = chemical_index(section, key, section.text(key, "a"), v.rule->chemicals);
+          });
+    s.key({"operation", "how the fill meets what the cells hold", "text", names_allowed(operations), "overwrite"},
+          [](Settings& section, const std::string& key, O& v) {
+              const std::string name = section.text(key, "overwrite");
+              for (const auto& [word, operation] : formula::operation_names())
+                  if (word == name) {
+                      v.overlay.operation = operation;
+                      return;
+                  }
+              section.refuse(key, "overwrite, add, subtract, multiply or divide");
+          });
+    s.key({"fill", "what the overlay puts there (Ready's fills)", "text", fills_allowed, "constant"},
+          [fills_allowed](Settings& section, const std::string& key, O& v) {
+              const std::string name = section.text(key, "constant");
+              for (const auto& [word, kind] : formula::fill_names())
+                  if (word == name) {
+                      v.overlay.fill.kind = kind;
+                      return;
+                  }
+              section.refuse(key, fills_allowed);
+          });
+    s.part_at(
+        fill, [](auto& v) -> auto& { return v.overlay.fill; });
+    point_key(s, "from", &O::from, "gradients and sine: [x, y], a fraction of the grid");
+    point_key(s, "to", &O::to, "gradients and sine: [x, y], a fraction of the grid");
+    point_key(s, "centre", &O::centre, "gaussian: [x, y], a fraction of the grid");
+    s.key({"other", "other_chemical: the chemical copied", "text", "a chemical of the rule", "a"},
+          [](Settings& section, const std::string& key, O& v) {
+              v.overlay.fill.chemical = chemical_index(section, key, section.text(key, "a"), v.rule->chemicals);
+          });
+    s.key({"parameter", "parameter: the rule's parameter copied", "text", "the name of one of the rule's parameters",
+           "timestep"},
+          [](Settings& section, const std::string& key, O& v) {
+              v.overlay.fill.parameter = section.text(key, "timestep");
+              bool found = false;
+              for (const auto& [name, value] : v.rule->parameters) found |= name == v.overlay.fill.parameter;
+              if (!found) section.refuse(key, "the name of one of the rule's parameters");
+          });
+    s.key({"shapes", "where: [{shape = \"everywhere\"}], circle {centre, radius}, rectangle {from, to}, pixel {at}",
+           "a list of tables", "one shape at least"},
+          [](Settings& section, const std::string& key, O& v) {
+              const auto shapes = section.tables(key);
+              if (shapes.empty()) section.refuse(key, "[]", "one shape at least, e.g. [{shape = \"everywhere\"}]");
+              for (std::size_t j = 0; j < shapes.size(); ++j) {
+                  Settings sh(v.where + "." + key + "[" + std::to_string(j) + "]", shapes[j], shape_schema.keys());
+                  v.overlay.shapes.push_back(shape_schema.read(sh).shape);
+              }
+          });
+    s.check([](Settings&, const std::string&, O& v) {
+        v.overlay.fill.p1 = v.overlay.fill.kind == formula::Fill::Kind::gaussian ? v.centre : v.from;
+        v.overlay.fill.p2 = v.to;
+    });
+    return s;
+}();
+
+// What [params] gives of a formula model, besides the rule's own parameters.
+struct ModelValues {
+    FormulaModel model;
+    std::vector<toml::table> initial;  // the overlays, read once the rule is compiled
+};
+
+const Schema<ModelValues> model_schema = [] {
+    using R = formula::Rule;
+    Schema<R> rule;
+    rule.count("chemicals", &R::chemicals, "how many chemicals the rule has: a, b, c, ...", 1, formula::max_chemicals);
+    rule.key({"formula", "the rule: Ready's formula language, a part of OpenCL C (docs/formulas.md)", "text",
+              "the rule's formula, e.g. \"delta_a = laplacian_a;\"", ""},
+             [](Settings& s, const std::string& key, R& r) {
+                 r.code = s.text(key, r.code);
+                 if (r.code.empty()) s.refuse(key, "\"\"", "the rule's formula, e.g. \"delta_a = laplacian_a;\"");
+             });
+    rule.choice(
+        "accuracy", &R::accuracy,
+        {{"low", formula::Accuracy::low}, {"medium", formula::Accuracy::medium}, {"high", formula::Accuracy::high}},
+        "the stencils' accuracy (Ready's)");
+    rule.flag("wrap", &R::wrap, "true: the edges wrap around (a torus); false: they are clamped");
+    rule.choice("data_type", &R::double_precision, {{"float", false}, {"double", true}},
+                "the numbers: float (Ready's Float32) or double (Float64)");
+    rule.key({"block_x", "Ready's block_size_x; see docs/formulas.md", "an integer", "4 (Ready's default) or 1", 4},
+             [](Settings& s, const std::string& key, R& r) {
+                 r.block_x = s.count_in(key, r.block_x, 1, 4);
+                 if (r.block_x != 1 && r.block_x != 4) s.refuse(key, "4 (Ready's default) or 1");
+             });
+    rule.flag("ready_edges", &R::ready_edges,
+              "true: edges as Ready computes them (its quirks); false: a true torus, each cell clamped");
+    using M = ModelValues;
+    Schema<M> s;
+    s.part_at(
+        rule, [](auto& v) -> auto& { return v.model.rule; });
+    s.key({"width", "grid width in cells", "an integer", "an integer from 1 to 4096, a multiple of block_x", 128},
+          [](Settings& section, const std::string& key, M& v) {
+              v.model.width = section.count_in(key, v.model.width, 1, 4096);
+              if (v.model.width % v.model.rule.block_x != 0)
+                  section.refuse(key, "a multiple of block_x (" + std::to_string(v.model.rule.block_x) + ")");
+          });
+    s.key({"height", "grid height in cells (Ready's 1-D stencils are not figgen's)", "an integer",
+           integers_allowed(2, 4096), 128},
+          [](Settings& section, const std::string& key, M& v) {
+              v.model.height = section.count_in(key, v.model.height, 2, 4096);
+          });
+    s.key({"steps", "how many steps the model runs", "an integer", integers_allowed(0, 10'000'000), 1000},
+          [](Settings& section, const std::string& key, M& v) {
+              v.model.steps = section.count_in(key, v.model.steps, 0, 10'000'000);
+          });
+    s.key(
+        {"zero_first", "the start is all zero before the overlays", "true or false", "", true},
+        [](Settings& section, const std::string& key, M& v) { v.model.pattern.zero_first = section.flag(key, true); });
+    s.key({"initial", "the start: Ready's overlays in order, [{chemical, operation, fill, ..., shapes}]",
+           "a list of tables", "at most 1000 overlays"},
+          [](Settings& section, const std::string& key, M& v) {
+              v.initial = section.tables(key);
+              if (v.initial.size() > 1000) section.refuse(key, "at most 1000 overlays");
+          });
+    return s;
+}();
+
 }  // namespace
 
 std::vector<Key> formula_param_keys(const Description& d, const std::vector<Key>& scene_keys) {
-    std::vector<Key> keys = rule_keys;
+    std::vector<Key> keys = model_schema.keys();
+    const std::vector<Key> rule_keys = keys;
     keys.insert(keys.end(), scene_keys.begin(), scene_keys.end());
+    // The rule's parameters: every other key of [params].
     for (const auto& [key, value] : d.params) {
         const std::string name(key.str());
-        if (!is_rule_key(name) && !is_key(scene_keys, name)) keys.push_back({name, "a parameter of the rule (a number)"});
+        if (!is_key(rule_keys, name) && !is_key(scene_keys, name))
+            keys.push_back({name, "a parameter of the rule", "a number", numbers_allowed(-1e30, 1e30)});
     }
     return keys;
 }
@@ -71,151 +269,20 @@ int chemical_index(Settings& s, const std::string& key, const std::string& name,
     s.refuse(key, allowed);
 }
 
-namespace {
-
-std::array<double, 3> point(Settings& s, const std::string& key, std::array<double, 3> fallback) {
-    const std::vector<double> v = s.numbers(key, {fallback[0], fallback[1]});
-    if (v.size() < 2 || v.size() > 3) s.refuse(key, "[x, y] or [x, y, z]: fractions of the grid");
-    for (double x : v)
-        if (!std::isfinite(x) || std::fabs(x) > 1e6) s.refuse(key, "finite numbers, fractions of the grid");
-    return {v[0], v[1], v.size() > 2 ? v[2] : 0.0};
-}
-
-const std::vector<Key> overlay_keys = {
-    {"chemical", "the chemical it changes: \"a\", \"b\", ..."},
-    {"operation", "overwrite, add, subtract, multiply or divide"},
-    {"fill", "constant, white_noise, perlin_noise, linear_gradient, radial_gradient, gaussian, sine, other_chemical or parameter"},
-    {"value", "constant: the value"},
-    {"low", "white_noise: the least value"},
-    {"high", "white_noise: the most value"},
-    {"scale", "perlin_noise: cells a feature"},
-    {"octaves", "perlin_noise: octaves"},
-    {"val1", "linear_gradient, radial_gradient: the value at `from`"},
-    {"val2", "linear_gradient, radial_gradient: the value at `to`"},
-    {"from", "gradients and sine: [x, y], a fraction of the grid"},
-    {"to", "gradients and sine: [x, y], a fraction of the grid"},
-    {"height", "gaussian: its height"},
-    {"sigma", "gaussian: its width, a fraction of the grid's larger side"},
-    {"centre", "gaussian: [x, y], a fraction of the grid"},
-    {"phase", "sine: its phase, radians"},
-    {"amplitude", "sine: its amplitude"},
-    {"other", "other_chemical: the chemical copied"},
-    {"parameter", "parameter: the rule's parameter copied"},
-    {"shapes", "where: [{shape = \"everywhere\"}], circle {centre, radius}, rectangle {from, to}, pixel {at}"},
-};
-
-const std::vector<Key> shape_keys = {
-    {"shape", "everywhere, rectangle, circle or pixel"},
-    {"from", "rectangle: [x, y], its lower corner, a fraction of the grid"},
-    {"to", "rectangle: [x, y], its upper corner, a fraction of the grid"},
-    {"centre", "circle: [x, y], a fraction of the grid"},
-    {"radius", "circle: a fraction of the grid's larger side"},
-    {"at", "pixel: [x, y], the cell"},
-};
-
-formula::Pattern read_pattern(Settings& params, const formula::Rule& rule) {
-    formula::Pattern pattern;
-    pattern.zero_first = params.flag("zero_first", true);
-    const auto tables = params.tables("initial");
-    if (tables.size() > 1000) params.refuse("initial", "at most 1000 overlays");
-    for (std::size_t i = 0; i < tables.size(); ++i) {
-        const std::string where = "params.initial[" + std::to_string(i) + "]";
-        Settings s(where, tables[i], overlay_keys);
-        formula::Overlay o;
-        o.chemical = chemical_index(s, "chemical", s.text("chemical", "a"), rule.chemicals);
-        try {
-            o.operation = formula::operation_named(s.text("operation", "overwrite"));
-        } catch (const std::invalid_argument& e) {
-            s.refuse("operation", "overwrite, add, subtract, multiply or divide");
-        }
-        try {
-            o.fill.kind = formula::fill_named(s.text("fill", "constant"));
-        } catch (const std::invalid_argument& e) {
-            s.refuse("fill", overlay_keys[2].help);
-        }
-        formula::Fill& f = o.fill;
-        const double big = 1e12;
-        f.value = s.number_in("value", 0, -big, big);
-        f.low = s.number_in("low", 0, -big, big);
-        f.high = s.number_in("high", 1, -big, big);
-        f.scale = s.number_in("scale", 64, 1e-6, big);
-        f.octaves = s.count_in("octaves", 8, 1, 16);
-        f.val1 = s.number_in("val1", 0, -big, big);
-        f.val2 = s.number_in("val2", 1, -big, big);
-        f.height = s.number_in("height", 1, -big, big);
-        f.sigma = s.number_in("sigma", 0.1, 1e-9, big);
-        f.phase = s.number_in("phase", 0, -big, big);
-        f.amplitude = s.number_in("amplitude", 1, -big, big);
-        // Every key is read and checked, whichever the fill uses.
-        const auto centre = point(s, "centre", {0.5, 0.5, 0}), from = point(s, "from", {0, 0, 0});
-        f.p1 = f.kind == formula::Fill::Kind::gaussian ? centre : from;
-        f.p2 = point(s, "to", {1, 1, 0});
-        f.chemical = chemical_index(s, "other", s.text("other", "a"), rule.chemicals);
-        f.parameter = s.text("parameter", "timestep");
-        bool found = false;
-        for (const auto& [name, value] : rule.parameters) found |= name == f.parameter;
-        if (!found) s.refuse("parameter", "the name of one of the rule's parameters");
-        const auto shapes = s.tables("shapes");
-        if (shapes.empty()) s.refuse("shapes", "[]", "one shape at least, e.g. [{shape = \"everywhere\"}]");
-        for (std::size_t j = 0; j < shapes.size(); ++j) {
-            Settings sh(where + ".shapes[" + std::to_string(j) + "]", shapes[j], shape_keys);
-            formula::Shape shape;
-            try {
-                shape.kind = formula::shape_named(sh.text("shape", "everywhere"));
-            } catch (const std::invalid_argument&) {
-                sh.refuse("shape", "everywhere, rectangle, circle or pixel");
-            }
-            const auto middle = point(sh, "centre", {0.5, 0.5, 0}), corner = point(sh, "from", {0, 0, 0});
-            shape.a = shape.kind == formula::Shape::Kind::circle ? middle : corner;
-            shape.b = point(sh, "to", {1, 1, 0});
-            shape.radius = sh.number_in("radius", 0.1, 0, 1e6);
-            const std::vector<long long> at = sh.integers("at", {0, 0});
-            if (at.size() != 2 || at[0] < 0 || at[1] < 0 || at[0] > 100000 || at[1] > 100000)
-                sh.refuse("at", "[x, y]: a cell of the grid");
-            shape.pixel = {static_cast<int>(at[0]), static_cast<int>(at[1]), 0};
-            o.shapes.push_back(shape);
-        }
-        pattern.overlays.push_back(std::move(o));
-    }
-    return pattern;
-}
-
-}  // namespace
-
 FormulaModel read_formula_model(Settings& params, const Description& d, const std::vector<Key>& scene_keys,
                                 const std::vector<std::pair<std::string, double>>& swept) {
-    FormulaModel m;
+    ModelValues values = model_schema.read(params);
+    FormulaModel& m = values.model;
     formula::Rule& r = m.rule;
-    r.chemicals = params.count_in("chemicals", 2, 1, formula::max_chemicals);
-    r.code = params.text("formula", "");
-    if (r.code.empty()) params.refuse("formula", "\"\"", "the rule's formula, e.g. \"delta_a = laplacian_a;\"");
-    const std::string accuracy = params.text("accuracy", "medium");
-    if (accuracy == "low") r.accuracy = formula::Accuracy::low;
-    else if (accuracy == "medium") r.accuracy = formula::Accuracy::medium;
-    else if (accuracy == "high") r.accuracy = formula::Accuracy::high;
-    else params.refuse("accuracy", "\"low\", \"medium\" or \"high\"");
-    r.wrap = params.flag("wrap", true);
-    const std::string type = params.text("data_type", "float");
-    if (type != "float" && type != "double") params.refuse("data_type", "\"float\" or \"double\"");
-    r.double_precision = type == "double";
-    r.block_x = params.count_in("block_x", 4, 1, 4);
-    if (r.block_x != 1 && r.block_x != 4) params.refuse("block_x", "4 (Ready's default) or 1");
-    r.ready_edges = params.flag("ready_edges", true);
-    m.width = params.count_in("width", 128, 1, 4096);
-    m.height = params.count_in("height", 128, 2, 4096);
-    if (m.width % r.block_x != 0)
-        params.refuse("width", "a multiple of block_x (" + std::to_string(r.block_x) + ")");
-    m.steps = params.count_in("steps", 1000, 0, 10'000'000);
+    const std::vector<Key> rule_keys = model_schema.keys();
     // The rule's parameters: each a number the formula or an overlay
     // (fill = "parameter") uses, or timestep, dx.
     std::set<std::string> words = description::formula_words(r.code);
-    if (const toml::array* initial = d.params["initial"].as_array())
-        for (const toml::node& o : *initial)
-            if (const toml::table* t = o.as_table())
-                if (auto p = (*t)["parameter"].value<std::string>()) words.insert(*p);
+    for (const toml::table& t : values.initial)
+        if (auto p = t["parameter"].value<std::string>()) words.insert(*p);
     for (const auto& [key, value] : d.params) {
         const std::string name(key.str());
-        if (is_rule_key(name) || is_key(scene_keys, name)) continue;
+        if (is_key(rule_keys, name) || is_key(scene_keys, name)) continue;
         const double v = params.number_in(name, 0, -1e30, 1e30);
         for (const auto& sweep : swept)
             if (sweep.first == name) params.refuse(name, "no value here: the atlas sweeps " + name + " over its range");
@@ -240,7 +307,14 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
     } catch (const std::invalid_argument& e) {
         params.refuse("formula", "...", e.what());
     }
-    m.pattern = read_pattern(params, r);
+    // Read once the rule is: its chemicals and parameters bound the overlays'.
+    for (std::size_t i = 0; i < values.initial.size(); ++i) {
+        OverlayValues overlay;
+        overlay.where = "params.initial[" + std::to_string(i) + "]";
+        overlay.rule = &r;
+        Settings s(overlay.where, values.initial[i], overlay_schema.keys());
+        m.pattern.overlays.push_back(overlay_schema.read(s, overlay).overlay);
+    }
     if (const auto& stored = d.stored_start) {
         const auto chemicals = static_cast<int>(stored->chemicals.size());
         if (chemicals != r.chemicals)

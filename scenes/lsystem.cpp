@@ -71,7 +71,8 @@ const Schema<PlantValues> plant_schema = [] {
 std::vector<Key> param_keys() {
     std::vector<Key> keys = plant_schema.keys();
     keys.erase(keys.begin());  // no shared title
-    keys.push_back({"plants", "list of plants, one panel each, each a table of the keys above"});
+    keys.push_back({"plants", "list of plants, one panel each, each a table of the keys above", "a list of tables",
+                    "one plant at least; absent: one plant of the keys above"});
     return keys;
 }
 

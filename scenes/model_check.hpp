@@ -28,5 +28,13 @@ typename description::Schema<P>::Check validated(const KeyNames& names = {}) {
             section, [&] { p.validate(); }, names);
     };
 }
+// The same for the parameters `at(value)` finds in what the schema reads.
+template <class At>
+auto validated(const KeyNames& names, At at) {
+    return [names, at](Settings& section, const std::string&, auto& value) {
+        check_model(
+            section, [&] { at(value).validate(); }, names);
+    };
+}
 
 }  // namespace scenes

@@ -106,6 +106,15 @@ Description plan_of(const Description& d, int steps) {
     return plan;
 }
 
+struct Params {
+    SnowflakeSetup setup;
+    int steps = 40;
+};
+
+const Schema<Params> param_schema = Schema<Params>()
+                                        .part(snowflake_schema(), &Params::setup)
+                                        .count("steps", &Params::steps, "steps of every run", 0, snowflake_most_steps);
+
 struct Style {
     Colour ice = colour("#1d4e89"), tint = colour("#dde8f3");
     std::string caption = "{label} {rule}";
@@ -120,12 +129,11 @@ const Schema<Style> style_schema =
 class SnowflakeScene : public SceneBase {
 public:
     SnowflakeScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, snowflake_keys(), style_schema.keys()),
-          runs_(read_snowflake_runs(params_)),
-          steps_(params_.count_in("steps", 40, 0, snowflake_most_steps)),
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
           s_(style_schema.read(style_)),
           colours_{s_.ice.rgba, s_.tint.rgba, {0, 0, 0, 1}},
-          plan_(plan_of(d, steps_)) {
+          plan_(plan_of(d, p_.steps)) {
         require_text_fits(d, options, [&](const render::Rect& area) {
             return render::page_text(snowflake_layout(area, figure_captions(), figure_columns(area), options_.scale));
         });
@@ -139,7 +147,7 @@ public:
         if (d_.animation && options_.film) last = std::max(last, d_.animation->last);
         constexpr double cell = sizeof(glm::ivec2);
         double bytes = 0;
-        for (const auto& run : runs_) {
+        for (const auto& run : p_.setup.runs) {
             const bool restricted = run.params.restriction.last >= run.params.restriction.first;
             bytes += snowflake_crystal_bytes(snowflake_radius_bound(run.params, last));
             for (int step : plan_.panels)
@@ -147,13 +155,13 @@ public:
                          snowflake_cells_within(snowflake_radius_bound(run.params, step) + 1);
             if (restricted && d_.animation && options_.film) bytes += 2 * cell * snowflake_cells_within(last + 1);
         }
-        return {{std::to_string(runs_.size()) + " crystals of " + std::to_string(last) + " steps", bytes},
+        return {{std::to_string(p_.setup.runs.size()) + " crystals of " + std::to_string(last) + " steps", bytes},
                 {"llvmpipe's queue of binned triangles", render::queued_triangles_bytes}};
     }
 
     void render(Output& out) const override {
         std::vector<sim::Snowflake> crystals;
-        for (const auto& run : runs_) crystals.emplace_back(run.params);
+        for (const auto& run : p_.setup.runs) crystals.emplace_back(run.params);
         std::vector<SnowflakePanel> panels;
         nlohmann::json panel_meta = nlohmann::json::array();
         StepRunner run(plan_, options_, out);
@@ -177,7 +185,7 @@ public:
                                                        figure_columns(area));
                                    }};
         nlohmann::json runs_meta = nlohmann::json::array();
-        for (const auto& r : runs_) runs_meta.push_back(r.used);
+        for (const auto& r : p_.setup.runs) runs_meta.push_back(r.used);
         // What ran: figure.panels, when given, decide the steps, not params.steps.
         run.write_figure(figure, {{"params", params_.used()},
                                   {"runs", runs_meta},
@@ -191,7 +199,7 @@ private:
     std::vector<std::string> figure_captions() const {
         std::vector<std::string> captions;
         for (int step : plan_.panels)
-            for (std::size_t i = 0; i < runs_.size(); ++i) captions.push_back(caption_of(i, step));
+            for (std::size_t i = 0; i < p_.setup.runs.size(); ++i) captions.push_back(caption_of(i, step));
         return captions;
     }
 
@@ -199,13 +207,13 @@ private:
         render::PanelRowStyle style;
         style.scale = float(options_.scale);
         // A caption band under each row, counted as a title's room.
-        return scenes::figure_columns(d_, area, int(plan_.panels.size() * runs_.size()), true, style);
+        return scenes::figure_columns(d_, area, int(plan_.panels.size() * p_.setup.runs.size()), true, style);
     }
 
     std::string caption_of(std::size_t i, int step) const {
-        return expand(
-            s_.caption,
-            {{"label", runs_[i].label}, {"rule", runs_[i].params.rule.code()}, {"step", std::to_string(step)}});
+        return expand(s_.caption, {{"label", p_.setup.runs[i].label},
+                                   {"rule", p_.setup.runs[i].params.rule.code()},
+                                   {"step", std::to_string(step)}});
     }
 
     // Every crystal as it is at `step`: a panel each, and its metadata.
@@ -213,9 +221,9 @@ private:
                      nlohmann::json& panel_meta) const {
         for (std::size_t i = 0; i < crystals.size(); ++i) {
             const auto& c = crystals[i];
-            panels.push_back(panel_of(c, runs_[i].params, c.radius() + 1, caption_of(i, step)));
-            nlohmann::json meta = snowflake_settings(runs_[i].params);
-            meta.update({{"label", runs_[i].label},
+            panels.push_back(panel_of(c, p_.setup.runs[i].params, c.radius() + 1, caption_of(i, step)));
+            nlohmann::json meta = snowflake_settings(p_.setup.runs[i].params);
+            meta.update({{"label", p_.setup.runs[i].label},
                          {"step", step},
                          {"statistics",
                           {{"ice", c.ice_count()}, {"radius", c.radius()}, {"euclidean_radius", c.euclidean_radius()}}},
@@ -229,7 +237,7 @@ private:
         // so the last step bounds the radius.
         std::vector<SnowflakePanel> frame;
         for (std::size_t i = 0; i < crystals.size(); ++i)
-            frame.push_back(panel_of(crystals[i], runs_[i].params, run.last_step() + 1, caption_of(i, step)));
+            frame.push_back(panel_of(crystals[i], p_.setup.runs[i].params, run.last_step() + 1, caption_of(i, step)));
         return {[this, frame = std::move(frame)](render::Surface& surface) {
             surface.background({1, 1, 1, 1});
             draw_snowflakes(surface, {0, 0, float(surface.width()), float(surface.height())}, frame, colours_,
@@ -237,8 +245,7 @@ private:
         }};
     }
 
-    const std::vector<SnowflakeRun> runs_;
-    const int steps_;
+    const Params p_;
     const Style s_;
     const SnowflakeColours colours_;
     const Description plan_;  // d_ with the panels the run shows

@@ -18,10 +18,21 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> extra_param_keys = {
-    {"fit_from", "smallest distance l fitted, cells"},
-    {"fit_to", "largest distance fitted, as a fraction of the crystal's radius"},
+struct Params {
+    SnowflakeSetup setup;
+    int steps = 200, fit_from = 4;
+    double fit_to = 0.5;
 };
+
+const Schema<Params> param_schema =
+    Schema<Params>()
+        .part(snowflake_schema(), &Params::setup)
+        .count("steps", &Params::steps, "steps of every run", 8, snowflake_most_steps)
+        .key({"fit_from", "smallest distance l fitted, cells", "an integer", "an integer from 1 to steps", 4},
+             [](Settings& s, const std::string& key, Params& p) {
+                 p.fit_from = s.count_in(key, p.fit_from, 1, p.steps);
+             })
+        .number("fit_to", &Params::fit_to, "largest distance fitted, as a fraction of the crystal's radius", 0.05, 1.0);
 
 struct Style {
     std::vector<Colour> colours{colour("#08306b"), colour("#2171b5"), colour("#6baed6"), colour("#e6550d"),
@@ -49,11 +60,8 @@ std::string legend_of(const sim::SnowflakeParams& p) {
 class SnowflakeDimensionScene : public SceneBase {
 public:
     SnowflakeDimensionScene(const Description& d, const SceneOptions& options)
-        : SceneBase(d, options, snowflake_keys(extra_param_keys), style_schema.keys()),
-          runs_(read_snowflake_runs(params_)),
-          steps_(params_.count_in("steps", 200, 8, snowflake_most_steps)),
-          fit_from_(params_.count_in("fit_from", 4, 1, steps_)),
-          fit_to_(params_.number_in("fit_to", 0.5, 0.05, 1.0)),
+        : SceneBase(d, options, param_schema.keys(), style_schema.keys()),
+          p_(param_schema.read(params_)),
           s_(style_schema.read(style_)),
           plot_style_(plot_style(s_.plot, options.scale)) {
         refuse_empty_fit();
@@ -63,29 +71,29 @@ public:
     // One crystal at a time, grown to params.steps, and its masses.
     std::vector<MemoryNeed> memory() const override {
         double bytes = 0;
-        for (const auto& run : runs_)
-            bytes = std::max(bytes, snowflake_crystal_bytes(snowflake_radius_bound(run.params, steps_)) +
-                                        sizeof(long) * (steps_ + 1.0));
-        return {{"a crystal of " + std::to_string(steps_) + " steps", bytes}};
+        for (const auto& run : p_.setup.runs)
+            bytes = std::max(bytes, snowflake_crystal_bytes(snowflake_radius_bound(run.params, p_.steps)) +
+                                        sizeof(long) * (p_.steps + 1.0));
+        return {{"a crystal of " + std::to_string(p_.steps) + " steps", bytes}};
     }
 
     void render(Output& out) const override {
         Progress& progress = out.progress();
-        progress.start(d_.id, static_cast<long long>(runs_.size()));
+        progress.start(d_.id, static_cast<long long>(p_.setup.runs.size()));
         render::Axes axes;
         axes.x_scale = axes.y_scale = render::Scale::log;
         axes.x_label = "Distance from the seed l (cells)";
         axes.y_label = "Ice cells M(l)";
         axes.legend = render::Legend::upper_left;
         nlohmann::json fits = nlohmann::json::array();
-        for (std::size_t i = 0; i < runs_.size(); ++i) {
+        for (std::size_t i = 0; i < p_.setup.runs.size(); ++i) {
             fits.push_back(fit_run(i, axes));
             progress.advance();
         }
         // A filled plane: 2 / sqrt(3) cells per unit area, so M(l) = (2 pi / sqrt 3) l^2.
         const double filled = 2 * M_PI / std::sqrt(3.0);
-        const std::vector<double> ref_l = {1.0, double(steps_)};
-        axes.series.push_back(line_series(ref_l, {filled, filled * steps_ * steps_}, "filled plane, D = 2",
+        const std::vector<double> ref_l = {1.0, double(p_.steps)};
+        axes.series.push_back(line_series(ref_l, {filled, filled * p_.steps * p_.steps}, "filled plane, D = 2",
                                           {0.6f, 0.6f, 0.6f, 1}, 1.0f, true));
         out.figure(plot_figure({axes}, d_, options_, plot_style_),
                    {{"params", params_.used()}, {"style", style_.used()}, {"fits", fits}});
@@ -97,29 +105,29 @@ private:
     // seed is at most its ring: fit_to x steps bounds the fit's last
     // distance, and the range must hold two distances even then.
     void refuse_empty_fit() {
-        if (fit_from_ + 1 > steps_)
+        if (p_.fit_from + 1 > p_.steps)
             params_.refuse("fit_from",
-                           "an integer from 1 to steps - 1 = " + std::to_string(steps_ - 1) +
+                           "an integer from 1 to steps - 1 = " + std::to_string(p_.steps - 1) +
                                ": the fit needs two distances, and a crystal's radius grows at most a cell a step");
-        if (static_cast<int>(std::floor(fit_to_ * double(steps_))) < fit_from_ + 1)
+        if (static_cast<int>(std::floor(p_.fit_to * double(p_.steps))) < p_.fit_from + 1)
             params_.refuse(
                 "fit_to",
-                "a number from (fit_from + 1) / steps = " + description::shown(double(fit_from_ + 1) / steps_) +
+                "a number from (fit_from + 1) / steps = " + description::shown(double(p_.fit_from + 1) / p_.steps) +
                     " to 1: the fit needs two distances, and a crystal's radius grows at most a cell a step");
     }
 
     // Run i grown `steps`: its M(l), its fit (dashed) on `axes`, and its metadata.
     nlohmann::json fit_run(std::size_t i, render::Axes& axes) const {
-        sim::Snowflake crystal(runs_[i].params);
-        for (int s = 0; s < steps_; ++s) crystal.step();
+        sim::Snowflake crystal(p_.setup.runs[i].params);
+        for (int s = 0; s < p_.steps; ++s) crystal.step();
         const int max_l = static_cast<int>(std::floor(crystal.euclidean_radius()));
         const std::vector<long> mass = sim::mass_within(crystal, max_l);
         std::vector<double> l, m, fit_l, fit_m;
-        const int fit_last = static_cast<int>(std::floor(fit_to_ * crystal.euclidean_radius()));
+        const int fit_last = static_cast<int>(std::floor(p_.fit_to * crystal.euclidean_radius()));
         for (int k = 1; k <= max_l; ++k) {
             l.push_back(k);
             m.push_back(double(mass[k - 1]));
-            if (k >= fit_from_ && k <= fit_last) {
+            if (k >= p_.fit_from && k <= fit_last) {
                 fit_l.push_back(k);
                 fit_m.push_back(double(mass[k - 1]));
             }
@@ -127,31 +135,29 @@ private:
         // Phase 1 refuses a range too short for any crystal; this one grew too
         // slowly for it, which only the run can tell: a failure of the run.
         if (fit_l.size() < 2)
-            throw std::runtime_error(d_.id + ": " + runs_[i].label + "'s crystal reached radius " +
+            throw std::runtime_error(d_.id + ": " + p_.setup.runs[i].label + "'s crystal reached radius " +
                                      format_fixed(crystal.euclidean_radius(), 2) + ", too small for a fit from " +
-                                     std::to_string(fit_from_) + " to " + std::to_string(fit_last) +
+                                     std::to_string(p_.fit_from) + " to " + std::to_string(fit_last) +
                                      " (two distances at least); raise steps or fit_to; no image written");
         const sim::LineFit fit = sim::fit_log_log(fit_l, fit_m);
         const glm::vec4 colour = s_.colours[i % s_.colours.size()].rgba;
-        axes.series.push_back(
-            line_series(l, m, legend_of(runs_[i].params) + ", D = " + format_fixed(fit.slope, 2), colour, 2.0f, false));
+        axes.series.push_back(line_series(
+            l, m, legend_of(p_.setup.runs[i].params) + ", D = " + format_fixed(fit.slope, 2), colour, 2.0f, false));
         // The fitted line over its range, dashed.
         const std::vector<double> line_m = sim::power_law(fit, fit_l);
         axes.series.push_back(line_series(fit_l, line_m, "", colour, 1.2f, true));
-        nlohmann::json meta = snowflake_settings(runs_[i].params);
-        meta.update({{"steps", steps_},
+        nlohmann::json meta = snowflake_settings(p_.setup.runs[i].params);
+        meta.update({{"steps", p_.steps},
                      {"ice", crystal.ice_count()},
                      {"euclidean_radius", crystal.euclidean_radius()},
-                     {"fit_range", {fit_from_, fit_last}},
+                     {"fit_range", {p_.fit_from, fit_last}},
                      {"dimension", fit.slope},
                      {"r", fit.r},
                      {"state_sha256", state_hash(m)}});
         return meta;
     }
 
-    const std::vector<SnowflakeRun> runs_;
-    const int steps_, fit_from_;
-    const double fit_to_;
+    const Params p_;
     const Style s_;
     const render::PlotStyle plot_style_;
 };

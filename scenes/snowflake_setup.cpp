@@ -8,100 +8,136 @@
 namespace scenes {
 namespace {
 
-const std::vector<Key> run_keys = {
-    {"rule", "7-digit rule code d0..d6, d0 = 0"},
-    {"label", "panel letter, e.g. \"(a)\""},
-    {"restrict", "[first, last]: steps during which freezing is forbidden in the gaps between the arms"},
-    {"priority", "steps during which growth is forced at the six tips"},
+// One run's keys, over the shared ones.
+struct RunValues {
+    std::string label;
+    sim::SnowflakeParams params;
+    bool rule_given = false;  // [params] gives the rule: the run's own is not read
 };
 
-// The keys every run shares (the rule, the restriction's region, the
-// priority's width), checked by the model on a run made of them alone: a
-// mistake there names the [params] key, not each run.
-sim::SnowflakeParams read_shared(Settings& params) {
-    sim::SnowflakeParams p;
-    const std::string rule = params.text("rule", "0101010");
-    check_model(params, [&] { p.rule = sim::SnowflakeRule::parse(rule); });
-    p.restriction.min_radius = params.count("restrict_radius", 2);
-    p.restriction.half_angle = params.number("restrict_half_angle", 15.0);
-    p.priority.width = params.count("priority_width", 0);
-    p.priority.exclusive = params.flag("priority_exclusive", true);
-    check_model(params, [&] { p.validate(); },
-                {{"restriction.min_radius", "restrict_radius"},
-                 {"restriction.half_angle", "restrict_half_angle"},
-                 {"priority.width", "priority_width"}});
-    return p;
-}
+const std::string restrict_allowed = "[first, last] with 1 <= first <= last <= " + std::to_string(snowflake_most_steps);
+const std::string priority_allowed = "a list of steps, each from 1 to " + std::to_string(snowflake_most_steps);
 
-// A run's restrict = [first, last]: absent, no restriction.
-void read_restriction_window(Settings& run, sim::Restriction& restriction) {
-    const auto window = run.integers("restrict", {});
-    if (window.empty()) return;
-    if (window.size() != 2 || window[0] < 1 || window[1] < window[0] || window[1] > snowflake_most_steps)
-        run.refuse("restrict", "[first, last] with 1 <= first <= last <= " + std::to_string(snowflake_most_steps));
-    restriction.first = static_cast<int>(window[0]);
-    restriction.last = static_cast<int>(window[1]);
-}
-
-void read_priority_steps(Settings& run, sim::Priority& priority) {
-    for (long long s : run.integers("priority", {})) {
-        if (s < 1 || s > snowflake_most_steps)
-            run.refuse("priority", "a list of steps, each from 1 to " + std::to_string(snowflake_most_steps));
-        priority.steps.push_back(static_cast<int>(s));
-    }
-}
+const Schema<RunValues> run_schema =
+    Schema<RunValues>()
+        .key({"rule", "7-digit rule code d0..d6, d0 = 0", "text"},
+             [](Settings& run, const std::string& key, RunValues& v) {
+                 if (v.rule_given) return;
+                 const std::string code = run.text(key, v.params.rule.code());
+                 check_model(run, [&] { v.params.rule = sim::SnowflakeRule::parse(code); });
+             })
+        .text("label", &RunValues::label, "panel letter, e.g. \"(a)\"")
+        // Absent: no restriction.
+        .key({"restrict", "[first, last]: steps during which freezing is forbidden in the gaps between the arms",
+              "a list of integers", restrict_allowed},
+             [](Settings& run, const std::string& key, RunValues& v) {
+                 const auto window = run.integers(key, {});
+                 if (window.empty()) return;
+                 if (window.size() != 2 || window[0] < 1 || window[1] < window[0] || window[1] > snowflake_most_steps)
+                     run.refuse(key, restrict_allowed);
+                 v.params.restriction.first = static_cast<int>(window[0]);
+                 v.params.restriction.last = static_cast<int>(window[1]);
+             })
+        .key(
+            {"priority", "steps during which growth is forced at the six tips", "a list of integers", priority_allowed},
+            [](Settings& run, const std::string& key, RunValues& v) {
+                for (long long s : run.integers(key, {})) {
+                    if (s < 1 || s > snowflake_most_steps) run.refuse(key, priority_allowed);
+                    v.params.priority.steps.push_back(static_cast<int>(s));
+                }
+            })
+        .check(validated(
+            {{"restriction.first", "restrict"}, {"restriction.last", "restrict"}, {"priority.steps", "priority"}},
+            [](RunValues& v) -> sim::SnowflakeParams& { return v.params; }));
 
 // Run i, read through a Settings of its own so that its mistakes name
 // "params.runs[i].key"; params.rule, when given, replaces its rule.
-SnowflakeRun read_run(const toml::table& table, std::size_t i, const sim::SnowflakeParams& shared, bool override_rule) {
-    Settings run("params.runs[" + std::to_string(i) + "]", table, run_keys);
-    SnowflakeRun r;
-    std::string letter = "(a)";
-    letter[1] = static_cast<char>('a' + i % 26);
-    r.label = run.text("label", letter);
-    r.params = shared;
-    if (!override_rule) {
-        const std::string code = run.text("rule", shared.rule.code());
-        check_model(run, [&] { r.params.rule = sim::SnowflakeRule::parse(code); });
-    }
-    read_restriction_window(run, r.params.restriction);
-    read_priority_steps(run, r.params.priority);
-    check_model(run, [&] { r.params.validate(); },
-                {{"restriction.first", "restrict"}, {"restriction.last", "restrict"}, {"priority.steps", "priority"}});
-    r.used = run.used();
+SnowflakeRun read_run(const toml::table& table, std::size_t i, const SnowflakeSetup& setup) {
+    Settings run("params.runs[" + std::to_string(i) + "]", table, run_schema.keys());
+    RunValues v;
+    v.label = "(a)";
+    v.label[1] = static_cast<char>('a' + i % 26);
+    v.params = setup.shared;
+    v.rule_given = setup.rule_given;
+    v = run_schema.read(run, v);
+    SnowflakeRun r{v.label, v.params, run.used()};
     r.used["rule"] = r.params.rule.code();
     return r;
 }
 
-}  // namespace
-
-std::vector<Key> snowflake_keys(std::vector<Key> extra) {
-    std::vector<Key> keys = {
-        {"runs", "list of runs, e.g. [{rule = \"0101010\", label = \"(a)\"}]"},
-        {"rule", "rule code for every run, replacing the runs' own"},
-        {"steps", "steps of every run, 0.." + std::to_string(snowflake_most_steps)},
-        {"restrict_radius", "restriction applies from this hex distance out, >= 1"},
-        {"restrict_half_angle", "half-width in degrees of each forbidden wedge, (0, 30]"},
-        {"priority_width", "cells beside each tip forced too, >= 0"},
+// The keys every run shares (the rule, the restriction's region, the
+// priority's width), checked by the model on a run made of them alone: a
+// mistake there names the [params] key, not each run.
+Schema<SnowflakeSetup> make_snowflake_schema() {
+    using S = SnowflakeSetup;
+    Schema<S> s;
+    s.key({"runs", "list of runs, e.g. [{rule = \"0101010\", label = \"(a)\"}]", "a list of tables",
+           "one run at least; absent: one run of the shared keys"},
+          [](Settings& params, const std::string& key, S& v) {
+              v.tables = params.tables(key);
+              if (params.has(key) && v.tables.empty())
+                  params.refuse(key,
+                                "one run at least, e.g. [{rule = \"0101010\"}]; leave runs out for one run of the "
+                                "default rule");
+          });
+    s.key(
+        {"rule", "rule code for every run, replacing the runs' own", "text"},
+        [](Settings& params, const std::string& key, S& v) {
+            v.rule_given = params.has(key);
+            const std::string code = params.text(key, v.shared.rule.code());
+            check_model(params, [&] { v.shared.rule = sim::SnowflakeRule::parse(code); });
+        },
+        [](const S& d) { return nlohmann::json(d.shared.rule.code()); });
+    s.key(
+        {"restrict_radius", "restriction applies from this hex distance out", "an integer"},
+        [](Settings& params, const std::string& key, S& v) {
+            v.shared.restriction.min_radius = params.count(key, v.shared.restriction.min_radius);
+        },
+        [](const S& d) { return nlohmann::json(d.shared.restriction.min_radius); });
+    s.key(
+        {"restrict_half_angle", "half-width in degrees of each forbidden wedge", "a number"},
+        [](Settings& params, const std::string& key, S& v) {
+            v.shared.restriction.half_angle = params.number(key, v.shared.restriction.half_angle);
+        },
+        [](const S& d) { return nlohmann::json(d.shared.restriction.half_angle); });
+    s.key(
+        {"priority_width", "cells beside each tip forced too", "an integer"},
+        [](Settings& params, const std::string& key, S& v) {
+            v.shared.priority.width = params.count(key, v.shared.priority.width);
+        },
+        [](const S& d) { return nlohmann::json(d.shared.priority.width); });
+    s.key(
         {"priority_exclusive",
-         "true: during a priority step only the tips grow (the rule rests); false: they grow as well"},
-    };
-    keys.insert(keys.end(), extra.begin(), extra.end());
-    return keys;
+         "true: during a priority step only the tips grow (the rule rests); false: they grow as well", "true or false"},
+        [](Settings& params, const std::string& key, S& v) {
+            v.shared.priority.exclusive = params.flag(key, v.shared.priority.exclusive);
+        },
+        [](const S& d) { return nlohmann::json(d.shared.priority.exclusive); });
+    s.check(validated({{"restriction.min_radius", "restrict_radius"},
+                       {"restriction.half_angle", "restrict_half_angle"},
+                       {"priority.width", "priority_width"}},
+                      [](S& v) -> sim::SnowflakeParams& { return v.shared; }));
+    s.check([](Settings&, const std::string&, S& v) {
+        const std::size_t count = std::max<std::size_t>(v.tables.size(), 1);
+        for (std::size_t i = 0; i < count; ++i)
+            v.runs.push_back(read_run(i < v.tables.size() ? v.tables[i] : toml::table{}, i, v));
+    });
+    return s;
 }
 
-std::vector<SnowflakeRun> read_snowflake_runs(Settings& params) {
-    const auto tables = params.tables("runs");
-    if (params.has("runs") && tables.empty())
-        params.refuse("runs", "one run at least, e.g. [{rule = \"0101010\"}]; leave runs out for one run of the "
-                              "default rule");
-    const bool override_rule = params.has("rule");
-    const sim::SnowflakeParams shared = read_shared(params);
-    std::vector<SnowflakeRun> runs;
-    const std::size_t count = std::max<std::size_t>(tables.size(), 1);
-    for (std::size_t i = 0; i < count; ++i)
-        runs.push_back(read_run(i < tables.size() ? tables[i] : toml::table{}, i, shared, override_rule));
-    return runs;
+}  // namespace
+
+SnowflakeSetup::SnowflakeSetup() {
+    shared.rule = sim::SnowflakeRule::parse("0101010");
+    shared.restriction.min_radius = 2;
+    shared.restriction.half_angle = 15.0;
+    shared.priority.width = 0;
+    shared.priority.exclusive = true;
+}
+
+const Schema<SnowflakeSetup>& snowflake_schema() {
+    static const Schema<SnowflakeSetup> schema = make_snowflake_schema();
+    return schema;
 }
 
 nlohmann::json snowflake_settings(const sim::SnowflakeParams& p) {

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "description/schema.hpp"
 #include "scenes/description_names.hpp"
-#include "description/settings.hpp"
 #include "sim/snowflake.hpp"
 
 namespace scenes {
@@ -33,13 +33,19 @@ struct SnowflakeRun {
 // peaked at 2.0 GiB), what --max-memory 4G serves; 100,000 would need 2 TiB.
 inline constexpr int snowflake_most_steps = 4000;
 
-// The [params] keys of a snowflake scene; `extra` adds the scene's own.
-std::vector<Key> snowflake_keys(std::vector<Key> extra = {});
+// The runs and the keys every run shares, as [params] gives them.
+struct SnowflakeSetup {
+    SnowflakeSetup();  // the shared keys' defaults: rule 0101010, gaps from ring 2 at 15 degrees, exclusive tips
+    std::vector<toml::table> tables;  // the runs as given (none: one run of the shared keys)
+    sim::SnowflakeParams shared;      // rule, restriction region, priority width and exclusiveness
+    bool rule_given = false;          // [params] rule replaces every run's own
+    std::vector<SnowflakeRun> runs;   // read and checked, the model's own check included
+};
 
-// Reads and checks the runs (the model's own check included); throws the
-// SettingError of the key as written: "params.rule",
+// Their keys, for a scene's [params] schema to take as a part (the scene
+// adds steps). Mistakes name the key as written: "params.rule",
 // "params.runs[2].restrict", "params.restrict_half_angle".
-std::vector<SnowflakeRun> read_snowflake_runs(Settings& params);
+const Schema<SnowflakeSetup>& snowflake_schema();
 
 // The restriction and priority of a run, for the metadata.
 nlohmann::json snowflake_settings(const sim::SnowflakeParams& p);

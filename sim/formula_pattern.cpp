@@ -11,38 +11,6 @@ namespace sim::formula {
 
 namespace {
 
-template <class Kind, std::size_t N>
-Kind named(const std::string& name, const std::pair<const char*, Kind> (&names)[N], const char* what) {
-    std::string allowed;
-    for (const auto& [text, kind] : names) {
-        if (name == text) return kind;
-        allowed += (allowed.empty() ? "" : ", ") + std::string(text);
-    }
-    throw std::invalid_argument(std::string(what) + " \"" + name + "\" is not one figgen knows: use " + allowed);
-}
-
-const std::pair<const char*, Overlay::Operation> operations[] = {
-    {"overwrite", Overlay::Operation::overwrite}, {"add", Overlay::Operation::add},
-    {"subtract", Overlay::Operation::subtract},   {"multiply", Overlay::Operation::multiply},
-    {"divide", Overlay::Operation::divide}};
-const std::pair<const char*, Fill::Kind> fills[] = {
-    {"constant", Fill::Kind::constant},         {"white_noise", Fill::Kind::white_noise},
-    {"perlin_noise", Fill::Kind::perlin_noise}, {"linear_gradient", Fill::Kind::linear_gradient},
-    {"radial_gradient", Fill::Kind::radial_gradient}, {"gaussian", Fill::Kind::gaussian},
-    {"sine", Fill::Kind::sine},                 {"other_chemical", Fill::Kind::other_chemical},
-    {"parameter", Fill::Kind::parameter}};
-const std::pair<const char*, Shape::Kind> shapes[] = {{"everywhere", Shape::Kind::everywhere},
-                                                      {"rectangle", Shape::Kind::rectangle},
-                                                      {"circle", Shape::Kind::circle},
-                                                      {"pixel", Shape::Kind::pixel}};
-
-template <class Kind, std::size_t N>
-const char* text_of(Kind kind, const std::pair<const char*, Kind> (&names)[N]) {
-    for (const auto& [text, k] : names)
-        if (k == kind) return text;
-    return "?";
-}
-
 double hypot3(double x, double y, double z) {
     return std::sqrt(x * x + y * y + z * z);
 }
@@ -94,23 +62,31 @@ private:
 
 }  // namespace
 
-Overlay::Operation operation_named(const std::string& name) {
-    return named(name, operations, "operation");
+std::vector<std::pair<std::string, Overlay::Operation>> operation_names() {
+    using O = Overlay::Operation;
+    return {{"overwrite", O::overwrite},
+            {"add", O::add},
+            {"subtract", O::subtract},
+            {"multiply", O::multiply},
+            {"divide", O::divide}};
 }
-Fill::Kind fill_named(const std::string& name) {
-    return named(name, fills, "fill");
+
+std::vector<std::pair<std::string, Fill::Kind>> fill_names() {
+    using K = Fill::Kind;
+    return {{"constant", K::constant},
+            {"white_noise", K::white_noise},
+            {"perlin_noise", K::perlin_noise},
+            {"linear_gradient", K::linear_gradient},
+            {"radial_gradient", K::radial_gradient},
+            {"gaussian", K::gaussian},
+            {"sine", K::sine},
+            {"other_chemical", K::other_chemical},
+            {"parameter", K::parameter}};
 }
-Shape::Kind shape_named(const std::string& name) {
-    return named(name, shapes, "shape");
-}
-const char* name_of(Overlay::Operation op) {
-    return text_of(op, operations);
-}
-const char* name_of(Fill::Kind kind) {
-    return text_of(kind, fills);
-}
-const char* name_of(Shape::Kind kind) {
-    return text_of(kind, shapes);
+
+std::vector<std::pair<std::string, Shape::Kind>> shape_names() {
+    using K = Shape::Kind;
+    return {{"everywhere", K::everywhere}, {"rectangle", K::rectangle}, {"circle", K::circle}, {"pixel", K::pixel}};
 }
 
 void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals,

@@ -54,14 +54,10 @@ struct Pattern {
     std::vector<Overlay> overlays;
 };
 
-// Names as Ready writes them ("overwrite", "white_noise", "circle", ...);
-// std::invalid_argument naming the allowed ones for others.
-Overlay::Operation operation_named(const std::string& name);
-Fill::Kind fill_named(const std::string& name);
-Shape::Kind shape_named(const std::string& name);
-const char* name_of(Overlay::Operation op);
-const char* name_of(Fill::Kind kind);
-const char* name_of(Shape::Kind kind);
+// Each kind by the name Ready writes ("overwrite", "white_noise", "circle", ...).
+std::vector<std::pair<std::string, Overlay::Operation>> operation_names();
+std::vector<std::pair<std::string, Fill::Kind>> fill_names();
+std::vector<std::pair<std::string, Shape::Kind>> shape_names();
 
 // Applies `pattern` to `chemicals` (each height x width, changed in place),
 // with the rule's `parameters` (for `parameter` fills), rounding each value
