@@ -24,6 +24,10 @@ bool films(const Description& d) {
 bool asks(const Description& d, const char* format) {
     return std::find(d.formats.begin(), d.formats.end(), format) != d.formats.end();
 }
+// A vector format: --format's choice, or else the description's figure.formats.
+bool chosen(const Description& d, const OutputOptions& o, const char* format) {
+    return o.formats_given ? o.chosen.count(format) > 0 : asks(d, format);
+}
 std::string film_size(const Description& d, const OutputOptions& options) {
     return std::to_string(scaled_even(d.animation->width, options.scale)) + " x " +
            std::to_string(scaled_even(d.animation->height, options.scale));
@@ -63,15 +67,15 @@ std::vector<OutputFormat> make_table() {
     // Vector files: --format's, or else those the description asks for.
     t.push_back({"pdf", ".pdf", "the PDF", "pdf and svg (the figure as vector graphics)", "PDF", {"vector", "pdf"},
                  Format::pdf, Stage::figure,
-                 [](const Description& d, const OutputOptions& o) { return o.formats_given ? o.pdf : asks(d, "pdf"); },
-                 [](OutputOptions& o) { o.pdf = true; },
+                 [](const Description& d, const OutputOptions& o) { return chosen(d, o, "pdf"); },
+                 [](OutputOptions& o) { o.chosen.insert("pdf"); },
                  [](const Description& d, const OutputOptions& o) {
                      return render::vector::file_bytes(figure_width(d, o), figure_height(d, o));
                  },
                  vector_page});
     t.push_back({"svg", ".svg", "the SVG", nullptr, "SVG", {"vector", "svg"}, Format::svg, Stage::figure,
-                 [](const Description& d, const OutputOptions& o) { return o.formats_given ? o.svg : asks(d, "svg"); },
-                 [](OutputOptions& o) { o.svg = true; },
+                 [](const Description& d, const OutputOptions& o) { return chosen(d, o, "svg"); },
+                 [](OutputOptions& o) { o.chosen.insert("svg"); },
                  [](const Description& d, const OutputOptions& o) {
                      return render::vector::file_bytes(figure_width(d, o), figure_height(d, o));
                  },

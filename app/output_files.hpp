@@ -15,6 +15,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
+#include <string>
 #include <thread>
 
 #include "app/frame_pipe.hpp"
@@ -38,7 +40,7 @@ struct OutputOptions {
     bool video = true;                  // write <id>.mp4
     bool frames = false;                // write <id>-frames/*.png
     bool webm = false;                  // write <id>.webm (VP9), made from the MP4 (kept only with `video`)
-    bool pdf = false, svg = false;      // write <id>.pdf, <id>.svg (--format)
+    std::set<std::string> chosen;       // the formats --format names that no flag above stands for (pdf, svg)
     bool vti = false;                   // write <id>.vti, a formula model's last step as Ready's file (--format vti)
     bool formats_given = false;         // --format was given: a description's figure.formats is not used
     bool transparent = false;           // no background in the PNG, PDF and SVG

@@ -124,7 +124,7 @@ void write(int fd, const std::filesystem::path& shown, Format format, const Page
                                page.items.size(), item_at,     &handover};
     char error[1024] = "";
     const std::string path = shown.string();
-    if (api.write(fd, path.c_str(), format == Format::pdf ? FIGGEN_VECTOR_PDF : FIGGEN_VECTOR_SVG, &c, max_bytes,
+    if (api.write(fd, path.c_str(), static_cast<int>(format), &c, max_bytes,
                   error, sizeof error) != 0)
         throw std::runtime_error(error[0] ? error : "cannot write " + path);
 }

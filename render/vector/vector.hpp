@@ -24,10 +24,12 @@
 
 #include "render/image.hpp"
 #include "render/surface.hpp"
+#include "render/vector/vector_abi.h"
 
 namespace render::vector {
 
-enum class Format { pdf, svg };
+// The module's formats (vector_abi.h), by name.
+enum class Format : int { pdf = FIGGEN_VECTOR_PDF, svg = FIGGEN_VECTOR_SVG };
 
 // One piece of a path.
 struct PathStep {
