@@ -53,17 +53,9 @@ struct ShapeValues {
 const Schema<ShapeValues> shape_schema = [] {
     using S = ShapeValues;
     Schema<S> s;
-    s.key({"shape", "where the overlay applies", "text", names_allowed({"everywhere", "rectangle", "circle", "pixel"}),
-           "everywhere"},
-          [](Settings& section, const std::string& key, S& v) {
-              const std::string name = section.text(key, "everywhere");
-              for (const auto& [word, kind] : formula::shape_names())
-                  if (word == name) {
-                      v.shape.kind = kind;
-                      return;
-                  }
-              section.refuse(key, "everywhere, rectangle, circle or pixel");
-          });
+    Schema<formula::Shape> kind;
+    kind.choice("shape", &formula::Shape::kind, formula::shape_names(), "where the overlay applies");
+    s.part(kind, &S::shape);
     point_key(s, "from", &S::from, "rectangle: [x, y], its lower corner, a fraction of the grid");
     point_key(s, "to", &S::to, "rectangle: [x, y], its upper corner, a fraction of the grid");
     point_key(s, "centre", &S::centre, "circle: [x, y], a fraction of the grid");
@@ -101,6 +93,7 @@ const Schema<OverlayValues> overlay_schema = [] {
     using F = formula::Fill;
     const double big = 1e12;
     Schema<F> fill;
+    fill.choice("fill", &F::kind, formula::fill_names(), "what the overlay puts there (Ready's fills)");
     fill.number("value", &F::value, "constant: the value", -big, big);
     fill.number("low", &F::low, "white_noise: the least value", -big, big);
     fill.number("high", &F::high, "white_noise: the most value", -big, big);
@@ -112,37 +105,16 @@ const Schema<OverlayValues> overlay_schema = [] {
     fill.number("sigma", &F::sigma, "gaussian: its width, a fraction of the grid's larger side", 1e-9, big);
     fill.number("phase", &F::phase, "sine: its phase, radians", -big, big);
     fill.number("amplitude", &F::amplitude, "sine: its amplitude", -big, big);
-    std::vector<std::string> fills;
-    for (const auto& n : formula::fill_names()) fills.push_back(n.first);
-    const std::string fills_allowed = names_allowed(fills);
-    std::vector<std::string> operations;
-    for (const auto& n : formula::operation_names()) operations.push_back(n.first);
 
     Schema<O> s;
     s.key({"chemical", "the chemical it changes: \"a\", \"b\", ...", "text", "a chemical of the rule", "a"},
           [](Settings& section, const std::string& key, O& v) {
               v.overlay.chemical = chemical_index(section, key, section.text(key, "a"), v.rule->chemicals);
           });
-    s.key({"operation", "how the fill meets what the cells hold", "text", names_allowed(operations), "overwrite"},
-          [](Settings& section, const std::string& key, O& v) {
-              const std::string name = section.text(key, "overwrite");
-              for (const auto& [word, operation] : formula::operation_names())
-                  if (word == name) {
-                      v.overlay.operation = operation;
-                      return;
-                  }
-              section.refuse(key, "overwrite, add, subtract, multiply or divide");
-          });
-    s.key({"fill", "what the overlay puts there (Ready's fills)", "text", fills_allowed, "constant"},
-          [fills_allowed](Settings& section, const std::string& key, O& v) {
-              const std::string name = section.text(key, "constant");
-              for (const auto& [word, kind] : formula::fill_names())
-                  if (word == name) {
-                      v.overlay.fill.kind = kind;
-                      return;
-                  }
-              section.refuse(key, fills_allowed);
-          });
+    Schema<formula::Overlay> how;
+    how.choice("operation", &formula::Overlay::operation, formula::operation_names(),
+               "how the fill meets what the cells hold");
+    s.part(how, &O::overlay);
     s.part_at(
         fill, [](auto& v) -> auto& { return v.overlay.fill; });
     point_key(s, "from", &O::from, "gradients and sine: [x, y], a fraction of the grid");

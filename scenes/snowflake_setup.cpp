@@ -88,31 +88,19 @@ Schema<SnowflakeSetup> make_snowflake_schema() {
             check_model(params, [&] { v.shared.rule = sim::SnowflakeRule::parse(code); });
         },
         [](const S& d) { return nlohmann::json(d.shared.rule.code()); });
-    s.key(
-        {"restrict_radius", "restriction applies from this hex distance out", "an integer"},
-        [](Settings& params, const std::string& key, S& v) {
-            v.shared.restriction.min_radius = params.count(key, v.shared.restriction.min_radius);
-        },
-        [](const S& d) { return nlohmann::json(d.shared.restriction.min_radius); });
-    s.key(
-        {"restrict_half_angle", "half-width in degrees of each forbidden wedge", "a number"},
-        [](Settings& params, const std::string& key, S& v) {
-            v.shared.restriction.half_angle = params.number(key, v.shared.restriction.half_angle);
-        },
-        [](const S& d) { return nlohmann::json(d.shared.restriction.half_angle); });
-    s.key(
-        {"priority_width", "cells beside each tip forced too", "an integer"},
-        [](Settings& params, const std::string& key, S& v) {
-            v.shared.priority.width = params.count(key, v.shared.priority.width);
-        },
-        [](const S& d) { return nlohmann::json(d.shared.priority.width); });
-    s.key(
-        {"priority_exclusive",
-         "true: during a priority step only the tips grow (the rule rests); false: they grow as well", "true or false"},
-        [](Settings& params, const std::string& key, S& v) {
-            v.shared.priority.exclusive = params.flag(key, v.shared.priority.exclusive);
-        },
-        [](const S& d) { return nlohmann::json(d.shared.priority.exclusive); });
+    Schema<sim::Restriction> restriction;
+    restriction.count("restrict_radius", &sim::Restriction::min_radius,
+                      "restriction applies from this hex distance out");
+    restriction.number("restrict_half_angle", &sim::Restriction::half_angle,
+                       "half-width in degrees of each forbidden wedge");
+    Schema<sim::Priority> priority;
+    priority.count("priority_width", &sim::Priority::width, "cells beside each tip forced too");
+    priority.flag("priority_exclusive", &sim::Priority::exclusive,
+                  "true: during a priority step only the tips grow (the rule rests); false: they grow as well");
+    s.part_at(
+        restriction, [](auto& v) -> auto& { return v.shared.restriction; });
+    s.part_at(
+        priority, [](auto& v) -> auto& { return v.shared.priority; });
     s.check(validated({{"restriction.min_radius", "restrict_radius"},
                        {"restriction.half_angle", "restrict_half_angle"},
                        {"priority.width", "priority_width"}},
