@@ -96,9 +96,11 @@ fuzz:
 # Kernel throughput (Google Benchmark), then run time against error, the
 # book's numpy/scipy/matplotlib route side by side and whole-pipeline times
 # (`make figures` from clean among them): bench/results/, out/bench-pareto.png.
-# Last, every figure's memory estimate against its peak RSS, over the catalog
+# Then every figure's memory estimate against its peak RSS, over the catalog
 # and scaled variants up to the largest documented values
-# (tests/app/test_memory_estimates.cpp): bench/results/memory.txt.
+# (tests/app/test_memory_estimates.cpp): bench/results/memory.txt. Last,
+# twenty renders of tc7-1 from one Python process against twenty figgen
+# processes (bench/python_renders.py): bench/results/python.json.
 bench: build
 	@scripts/deps.sh bench || echo "figgen: the book's route will be skipped" >&2
 	cmake --build $(BUILD) --target figgen_bench figgen_accuracy -j $(JOBS)
@@ -107,6 +109,7 @@ bench: build
 	  --benchmark_out=bench/results/benchmarks.json --benchmark_out_format=json
 	$(BUILD)/bench/figgen_accuracy --results bench/results --figures out
 	FIGGEN_MEMORY_TABLE=bench/results/memory.txt $(BUILD)/tests/figgen_tests "[memory-sweep]"
+	PYTHONPATH=$(BUILD)/python /usr/bin/python3 bench/python_renders.py $(BUILD)/figgen | tee bench/results/python.json
 
 # Rewrites the image-checksum goldens under tests/golden/ from this machine's
 # renderer. Explicit only: CI never runs it.

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "app/render_settings.hpp"
+
 namespace app {
 
 constexpr int exit_runtime_error = 1;  // a failure while running or writing
@@ -80,21 +82,10 @@ struct ThumbnailsCommand : Command {
 
 // figgen render, and figgen merge (the same options and --from): a merge
 // computes nothing, it draws from the parts that shards wrote.
-struct RenderCommand : Command {
+struct RenderCommand : Command, RenderSettings {
     explicit RenderCommand(CLI::App& parent, bool merge = false);
     int run() override;
-    std::vector<std::string> targets, overrides, from;
-    std::string shard, schedule = "dynamic";
-    std::optional<int> threads;
-    std::string gl = "auto";  // --gl, FIGGEN_GL
-    int gl_device = 0;
-    std::string out_dir = "out", size, cmap;
-    std::vector<std::string> formats;  // --format, split at commas
-    std::optional<std::uint64_t> seed;
-    std::optional<int> fps;
-    double scale = 1.0;
-    bool no_video = false, frames = false, transparent = false;
-    std::string max_memory = "4G", max_disk = "4G";  // sizes, read by parse_size
+    std::vector<std::string> targets;
 };
 
 }  // namespace app

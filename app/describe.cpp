@@ -43,7 +43,11 @@ std::string shown(const nlohmann::json& value) {
         std::snprintf(number, sizeof number, "%.6g", value.get<double>());
         return number;
     }
-    return fit_columns(value.is_string() ? "\"" + value.get<std::string>() + "\"" : value.dump(), 28);
+    if (!value.is_string()) return fit_columns(value.dump(), 28);
+    std::string quoted = "\"";  // appended in steps: GCC 12 warns falsely (-Wrestrict) on "\"" + std::string
+    quoted += value.get<std::string>();
+    quoted += '"';
+    return fit_columns(quoted, 28);
 }
 
 // The range the model checks `key` against, and where its bound comes from ("" for none).
@@ -65,15 +69,43 @@ const SettingsLog::Section* find(const std::vector<SettingsLog::Section>& sectio
 
 }  // namespace
 
-std::string describe(const std::filesystem::path& file) {
+Described describe_figure(const Description& d, const std::vector<SettingsLog::Section>& own_sections) {
+    const Reading own = read_settings(d);
+    Described out{d.id, d.title, d.source, d.scene, d.file.string(), d.seed, d.original_caption, d.language, {}};
+    // Each key as its schema (scenes: description/schema.hpp) declares it:
+    // its default, and what it allows where the declaration states it;
+    // else the range a ranged read or the model checked.
+    auto section = [&](const SettingsLog::Section& s, const std::vector<sim::CheckedRange>& ranges) {
+        DescribedSection described{s.name, {}};
+        for (const Key& key : s.keys) {
+            const auto [range, why] = range_of(key.name, ranges);
+            std::string allowed = !key.allowed.empty()        ? key.allowed
+                                  : s.allowed.count(key.name) ? s.allowed.at(key.name)
+                                  : !range.empty()            ? range
+                                                              : key.type;
+            described.keys.push_back({key.name, s.used.contains(key.name) ? s.used[key.name] : nlohmann::json(),
+                                      key.fallback, allowed, why.empty() ? key.help : key.help + " (" + why + ")"});
+        }
+        out.sections.push_back(std::move(described));
+    };
+    for (const auto& s : own.sections) section(s, own.ranges);
+    for (const char* name : {"figure", "animation"})
+        if (const auto* s = find(own_sections, name)) section(*s, {});
+    return out;
+}
+
+Described describe_figure(const std::filesystem::path& file) {
     SettingsLog top;  // the description's own sections, read by load_description
     const Description d = description::load_description(file);
-    const Reading own = read_settings(d);
+    return describe_figure(d, top.sections);
+}
 
+std::string describe(const std::filesystem::path& file) {
+    const Described d = describe_figure(file);
     std::ostringstream out;
     out << d.id << ": " << d.title << "\n"
         << "  source: " << d.source << "\n"
-        << "  scene: " << d.scene << ", seed " << d.seed << ", described in " << file.string() << "\n";
+        << "  scene: " << d.scene << ", seed " << d.seed << ", described in " << d.file << "\n";
     if (!d.original_caption.empty())
         out << "  original caption" << (d.language.empty() ? "" : " (" + d.language + ")") << ": " << d.original_caption
             << "\n";
@@ -83,27 +115,12 @@ std::string describe(const std::filesystem::path& file) {
         out << "  " << pad_columns(key, 20) << " " << pad_columns(value, 28) << " " << pad_columns(fallback, 28) << " "
             << pad_columns(allowed, 30) << " " << meaning << "\n";
     };
-    // Each key as its schema declares it (scenes/: description/schema.hpp):
-    // its default, and what it allows where the declaration states it; else
-    // the range a ranged read or the model checked.
-    auto section = [&](const SettingsLog::Section& s, const std::vector<sim::CheckedRange>& ranges) {
+    for (const DescribedSection& s : d.sections) {
         out << "\n[" << s.name << "]\n";
         row("key", "this figure", "default", "allowed", "meaning");
-        for (const Key& key : s.keys) {
-            const nlohmann::json value = s.used.contains(key.name) ? s.used[key.name] : nlohmann::json();
-            const auto [range, why] = range_of(key.name, ranges);
-            std::string allowed = !key.allowed.empty()        ? key.allowed
-                                  : s.allowed.count(key.name) ? s.allowed.at(key.name)
-                                  : !range.empty()            ? range
-                                                              : key.type;
-            if (allowed.empty()) allowed = "see meaning";
-            row(key.name, shown(value), shown(key.fallback), allowed,
-                why.empty() ? key.help : key.help + " (" + why + ")");
-        }
-    };
-    for (const auto& s : own.sections) section(s, own.ranges);
-    for (const char* name : {"figure", "animation"})
-        if (const auto* s = find(top.sections, name)) section(*s, {});
+        for (const DescribedKey& k : s.keys)
+            row(k.key, shown(k.value), shown(k.fallback), k.allowed.empty() ? "see meaning" : k.allowed, k.meaning);
+    }
     out << "\nChange any of them with --set key=value ([params]) or --set section.key=value.\n";
     return out.str();
 }

@@ -35,9 +35,25 @@ void ProgressBar::finish() {
     std::fputc('\n', stderr);
 }
 
-std::string ProgressBar::position() const {
+void ProgressTally::start(const std::string& label, long long total) {
+    label_ = label;
+    total_ = total > 0 ? total : 1;
+    done_ = 0;
+    next_.start(label, total);
+}
+
+void ProgressTally::advance(long long units) {
+    done_ += units;
+    next_.advance(units);
+}
+
+void ProgressTally::finish() {
+    next_.finish();
+}
+
+std::string ProgressTally::position() const {
     if (label_.empty()) return "before its run started";
-    return label_ + ", " + std::to_string(done_) + " of " + std::to_string(total_) + " units of work done";
+    return label_ + ", " + std::to_string(done_.load()) + " of " + std::to_string(total_) + " units of work done";
 }
 
 void ProgressBar::draw(bool force) {

@@ -3,6 +3,7 @@
 // (simulation steps, frames drawn and encoded). Silent when stderr is not a
 // terminal, so logs and CI output stay clean.
 
+#include <atomic>
 #include <chrono>
 #include <string>
 
@@ -18,8 +19,6 @@ public:
     void start(const std::string& label, long long total) override;
     void advance(long long units = 1) override;
     void finish() override;  // completes the bar and ends its line
-    // Where the work is, for a message: "tc7-2, 350 of 7001 units of work done".
-    std::string position() const;
 
 private:
     void draw(bool force);
@@ -28,6 +27,24 @@ private:
     std::string label_;
     long long total_ = 0, done_ = 0;
     std::chrono::steady_clock::time_point started_, last_draw_;
+};
+
+// Counts the work as it passes it on to `next` (the bar, or the Python
+// module's callback), to say where a failed render got to.
+class ProgressTally : public scenes::Progress {
+public:
+    explicit ProgressTally(scenes::Progress& next) : next_(next) {}
+    void start(const std::string& label, long long total) override;
+    void advance(long long units = 1) override;
+    void finish() override;
+    // Where the work is, for a message: "tc7-2, 350 of 7001 units of work done".
+    std::string position() const;
+
+private:
+    scenes::Progress& next_;
+    std::string label_;
+    long long total_ = 0;
+    std::atomic<long long> done_{0};
 };
 
 }  // namespace app

@@ -2,15 +2,36 @@
 
 #include <dlfcn.h>
 
+#include <mutex>
 #include <system_error>
 
 namespace base {
 
-std::filesystem::path module_path(const char* relative, const char* built) {
+namespace {
+std::mutex folder_lock;
+std::filesystem::path given_folder;
+}  // namespace
+
+void set_program_folder(const std::filesystem::path& folder) {
+    std::lock_guard<std::mutex> hold(folder_lock);
+    given_folder = folder;
+}
+
+std::filesystem::path program_folder() {
+    {
+        std::lock_guard<std::mutex> hold(folder_lock);
+        if (!given_folder.empty()) return given_folder;
+    }
     std::error_code error;
     const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
-    if (!error) {
-        const std::filesystem::path installed = exe.parent_path() / relative;
+    return error ? std::filesystem::path() : exe.parent_path();
+}
+
+std::filesystem::path module_path(const char* relative, const char* built) {
+    const std::filesystem::path folder = program_folder();
+    std::error_code error;
+    if (!folder.empty()) {
+        const std::filesystem::path installed = folder / relative;
         if (std::filesystem::is_regular_file(installed, error)) return installed;
     }
     return built;

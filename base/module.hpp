@@ -15,6 +15,12 @@ namespace base {
 
 std::filesystem::path module_path(const char* relative, const char* built);
 
+// The folder the program runs from: the executable's, unless the program
+// that embeds figgen (the Python module) says where figgen is installed.
+// An installed figgen's modules and descriptions are found from it.
+std::filesystem::path program_folder();
+void set_program_folder(const std::filesystem::path& folder);
+
 // One of figgen's modules: where it is, its entry point (an extern "C"
 // function returning its Api, a struct whose first member is an int
 // version), the version this build expects, and for messages what it does

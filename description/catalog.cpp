@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "base/module.hpp"
 #include "description/settings.hpp"
 
 namespace description {
@@ -44,9 +45,8 @@ std::filesystem::path catalog_dir() {
     if (const char* dir = std::getenv("FIGGEN_FIGURES_DIR"); dir && *dir) return dir;
     // An installed figgen (PREFIX/bin/figgen) reads PREFIX/share/figgen/figures.
     std::error_code ec;
-    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        const auto installed = exe.parent_path().parent_path() / "share" / "figgen" / "figures";
+    if (const std::filesystem::path folder = base::program_folder(); !folder.empty()) {
+        const auto installed = folder.parent_path() / "share" / "figgen" / "figures";
         if (std::filesystem::is_directory(installed, ec)) return installed;
     }
     return FIGGEN_FIGURES_DIR;

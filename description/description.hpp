@@ -91,14 +91,15 @@ struct Description {
 };
 
 // The one place a SettingError meets the description it came from: runs
-// `read` and turns a SettingError into a UsageError that begins with where
-// its key was given (d.where). Every reader of descriptions goes through it.
+// `read` and throws its SettingError again, its message beginning with
+// where its key was given (d.where). Every reader of descriptions goes through it.
 template <class Read>
 auto at_source(const Description& d, Read&& read) -> decltype(read()) {
     try {
         return read();
     } catch (const SettingError& e) {
-        throw UsageError(d.where(e.key()) + ": " + e.what());
+        if (!e.where().empty()) throw;
+        throw e.at(d.where(e.key()));
     }
 }
 

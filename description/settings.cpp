@@ -17,6 +17,12 @@ SettingError::SettingError(std::string key, std::string value, std::string allow
 SettingError::SettingError(std::string key, std::string value, std::string allowed, const std::string& message)
     : UsageError(message), key_(std::move(key)), value_(std::move(value)), allowed_(std::move(allowed)) {}
 
+SettingError SettingError::at(const std::string& where) const {
+    SettingError located(key_, value_, allowed_, where + ": " + what());
+    located.where_ = where;
+    return located;
+}
+
 SettingError SettingError::unknown(std::string key, const std::string& allowed_keys) {
     const std::string message = "unknown key " + key + "; allowed: " + allowed_keys;
     return SettingError(std::move(key), "", allowed_keys, message);

@@ -36,10 +36,15 @@ public:
     const std::string& key() const { return key_; }
     const std::string& value() const { return value_; }
     const std::string& allowed() const { return allowed_; }
+    // Where the key was given ("tc7-1.toml:15", "--set r=0.5"); empty until
+    // at_source (description.hpp) says.
+    const std::string& where() const { return where_; }
+    // The same error, its message beginning with where the key was given.
+    SettingError at(const std::string& where) const;
 
 private:
     SettingError(std::string key, std::string value, std::string allowed, const std::string& message);
-    std::string key_, value_, allowed_;
+    std::string key_, value_, allowed_, where_;
 };
 
 // A key as a user writes it with --set: [params] and top-level keys bare

@@ -28,6 +28,8 @@ packages=(
   python3-vtk9 python3-numpy  # the tests read figgen's VTI files back with VTK (its numpy_support)
   libopenmpi-dev openmpi-bin  # MPI: its headers and mpirun; figgen opens libmpi only under mpirun
   catch2 libbenchmark-dev
+  python3-dev python3-pybind11  # the Python module (python/), built with the project
+  python3-pytest jupyter-nbconvert python3-ipykernel  # its tests, and the example notebook run headless
   chromium chromium-driver python3-selenium  # the gallery's browser test
 )
 if [ "${1:-}" = bench ]; then

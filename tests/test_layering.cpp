@@ -34,6 +34,8 @@ const std::map<std::string, std::set<std::string>> may_include = {
     {"description", {"description", "base"}},
     {"scenes", {"sim", "render", "render/gl", "description", "scenes", "base"}},
     {"app", {"sim", "render", "render/gl", "render/vector", "media", "description", "scenes", "app", "base"}},
+    // The Python module: figgen's library calls (app/) and what they hand over.
+    {"python", {"app", "description", "scenes", "media", "base", "python"}},
 };
 
 // The layer a path (a file's, or an include's) belongs to: the longest

@@ -1,0 +1,178 @@
+#include "app/render_settings.hpp"
+
+#include <sched.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <thread>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "app/cluster.hpp"
+#include "app/commands.hpp"
+#include "app/formats.hpp"
+#include "app/progress.hpp"
+#include "app/render_figure.hpp"
+#include "description/catalog.hpp"
+#include "description/integer_text.hpp"
+#include "description/plain_name.hpp"
+#include "description/ready_vti.hpp"
+#include "media/media.hpp"
+#include "render/gl/gl_context.hpp"
+#include "render/vector/vector.hpp"
+#include "sim/check.hpp"
+
+namespace app {
+namespace {
+
+// Threads for a process by default: the cores it may run on (its affinity
+// mask: mpirun binds a rank to a core, or to the cores --map-by gives it),
+// shared with the other ranks on its node when it is not bound.
+int default_threads() {
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    cpu_set_t mask;
+    CPU_ZERO(&mask);
+    const int allowed = ::sched_getaffinity(0, sizeof mask, &mask) == 0 ? CPU_COUNT(&mask) : cores;
+    if (allowed < cores) return std::max(1, allowed);  // bound: it has these to itself
+    return std::max(1, cores / launcher_local_size());
+}
+
+// The options of `figgen render` as output options; UsageError for a value out of range.
+}  // namespace
+
+OutputOptions output_options(const RenderSettings& c) {
+    if (!(c.scale >= 0.1 && c.scale <= 8.0))  // also false for NaN
+        throw UsageError("--scale " + description::shown(c.scale) + " is not allowed: use a number from 0.1 to 8");
+    std::string formats;
+    for (const std::string& f : c.formats) formats += (formats.empty() ? "" : ",") + f;
+    if (!c.formats.empty() && (c.no_video || c.frames))
+        throw UsageError("--format " + formats + " is not allowed with --no-video or --frames: use one");
+    if (c.out_dir.empty()) throw UsageError("--out is empty: give the folder the figures go into, e.g. --out out");
+    OutputOptions options;
+    options.dir = c.out_dir;
+    options.scale = c.scale;
+    options.video = c.formats.empty() && !c.no_video;
+    options.frames = c.frames;
+    options.formats_given = !c.formats.empty();
+    // --format's check (format_names) let through only names the table chooses by.
+    for (const std::string& name : c.formats) output_format(name)->choose(options);
+    options.transparent = c.transparent;
+    options.max_memory = parse_size("--max-memory", c.max_memory);
+    options.max_disk = parse_size("--max-disk", c.max_disk);
+    options.work.threads = c.threads.value_or(default_threads());
+    options.work.schedule = c.schedule == "static" ? Schedule::fixed : Schedule::dynamic;
+    for (const std::string& from : c.from) options.work.merge_from.emplace_back(from);
+    if (!c.shard.empty()) {
+        const std::size_t slash = c.shard.find('/');
+        const std::optional<long long> n = slash == std::string::npos
+                                               ? std::nullopt
+                                               : description::integer_text(c.shard.substr(slash + 1), 1, 1000000);
+        const std::optional<long long> k =
+            n ? description::integer_text(c.shard.substr(0, slash), 1, *n) : std::nullopt;
+        if (!k)
+            throw UsageError("--shard " + description::printable(c.shard, 40) +
+                             " is not allowed: use K/N with 1 <= K <= N <= 1000000, two integers, e.g. 2/8");
+        options.work.shard = static_cast<int>(*k);
+        options.work.shards = static_cast<int>(*n);
+        if (launched_by_mpi())
+            throw UsageError("--shard " + description::printable(c.shard, 40) +
+                             " is not allowed under mpirun: use one or the other");
+    }
+    if (!c.from.empty() && launched_by_mpi())
+        throw UsageError("figgen merge is not allowed under mpirun: run it as one process");
+    return options;
+}
+
+// --threads (or the default) for OpenMP and, unless the user set
+// LP_NUM_THREADS, llvmpipe; before any thread or GL library starts.
+void apply_threads(const RenderSettings& c, int threads) {
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#endif
+    if (c.threads || launched_by_mpi()) ::setenv("LP_NUM_THREADS", std::to_string(threads).c_str(), 0);
+}
+
+// The --set assignments, with --size as one more.
+namespace {
+
+std::vector<std::string> overrides_of(const RenderSettings& c) {
+    std::vector<std::string> overrides = c.overrides;
+    if (c.size.empty()) return overrides;
+    const std::size_t x = c.size.find('x');
+    const std::optional<long long> w =
+        x == std::string::npos ? std::nullopt : description::integer_text(c.size.substr(0, x), 2, 16384);
+    const std::optional<long long> h = w ? description::integer_text(c.size.substr(x + 1), 2, 16384) : std::nullopt;
+    if (!h)
+        throw UsageError("--size " + description::printable(c.size, 40) +
+                         " is not allowed: use WIDTHxHEIGHT, each 2..16384, e.g. 1200x600");
+    overrides.push_back("figure.size=[" + std::to_string(*w) + "," + std::to_string(*h) + "]");
+    return overrides;
+}
+
+// Renders a checked figure; what can only be a bug, or memory running out,
+// becomes a one-line error saying which figure and how far its run got.
+void render_reporting(const Description& d, const scenes::Scene& scene, const base::Folder& folder,
+                      const OutputOptions& options, scenes::Progress& to) {
+    ProgressTally progress(to);
+    try {
+        render_figure(d, scene, folder, options, progress);
+    } catch (const std::bad_alloc&) {
+        throw std::runtime_error(d.id + ": out of memory (" + progress.position() + "); its estimate was " +
+                                 format_bytes(estimate_memory(d, options, scene.memory()).bytes) +
+                                 ", so the machine had less free than that: free some, or make it smaller");
+    } catch (const sim::ParameterError&) {
+        throw;  // a model's refusal at run time: a run failure with its own message
+    } catch (const std::logic_error& e) {
+        throw InternalError(d.id + " (" + progress.position() + "): " + e.what());
+    }
+}
+
+}  // namespace
+
+CheckedFigure check_target(const std::string& target, const std::optional<std::string>& text, const RenderSettings& s,
+                           const OutputOptions& options) {
+    const std::vector<std::string> assignments = overrides_of(s);
+    auto d = std::make_unique<Description>(
+        text ? description::parse_description(*text, target, assignments, s.seed)
+        : description::is_ready_pattern(target)
+            ? description::load_ready_pattern(target, assignments, s.seed)
+            : description::load_description(description::resolve_figure(target), assignments, s.seed));
+    if (options.vti && d->scene != "formula")
+        throw UsageError("--format vti: " + d->id + " is a " + d->scene +
+                         " figure; a VTI file holds a formula model's chemicals (scene = \"formula\")");
+    if (!s.cmap.empty()) scenes::apply_colormap(*d, s.cmap);
+    if (s.fps && d->animation) d->animation->fps = *s.fps;
+    auto scene = check_figure(*d, options);
+    return {std::move(d), std::move(scene)};
+}
+
+void use_gl(const RenderSettings& s, const std::string& given, bool take) {
+    if (!render::gl_platform_of(s.gl))
+        throw UsageError(given + " is not allowed: use " + render::gl_platforms_allowed());
+    if (s.gl_device != 0 && s.gl != "egl-device")
+        throw UsageError("--gl-device " + std::to_string(s.gl_device) + " is not allowed with " + given +
+                         ": use it with --gl egl-device");
+    if (!take) return;
+    const render::GlChoice choice{*render::gl_platform_of(s.gl), s.gl_device};
+    if (const std::optional<std::string> refused = render::check_gl_choice(choice)) throw UsageError(*refused);
+    render::choose_gl(choice);
+}
+
+void render_all(const std::vector<CheckedFigure>& figures, const OutputOptions& options, scenes::Progress& progress) {
+    const base::Folder folder = open_output_folder(options);
+    // Every input is accepted and drawing will follow: open the GL library
+    // while the first model runs.
+    render::preload_gl();
+    // And FFmpeg's module when a film will be encoded.
+    if (options.encodes() && std::any_of(figures.begin(), figures.end(),
+                                         [](const CheckedFigure& f) { return f.description->animation.has_value(); }))
+        render::media::preload();
+    // And cairo's when a figure is written as PDF or SVG.
+    if (std::any_of(figures.begin(), figures.end(),
+                    [&](const CheckedFigure& f) { return writes_vector(*f.description, options); }))
+        render::vector::preload();
+    for (const CheckedFigure& f : figures) render_reporting(*f.description, *f.scene, folder, options, progress);
+}
+
+}  // namespace app

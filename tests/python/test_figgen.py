@@ -1,0 +1,242 @@
+"""figgen's Python module, run by pytest through ctest (tests/CMakeLists.txt):
+the API, errors with their keys, interrupts, threads, and the command's bits."""
+
+import hashlib
+import json
+import os
+import pathlib
+import subprocess
+import threading
+import time
+import tomllib
+import _thread
+
+import pytest
+
+import figgen
+
+FIGGEN = os.environ["FIGGEN_EXE"]
+FIGURES = pathlib.Path(os.environ["FIGGEN_FIGURES"])
+GOLDEN = pathlib.Path(__file__).parent.parent / "golden"
+
+
+def command(*args):
+    return subprocess.run([FIGGEN, *args], capture_output=True, text=True)
+
+
+def test_catalog_lists_every_description_with_its_title():
+    catalog = figgen.catalog()
+    assert set(catalog) == {p.stem for p in FIGURES.glob("*.toml")}
+    # The titles `figgen list` prints, in its order.
+    listed = [line.split(None, 1) for line in command("list").stdout.splitlines()]
+    assert [(i, t.strip()) for i, t in listed] == list(catalog.items())
+
+
+def test_describe_gives_values_defaults_ranges_and_meanings():
+    d = figgen.describe("tc7-1")
+    assert (d["id"], d["scene"], d["seed"]) == ("tc7-1", "diffusion", 0)
+    params = {k["key"]: k for k in d["settings"]["params"]}
+    assert params["n"]["value"] == 9
+    assert params["r"]["value"] == pytest.approx(0.1)
+    assert params["r"]["allowed"] == "from 0 to 0.25"  # the model's own check, sim/diffusion.cpp
+    assert params["boundary"]["allowed"] == '"zero" or "wrap"'
+    assert params["boundary"]["default"] == "zero"
+    style = {k["key"]: k for k in d["settings"]["style"]}
+    assert style["alpha"]["value"] == pytest.approx(0.8) and style["alpha"]["default"] == pytest.approx(0.7)
+    assert style["vmin"]["value"] == 0
+    assert "figure" in d["settings"] and "animation" in d["settings"]
+
+
+def test_render_writes_the_figure_and_its_metadata(tmp_path):
+    fig = figgen.render("tc7-7", out=tmp_path)
+    assert fig.metadata["id"] == "tc7-7"
+    assert fig.png.startswith(b"\x89PNG\r\n\x1a\n")
+    assert [p.name for p in fig.paths] == ["tc7-7.png", "tc7-7.json"]
+    assert fig.film is None
+    assert fig._repr_png_() == fig.png and fig._repr_html_() is None
+    assert (tmp_path / "tc7-7.png").read_bytes() == fig.png
+
+
+def test_pixels_are_the_png_as_height_by_width_by_four():
+    numpy = pytest.importorskip("numpy")
+    fig = figgen.render("tc7-1", scale=0.5)
+    width, height = fig.metadata["image"]["size"]
+    assert fig.pixels.shape == (height, width, 4) and fig.pixels.dtype == numpy.uint8
+    # The top-left pixel is the page's white, the block's middle tc7-1's measured red (docs/catalog.md).
+    assert tuple(fig.pixels[0, 0]) == (255, 255, 255, 255)
+
+
+def test_a_changed_parameter_and_a_description_given_in_python():
+    changed = figgen.render("tc7-1", set={"r": 0.2, "style.alpha": 0.5}, scale=0.5)
+    assert changed.metadata["params"]["r"] == pytest.approx(0.2)
+    assert changed.metadata["style"]["alpha"] == pytest.approx(0.5)
+    text = (FIGURES / "tc7-1.toml").read_text()
+    from_text = figgen.render(text, scale=0.5)
+    assert from_text.png == figgen.render("tc7-1", scale=0.5).png
+    as_dict = figgen.render({"id": "mine", "scene": "diffusion", "params": {"n": 12, "r": 0.2},
+                             "figure": {"panels": [0, 3], "size": [400, 200]}}, scale=0.5)
+    assert as_dict.metadata["id"] == "mine" and as_dict.metadata["params"]["n"] == 12
+
+
+def test_a_temporary_folder_goes_with_its_figure():
+    fig = figgen.render("tc7-1", scale=0.5)
+    folder = fig.paths[0].parent
+    assert folder.is_dir()
+    del fig
+    assert not folder.exists()
+
+
+def test_a_film_shows_as_a_video(tmp_path):
+    fig = figgen.render("tc7-1", out=tmp_path, formats=("png", "mp4"), scale=0.5)
+    assert fig.film == tmp_path / "tc7-1.mp4"
+    assert fig._repr_html_().startswith("<figure><video ") and "data:video/mp4;base64," in fig._repr_html_()
+
+
+def test_a_bad_setting_is_a_setting_error_with_its_key():
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render("tc7-1", set={"r": 0.5})
+    e = caught.value
+    assert isinstance(e, ValueError)
+    assert (e.key, e.value) == ("params.r", "0.5")
+    assert e.allowed.startswith("a number from 0 to 0.25")
+    assert e.where == "set=r=0.5"
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render("tc7-1", set={"style.sampling": "blurred"})
+    assert caught.value.key == "style.sampling" and caught.value.allowed == '"nearest" or "smooth"'
+
+
+def test_a_bad_description_names_its_line(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text('scene = "diffusion"\n[params]\nn = 9\nr = -1\n')
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render(bad)
+    assert caught.value.key == "params.r" and caught.value.where == "bad.toml:4"  # as figgen names files
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render("no-such-figure")
+    assert caught.value.key is None and "no-such-figure" in str(caught.value)
+
+
+def test_a_run_that_goes_unstable_is_a_render_error_and_writes_nothing(tmp_path):
+    with pytest.raises(figgen.RenderError) as caught:
+        figgen.render("tc7-2", out=tmp_path, set={"n": 20, "ra": 1, "rb": 1, "f": 0.2, "k": 0, "noise": 1, "island": 1})
+    assert "went numerically unstable at step 2" in str(caught.value)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_progress_reaches_a_callable_and_a_tqdm_like_bar():
+    seen = []
+    figgen.render("tc7-1", scale=0.5, progress=lambda done, total, label: seen.append((done, total, label)))
+    assert seen and seen[-1][0] == seen[-1][1] and {label for _, _, label in seen} == {"tc7-1"}
+    assert [done for done, _, _ in seen] == sorted(done for done, _, _ in seen)
+
+    class Bar:  # what the module uses of tqdm's
+        def __init__(self):
+            self.n, self.total, self.description = 0, None, ""
+
+        def reset(self, total):
+            self.n, self.total = 0, total
+
+        def set_description(self, text):
+            self.description = text
+
+        def update(self, n):
+            self.n += n
+
+    bar = Bar()
+    figgen.render("tc7-1", scale=0.5, progress=bar)
+    assert bar.n == bar.total > 0 and bar.description == "tc7-1"
+
+
+def test_ctrl_c_stops_a_render_between_steps_and_leaves_no_file(tmp_path):
+    # A long run (Gray-Scott on 512 x 512 cells); Ctrl-C is simulated on this thread.
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer.start()
+    started = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        figgen.render("tc7-2", out=tmp_path, set={"n": 512}, formats=("png", "mp4"))
+    assert time.monotonic() - started < 20
+    assert list(tmp_path.iterdir()) == []
+    # The process renders on afterwards.
+    assert figgen.render("tc7-1", scale=0.5).metadata["id"] == "tc7-1"
+
+
+def test_the_gil_is_released_and_two_threads_take_turns():
+    ticks = []
+    stop = threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            ticks.append(time.monotonic())
+            time.sleep(0.01)
+
+    ticker = threading.Thread(target=tick)
+    ticker.start()
+    results = {}
+
+    def render(name, k):  # Gray-Scott on 192 x 192 cells: about a second each
+        results[name] = figgen.render("tc7-2", set={"n": 192, "k": k}, scale=0.5)
+
+    threads = [threading.Thread(target=render, args=(f"k{k}", k)) for k in (0.057, 0.06)]
+    started = time.monotonic()
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    stop.set()
+    ticker.join()
+    assert results["k0.057"].metadata["params"]["k"] == pytest.approx(0.057)
+    assert results["k0.06"].metadata["params"]["k"] == pytest.approx(0.06)
+    # Python ran while both rendered.
+    assert sum(1 for t in ticks if t > started) > 5
+
+
+def sha256(path):
+    return hashlib.sha256(pathlib.Path(path).read_bytes()).hexdigest()
+
+
+def state_hashes(meta):
+    """Every "state_sha256" in a figure's metadata, by its place."""
+    found = {}
+
+    def walk(node, where):
+        if isinstance(node, dict):
+            for key, value in node.items():
+                if key == "state_sha256":
+                    found[where] = value
+                else:
+                    walk(value, f"{where}/{key}")
+        elif isinstance(node, list):
+            for i, value in enumerate(node):
+                walk(value, f"{where}/{i}")
+
+    walk(meta, "")
+    return found
+
+
+def golden_overrides(figure):
+    """The --set lines the figure's golden is rendered with (tests/golden/ID.set): a heavy figure made lighter."""
+    lines = (GOLDEN / f"{figure}.set").read_text().splitlines() if (GOLDEN / f"{figure}.set").exists() else []
+    return [line.strip() for line in lines if line.strip() and not line.lstrip().startswith("#")]
+
+
+@pytest.mark.parametrize("figure", sorted(p.stem for p in FIGURES.glob("*.toml")))
+def test_the_same_bits_as_the_command(figure, tmp_path):
+    """Every catalog figure at scale 0.5, as its golden is made: the PNG's pixels, every state hash and the MP4's bytes."""
+    by_command, by_python = tmp_path / "command", tmp_path / "python"
+    films = "animation" in figgen.describe(figure)["settings"]
+    formats = "png,mp4" if films else "png"
+    sets = golden_overrides(figure)
+    run = command("render", figure, "--scale", "0.5", "--format", formats, "--out", str(by_command),
+                  *[arg for s in sets for arg in ("--set", s)])
+    assert run.returncode == 0, run.stderr
+    as_dict = dict(s.split("=", 1) for s in sets)
+    fig = figgen.render(figure, scale=0.5, formats=formats.split(","), out=by_python,
+                        set={key: tomllib.loads(f"v = {value}")["v"] for key, value in as_dict.items()})
+    made = json.loads((by_command / f"{figure}.json").read_text())
+    assert fig.metadata["image"] == made["image"]
+    assert state_hashes(fig.metadata) == state_hashes(made)
+    width, height = made["image"]["size"]
+    command_pixels = figgen._figgen.read_png(str(by_command / f"{figure}.png"))
+    assert figgen._figgen.read_png(str(fig._path(".png"))) == command_pixels
+    if films:
+        assert sha256(fig.film) == sha256(by_command / f"{figure}.mp4")
