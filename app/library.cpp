@@ -25,12 +25,15 @@ RenderResult render_request(const RenderRequest& request, scenes::Progress& prog
     const description::Description& d = *figures.front().description;
     {
         std::lock_guard<std::mutex> hold(gl_lock);
+        use_gl(s, "gl=" + s.gl, false);  // a platform figgen knows
         if (gl_in_use && *gl_in_use != s.gl)
             throw UsageError("gl=" + s.gl + " is not allowed: this process draws with gl=" + *gl_in_use +
                              " since its first render (one GL context a process)");
-        use_gl(s, "gl=" + s.gl);
-        if (!gl_in_use) apply_threads(s, options.work.threads);
-        gl_in_use = s.gl;
+        if (!gl_in_use) {
+            use_gl(s, "gl=" + s.gl);
+            apply_threads(s, options.work.threads);
+            gl_in_use = s.gl;
+        }
     }
     render_all(figures, options, progress);
     RenderResult result{d.id, options.dir / (d.id + ".json"), {}};

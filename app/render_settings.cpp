@@ -56,10 +56,20 @@ OutputOptions output_options(const RenderSettings& c) {
     options.frames = c.frames;
     options.formats_given = !c.formats.empty();
     // --format's check (format_names) let through only names the table chooses by.
-    for (const std::string& name : c.formats) output_format(name)->choose(options);
+    for (const std::string& name : c.formats) {
+        const OutputFormat* format = output_format(name);
+        if (!format || !format->choose) {  // the command line's check lets none through; a library call's may
+            std::string names;
+            for (const std::string& n : format_names()) names += (names.empty() ? "" : ", ") + n;
+            throw UsageError("--format " + description::printable(name, 40) + " is not allowed: use " + names);
+        }
+        format->choose(options);
+    }
     options.transparent = c.transparent;
     options.max_memory = parse_size("--max-memory", c.max_memory);
     options.max_disk = parse_size("--max-disk", c.max_disk);
+    if (c.threads && (*c.threads < 1 || *c.threads > 1024))
+        throw UsageError("--threads: " + std::to_string(*c.threads) + " is not allowed: use an integer from 1 to 1024");
     options.work.threads = c.threads.value_or(default_threads());
     options.work.schedule = c.schedule == "static" ? Schedule::fixed : Schedule::dynamic;
     for (const std::string& from : c.from) options.work.merge_from.emplace_back(from);

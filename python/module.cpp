@@ -86,9 +86,11 @@ py::object error_class(const char* name) {
 }
 
 // A setting refused: figgen.SettingError with the key, value, what is
-// allowed and where it was given.
-[[noreturn]] void raise_setting_error(const description::SettingError& e) {
-    py::object error = error_class("SettingError")(e.what(), e.key(), e.value(), e.allowed(), e.where());
+// allowed and where it was given (empty where the mistake names no key).
+[[noreturn]] void raise_setting_error(const std::string& message, const std::string& key = "",
+                                      const std::string& value = "", const std::string& allowed = "",
+                                      const std::string& where = "") {
+    py::object error = error_class("SettingError")(message, key, value, allowed, where);
     PyErr_SetObject(error.get_type().ptr(), error.ptr());
     throw py::error_already_set();
 }
@@ -121,10 +123,11 @@ auto without_gil(Call&& call, PythonProgress* progress = nullptr) -> decltype(ca
         failure = e.what();
     }
     raise_pending(progress);
-    if (setting) raise_setting_error(*setting);
+    if (setting)
+        raise_setting_error(setting->what(), setting->key(), setting->value(), setting->allowed(), setting->where());
     // A usage error that names no key (an unknown figure id, a bad --format):
     // a ValueError too, with no key.
-    if (usage) raise_setting_error(description::SettingError("", "", *usage));
+    if (usage) raise_setting_error(*usage);
     raise_render_error(std::runtime_error(*failure));
 }
 
@@ -260,7 +263,8 @@ PYBIND11_MODULE(_figgen, m) {
     // program's folder, PREFIX/bin, where its own is PREFIX/lib/python3.X/dist-packages/figgen.
     Dl_info self{};
     if (::dladdr(reinterpret_cast<void*>(&to_python), &self) && self.dli_fname)
-        base::set_program_folder(std::filesystem::path(self.dli_fname).parent_path() / FIGGEN_PACKAGE_TO_BINDIR);
+        base::set_program_folder(
+            (std::filesystem::path(self.dli_fname).parent_path() / FIGGEN_PACKAGE_TO_BINDIR).lexically_normal());
 
     m.def("toml_text", [](const py::dict& description) { return toml_text(description); });
     m.def("toml_value", [](const py::object& value) { return toml_text(value); });

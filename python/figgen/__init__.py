@@ -87,6 +87,25 @@ def _assignments(settings):
     return out
 
 
+# figgen's options as render()'s arguments name them.
+_ARGUMENTS = {"--scale": "scale", "--format": "formats", "--size": "size", "--threads": "threads", "gl": "gl",
+              "--out": "out", "--seed": "seed"}
+
+
+def _name_argument(error, given):
+    """Says which argument of render() gave what the error refuses."""
+    if error.where.startswith("--set "):
+        error.where = "set=" + error.where[len("--set "):]
+        return
+    if error.key is not None:
+        return
+    option = str(error).split(" ", 1)[0].split("=", 1)[0].rstrip(":")
+    name = _ARGUMENTS.get(option)
+    if name is not None:
+        error.key = name
+        error.where = f"{name}={given[name]!r}"
+
+
 def _progress_callback(progress):
     """A callable(done, total, label) from a callable or a tqdm bar."""
     if progress is None or callable(progress) and not hasattr(progress, "update"):
@@ -129,8 +148,8 @@ def render(figure, *, out=None, set=None, seed=None, formats=("png",), size=None
             done = _figgen.render(target, text, _assignments(set), seed, list(formats), size or "", float(scale), gl,
                                   threads, folder, _progress_callback(progress))
         except SettingError as e:
-            if e.where.startswith("--set "):
-                e.where = "set=" + e.where[len("--set "):]
+            _name_argument(e, {"scale": scale, "formats": formats, "size": size, "threads": threads, "gl": gl,
+                               "out": out, "seed": seed})
             raise
     except BaseException:
         if owned:

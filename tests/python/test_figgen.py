@@ -240,3 +240,17 @@ def test_the_same_bits_as_the_command(figure, tmp_path):
     assert figgen._figgen.read_png(str(fig._path(".png"))) == command_pixels
     if films:
         assert sha256(fig.film) == sha256(by_command / f"{figure}.mp4")
+
+
+def test_a_bad_argument_names_the_argument():
+    cases = [(dict(scale=9), "scale", "a number from 0.1 to 8"),
+             (dict(formats=("png", "gif")), "formats", "use png, pdf, svg"),
+             (dict(threads=0), "threads", "an integer from 1 to 1024"),
+             (dict(gl="vulkan"), "gl", "auto, osmesa, egl or egl-device")]
+    for arguments, key, allowed in cases:
+        with pytest.raises(figgen.SettingError) as caught:
+            figgen.render("tc7-1", **arguments)
+        assert caught.value.key == key and allowed in str(caught.value)
+        assert caught.value.where == f"{key}={arguments[key]!r}"
+    with pytest.raises(TypeError):
+        figgen.render({"params": {"n": object()}})
