@@ -334,6 +334,7 @@ PYBIND11_MODULE(_figgen, m) {
                     [&] { return app::render_request(request, progress); }, progress);
             },
             &progress);
+        progress.raise_pending();  // a Ctrl-C that came as the render ended: its files are whole, and in place
         py::dict done;
         done["id"] = result.id;
         done["json"] = result.json;
