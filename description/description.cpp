@@ -249,13 +249,14 @@ Description load_description(const std::filesystem::path& file, const std::vecto
     while (text.size() <= max_description_bytes && in.read(chunk, sizeof chunk).gcount() > 0)
         text.append(chunk, static_cast<std::size_t>(in.gcount()));
     if (in.bad()) throw UsageError("cannot read " + printable(file.string()));
-    if (text.size() > max_description_bytes)
-        throw UsageError(printable(file.string()) + ": a description is at most 16 MiB; this one is larger");
     return parse_description(text, file, overrides, seed);
 }
 
 Description parse_description(std::string_view text, const std::filesystem::path& file,
                               const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed) {
+    // Read from a file or given as text (the Python module): the same bound.
+    if (text.size() > max_description_bytes)
+        throw UsageError(printable(file.string()) + ": a description is at most 16 MiB; this one is larger");
     toml::table root;
     try {
         root = toml::parse(text, file.string());

@@ -51,7 +51,9 @@ py::object to_python(const nlohmann::json& j) {
 
 // A Python value as TOML: booleans, integers, floats, strings, and lists
 // and dicts of them. TypeError for anything else.
-std::unique_ptr<toml::node> to_toml(const py::handle& value) {
+std::unique_ptr<toml::node> to_toml(const py::handle& value, int depth = 0) {
+    // A description nests a few tables deep; a deeper dict is refused, not followed down the stack.
+    if (depth > 32) throw py::value_error("a description nests lists and dicts at most 32 deep");
     if (py::isinstance<py::bool_>(value)) return std::make_unique<toml::value<bool>>(value.cast<bool>());
     if (py::isinstance<py::int_>(value)) return std::make_unique<toml::value<std::int64_t>>(value.cast<std::int64_t>());
     if (py::isinstance<py::float_>(value)) return std::make_unique<toml::value<double>>(value.cast<double>());
@@ -59,14 +61,14 @@ std::unique_ptr<toml::node> to_toml(const py::handle& value) {
     if (py::isinstance<py::dict>(value)) {
         auto table = std::make_unique<toml::table>();
         for (const auto& [key, item] : value.cast<py::dict>()) {
-            auto node = to_toml(item);
+            auto node = to_toml(item, depth + 1);
             table->insert(py::str(key).cast<std::string>(), std::move(*node));
         }
         return table;
     }
     if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
         auto array = std::make_unique<toml::array>();
-        for (const auto& item : value) array->push_back(std::move(*to_toml(item)));
+        for (const auto& item : value) array->push_back(std::move(*to_toml(item, depth + 1)));
         return array;
     }
     throw py::type_error("a description holds booleans, numbers, strings, lists and dicts, not " +

@@ -254,3 +254,8 @@ def test_a_bad_argument_names_the_argument():
         assert caught.value.where == f"{key}={arguments[key]!r}"
     with pytest.raises(TypeError):
         figgen.render({"params": {"n": object()}})
+    deep = []
+    for _ in range(100000):  # far deeper than any description, and than the C stack would take
+        deep = [deep]
+    with pytest.raises(ValueError, match="at most 32 deep"):
+        figgen.render({"params": {"n": deep}})
