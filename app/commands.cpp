@@ -23,7 +23,8 @@
 #include "description/description.hpp"
 #include "description/integer_text.hpp"
 #include "description/plain_name.hpp"
-#include "description/ready_vti.hpp"
+#include "app/targets.hpp"
+#include "ready/pattern.hpp"
 
 namespace app {
 
@@ -66,7 +67,7 @@ namespace {
 // description::integer_text reads it: applied to the text before CLI11
 // converts it, so " 4" and "4294967297" are refused, never trimmed or wrapped.
 CLI::Validator integer_in(long long low, long long high) {
-    const std::string allowed = "an integer from " + std::to_string(low) + " to " + std::to_string(high);
+    const std::string allowed = description::integers_allowed(low, high);  // as seed_option and threads_option say it
     return CLI::Validator(
         [=](std::string& text) {
             return description::integer_text(text, low, high)
@@ -102,21 +103,24 @@ ConvertCommand::ConvertCommand(CLI::App& parent) {
 }
 
 int ConvertCommand::run() {
-    if (!description::is_ready_pattern(pattern))
-        throw UsageError("pattern " + description::printable(pattern) + " is not allowed: a Ready pattern file, NAME.vti");
-    const description::ReadyPattern converted = description::read_ready_pattern(pattern);
-    // Checked as render would check it: a formula figgen cannot run is
-    // refused here, not when the description is first rendered.
-    const Description d = description::parse_description(converted.toml, pattern);
+    if (ready::file_kind(pattern) != ready::FileKind::image)
+        throw UsageError("pattern " + description::printable(pattern) +
+                         " is not allowed: a Ready pattern file of an image, NAME.vti");
+    const ready::Pattern converted = ready::read_pattern(pattern);
+    // Checked as render would check it, from the same table: a formula
+    // figgen cannot run is refused here, not when the description is
+    // first rendered.
+    const Description d = description::description_from_table(converted.description, pattern, converted.origins);
     description::at_source(d, [&] { return scenes::read_scene(d, scenes::SceneOptions{}); });
+    const std::string text = ready::converted_text(converted, pattern);
     if (out_dir.empty()) {
-        std::fputs(converted.toml.c_str(), stdout);
+        std::fputs(text.c_str(), stdout);
         return 0;
     }
     OutputOptions options;
     options.dir = out_dir;
     const base::Folder folder = open_output_folder(options);
-    base::write_file_atomically(folder, converted.id + ".toml", converted.toml);
+    base::write_file_atomically(folder, converted.id + ".toml", text);
     std::printf("%s\n", description::printable((folder.path() / (converted.id + ".toml")).string()).c_str());
     return 0;
 }
@@ -127,7 +131,7 @@ DescribeCommand::DescribeCommand(CLI::App& parent) {
 }
 
 int DescribeCommand::run() {
-    std::fputs(describe(description::resolve_figure(target)).c_str(), stdout);
+    std::fputs(describe(target).c_str(), stdout);
     return 0;
 }
 

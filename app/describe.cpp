@@ -1,5 +1,7 @@
 #include "app/describe.hpp"
 
+#include "app/targets.hpp"
+
 #include <cstdio>
 #include <sstream>
 #include <utility>
@@ -94,14 +96,14 @@ Described describe_figure(const Description& d, const std::vector<SettingsLog::S
     return out;
 }
 
-Described describe_figure(const std::filesystem::path& file) {
-    SettingsLog top;  // the description's own sections, read by load_description
-    const Description d = description::load_description(file);
+Described describe_figure(const std::string& target) {
+    SettingsLog top;  // the description's own sections, read as it is loaded
+    const Description d = load_target(target, {}, std::nullopt, false);
     return describe_figure(d, top.sections);
 }
 
-std::string describe(const std::filesystem::path& file) {
-    const Described d = describe_figure(file);
+std::string describe(const std::string& target) {
+    const Described d = describe_figure(target);
     std::ostringstream out;
     out << d.id << ": " << d.title << "\n"
         << "  source: " << d.source << "\n"

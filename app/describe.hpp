@@ -33,14 +33,15 @@ struct Described {
     std::vector<DescribedSection> sections;
 };
 
-// Every setting of the description in `file`, as data (the Python module's describe()).
-Described describe_figure(const std::filesystem::path& file);
+// Every setting of the figure `target` names (a catalog id, a description
+// file or a Ready pattern), as data (the Python module's describe()).
+Described describe_figure(const std::string& target);
 // The same for a description already read; `own_sections` are its [figure]
 // and [animation] as load_description read them (a SettingsLog around it).
 Described describe_figure(const description::Description& d,
                           const std::vector<description::SettingsLog::Section>& own_sections);
 
-// The text `figgen describe` prints for the description in `file`.
-std::string describe(const std::filesystem::path& file);
+// The text `figgen describe` prints for the figure `target` names.
+std::string describe(const std::string& target);
 
 }  // namespace app

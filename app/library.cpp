@@ -4,7 +4,6 @@
 
 #include "app/formats.hpp"
 #include "description/catalog.hpp"
-#include "description/ready_vti.hpp"
 
 namespace app {
 namespace {
@@ -46,7 +45,7 @@ RenderResult render_request(const RenderRequest& request, scenes::Progress& prog
 }
 
 Described describe_request(const std::string& target, const std::optional<std::string>& text) {
-    if (!text) return describe_figure(description::resolve_figure(target));
+    if (!text) return describe_figure(target);
     description::SettingsLog top;  // the description's own sections, read as it is parsed
     const description::Description d = description::parse_description(*text, target);
     return describe_figure(d, top.sections);

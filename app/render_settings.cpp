@@ -17,7 +17,7 @@
 #include "description/catalog.hpp"
 #include "description/integer_text.hpp"
 #include "description/plain_name.hpp"
-#include "description/ready_vti.hpp"
+#include "app/targets.hpp"
 #include "media/media.hpp"
 #include "render/gl/gl_context.hpp"
 #include "render/vector/vector.hpp"
@@ -145,9 +145,7 @@ CheckedFigure check_target(const std::string& target, const std::optional<std::s
     const std::vector<std::string> assignments = overrides_of(s);
     auto d = std::make_unique<Description>(
         text ? description::parse_description(*text, target, assignments, s.seed)
-        : description::is_ready_pattern(target)
-            ? description::load_ready_pattern(target, assignments, s.seed)
-            : description::load_description(description::resolve_figure(target), assignments, s.seed));
+        : load_target(target, assignments, s.seed));
     if (options.vti && d->scene != "formula")
         throw UsageError("--format vti: " + d->id + " is a " + d->scene +
                          " figure; a VTI file holds a formula model's chemicals (scene = \"formula\")");

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "base/module.hpp"
+#include "description/plain_name.hpp"
 #include "description/settings.hpp"
 
 namespace description {
@@ -63,18 +64,22 @@ std::vector<std::filesystem::path> catalog_files() {
 
 std::filesystem::path resolve_figure(const std::string& id_or_path) {
     const std::filesystem::path given(id_or_path);
+    std::error_code ec;  // a name the file system refuses (too long, say) is a file that is not there
     if (given.extension() == ".toml" || id_or_path.find('/') != std::string::npos) {
-        if (std::filesystem::is_regular_file(given)) return given;
-        if (std::filesystem::exists(given))
-            throw UsageError("figure file " + id_or_path + " is not allowed: a description is a regular .toml file");
-        throw UsageError("figure file " + id_or_path + " does not exist");
+        if (std::filesystem::is_regular_file(given, ec)) return given;
+        if (std::filesystem::exists(given, ec))
+            throw UsageError("figure file " + printable_short(id_or_path, 200) +
+                             " is not allowed: a description is a regular .toml file");
+        throw UsageError("figure file " + printable_short(id_or_path, 200) + " does not exist");
     }
-    const auto file = catalog_dir() / (id_or_path + ".toml");
-    if (std::filesystem::is_regular_file(file)) return file;
+    if (is_plain_id(id_or_path)) {
+        const auto file = catalog_dir() / (id_or_path + ".toml");
+        if (std::filesystem::is_regular_file(file, ec)) return file;
+    }
     std::string closest;
-    for (const auto& id : closest_ids(id_or_path, 3)) closest += (closest.empty() ? "" : ", ") + id;
-    throw UsageError("unknown figure id '" + id_or_path + "'; closest: " + closest + " (`figgen list` shows all " +
-                     std::to_string(catalog_files().size()) + ")");
+    for (const auto& id : closest_ids(id_or_path.substr(0, 200), 3)) closest += (closest.empty() ? "" : ", ") + id;
+    throw UsageError("unknown figure id '" + printable_short(id_or_path, 100) + "'; closest: " + closest +
+                     " (`figgen list` shows all " + std::to_string(catalog_files().size()) + ")");
 }
 
 }  // namespace description

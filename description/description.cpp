@@ -265,9 +265,17 @@ Description parse_description(std::string_view text, const std::filesystem::path
         message << file.string() << ":" << e.source().begin.line << ": " << e.description();
         throw UsageError(message.str());
     }
+    std::map<std::string, std::string> origins;
+    record_origins(root, file.filename().string(), origins);
+    return description_from_table(std::move(root), file, std::move(origins), overrides, seed);
+}
+
+Description description_from_table(toml::table root, const std::filesystem::path& file,
+                                   std::map<std::string, std::string> origins,
+                                   const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed) {
     Description d;
     d.file = file;
-    record_origins(root, file.filename().string(), d.origins);
+    d.origins = std::move(origins);
     for (const std::string& assignment : overrides) {
         apply_override(root, assignment);
         // As a one-line message may show it: a --set title may be any bytes, and long.

@@ -29,7 +29,7 @@
 
 namespace description {
 
-struct StoredStart;  // description/ready_vti.hpp
+struct StoredStart;  // description/stored_start.hpp
 
 struct Animation {
     int first = 0;                      // first step shown
@@ -120,6 +120,13 @@ Description load_description(const std::filesystem::path& file, const std::vecto
 Description parse_description(std::string_view text, const std::filesystem::path& file,
                               const std::vector<std::string>& overrides = {},
                               std::optional<std::uint64_t> seed = std::nullopt);
+// The same from a table made as data (a Ready pattern, ready/pattern.hpp):
+// `origins` says where each key ("params.k", as Description::origins) was
+// given, e.g. "P.vti <param name=\"k\">".
+Description description_from_table(toml::table root, const std::filesystem::path& file,
+                                   std::map<std::string, std::string> origins,
+                                   const std::vector<std::string>& overrides = {},
+                                   std::optional<std::uint64_t> seed = std::nullopt);
 // Writes one --set assignment ("key=value", "section.key=value") into a
 // description's table; throws UsageError for a malformed one.
 void apply_override(toml::table& root, const std::string& assignment);

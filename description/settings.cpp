@@ -11,8 +11,9 @@ namespace description {
 
 SettingError::SettingError(std::string key, std::string value, std::string allowed)
     : SettingError(key, value, allowed,
-                   value.empty() ? as_written(key) + " is missing: give " + allowed
-                                 : as_written(key) + " = " + value + " is not allowed: " + allowed) {}
+                   // A key may be any text a file quoted: shown escaped, on one line.
+                   value.empty() ? printable_short(as_written(key), 100) + " is missing: give " + allowed
+                                 : printable_short(as_written(key), 100) + " = " + value + " is not allowed: " + allowed) {}
 
 SettingError::SettingError(std::string key, std::string value, std::string allowed, const std::string& message)
     : UsageError(message), key_(std::move(key)), value_(std::move(value)), allowed_(std::move(allowed)) {}
@@ -24,7 +25,7 @@ SettingError SettingError::at(const std::string& where) const {
 }
 
 SettingError SettingError::unknown(std::string key, const std::string& allowed_keys) {
-    const std::string message = "unknown key " + key + "; allowed: " + allowed_keys;
+    const std::string message = "unknown key " + printable_short(key, 100) + "; allowed: " + allowed_keys;
     return SettingError(std::move(key), "", allowed_keys, message);
 }
 

@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <thread>
 
-#include "description/ready_vti.hpp"
+#include "ready/vti_file.hpp"
 #include "base/digest.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
@@ -173,9 +173,9 @@ public:
     }
 
 private:
-    // The chemicals as Ready writes its own files (description/ready_vti.hpp).
+    // The chemicals as Ready writes its own files (ready/vti_file.hpp).
     std::string state_vti(const std::vector<sim::Grid<double>>& chemicals) const {
-        description::ReadyState s;
+        ready::ReadyState s;
         s.rule_name = d_.title;
         s.description = d_.caption;
         s.formula = m_.rule.code;
@@ -191,7 +191,7 @@ private:
         s.height = m_.height;
         s.float64 = m_.rule.double_precision;
         for (const auto& g : chemicals) s.chemicals.emplace_back(g.cells().begin(), g.cells().end());
-        return description::ready_vti(s);
+        return ready::ready_vti(s);
     }
 
     nlohmann::json metadata(const std::vector<sim::Grid<double>>& chemicals, int step) const {

@@ -18,12 +18,12 @@
 #include <thread>
 
 #include "render/colormap.hpp"
-#include "description/ready_vti.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
 #include "scenes/field_stats.hpp"
 #include "scenes/figure_caption.hpp"
 #include "scenes/formula_model.hpp"
+#include "sim/formula_names.hpp"
 #include "scenes/panel_grid.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"
@@ -134,9 +134,12 @@ public:
           m_(read_formula_model(params_, d, sweep_schema.keys(), {{sweep_.x, sweep_.x_low}, {sweep_.y, sweep_.y_low}})),
           s_(style_schema(m_.rule.chemicals).read(style_)),
           plot_(plot_style(s_.plot, options.scale)) {
-        const std::set<std::string> words = description::formula_words(m_.rule.code);
-        if (!words.count(sweep_.x)) params_.refuse("x_parameter", parameter_allowed);
-        if (!words.count(sweep_.y)) params_.refuse("y_parameter", parameter_allowed);
+        const std::set<std::string> words = formula_names(params_, m_.rule.code);
+        for (const auto& [key, name] : {std::pair{"x_parameter", sweep_.x}, std::pair{"y_parameter", sweep_.y}}) {
+            if (const auto clash = sim::formula::parameter_name_clash(name, m_.rule.chemicals))
+                params_.refuse(key, "its name is " + *clash + "; " + sim::formula::parameter_name_allowed);
+            if (!words.count(name)) params_.refuse(key, parameter_allowed);
+        }
         require_drawable(params_, "width", "each tile", m_.height, m_.width);
         require_text_fits(
             d, options, [&](const render::Rect& area) { return tile_map().text(area, plot_); }, plot_remedy);

@@ -7,7 +7,8 @@
 #include <cmath>
 #include <set>
 
-#include "description/ready_vti.hpp"
+#include "description/stored_start.hpp"
+#include "sim/formula_names.hpp"
 #include "sim/formula_program.hpp"
 #include "sim/random.hpp"
 
@@ -241,6 +242,20 @@ int chemical_index(Settings& s, const std::string& key, const std::string& name,
     s.refuse(key, allowed);
 }
 
+std::set<std::string> formula_names(Settings& params, const std::string& code) {
+    try {
+        return formula::names_read(formula::parse(code));
+    } catch (const formula::FormulaError& e) {
+        params.refuse("formula", "...", "line " + std::to_string(e.pos().line) + ", column " +
+                                            std::to_string(e.pos().column) + " of the formula: " + e.message());
+    }
+}
+
+void refuse_clash(Settings& params, const std::string& name, int chemicals) {
+    if (const auto clash = formula::parameter_name_clash(name, chemicals))
+        params.refuse(name, "its name is " + *clash + "; " + formula::parameter_name_allowed);
+}
+
 FormulaModel read_formula_model(Settings& params, const Description& d, const std::vector<Key>& scene_keys,
                                 const std::vector<std::pair<std::string, double>>& swept) {
     ModelValues values = model_schema.read(params);
@@ -249,13 +264,14 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
     const std::vector<Key> rule_keys = model_schema.keys();
     // The rule's parameters: each a number the formula or an overlay
     // (fill = "parameter") uses, or timestep, dx.
-    std::set<std::string> words = description::formula_words(r.code);
+    std::set<std::string> words = formula_names(params, r.code);
     for (const toml::table& t : values.initial)
         if (auto p = t["parameter"].value<std::string>()) words.insert(*p);
     for (const auto& [key, value] : d.params) {
         const std::string name(key.str());
         if (is_key(rule_keys, name) || is_key(scene_keys, name)) continue;
         const double v = params.number_in(name, 0, -1e30, 1e30);
+        refuse_clash(params, name, r.chemicals);
         for (const auto& sweep : swept)
             if (sweep.first == name) params.refuse(name, "no value here: the atlas sweeps " + name + " over its range");
         if (name != "timestep" && name != "dx" && !words.count(name))

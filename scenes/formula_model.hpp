@@ -6,6 +6,7 @@
 // and, as every other key, the rule's own parameters. Shared by the
 // formula scene and the formula atlas.
 
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,6 +37,15 @@ int formula_chemicals(const Description& d);
 // `name`, read from `key` (one of a list when `listed`), as a chemical's
 // index; refuses anything but one of the rule's `chemicals`.
 int chemical_index(Settings& s, const std::string& key, const std::string& name, int chemicals, bool listed = false);
+
+// The names `code` reads, from its tree; refuses (as params.formula) a
+// formula that does not parse, naming its line and column.
+std::set<std::string> formula_names(Settings& params, const std::string& code);
+
+// Refuses (as params.NAME) a parameter's name that the rule cannot take
+// (sim/formula_names.hpp), naming the clash: the one check of a
+// parameter's name, for descriptions and Ready's files alike.
+void refuse_clash(Settings& params, const std::string& name, int chemicals);
 
 // Reads and checks the model, compiling its formula (refusals name the
 // formula's line and column). `scene_keys` are not rule parameters;

@@ -77,6 +77,9 @@ struct Rule {
 
 // The stencil keywords, as in Ready: `name_X` for a chemical X.
 const std::vector<std::string>& stencil_names();
+// Whether `name` is one of the formula language's built-in functions of
+// numbers (the relational ones, isless ..., aside).
+bool is_builtin_function(const std::string& name);
 
 // The most cells a run's register holds at once (a chunk of a row, or of
 // several rows with their halos): each thread has the compiled formula's

@@ -1150,6 +1150,10 @@ std::vector<int> sources(const Program& program, const Instr& in) {
     return read;
 }
 
+bool is_builtin_function(const std::string& name) {
+    return find_builtin(name) != nullptr;
+}
+
 const std::vector<std::string>& stencil_names() {
     static const std::vector<std::string> names = [] {
         std::vector<std::string> n;

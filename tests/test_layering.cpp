@@ -6,7 +6,8 @@
 //   render/vector/  the PDF and SVG page: render/ (and render/gl/ for the pictures it embeds)
 //   media/          PNG, films, thumbnails: render/ (images)
 //   description/    the description reader: nothing but description/
-//   scenes/         sim, render, description (models meet drawing here)
+//   ready/          Ready's files: description, sim (a pattern read as a description of its rule)
+//   scenes/         sim, render, description, ready (models meet drawing here)
 //   app/            the command: everything
 // and no clock in sim/: a model's results never depend on time.
 #include <catch2/catch.hpp>
@@ -32,10 +33,11 @@ const std::map<std::string, std::set<std::string>> may_include = {
     {"render/vector", {"render/vector", "render/gl", "render", "base"}},
     {"media", {"media", "render", "base"}},
     {"description", {"description", "base"}},
-    {"scenes", {"sim", "render", "render/gl", "description", "scenes", "base"}},
-    {"app", {"sim", "render", "render/gl", "render/vector", "media", "description", "scenes", "app", "base"}},
+    {"ready", {"ready", "description", "sim", "base"}},
+    {"scenes", {"sim", "render", "render/gl", "description", "ready", "scenes", "base"}},
+    {"app", {"sim", "render", "render/gl", "render/vector", "media", "description", "ready", "scenes", "app", "base"}},
     // The Python module: figgen's library calls (app/) and what they hand over.
-    {"python", {"app", "description", "scenes", "media", "base", "python"}},
+    {"python", {"app", "description", "ready", "scenes", "media", "base", "python"}},
 };
 
 // The layer a path (a file's, or an include's) belongs to: the longest

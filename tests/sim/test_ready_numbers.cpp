@@ -11,12 +11,12 @@
 #include <cmath>
 #include <filesystem>
 
-#include "description/ready_vti.hpp"
+#include "ready/pattern.hpp"
 #include "figgen_run.hpp"
 
 namespace fs = std::filesystem;
 
-TEST_CASE("100 steps of figgen equal Ready's from the same start", "[formula][ready_vti]") {
+TEST_CASE("100 steps of figgen equal Ready's from the same start", "[formula][ready]") {
     const fs::path cases = fs::path(FIGGEN_SOURCE_DIR) / "tests/sim/ready";
     // Float32 rules differ from Ready by rounding alone (pocl contracts
     // a * b + c into fused multiply-adds, figgen does not): within 1e-4 of
@@ -31,28 +31,28 @@ TEST_CASE("100 steps of figgen equal Ready's from the same start", "[formula][re
                                          " --set steps=100 --set id=figgen --format vti --out " + out.string());
         INFO(run.output);
         REQUIRE(run.status == 0);
-        const auto ours = description::read_ready_pattern(out / "figgen.vti");
-        const auto ready = description::read_ready_pattern(cases / name / "ready100.vti");
+        const auto ours = ready::read_pattern(out / "figgen.vti", {std::nullopt, true});
+        const auto theirs = ready::read_pattern(cases / name / "ready100.vti", {std::nullopt, true});
         REQUIRE(ours.start);
-        REQUIRE(ready.start);
-        REQUIRE(ours.start->chemicals.size() == ready.start->chemicals.size());
+        REQUIRE(theirs.start);
+        REQUIRE(ours.start->chemicals.size() == theirs.start->chemicals.size());
         CHECK(ours.start->width == 64);
         CHECK(ours.start->height == 32);
         double largest = 0, worst = 0;
-        for (std::size_t c = 0; c < ready.start->chemicals.size(); ++c)
-            for (std::size_t i = 0; i < ready.start->chemicals[c].size(); ++i) {
-                largest = std::max(largest, std::fabs(ready.start->chemicals[c][i]));
-                worst = std::max(worst, std::fabs(ours.start->chemicals[c][i] - ready.start->chemicals[c][i]));
+        for (std::size_t c = 0; c < theirs.start->chemicals.size(); ++c)
+            for (std::size_t i = 0; i < theirs.start->chemicals[c].size(); ++i) {
+                largest = std::max(largest, std::fabs(theirs.start->chemicals[c][i]));
+                worst = std::max(worst, std::fabs(ours.start->chemicals[c][i] - theirs.start->chemicals[c][i]));
             }
         INFO("largest |value| " << largest << ", largest difference " << worst);
         CHECK(largest > 0.01);  // the fields hold something
         CHECK(worst <= tolerance * std::max(1.0, largest));
         // And they moved: 100 steps changed the start.
-        const auto start = description::read_ready_pattern(cases / name / "start.vti");
+        const auto start = ready::read_pattern(cases / name / "start.vti", {std::nullopt, true});
         double moved = 0;
-        for (std::size_t c = 0; c < ready.start->chemicals.size(); ++c)
-            for (std::size_t i = 0; i < ready.start->chemicals[c].size(); ++i)
-                moved = std::max(moved, std::fabs(start.start->chemicals[c][i] - ready.start->chemicals[c][i]));
+        for (std::size_t c = 0; c < theirs.start->chemicals.size(); ++c)
+            for (std::size_t i = 0; i < theirs.start->chemicals[c].size(); ++i)
+                moved = std::max(moved, std::fabs(start.start->chemicals[c][i] - theirs.start->chemicals[c][i]));
         CHECK(moved > 100 * worst);
     }
 }

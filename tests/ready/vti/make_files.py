@@ -1,9 +1,9 @@
 #!/usr/bin/python3
-"""Writes the VTI files the tests read (tests/description/test_ready_vti.cpp):
+"""Writes the VTI files the tests read (tests/ready/test_pattern.cpp):
 one small Ready pattern in each encoding VTK's XML writer makes, with VTK's
 own writer (Debian's python3-vtk9), and Ready's <RD> element put in after.
 
-    /usr/bin/python3 tests/description/vti/make_files.py
+    /usr/bin/python3 tests/ready/vti/make_files.py
 
 The grid is 8 x 6 with chemicals a and b:
     a[i] = 0.25 * i - 3,   b[i] = 1 / (i + 1),   i = x + 8 * y

@@ -1,7 +1,8 @@
-// Ready's pattern files (description/ready_vti.cpp): each encoding VTK
-// writes is read to the same arrays; a pattern becomes a description that
-// runs; what figgen cannot run is refused in one line; and the VTI files
-// figgen writes are read back by VTK itself and continue a run exactly.
+// Ready's pattern files (ready/pattern.cpp): each encoding VTK writes is
+// read to the same arrays; a pattern becomes a description that runs;
+// what figgen cannot run is refused in one line; and the VTI files figgen
+// writes (ready/vti_file.cpp) are read back by VTK itself and continue a
+// run exactly.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -12,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "description/description.hpp"
-#include "description/ready_vti.hpp"
+#include "ready/pattern.hpp"
 #include "figgen_run.hpp"
 
 namespace fs = std::filesystem;
@@ -20,9 +21,9 @@ using description::UsageError;
 
 namespace {
 
-const fs::path fixtures = fs::path(FIGGEN_SOURCE_DIR) / "tests/description/vti";
+const fs::path fixtures = fs::path(FIGGEN_SOURCE_DIR) / "tests/ready/vti";
 
-// tests/description/vti/make_files.py's values: a[i] = 0.25 i - 3, b[i] = 1 / (i + 1).
+// tests/ready/vti/make_files.py's values: a[i] = 0.25 i - 3, b[i] = 1 / (i + 1).
 double expected(int chemical, int i, bool float64) {
     const double v = chemical == 0 ? 0.25 * i - 3 : 1.0 / (i + 1);
     return float64 ? v : static_cast<double>(static_cast<float>(v));
@@ -41,7 +42,7 @@ fs::path edited(const std::string& fixture, const std::string& from, const std::
 
 std::string refusal(const fs::path& file) {
     try {
-        description::read_ready_pattern(file);
+        ready::read_pattern(file, {std::nullopt, true});
     } catch (const UsageError& e) {
         return e.what();
     }
@@ -50,12 +51,12 @@ std::string refusal(const fs::path& file) {
 
 }  // namespace
 
-TEST_CASE("every encoding VTK writes is read to the same arrays", "[ready_vti]") {
+TEST_CASE("every encoding VTK writes is read to the same arrays", "[ready]") {
     for (const char* name : {"ascii-f32.vti", "binary-f32.vti", "binary-zlib-f64.vti", "binary-zlib-f32-uint32.vti",
                              "appended-base64-f32.vti", "appended-base64-zlib-f64.vti", "appended-raw-f64.vti",
                              "appended-raw-zlib-f32.vti"}) {
         INFO(name);
-        const auto pattern = description::read_ready_pattern(fixtures / name);
+        const auto pattern = ready::read_pattern(fixtures / name, {std::nullopt, true});
         REQUIRE(pattern.start);  // apply_when_loading="false": the stored arrays are the start
         const bool float64 = std::string(name).find("f64") != std::string::npos;
         CHECK(pattern.start->float64 == float64);
@@ -67,8 +68,8 @@ TEST_CASE("every encoding VTK writes is read to the same arrays", "[ready_vti]")
     }
 }
 
-TEST_CASE("a Ready pattern becomes the formula description that runs it", "[ready_vti]") {
-    const description::Description d = description::load_ready_pattern(fixtures / "binary-zlib-f64.vti", {"steps=10"});
+TEST_CASE("a Ready pattern becomes the formula description that runs it", "[ready]") {
+    const description::Description d = ready::load_pattern(fixtures / "binary-zlib-f64.vti", {"steps=10"});
     CHECK(d.id == "binary-zlib-f64");
     CHECK(d.title == "Test rule");
     CHECK(d.scene == "formula");
@@ -81,13 +82,14 @@ TEST_CASE("a Ready pattern becomes the formula description that runs it", "[read
     CHECK(d.style["show"][0].value_or(std::string()) == "b");  // Ready's active chemical
     CHECK(d.style["b_vmax"].value_or(0.0) == 1.0);
     REQUIRE(d.stored_start);
-    // A key's origin is the file (its converted text has no lines of the
-    // .vti), or the --set that gave it.
-    CHECK(d.where("params.D") == "binary-zlib-f64.vti");
+    // A key's origin is the file's element that gave it, or the --set.
+    CHECK(d.where("params.D") == "binary-zlib-f64.vti <param name=\"D\">");
+    CHECK(d.where("params.formula") == "binary-zlib-f64.vti <formula>");
+    CHECK(d.where("style.b_vmax") == "binary-zlib-f64.vti <render_settings>");
     CHECK(d.where("params.steps") == "--set steps=10");
 }
 
-TEST_CASE("a pattern's overlays become the description's initial, in Ready's order", "[ready_vti]") {
+TEST_CASE("a pattern's overlays become the description's initial, in Ready's order", "[ready]") {
     const std::string generator = R"(<initial_pattern_generator apply_when_loading="true">
       <overlay chemical="a"><overwrite /><constant value="0.5" /><everywhere /></overlay>
       <overlay chemical="b"><add /><white_noise low="0" high="0.25" /><rectangle><point3D x="0.1" y="0.2" z="0" /><point3D x="0.5" y="0.6" z="1" /></rectangle></overlay>
@@ -97,9 +99,11 @@ TEST_CASE("a pattern's overlays become the description's initial, in Ready's ord
     </initial_pattern_generator>)";
     const fs::path file = edited("ascii-f32.vti", R"(<initial_pattern_generator apply_when_loading="false" />)",
                                  generator, "overlays.vti");
-    const auto pattern = description::read_ready_pattern(file);
+    const auto pattern = ready::read_pattern(file, {std::nullopt, true});
     CHECK_FALSE(pattern.start);  // zero first, then the overlays
-    const description::Description d = description::load_ready_pattern(file);
+    CHECK_FALSE(pattern.starts_from_arrays);
+    const description::Description d = ready::load_pattern(file);
+    CHECK(d.where("params.initial[2].shapes") == "overlays.vti <overlay> 3 of <initial_pattern_generator>");
     const toml::array& initial = *d.params["initial"].as_array();
     REQUIRE(initial.size() == 4);  // the last one's pixel lies off a 2-D grid: it never applies
     CHECK(initial[0].as_table()->at("fill").value_or(std::string()) == "constant");
@@ -115,7 +119,7 @@ TEST_CASE("a pattern's overlays become the description's initial, in Ready's ord
     CHECK(run.status == 0);
 }
 
-TEST_CASE("what figgen cannot run is refused in one line that says what", "[ready_vti]") {
+TEST_CASE("what figgen cannot run is refused in one line that says what", "[ready]") {
     using Catch::Contains;
     CHECK_THAT(refusal(edited("ascii-f32.vti", R"(type="formula")", R"(type="kernel")", "kernel.vti")),
                Contains("its rule is type \"kernel\": figgen runs formula rules"));
@@ -130,14 +134,15 @@ TEST_CASE("what figgen cannot run is refused in one line that says what", "[read
     CHECK_THAT(refusal(edited("ascii-f32.vti", R"(Name="b")", R"(Name="q")", "missing.vti")),
                Contains("holds neither arrays a, b, ... nor one of 2 components"));
     CHECK_THAT(refusal(edited("ascii-f32.vti", R"(type="Float32" Name="a")", R"(type="Int32" Name="a")", "int.vti")),
-               Contains("array a is Int32: figgen reads Float32 and Float64"));
+               Contains("<DataArray Name=\"a\"> is type \"Int32\": figgen reads Float32 and Float64"));
     CHECK_THAT(refusal(edited("ascii-f32.vti", "RD", "XX", "nord.vti")),
                Contains("no <RD> in <VTKFile>"));
-    CHECK_THAT(refusal(edited("ascii-f32.vti", "<VTKFile", "<VTKFile <", "notxml.vti")), Contains("not XML"));
+    CHECK_THAT(refusal(edited("ascii-f32.vti", "<VTKFile", "<VTKFile <", "notxml.vti")),
+               Contains("not well-formed XML (line 2: XML_ERROR_"));
     CHECK_THAT(refusal(edited("ascii-f32.vti", R"(<param name="D">0.5</param>)", R"(<param name="D">nan</param>)", "nan.vti")),
-               Contains("parameter D is \"nan\", not a finite number"));
+               Contains("<param name=\"D\"> is \"nan\", not a finite number"));
     CHECK_THAT(refusal(edited("ascii-f32.vti", R"(<param name="D">)", R"(<param name="width">)", "clash.vti")),
-               Contains("a parameter is named width, a key of figgen's formula scene"));
+               Contains("<param name=\"width\"> is a key of figgen's formula scene"));
     CHECK_THAT(refusal(fixtures / "no-such-file.vti"), Contains("not a regular file"));
     // A small file may claim arrays far larger than itself (zlib): refused
     // before any is decoded. 9 chemicals of 4096 x 4096 as doubles: 1152 MiB.
@@ -167,7 +172,7 @@ TEST_CASE("what figgen cannot run is refused in one line that says what", "[read
     CHECK(fs::is_empty(out));
 }
 
-TEST_CASE("figgen's VTI file is read back by VTK with the same arrays, and continues the run", "[ready_vti]") {
+TEST_CASE("figgen's VTI file is read back by VTK with the same arrays, and continues the run", "[ready]") {
     const fs::path out = testkit::fresh_dir("vti-out");
     const fs::path pattern = fixtures / "binary-zlib-f32-uint32.vti";
     const auto run = testkit::figgen("render " + pattern.string() + " --set steps=6 --format png,vti --scale 0.3 --out " +
@@ -210,17 +215,17 @@ TEST_CASE("figgen's VTI file is read back by VTK with the same arrays, and conti
     CHECK(m6["panels"].back()["state_sha256"] == m12["panels"].back()["state_sha256"]);
 }
 
-TEST_CASE("figgen convert prints the description, or writes OUT/ID.toml", "[ready_vti]") {
+TEST_CASE("figgen convert prints the description, or writes OUT/ID.toml", "[ready]") {
     const auto printed = testkit::figgen("convert " + (fixtures / "ascii-f32.vti").string());
     REQUIRE(printed.status == 0);
-    CHECK_THAT(printed.output, Catch::Contains("scene = 'formula'"));
+    CHECK_THAT(printed.output, Catch::Contains("scene = \"formula\""));
     CHECK_THAT(printed.output, Catch::Contains("starts from them"));  // the stored arrays: said in a comment
     const fs::path out = testkit::fresh_dir("vti-convert");
     const auto written = testkit::figgen("convert " + (fixtures / "ascii-f32.vti").string() + " --out " + out.string());
     REQUIRE(written.status == 0);
     // What it wrote is a description that loads as the pattern does, less the stored start.
     const description::Description d = description::load_description(out / "ascii-f32.toml");
-    const description::Description p = description::load_ready_pattern(fixtures / "ascii-f32.vti");
+    const description::Description p = ready::load_pattern(fixtures / "ascii-f32.vti");
     CHECK(d.params == p.params);
     CHECK(d.style == p.style);
     CHECK(d.panels == p.panels);

@@ -1,0 +1,16 @@
+#pragma once
+// The arrays a run starts from when a Ready pattern file stores them
+// (ready/pattern.hpp reads them): a description file cannot name one.
+
+#include <vector>
+
+namespace description {
+
+// The chemicals a file stores, a, b, c, ... in order.
+struct StoredStart {
+    int width = 0, height = 0;
+    bool float64 = false;  // Float64 arrays (else Float32)
+    std::vector<std::vector<double>> chemicals;  // width * height values each, x fastest, row y = 0 first
+};
+
+}  // namespace description
