@@ -71,17 +71,27 @@ test-sanitize: deps
 	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure --timeout 600 -j $(JOBS)
 
 # libFuzzer over the parsers users type into (descriptions, --set, snowflake
-# rule codes, L-systems; tests/fuzz/), built with clang into build-fuzz/, each
-# target FUZZ_SECONDS (default 600) in turn. The committed seeds are copied
-# into build-fuzz/corpus/ first, so what the fuzzer adds stays there; a crash
-# is written to build-fuzz/crashes/TARGET/ and stops the run.
-FUZZ_BUILD   ?= build-fuzz
-FUZZ_SECONDS ?= 600
-FUZZ_TARGETS ?= description set snowflake_rule lsystem output_name parts caption_text
+# rule codes, L-systems, Ready's files; tests/fuzz/), built with clang into
+# build-fuzz/, each target FUZZ_SECONDS (default 600) in turn. The committed
+# seeds are copied into build-fuzz/corpus/ first, so what the fuzzer adds
+# stays there; a crash is written to build-fuzz/crashes/TARGET/ and stops the
+# run. READY_PATTERNS=DIR (Ready's Patterns/ folder, from a clone of
+# GollyGang/ready; its files are not ours to commit) adds every pattern file
+# under it to ready_pattern's seeds.
+FUZZ_BUILD     ?= build-fuzz
+FUZZ_SECONDS   ?= 600
+FUZZ_TARGETS   ?= description set snowflake_rule lsystem output_name parts caption_text vtk_arrays ready_pattern
+READY_PATTERNS ?=
 fuzz:
 	@scripts/deps.sh fuzz
 	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFIGGEN_FUZZ=ON
-	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
+	@if [ -n "$(READY_PATTERNS)" ]; then \
+	  mkdir -p $(FUZZ_BUILD)/corpus/ready_pattern && \
+	  find "$(READY_PATTERNS)" -name '*.vt[iu]' | while read -r f; do \
+	    cp "$$f" "$(FUZZ_BUILD)/corpus/ready_pattern/ready-$$(echo "$$f" | sha256sum | cut -c1-16)"; done; \
+	  echo "ready_pattern: seeded with $$(find "$(READY_PATTERNS)" -name '*.vt[iu]' | wc -l) of Ready's pattern files"; \
+	fi
 	@for t in $(FUZZ_TARGETS); do \
 	  mkdir -p $(FUZZ_BUILD)/corpus/$$t $(FUZZ_BUILD)/crashes/$$t && \
 	  cp -n tests/fuzz/corpus/$$t/* $(FUZZ_BUILD)/corpus/$$t/ && \

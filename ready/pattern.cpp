@@ -238,6 +238,7 @@ Rule rule_of(const XMLElement* rule) {
     if (r.accuracy != "low" && r.accuracy != "medium" && r.accuracy != "high")
         throw Refused("<formula accuracy> is \"" + printable_short(r.accuracy) + "\", not low, medium or high");
     r.code = dedented(trimmed(formula->GetText()));
+    if (!description::is_text(r.code)) throw Refused("<formula> is not " + std::string(description::text_allowed));
     r.wrap = text_attribute(rule, "wrap", "1") == "1";
     return r;
 }
@@ -314,6 +315,7 @@ void read_fill(const XMLElement* e, int chemicals, toml::table& t, std::set<std:
         t.insert("other", other);
     } else if (name == "parameter") {
         const std::string p = text_attribute(e, "name", "");
+        if (!description::is_text(p)) throw Refused("an overlay's <parameter name> is not " + std::string(description::text_allowed));
         t.insert("parameter", p);  // data: the scene checks it names one of the rule's parameters
         parameters_used.insert(p);
     }
@@ -603,9 +605,9 @@ void layout(toml::table& root, int steps, const Grid& grid) {
     }
 }
 
-Pattern read(const std::filesystem::path& file, const ReadOptions& options) {
+Pattern read(const std::string& text, const std::filesystem::path& file, const ReadOptions& options) {
     Parsed p;
-    parse(read_file(file), p);
+    parse(text, p);
     const XMLElement* vtk = p.xml.FirstChildElement("VTKFile");
     if (!vtk) throw Refused("no <VTKFile>: not a VTK XML file");
     const std::string type = text_attribute(vtk, "type", "");
@@ -761,7 +763,18 @@ FileKind file_kind(const std::string& target) {
 
 Pattern read_pattern(const std::filesystem::path& file, const ReadOptions& options) {
     try {
-        return read(file, options);
+        return read(read_file(file), file, options);
+    } catch (const Refused& e) {
+        throw description::UsageError(printable(file.string()) + ": " + e.what());
+    } catch (const std::bad_alloc&) {
+        throw description::UsageError(printable(file.string()) + ": too large to read");
+    }
+}
+
+Pattern read_pattern_text(const std::string& text, const std::filesystem::path& file, const ReadOptions& options) {
+    try {
+        if (text.size() > max_pattern_bytes) throw Refused("a pattern file is at most 256 MiB; this one is larger");
+        return read(text, file, options);
     } catch (const Refused& e) {
         throw description::UsageError(printable(file.string()) + ": " + e.what());
     } catch (const std::bad_alloc&) {

@@ -63,6 +63,9 @@ struct ReadOptions {
 // one line that says what is not supported.
 Pattern read_pattern(const std::filesystem::path& file, const ReadOptions& options = {});
 
+// The same from the file's text, read already; `file` names it.
+Pattern read_pattern_text(const std::string& text, const std::filesystem::path& file, const ReadOptions& options = {});
+
 // The pattern as a Description that runs it, with its stored arrays when
 // `decode_arrays` (a render; not `describe`), the --set `overrides` and
 // `seed` applied as to a description file (`steps` taken from an override

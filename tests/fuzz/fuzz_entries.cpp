@@ -342,6 +342,8 @@ const std::vector<Target>& targets() {
         {"output_name", output_name},
         {"parts", parts},
         {"caption_text", caption_text},
+        {"vtk_arrays", vtk_arrays},
+        {"ready_pattern", ready_pattern},
     };
     return all;
 }

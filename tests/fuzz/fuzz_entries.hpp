@@ -64,6 +64,25 @@ Outcome parts(const std::uint8_t* data, std::size_t size);
 // it breaks.
 Outcome caption_text(const std::uint8_t* data, std::size_t size);
 
+// VTK's array encodings (ready/vtk_arrays.hpp), structure-aware: the
+// first byte picks the header's word size, zlib blocks or none, base64 or
+// raw, Float32 or Float64 (or ascii), the second the block size, the third
+// which header words lie and how (near 2^63, past 2^64, a word of the
+// input); the rest is the values, compressed in honest blocks before the
+// lies go in. Accepted: decoded to exactly its extent's bytes (the
+// values themselves when nothing lied); refused: ready::vtk::DataError.
+Outcome vtk_arrays(const std::uint8_t* data, std::size_t size);
+
+// A Ready pattern (ready/pattern.hpp): a whole file when it begins with
+// markup (Ready's own files are the seeds), else fields split at NUL that
+// are put, escaped, into a small pattern's <RD>: the formula, the rule's
+// name, then parameters ("pNAME=VALUE"), overlays ("o" and four bytes that
+// pick chemical, operation, fill and shape, then a parameter's name) and
+// render settings ("r..."). An accepted pattern's converted text must read
+// back as the same table, and its scene's phase 1 pass; refused:
+// description::UsageError in one line.
+Outcome ready_pattern(const std::uint8_t* data, std::size_t size);
+
 struct Target {
     const char* name;  // the folder under tests/fuzz/corpus/ and regressions/
     Outcome (*entry)(const std::uint8_t*, std::size_t);
