@@ -45,7 +45,8 @@ namespace plain {
 
 }  // namespace
 
-#if defined(__x86_64__) && defined(__GNUC__)
+// GCC alone: clang (the fuzz build) has no #pragma GCC target, and takes the plain code.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define FIGGEN_FUSED_X86 1
 
 #pragma GCC push_options
