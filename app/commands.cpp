@@ -77,6 +77,21 @@ CLI::Validator integer_in(long long low, long long high) {
         "INT in [" + std::to_string(low) + " - " + std::to_string(high) + "]");
 }
 
+// --format's check of each name, in the words of the library's (output_options); its
+// description, "{png,pdf,...}", is the one CLI::IsMember gave --help.
+CLI::Validator format_in() {
+    std::string listed;
+    for (const std::string& n : format_names()) listed += (listed.empty() ? "" : ",") + n;
+    return CLI::Validator(
+        [](std::string& name) {
+            const std::vector<std::string> names = format_names();
+            return std::find(names.begin(), names.end(), name) != names.end()
+                       ? std::string()
+                       : description::printable(name, 40) + " is not allowed: use " + formats_allowed();
+        },
+        "{" + listed + "}");
+}
+
 // --max-memory, one option for every command that takes it; its value is read by parse_size.
 void add_max_memory(CLI::App& command, std::string& size, const std::string& meaning) {
     command.add_option("--max-memory", size, meaning + " (e.g. 512M, 8G)")->capture_default_str();
@@ -223,7 +238,7 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
                     "Greens");
     app->add_option("--format", formats, format_help())
         ->delimiter(',')
-        ->check(CLI::IsMember(format_names()));
+        ->check(format_in());
     app->add_flag("--transparent", transparent,
                   "Leave the figure's background out of the PNG, PDF and SVG: only the ink is opaque");
 }

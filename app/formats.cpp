@@ -160,6 +160,12 @@ std::vector<std::string> format_names() {
     return names;
 }
 
+std::string formats_allowed() {
+    std::string names;
+    for (const std::string& n : format_names()) names += (names.empty() ? "" : ", ") + n;
+    return names;
+}
+
 std::string format_help() {
     std::string items;
     for (const OutputFormat& f : output_formats())

@@ -46,6 +46,8 @@ const std::vector<OutputFormat>& output_formats();
 const OutputFormat* output_format(std::string_view name);
 // The names --format accepts, in the table's order.
 std::vector<std::string> format_names();
+// What a refused --format says is allowed: "png, pdf, svg, ...".
+std::string formats_allowed();
 // --format's help, from the table.
 std::string format_help();
 

@@ -26,8 +26,9 @@ RenderResult render_request(const RenderRequest& request, scenes::Progress& prog
         std::lock_guard<std::mutex> hold(gl_lock);
         use_gl(s, "gl=" + s.gl, false);  // a platform figgen knows
         if (gl_in_use && *gl_in_use != s.gl)
-            throw UsageError("gl=" + s.gl + " is not allowed: this process draws with gl=" + *gl_in_use +
-                             " since its first render (one GL context a process)");
+            throw OptionError("--gl", s.gl, *gl_in_use, "gl=" + s.gl,
+                              " is not allowed: this process draws with gl=" + *gl_in_use +
+                                  " since its first render (one GL context a process)");
         if (!gl_in_use) {
             use_gl(s, "gl=" + s.gl);
             apply_threads(s, options.work.threads);

@@ -10,6 +10,7 @@
 
 #include "app/figure_lock.hpp"
 #include "app/film_segments.hpp"
+#include "app/render_settings.hpp"
 #include "base/atomic_file.hpp"
 #include "render/text.hpp"
 
@@ -30,7 +31,9 @@ base::Folder open_output_folder(const OutputOptions& options) {
             throw std::runtime_error("cannot write there: " + std::string(std::strerror(errno)));
         return folder;
     } catch (const std::runtime_error& e) {
-        throw UsageError("--out " + options.dir.string() + ": " + e.what() + "; allowed: a folder figgen can write");
+        const std::string dir = options.dir.string();
+        throw OptionError("--out", dir, "a folder figgen can write", "--out " + dir,
+                          std::string(": ") + e.what() + "; allowed: a folder figgen can write");
     }
 }
 

@@ -3,6 +3,7 @@
 #include <sched.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <thread>
 #ifdef _OPENMP
@@ -38,17 +39,49 @@ int default_threads() {
     return std::max(1, cores / launcher_local_size());
 }
 
-// The options of `figgen render` as output options; UsageError for a value out of range.
+// "--scale 0 is not allowed: use a number from 0.1 to 8"; `separator`: ": " as CLI11's checks say it.
+OptionError not_allowed(const std::string& option, const std::string& value, const std::string& allowed,
+                        const char* separator = " ") {
+    return OptionError(option, value, allowed, option + separator + value, " is not allowed: use " + allowed);
+}
+
+// An integer option's text as CLI11's check in commands.cpp reads it (description::integer_text).
+long long integer_option(const std::string& option, const std::string& text, long long low, long long high) {
+    const std::optional<long long> value = description::integer_text(text, low, high);
+    if (!value)
+        throw not_allowed(option, description::printable(text, 40), description::integers_allowed(low, high), ": ");
+    return *value;
+}
+
 }  // namespace
 
+OptionError::OptionError(std::string option_, std::string value_, std::string allowed_, const std::string& named,
+                         std::string rest_)
+    : UsageError(named + rest_),
+      option(std::move(option_)),
+      value(std::move(value_)),
+      allowed(std::move(allowed_)),
+      rest(std::move(rest_)) {}
+
+std::uint64_t seed_option(const std::string& text) {
+    return static_cast<std::uint64_t>(integer_option("--seed", text, 0, INT64_MAX));
+}
+
+int threads_option(const std::string& text) {
+    return static_cast<int>(integer_option("--threads", text, 1, 1024));
+}
+
+// The options of `figgen render` as output options; OptionError for a value out of range.
 OutputOptions output_options(const RenderSettings& c) {
     if (!(c.scale >= 0.1 && c.scale <= 8.0))  // also false for NaN
-        throw UsageError("--scale " + description::shown(c.scale) + " is not allowed: use a number from 0.1 to 8");
+        throw not_allowed("--scale", description::shown(c.scale), description::numbers_allowed(0.1, 8));
     std::string formats;
     for (const std::string& f : c.formats) formats += (formats.empty() ? "" : ",") + f;
     if (!c.formats.empty() && (c.no_video || c.frames))
         throw UsageError("--format " + formats + " is not allowed with --no-video or --frames: use one");
-    if (c.out_dir.empty()) throw UsageError("--out is empty: give the folder the figures go into, e.g. --out out");
+    if (c.out_dir.empty())
+        throw OptionError("--out", "", "a folder", "--out",
+                          " is empty: give the folder the figures go into, e.g. --out out");
     OutputOptions options;
     options.dir = c.out_dir;
     options.scale = c.scale;
@@ -58,18 +91,15 @@ OutputOptions output_options(const RenderSettings& c) {
     // --format's check (format_names) let through only names the table chooses by.
     for (const std::string& name : c.formats) {
         const OutputFormat* format = output_format(name);
-        if (!format || !format->choose) {  // the command line's check lets none through; a library call's may
-            std::string names;
-            for (const std::string& n : format_names()) names += (names.empty() ? "" : ", ") + n;
-            throw UsageError("--format " + description::printable(name, 40) + " is not allowed: use " + names);
-        }
+        if (!format || !format->choose)  // the command line's check lets none through; a library call's may
+            throw not_allowed("--format", description::printable(name, 40), formats_allowed(), ": ");
         format->choose(options);
     }
     options.transparent = c.transparent;
     options.max_memory = parse_size("--max-memory", c.max_memory);
     options.max_disk = parse_size("--max-disk", c.max_disk);
     if (c.threads && (*c.threads < 1 || *c.threads > 1024))
-        throw UsageError("--threads: " + std::to_string(*c.threads) + " is not allowed: use an integer from 1 to 1024");
+        throw not_allowed("--threads", std::to_string(*c.threads), description::integers_allowed(1, 1024), ": ");
     options.work.threads = c.threads.value_or(default_threads());
     options.work.schedule = c.schedule == "static" ? Schedule::fixed : Schedule::dynamic;
     for (const std::string& from : c.from) options.work.merge_from.emplace_back(from);
@@ -114,8 +144,7 @@ std::vector<std::string> overrides_of(const RenderSettings& c) {
         x == std::string::npos ? std::nullopt : description::integer_text(c.size.substr(0, x), 2, 16384);
     const std::optional<long long> h = w ? description::integer_text(c.size.substr(x + 1), 2, 16384) : std::nullopt;
     if (!h)
-        throw UsageError("--size " + description::printable(c.size, 40) +
-                         " is not allowed: use WIDTHxHEIGHT, each 2..16384, e.g. 1200x600");
+        throw not_allowed("--size", description::printable(c.size, 40), "WIDTHxHEIGHT, each 2..16384, e.g. 1200x600");
     overrides.push_back("figure.size=[" + std::to_string(*w) + "," + std::to_string(*h) + "]");
     return overrides;
 }
@@ -156,8 +185,10 @@ CheckedFigure check_target(const std::string& target, const std::optional<std::s
 }
 
 void use_gl(const RenderSettings& s, const std::string& given, bool take) {
-    if (!render::gl_platform_of(s.gl))
-        throw UsageError(given + " is not allowed: use " + render::gl_platforms_allowed());
+    if (!render::gl_platform_of(s.gl)) {
+        const std::string allowed = render::gl_platforms_allowed();
+        throw OptionError("--gl", description::printable(s.gl, 40), allowed, given, " is not allowed: use " + allowed);
+    }
     if (s.gl_device != 0 && s.gl != "egl-device")
         throw UsageError("--gl-device " + std::to_string(s.gl_device) + " is not allowed with " + given +
                          ": use it with --gl egl-device");

@@ -31,7 +31,23 @@ struct RenderSettings {
     std::string max_memory = "4G", max_disk = "4G";  // sizes, read by parse_size
 };
 
-// The settings as output options; UsageError for a value out of range.
+// A render option refused: the command's message, `named` + `rest`
+// ("--scale 0" + " is not allowed: use a number from 0.1 to 8"), and its
+// parts, for a caller that names options its own way (Python's arguments).
+struct OptionError : description::UsageError {
+    OptionError(std::string option, std::string value, std::string allowed, const std::string& named,
+                std::string rest);
+    std::string option;   // "--scale"
+    std::string value;    // as given, printable
+    std::string allowed;  // "a number from 0.1 to 8"
+    std::string rest;     // the message after the option and its value
+};
+
+// --seed's and --threads's text, checked as the command line checks them; OptionError if not allowed.
+std::uint64_t seed_option(const std::string& text);
+int threads_option(const std::string& text);
+
+// The settings as output options; OptionError (a UsageError) for a value out of range.
 OutputOptions output_options(const RenderSettings& s);
 
 // A figure read and checked (phase 1): its description and its scene.

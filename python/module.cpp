@@ -12,6 +12,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <climits>
 #include <condition_variable>
 #include <deque>
 #include <functional>
@@ -23,8 +24,10 @@
 
 #include "app/describe.hpp"
 #include "app/library.hpp"
+#include "base/background.hpp"
 #include "description/catalog.hpp"
 #include "description/description.hpp"
+#include "description/plain_name.hpp"
 #include "media/png_io.hpp"
 
 namespace py = pybind11;
@@ -49,34 +52,86 @@ py::object to_python(const nlohmann::json& j) {
     return dict;
 }
 
-// A Python value as TOML: booleans, integers, floats, strings, and lists
-// and dicts of them. TypeError for anything else.
-std::unique_ptr<toml::node> to_toml(const py::handle& value, int depth = 0) {
+// A description's text from Python: UTF-8. A lone surrogate has none:
+// refused as the description's reader refuses a string of invalid UTF-8
+// (toml++ would print its bytes as other characters).
+std::string utf8_of(const py::handle& text, const std::string& name) {
+    Py_ssize_t size = 0;
+    if (const char* utf8 = PyUnicode_AsUTF8AndSize(text.ptr(), &size))
+        return std::string(utf8, static_cast<std::size_t>(size));
+    PyErr_Clear();
+    const auto bytes =
+        py::reinterpret_steal<py::object>(PyUnicode_AsEncodedString(text.ptr(), "utf-8", "surrogatepass"));
+    if (!bytes) throw py::error_already_set();
+    const std::string_view raw(PyBytes_AS_STRING(bytes.ptr()), static_cast<std::size_t>(PyBytes_GET_SIZE(bytes.ptr())));
+    throw description::SettingError(name, "\"" + description::printable(raw) + "\"", description::text_allowed);
+}
+
+// figgen's text as Python's: invalid UTF-8 and control characters as the
+// command shows them (description::printable), never a UnicodeDecodeError;
+// `most`: where the command's one-line message stops.
+py::str python_text(const std::string& text, std::size_t most = SIZE_MAX) {
+    return py::str(description::printable(text, most));
+}
+
+std::string type_name(const py::handle& value) {
+    return py::str(value.get_type().attr("__name__"));
+}
+
+// A Python value as TOML: booleans, integers (anything with __index__),
+// floats, strings, and lists and dicts of them; `name` says where it is
+// for messages ("params.n", "figure.panels[0]"). TypeError for anything
+// else, SettingError for an integer TOML cannot hold.
+std::unique_ptr<toml::node> to_toml(const py::handle& value, const std::string& name, int depth = 0) {
     // A description nests a few tables deep; a deeper dict is refused, not followed down the stack.
     if (depth > 32) throw py::value_error("a description nests lists and dicts at most 32 deep");
     if (py::isinstance<py::bool_>(value)) return std::make_unique<toml::value<bool>>(value.cast<bool>());
-    if (py::isinstance<py::int_>(value)) return std::make_unique<toml::value<std::int64_t>>(value.cast<std::int64_t>());
     if (py::isinstance<py::float_>(value)) return std::make_unique<toml::value<double>>(value.cast<double>());
-    if (py::isinstance<py::str>(value)) return std::make_unique<toml::value<std::string>>(value.cast<std::string>());
+    if (PyIndex_Check(value.ptr())) {  // int, and NumPy's integers
+        const auto integer = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+        if (!integer) throw py::error_already_set();
+        int overflow = 0;
+        const long long n = PyLong_AsLongLongAndOverflow(integer.ptr(), &overflow);
+        if (overflow != 0)
+            throw description::SettingError(name, py::str(integer),
+                                            description::integers_allowed(LLONG_MIN, LLONG_MAX));
+        return std::make_unique<toml::value<std::int64_t>>(n);
+    }
+    if (py::isinstance<py::str>(value)) return std::make_unique<toml::value<std::string>>(utf8_of(value, name));
     if (py::isinstance<py::dict>(value)) {
         auto table = std::make_unique<toml::table>();
         for (const auto& [key, item] : value.cast<py::dict>()) {
-            auto node = to_toml(item, depth + 1);
-            table->insert(py::str(key).cast<std::string>(), std::move(*node));
+            if (!py::isinstance<py::str>(key))
+                throw py::type_error((name.empty() ? "" : name + ": ") + "a description's keys are text, not " +
+                                     type_name(key));
+            const std::string text = utf8_of(key, name.empty() ? "a key" : name + "'s key");
+            auto node = to_toml(item, name.empty() ? text : name + "." + text, depth + 1);
+            table->insert(text, std::move(*node));
         }
         return table;
     }
     if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
         auto array = std::make_unique<toml::array>();
-        for (const auto& item : value) array->push_back(std::move(*to_toml(item, depth + 1)));
+        std::size_t i = 0;
+        for (const auto& item : value)
+            array->push_back(std::move(*to_toml(item, name + "[" + std::to_string(i++) + "]", depth + 1)));
         return array;
     }
-    throw py::type_error("a description holds booleans, numbers, strings, lists and dicts, not " +
-                         std::string(py::str(value.get_type().attr("__name__"))));
+    throw py::type_error((name.empty() ? "" : name + ": ") +
+                         "a description holds booleans, numbers, strings, lists and dicts, not " + type_name(value));
 }
 
-std::string toml_text(const py::handle& value) {
-    const auto node = to_toml(value);
+[[noreturn]] void raise_setting_error(const std::string& message, const std::string& key = "",
+                                      const std::string& value = "", const std::string& allowed = "",
+                                      const std::string& where = "");
+
+std::string toml_text(const py::handle& value, const std::string& name) {
+    std::unique_ptr<toml::node> node;
+    try {
+        node = to_toml(value, name);
+    } catch (const description::SettingError& e) {
+        raise_setting_error(e.what(), e.key(), e.value(), e.allowed());
+    }
     std::ostringstream text;
     node->visit([&](const auto& n) { text << n; });
     return text.str();
@@ -88,24 +143,67 @@ py::object error_class(const char* name) {
 }
 
 // A setting refused: figgen.SettingError with the key, value, what is
-// allowed and where it was given (empty where the mistake names no key).
-[[noreturn]] void raise_setting_error(const std::string& message, const std::string& key = "",
-                                      const std::string& value = "", const std::string& allowed = "",
-                                      const std::string& where = "") {
-    py::object error = error_class("SettingError")(message, key, value, allowed, where);
+// allowed and where it was given (empty where the mistake names no key);
+// the message in the command's words.
+[[noreturn]] void raise_setting_error(const std::string& message, const std::string& key, const std::string& value,
+                                      const std::string& allowed, const std::string& where) {
+    py::object error = error_class("SettingError")(python_text(message, description::printable_most), python_text(key),
+                                                   python_text(value), python_text(allowed), python_text(where));
     PyErr_SetObject(error.get_type().ptr(), error.ptr());
     throw py::error_already_set();
 }
 
-[[noreturn]] void raise_render_error(const std::exception& e) {
-    py::object error = error_class("RenderError")(e.what());
+// A render option refused: figgen._OptionError, which render() turns into
+// a SettingError naming its own argument, with the value as given.
+[[noreturn]] void raise_option_error(const app::OptionError& e) {
+    py::object error = error_class("_OptionError")(python_text(e.option), python_text(e.value),
+                                                   python_text(e.allowed), python_text(e.rest));
+    PyErr_SetObject(error.get_type().ptr(), error.ptr());
+    throw py::error_already_set();
+}
+
+[[noreturn]] void raise_render_error(const std::string& message) {
+    py::object error = error_class("RenderError")(python_text(message, description::printable_most));
     PyErr_SetObject(error.get_type().ptr(), error.ptr());
     throw py::error_already_set();
 }
 
 class PythonProgress;
 void raise_pending(PythonProgress* progress);
-std::thread::id render_thread_id();
+
+// The calls now inside without_gil, and whether Python is exiting (set by
+// before_exit, GIL held). Python finalizes only once each such call is back
+// holding the GIL: a thread that takes it later is ended by pthread_exit,
+// whose unwinding aborts the process in ~gil_scoped_release (noexcept).
+struct Released {
+    std::mutex lock;
+    std::condition_variable none;
+    int calls = 0;
+    bool exiting = false;
+};
+Released& released_calls() {
+    static Released* all = new Released;  // never destroyed: used at exit
+    return *all;
+}
+// Counts a call from before its GIL is released until after it is taken again.
+struct Counted {
+    Counted() {
+        Released& r = released_calls();
+        std::lock_guard<std::mutex> hold(r.lock);
+        if (r.exiting) throw std::runtime_error("Python is exiting: figgen starts nothing now");
+        ++r.calls;
+    }
+    ~Counted() {
+        Released& r = released_calls();
+        {
+            std::lock_guard<std::mutex> hold(r.lock);
+            --r.calls;
+        }
+        r.none.notify_all();
+    }
+    Counted(const Counted&) = delete;
+    Counted& operator=(const Counted&) = delete;
+};
 
 // Runs `call` with the GIL released, turning figgen's errors into the
 // package's exceptions; a render that `progress` stopped raises the Python
@@ -113,12 +211,16 @@ std::thread::id render_thread_id();
 template <class Call>
 auto without_gil(Call&& call, PythonProgress* progress = nullptr) -> decltype(call()) {
     std::optional<description::SettingError> setting;
+    std::optional<app::OptionError> option;
     std::optional<std::string> usage, failure;
     try {
+        const Counted counted;  // destroyed after `released`: with the GIL
         py::gil_scoped_release released;
         return call();
     } catch (const description::SettingError& e) {
         setting = e;
+    } catch (const app::OptionError& e) {
+        option = e;
     } catch (const description::UsageError& e) {
         usage = e.what();
     } catch (const std::exception& e) {
@@ -127,16 +229,16 @@ auto without_gil(Call&& call, PythonProgress* progress = nullptr) -> decltype(ca
     raise_pending(progress);
     if (setting)
         raise_setting_error(setting->what(), setting->key(), setting->value(), setting->allowed(), setting->where());
-    // A usage error that names no key (an unknown figure id, a bad --format):
-    // a ValueError too, with no key.
+    if (option) raise_option_error(*option);
+    // A usage error that names no key (an unknown figure id): a ValueError too, with no key.
     if (usage) raise_setting_error(*usage);
-    raise_render_error(std::runtime_error(*failure));
+    raise_render_error(*failure);
 }
 
 // Thrown through the render when Python asked it to stop; the Python
 // error that did (KeyboardInterrupt, or the callback's own) is kept aside.
 struct Stopped : std::runtime_error {
-    Stopped() : std::runtime_error("stopped from Python") {}
+    explicit Stopped(const char* why = "stopped from Python") : std::runtime_error(why) {}
 };
 
 // Progress of a render as Python sees it: the callback `report(done,
@@ -177,18 +279,7 @@ public:
     }
 
 private:
-    void tell() {
-        if (std::this_thread::get_id() != render_thread_id()) return;  // a work item's thread: counted, no more
-        if (stopping_) throw Stopped();
-        if (report_.is_none()) return;
-        py::gil_scoped_acquire held;
-        try {
-            report_(done_.load(), total_, label_);
-        } catch (py::error_already_set& e) {
-            stop(std::move(e));
-            throw Stopped();
-        }
-    }
+    void tell();
 
     py::object report_;
     std::string label_;
@@ -209,20 +300,30 @@ void raise_pending(PythonProgress* progress) {
 class RenderThread {
 public:
     static RenderThread& get() {
-        static RenderThread* one = new RenderThread;  // lives as long as the process; its thread is never joined
-        return *one;
+        std::call_once(made_, [] { one_ = new RenderThread; });  // lives as long as the process; never joined
+        return *one_;
     }
+    // The thread when a render has made it, else null.
+    static RenderThread* made() { return one_.load(); }
     std::thread::id id() const { return id_; }
+    // Whether the interpreter is exiting: a render in flight stops at its next step.
+    bool closing() const { return closing_; }
 
     // Runs `job` there (GIL released by the caller) and waits, asking
     // `progress` to stop when Ctrl-C comes meanwhile.
     template <class Result>
     Result run(std::function<Result()> job, PythonProgress& progress) {
-        std::packaged_task<Result()> task(std::move(job));
-        std::future<Result> done = task.get_future();
+        // From the progress callback of a render, on this thread: it would wait for itself.
+        if (std::this_thread::get_id() == id_)
+            throw std::runtime_error("render() was called from a progress callback: a process renders one figure "
+                                     "at a time, and this one waits for its callback");
+        // Shared with the job: the render thread may still be leaving the task when get() returns here.
+        auto task = std::make_shared<std::packaged_task<Result()>>(std::move(job));
+        std::future<Result> done = task->get_future();
         {
             std::lock_guard<std::mutex> hold(lock_);
-            jobs_.push_back([&task] { task(); });
+            if (closing_) throw std::runtime_error("Python is exiting: no render starts now");
+            jobs_.push_back([task] { (*task)(); });
         }
         wake_.notify_one();
         while (done.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
@@ -230,6 +331,15 @@ public:
             if (PyErr_CheckSignals() != 0) progress.stop(py::error_already_set());
         }
         return done.get();
+    }
+
+    // At the interpreter's exit (GIL released): stops a render in flight
+    // (a daemon thread's) at its next step and waits until none runs, so
+    // that no render calls into Python while it finalizes.
+    void close() {
+        std::unique_lock<std::mutex> hold(lock_);
+        closing_ = true;
+        idle_.wait(hold, [&] { return jobs_.empty() && !busy_; });
     }
 
 private:
@@ -242,19 +352,62 @@ private:
                 wake_.wait(hold, [&] { return !jobs_.empty(); });
                 job = std::move(jobs_.front());
                 jobs_.pop_front();
+                busy_ = true;
             }
             job();
+            job = nullptr;
+            {
+                std::lock_guard<std::mutex> hold(lock_);
+                busy_ = false;
+            }
+            idle_.notify_all();
         }
     }
+    static inline std::once_flag made_;
+    static inline std::atomic<RenderThread*> one_{nullptr};
     std::mutex lock_;
-    std::condition_variable wake_;
+    std::condition_variable wake_, idle_;
     std::deque<std::function<void()>> jobs_;
+    bool busy_ = false;
+    std::atomic<bool> closing_{false};
     std::thread thread_;
     std::thread::id id_;
 };
 
-std::thread::id render_thread_id() {
-    return RenderThread::get().id();
+void PythonProgress::tell() {
+    const RenderThread& thread = RenderThread::get();
+    if (std::this_thread::get_id() != thread.id()) return;  // a work item's thread: counted, no more
+    if (stopping_) throw Stopped();
+    if (thread.closing()) throw Stopped("stopped: Python is exiting");
+    if (report_.is_none()) return;
+    py::gil_scoped_acquire held;
+    try {
+        report_(done_.load(), total_, label_);
+    } catch (py::error_already_set& e) {
+        stop(std::move(e));
+        throw Stopped();
+    }
+}
+
+// At the interpreter's exit, before it finalizes: no render in flight, and
+// no library still loading on a thread of its own (base/background.hpp).
+// A process that exited while GL's loader was inside dlopen had LLVM's
+// static objects destroyed by exit() as that thread built them: "double
+// free or corruption" about one run in ten after a callback that raised
+// early, before the render needed GL and so waited for its loader.
+void before_exit() {
+    Released& r = released_calls();
+    {
+        std::lock_guard<std::mutex> hold(r.lock);
+        r.exiting = true;  // with the GIL: no call releases it from now on
+    }
+    py::gil_scoped_release released;
+    if (RenderThread* thread = RenderThread::made()) thread->close();
+    {
+        std::unique_lock<std::mutex> hold(r.lock);
+        r.none.wait(hold, [&] { return r.calls == 0; });
+    }
+    base::wait_for_background();
 }
 
 }  // namespace
@@ -268,8 +421,12 @@ PYBIND11_MODULE(_figgen, m) {
         base::set_program_folder(
             (std::filesystem::path(self.dli_fname).parent_path() / FIGGEN_PACKAGE_TO_BINDIR).lexically_normal());
 
-    m.def("toml_text", [](const py::dict& description) { return toml_text(description); });
-    m.def("toml_value", [](const py::object& value) { return toml_text(value); });
+    // Whatever thread renders, and whichever library loads, is done before Python finalizes.
+    py::module_::import("atexit").attr("register")(py::cpp_function(&before_exit));
+
+    m.def("toml_text", [](const py::dict& description) { return py::bytes(toml_text(description, "")); });
+    m.def("toml_value",
+          [](const py::object& value, const std::string& name) { return py::bytes(toml_text(value, name)); });
     m.def("read_png", [](const std::string& path) {
         const render::Image image = without_gil([&] { return render::read_png(path).image; });
         return py::make_tuple(image.width, image.height,
@@ -309,29 +466,34 @@ PYBIND11_MODULE(_figgen, m) {
             out["source"] = d.source;
             out["scene"] = d.scene;
             out["seed"] = d.seed;
-            out["file"] = d.file;
+            // A file's name as Python's os functions give it (surrogateescape), never a UnicodeDecodeError.
+            out["file"] = py::reinterpret_steal<py::str>(
+                PyUnicode_DecodeFSDefaultAndSize(d.file.data(), static_cast<Py_ssize_t>(d.file.size())));
             out["sections"] = sections;
             return out;
         },
         py::arg("target"), py::arg("text") = py::none());
 
+    // render()'s arguments, each checked by figgen/__init__.py for its kind:
+    // seed and threads as decimal text, checked here as the command checks them.
     m.def("render", [](const std::string& target, std::optional<std::string> text, std::vector<std::string> overrides,
-                       std::optional<std::uint64_t> seed, std::vector<std::string> formats, std::string size,
-                       double scale, std::string gl, std::optional<int> threads, std::string out, py::object report) {
+                       std::optional<std::string> seed, std::vector<std::string> formats, std::string size,
+                       double scale, std::string gl, std::optional<std::string> threads, std::string out,
+                       py::object report) {
         app::RenderRequest request;
         request.target = target;
         request.text = std::move(text);
         request.settings.overrides = std::move(overrides);
-        request.settings.seed = seed;
         request.settings.formats = std::move(formats);
         request.settings.size = std::move(size);
         request.settings.scale = scale;
         request.settings.gl = std::move(gl);
-        request.settings.threads = threads;
         request.settings.out_dir = std::move(out);
         PythonProgress progress(std::move(report));
         const app::RenderResult result = without_gil(
             [&] {
+                if (seed) request.settings.seed = app::seed_option(*seed);
+                if (threads) request.settings.threads = app::threads_option(*threads);
                 return RenderThread::get().run<app::RenderResult>(
                     [&] { return app::render_request(request, progress); }, progress);
             },

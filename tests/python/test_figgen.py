@@ -244,14 +244,15 @@ def test_the_same_bits_as_the_command(figure, tmp_path):
 
 def test_a_bad_argument_names_the_argument():
     cases = [(dict(scale=9), "scale", "a number from 0.1 to 8"),
-             (dict(formats=("png", "gif")), "formats", "use png, pdf, svg"),
+             (dict(formats=("png", "gif")), "formats", "png, pdf, svg, mp4, webm, frames, vti"),
              (dict(threads=0), "threads", "an integer from 1 to 1024"),
              (dict(gl="vulkan"), "gl", "auto, osmesa, egl or egl-device")]
     for arguments, key, allowed in cases:
         with pytest.raises(figgen.SettingError) as caught:
             figgen.render("tc7-1", **arguments)
-        assert caught.value.key == key and allowed in str(caught.value)
-        assert caught.value.where == f"{key}={arguments[key]!r}"
+        e = caught.value
+        assert (e.key, e.value, e.allowed) == (key, repr(arguments[key]), allowed)
+        assert e.where == f"{key}={arguments[key]!r}"
     with pytest.raises(TypeError):
         figgen.render({"params": {"n": object()}})
     deep = []
@@ -259,3 +260,178 @@ def test_a_bad_argument_names_the_argument():
         deep = [deep]
     with pytest.raises(ValueError, match="at most 32 deep"):
         figgen.render({"params": {"n": deep}})
+
+
+def command_error(*args):
+    """The command's one line for a refused render, without its prefix and its "; see figgen --help"."""
+    out = [] if "--out" in args else ["--out", os.devnull + "/never"]  # never made: the mistake comes first
+    run = subprocess.run([FIGGEN, "render", *args, *out], capture_output=True)
+    assert run.returncode == 2 and run.stdout == b""
+    line = run.stderr.decode("utf-8").strip()
+    assert line.startswith("figgen: error: ") and "\n" not in line, line
+    return line[len("figgen: error: "):].removesuffix("; see figgen --help")
+
+
+# Each mistake as render()'s argument and as figgen render's option, each
+# naming it its own way, then the same words: (arguments, options, how
+# Python names it, how the command does, what is allowed).
+BIG = 2**70
+SAME_MISTAKES = [
+    (dict(seed=BIG), ["--seed", str(BIG)], f"seed={BIG}", f"--seed: {BIG}",
+     "an integer from 0 to 9223372036854775807"),
+    (dict(seed=2**64), ["--seed", str(2**64)], f"seed={2**64}", f"--seed: {2**64}",
+     "an integer from 0 to 9223372036854775807"),
+    (dict(seed=2**63), ["--seed", str(2**63)], f"seed={2**63}", f"--seed: {2**63}",
+     "an integer from 0 to 9223372036854775807"),
+    (dict(seed=-1), ["--seed", "-1"], "seed=-1", "--seed: -1", "an integer from 0 to 9223372036854775807"),
+    (dict(threads=-1), ["--threads", "-1"], "threads=-1", "--threads: -1", "an integer from 1 to 1024"),
+    (dict(threads=BIG), ["--threads", str(BIG)], f"threads={BIG}", f"--threads: {BIG}", "an integer from 1 to 1024"),
+    (dict(scale=0), ["--scale", "0"], "scale=0", "--scale 0", "a number from 0.1 to 8"),
+    (dict(scale=float("nan")), ["--scale", "nan"], "scale=nan", "--scale nan", "a number from 0.1 to 8"),
+    (dict(size="5"), ["--size", "5"], "size='5'", "--size 5", "WIDTHxHEIGHT, each 2..16384, e.g. 1200x600"),
+    (dict(size=(1, 5)), ["--size", "1x5"], "size=(1, 5)", "--size 1x5", "WIDTHxHEIGHT, each 2..16384, e.g. 1200x600"),
+    (dict(gl="foo"), ["--gl", "foo"], "gl='foo'", "--gl foo", "auto, osmesa, egl or egl-device"),
+    (dict(formats="xyz"), ["--format", "xyz"], "formats='xyz'", "--format: xyz",
+     "png, pdf, svg, mp4, webm, frames, vti"),
+    (dict(formats=["png", "xyz"]), ["--format", "png,xyz"], "formats=['png', 'xyz']: 'xyz'", "--format: xyz",
+     "png, pdf, svg, mp4, webm, frames, vti"),
+]
+
+
+@pytest.mark.parametrize("arguments, options, named, command_named, allowed", SAME_MISTAKES,
+                         ids=[c[2] for c in SAME_MISTAKES])
+def test_a_bad_argument_is_refused_in_the_commands_words(arguments, options, named, command_named, allowed, tmp_path):
+    said = command_error("tc7-1", *options)
+    assert said.startswith(command_named + " is not allowed: use " + allowed), said
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render("tc7-1", out=tmp_path / "out", **arguments)
+    e = caught.value
+    (key, given), = arguments.items()
+    assert str(e) == named + said[len(command_named):]
+    assert (e.key, e.value, e.allowed, e.where) == (key, repr(given), allowed, f"{key}={given!r}")
+    assert not (tmp_path / "out").exists()  # refused before anything was made
+
+
+def test_an_out_folder_figgen_cannot_make_is_refused_in_the_commands_words():
+    said = command_error("tc7-1", "--out", "/proc/figgen")
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render("tc7-1", out="/proc/figgen")
+    e = caught.value
+    assert said.startswith("--out /proc/figgen: cannot create the folder /proc/figgen")
+    assert str(e) == "out='/proc/figgen'" + said[len("--out /proc/figgen"):]
+    assert said.endswith("; allowed: a folder figgen can write")
+    assert (e.key, e.value, e.allowed, e.where) == ("out", "'/proc/figgen'", "a folder figgen can write",
+                                                  "out='/proc/figgen'")
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render("tc7-1", out="")
+    assert str(caught.value) == "out='' is empty: give the folder the figures go into, e.g. --out out"
+
+
+WRONG_KINDS = [
+    (dict(seed=1.5), "seed=1.5 is not allowed: use an integer or None, not float"),
+    (dict(seed="7"), "seed='7' is not allowed: use an integer or None, not str"),
+    (dict(seed=True), "seed=True is not allowed: use an integer or None, not bool"),
+    (dict(threads=2.0), "threads=2.0 is not allowed: use an integer or None, not float"),
+    (dict(formats=[1, 2]), 'formats=[1, 2] is not allowed: use format names ("png", or ["png", "mp4"]), not int'),
+    (dict(formats=5), 'formats=5 is not allowed: use format names ("png", or ["png", "mp4"]), not int'),
+    (dict(size=5), 'size=5 is not allowed: use (width, height) or "WxH", not int'),
+    (dict(size=(1.5, 2)), 'size=(1.5, 2) is not allowed: use (width, height) or "WxH" with integers, not float'),
+    (dict(scale="big"), "scale='big' is not allowed: use a number, not str"),
+    (dict(gl=5), 'gl=5 is not allowed: use "auto", "osmesa", "egl" or "egl-device", not int'),
+    (dict(out=5), "out=5 is not allowed: use a folder's path or None, not int"),
+    (dict(progress=5), "progress=5 is not allowed: use a callable(done, total, label) or a tqdm bar, not int"),
+    (dict(set=[("r", 1)]),
+     "set=[('r', 1)] is not allowed: use a dict {key: value} ({\"r\": 0.2, \"style.alpha\": 0.5}), not list"),
+    (dict(set={5: 1}), "set={5: 1} is not allowed: use a dict whose keys are text (\"r\", \"style.alpha\"), not int"),
+    (dict(set={"r": None}), "r: a description holds booleans, numbers, strings, lists and dicts, not NoneType"),
+]
+
+
+@pytest.mark.parametrize("arguments, message", WRONG_KINDS, ids=[m.split(" ")[0] for _, m in WRONG_KINDS])
+def test_an_argument_of_the_wrong_kind_is_a_type_error_naming_it(arguments, message, tmp_path):
+    with pytest.raises(TypeError) as caught:
+        figgen.render("tc7-1", **{"out": tmp_path / "out", **arguments})
+    assert str(caught.value) == message
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_figure_of_the_wrong_kind_is_a_type_error():
+    with pytest.raises(TypeError) as caught:
+        figgen.render(5)
+    assert str(caught.value) == ("figure=5 is not allowed: use a catalog id, a path to a description, its TOML text "
+                                 "or a dict, not int")
+    with pytest.raises(TypeError) as caught:
+        figgen.render({"scene": "diffusion", 5: 1})
+    assert str(caught.value) == "a description's keys are text, not int"
+
+
+def test_text_python_cannot_encode_is_refused_as_the_command_refuses_its_bytes():
+    """A lone surrogate has no UTF-8: as the bytes Python writes for it (ED A0 80), what the command says of them."""
+    said = command_error(b"\xed\xa0\x80")
+    assert said.startswith("unknown figure id '\\xED\\xA0\\x80'; closest: ")
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render("\ud800")
+    assert str(caught.value) == said and caught.value.key is None
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.describe("\ud800")
+    assert str(caught.value) == said
+    # A key: the command's words for --set with those bytes.
+    said = command_error("tc7-1", "--set", b"\xed\xa0\x80=1")
+    assert said.startswith("--set \\xED\\xA0\\x80=1: unknown key params.\\xED\\xA0\\x80; allowed: n, r, ")
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render("tc7-1", set={"\ud800": 1})
+    assert str(caught.value) == said and caught.value.key == "params.\\xED\\xA0\\x80"
+    # A value: refused as the reader refuses a string that is not UTF-8 text.
+    text_allowed = ("text of valid UTF-8 characters, without control characters other than tab and line breaks and "
+                    "without noncharacters (U+FDD0..U+FDEF, U+FFFE and U+FFFF of each plane)")
+    said = command_error("tc7-1", "--set", b'style.sampling="\xed\xa0\x80"')
+    assert said.startswith("--set style.sampling=") and "\\xED\\xA0\\x80" in said
+    assert said.endswith(" is not allowed: " + text_allowed)
+    for key in ("r", "style.sampling"):
+        with pytest.raises(figgen.SettingError) as caught:
+            figgen.render("tc7-1", set={key: "\ud800"})
+        e = caught.value
+        assert str(e) == f'{key} = "\\xED\\xA0\\x80" is not allowed: {text_allowed}'
+        assert (e.key, e.value, e.allowed, e.where) == (key, '"\\xED\\xA0\\x80"', text_allowed, f"set={key}='\\ud800'")
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render({"id": "\ud800", "scene": "diffusion"})
+    assert (caught.value.key, caught.value.where) == ("id", "<dict>")
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render("\ud800\n")  # a description's text
+    assert "pybind11" not in str(caught.value) and "Unable to cast" not in str(caught.value)
+
+
+def test_an_integer_toml_cannot_hold_is_refused_as_the_command_refuses_it():
+    said = command_error("tc7-1", "--set", f"n={BIG}")
+    assert said.startswith(f"--set n={BIG}: n = ") and said.endswith(" is not allowed: expected an integer")
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render("tc7-1", set={"n": BIG})
+    assert str(caught.value) == said
+    assert (caught.value.key, caught.value.where) == ("params.n", f"set=n={BIG}")
+    # Inside a list or a dict, where TOML has no text for it: the key and the integers allowed.
+    int64 = "an integer from -9223372036854775808 to 9223372036854775807"
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render("tc7-1", set={"figure.panels": [0, BIG]})
+    e = caught.value
+    assert str(e) == f"figure.panels[1] = {BIG} is not allowed: {int64}"
+    assert (e.key, e.value, e.allowed) == ("figure.panels[1]", str(BIG), int64)
+    assert e.where == f"set=figure.panels=[0, {BIG}]"
+    with pytest.raises(figgen.SettingError) as caught:
+        figgen.render({"scene": "diffusion", "params": {"n": -BIG}})
+    assert (caught.value.key, caught.value.value, caught.value.where) == ("params.n", str(-BIG), "<dict>")
+
+
+def test_numpy_integers_are_integers():
+    numpy = pytest.importorskip("numpy")
+    fig = figgen.render("tc7-1", scale=0.5, seed=numpy.int64(3), set={"n": numpy.int32(12)},
+                        size=(numpy.int64(400), 200))
+    assert (fig.metadata["seed"], fig.metadata["params"]["n"]) == (3, 12)
+
+
+def test_a_folder_whose_name_is_not_utf8(tmp_path):
+    folder = tmp_path / "caf\udce9"  # the byte E9, as Python names it (surrogateescape)
+    fig = figgen.render("tc7-1", scale=0.5, out=folder)
+    assert os.fsencode(fig.paths[0]) == os.fsencode(tmp_path) + b"/caf\xe9/tc7-1.png"
+    assert fig.metadata["id"] == "tc7-1"
+    numpy = pytest.importorskip("numpy")
+    assert fig.pixels.shape[2] == 4 and fig.pixels.dtype == numpy.uint8
