@@ -11,7 +11,7 @@ description::Description load_target(const std::string& target, const std::vecto
     switch (ready::file_kind(target)) {
     case ready::FileKind::image: return ready::load_pattern(target, overrides, seed, with_arrays);
     case ready::FileKind::mesh:
-        throw description::UsageError(description::printable(target) +
+        throw description::FileError(description::printable(target) +
                                       ": a Ready mesh pattern (.vtu); figgen runs Ready's image patterns (.vti), "
                                       "not meshes yet");
     case ready::FileKind::none: break;

@@ -20,6 +20,13 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// A file given as the figure that figgen cannot read as one: a Ready
+// pattern that is damaged, not a pattern, or of a kind figgen does not run
+// yet. A UsageError too (exit 2); Python raises it as figgen.FileError.
+struct FileError : UsageError {
+    using UsageError::UsageError;
+};
+
 // A setting that is not allowed: the one error every description key, scene
 // setting and model parameter check raises. It carries the key as the
 // description names it ("params.n", "params.plants[1].angle", "style.sides");

@@ -22,7 +22,11 @@ void write_number(std::ostream& out, double v) {
 
 void write_value(std::ostream& out, const toml::node& v) {
     if (const auto* s = v.as_string()) {
-        out << toml::toml_formatter{*s, string_flags};
+        // TOML drops a line break right after a multi-line string's """:
+        // a text that begins with one is written on one line, escaped.
+        const std::string& text = s->get();
+        const bool leading_break = !text.empty() && (text[0] == '\n' || text.compare(0, 2, "\r\n") == 0);
+        out << toml::toml_formatter{*s, leading_break ? toml::format_flags::allow_unicode_strings : string_flags};
     } else if (const auto* f = v.as_floating_point()) {
         write_number(out, f->get());
     } else if (const auto* i = v.as_integer()) {

@@ -212,7 +212,7 @@ template <class Call>
 auto without_gil(Call&& call, PythonProgress* progress = nullptr) -> decltype(call()) {
     std::optional<description::SettingError> setting;
     std::optional<app::OptionError> option;
-    std::optional<std::string> usage, failure;
+    std::optional<std::string> usage, failure, file;
     try {
         const Counted counted;  // destroyed after `released`: with the GIL
         py::gil_scoped_release released;
@@ -221,6 +221,8 @@ auto without_gil(Call&& call, PythonProgress* progress = nullptr) -> decltype(ca
         setting = e;
     } catch (const app::OptionError& e) {
         option = e;
+    } catch (const description::FileError& e) {
+        file = e.what();
     } catch (const description::UsageError& e) {
         usage = e.what();
     } catch (const std::exception& e) {
@@ -230,6 +232,11 @@ auto without_gil(Call&& call, PythonProgress* progress = nullptr) -> decltype(ca
     if (setting)
         raise_setting_error(setting->what(), setting->key(), setting->value(), setting->allowed(), setting->where());
     if (option) raise_option_error(*option);
+    if (file) {  // a pattern file figgen cannot read: figgen.FileError, its message the command's line
+        py::object error = error_class("FileError")(python_text(*file, description::printable_most));
+        PyErr_SetObject(error.get_type().ptr(), error.ptr());
+        throw py::error_already_set();
+    }
     // A usage error that names no key (an unknown figure id): a ValueError too, with no key.
     if (usage) raise_setting_error(*usage);
     raise_render_error(*failure);

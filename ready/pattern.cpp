@@ -765,9 +765,9 @@ Pattern read_pattern(const std::filesystem::path& file, const ReadOptions& optio
     try {
         return read(read_file(file), file, options);
     } catch (const Refused& e) {
-        throw description::UsageError(printable(file.string()) + ": " + e.what());
+        throw description::FileError(printable(file.string()) + ": " + e.what());
     } catch (const std::bad_alloc&) {
-        throw description::UsageError(printable(file.string()) + ": too large to read");
+        throw description::FileError(printable(file.string()) + ": too large to read");
     }
 }
 
@@ -776,9 +776,9 @@ Pattern read_pattern_text(const std::string& text, const std::filesystem::path& 
         if (text.size() > max_pattern_bytes) throw Refused("a pattern file is at most 256 MiB; this one is larger");
         return read(text, file, options);
     } catch (const Refused& e) {
-        throw description::UsageError(printable(file.string()) + ": " + e.what());
+        throw description::FileError(printable(file.string()) + ": " + e.what());
     } catch (const std::bad_alloc&) {
-        throw description::UsageError(printable(file.string()) + ": too large to read");
+        throw description::FileError(printable(file.string()) + ": too large to read");
     }
 }
 

@@ -57,7 +57,7 @@ struct ReadOptions {
     bool decode_arrays = false;  // read the stored arrays, when Ready starts from them
 };
 
-// Reads `file`. Panels at 0, steps/2 and steps. Throws UsageError, naming
+// Reads `file`. Panels at 0, steps/2 and steps. Throws FileError, naming
 // the file, for a pattern that cannot be read or that figgen cannot run
 // (3-D or 1-D, a mesh, a kernel or inbuilt rule, an unknown encoding), in
 // one line that says what is not supported.

@@ -26,7 +26,7 @@ import weakref
 
 from . import _figgen
 
-__all__ = ["catalog", "describe", "render", "Figure", "SettingError", "RenderError"]
+__all__ = ["catalog", "describe", "render", "Figure", "SettingError", "FileError", "RenderError"]
 
 
 class SettingError(ValueError):
@@ -44,6 +44,17 @@ class SettingError(ValueError):
         self.value = value
         self.allowed = allowed
         self.where = where
+
+
+class FileError(SettingError):
+    """A file given as the figure that figgen cannot read as one: a Ready
+    pattern (.vti) that is damaged, not a pattern, or of a kind figgen does
+    not run yet (a mesh, .vtu). Its message is the command's one line, which
+    names the file and what is wrong; key is None.
+    """
+
+    def __init__(self, message):
+        super().__init__(message)
 
 
 class RenderError(RuntimeError):

@@ -435,3 +435,40 @@ def test_a_folder_whose_name_is_not_utf8(tmp_path):
     assert fig.metadata["id"] == "tc7-1"
     numpy = pytest.importorskip("numpy")
     assert fig.pixels.shape[2] == 4 and fig.pixels.dtype == numpy.uint8
+
+
+VTI = pathlib.Path(__file__).parent.parent / "ready" / "vti"
+
+
+def test_a_damaged_pattern_is_a_file_error_with_the_commands_words(tmp_path):
+    # Issue 46: zlib block sizes 2**63 and 2**63 + L, which wrap to L, once
+    # read 2**63 bytes past the data and killed the interpreter.
+    text = bytearray((VTI / "appended-raw-zlib-f32.vti").read_bytes())
+    at = text.index(b"_", text.index(b"<AppendedData")) + 1
+    words = [int.from_bytes(text[at + 8 * i:at + 8 * i + 8], "little") for i in range(6)]
+    assert words[0] == 3
+    words[3], words[4] = 2**63, (2**63 + words[3] + words[4]) % 2**64
+    text[at:at + 48] = b"".join(w.to_bytes(8, "little") for w in words)
+    damaged = tmp_path / "wrap.vti"
+    damaged.write_bytes(bytes(text))
+    with pytest.raises(figgen.FileError) as raised:
+        figgen.render(damaged, out=tmp_path / "out")
+    said = command("render", str(damaged), "--out", str(tmp_path / "out"))
+    assert said.returncode == 2
+    assert str(raised.value) == said.stderr.strip().removeprefix("figgen: error: ")
+    assert "a compressed block's size is 9223372036854775808 bytes" in str(raised.value)
+    assert isinstance(raised.value, figgen.SettingError) and raised.value.key is None
+    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+    mesh = tmp_path / "bunny.vtu"
+    mesh.write_text("<VTKFile type='UnstructuredGrid'/>")
+    with pytest.raises(figgen.FileError, match="not meshes yet"):
+        figgen.describe(mesh)
+
+
+def test_describe_reads_a_pattern_file():
+    d = figgen.describe(VTI / "binary-zlib-f64.vti")
+    assert d["id"] == "binary-zlib-f64"
+    assert d["scene"] == "formula"
+    params = {k["key"]: k["value"] for k in d["settings"]["params"]}
+    assert params["D"] == 0.5
+    assert params["data_type"] == "double"
