@@ -19,6 +19,7 @@
 #include "description/integer_text.hpp"
 #include "description/plain_name.hpp"
 #include "app/targets.hpp"
+#include "ready/pattern.hpp"
 #include "media/media.hpp"
 #include "render/gl/gl_context.hpp"
 #include "render/vector/vector.hpp"
@@ -174,13 +175,16 @@ CheckedFigure check_target(const std::string& target, const std::optional<std::s
     const std::vector<std::string> assignments = overrides_of(s);
     auto d = std::make_unique<Description>(
         text ? description::parse_description(*text, target, assignments, s.seed)
-        : load_target(target, assignments, s.seed));
+        : load_target(target, assignments, s.seed, false));
     if (options.vti && d->scene != "formula")
         throw UsageError("--format vti: " + d->id + " is a " + d->scene +
                          " figure; a VTI file holds a formula model's chemicals (scene = \"formula\")");
     if (!s.cmap.empty()) scenes::apply_colormap(*d, s.cmap);
     if (s.fps && d->animation) d->animation->fps = *s.fps;
     auto scene = check_figure(*d, options);
+    // A pattern's stored arrays, decoded once its figure and its memory
+    // estimate (which counts them) have passed; the scene holds `*d`.
+    if (!text && ready::file_kind(target) == ready::FileKind::image) ready::decode_stored_start(*d);
     return {std::move(d), std::move(scene)};
 }
 

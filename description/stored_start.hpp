@@ -6,11 +6,15 @@
 
 namespace description {
 
-// The chemicals a file stores, a, b, c, ... in order.
+// The chemicals a file stores, a, b, c, ... in order. Known by their
+// shape first (the figure is checked, its memory estimated), decoded only
+// once that passed (app/targets.hpp).
 struct StoredStart {
     int width = 0, height = 0;
-    bool float64 = false;  // Float64 arrays (else Float32)
-    std::vector<std::vector<double>> chemicals;  // width * height values each, x fastest, row y = 0 first
+    int chemical_count = 0;  // how many the file stores
+    bool float64 = false;    // Float64 arrays (else Float32)
+    std::vector<std::vector<double>> chemicals;  // width * height values each, x fastest, row y = 0 first; empty until decoded
+    bool decoded() const { return !chemicals.empty(); }
 };
 
 }  // namespace description

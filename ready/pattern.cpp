@@ -560,6 +560,15 @@ std::string no_arrays(int chemicals) {
            std::to_string(chemicals) + " components";
 }
 
+std::shared_ptr<description::StoredStart> start_shape(const StoredArrays& stored, const Grid& grid, int chemicals) {
+    auto start = std::make_shared<description::StoredStart>();
+    start->width = static_cast<int>(grid.width);
+    start->height = static_cast<int>(grid.height);
+    start->chemical_count = chemicals;
+    start->float64 = stored.float64;
+    return start;
+}
+
 std::shared_ptr<description::StoredStart> decode_start(const StoredArrays& stored, const ArrayReader& reader,
                                                        const Grid& grid, int chemicals) {
     const double bytes = 8.0 * static_cast<double>(reader.cells) * chemicals;
@@ -568,10 +577,7 @@ std::shared_ptr<description::StoredStart> decode_start(const StoredArrays& store
                       " MiB as doubles: figgen reads at most " + std::to_string(max_start_bytes >> 20) +
                       " MiB of a pattern's arrays");
     if (!stored.found()) throw Refused(no_arrays(chemicals));
-    auto start = std::make_shared<description::StoredStart>();
-    start->width = static_cast<int>(grid.width);
-    start->height = static_cast<int>(grid.height);
-    start->float64 = stored.float64;
+    auto start = start_shape(stored, grid, chemicals);
     if (!stored.named.empty()) {
         for (const XMLElement* a : stored.named) start->chemicals.push_back(reader.read(a, 1, start->float64));
         return start;
@@ -640,8 +646,9 @@ Pattern read(const std::string& text, const std::filesystem::path& file, const R
     if (out.starts_from_arrays && options.decode_arrays) {
         const ArrayReader reader{vtk, p.raw, enc, static_cast<std::uint64_t>(grid.width * grid.height)};
         out.start = decode_start(stored, reader, grid, rule.chemicals);
-    } else if (out.starts_from_arrays && !stored.found()) {
-        throw Refused(no_arrays(rule.chemicals));
+    } else if (out.starts_from_arrays) {
+        if (!stored.found()) throw Refused(no_arrays(rule.chemicals));
+        out.start = start_shape(stored, grid, rule.chemicals);  // its shape alone: nothing decoded
     }
 
     const int steps = options.steps.value_or(1000);
@@ -789,6 +796,15 @@ description::Description load_pattern(const std::filesystem::path& file, const s
         description::description_from_table(std::move(pattern.description), file, std::move(pattern.origins), overrides, seed);
     d.stored_start = pattern.start;
     return d;
+}
+
+void decode_stored_start(description::Description& d) {
+    if (!d.stored_start || d.stored_start->decoded()) return;
+    const Pattern pattern = read_pattern(d.file, {std::nullopt, true});
+    if (!pattern.start || pattern.start->width != d.stored_start->width ||
+        pattern.start->height != d.stored_start->height)
+        throw description::FileError(printable(d.file.string()) + ": changed while figgen read it");
+    d.stored_start = pattern.start;
 }
 
 std::string converted_text(const Pattern& pattern, const std::filesystem::path& file) {

@@ -40,8 +40,9 @@ struct Pattern {
     // as description::Description::origins.
     std::map<std::string, std::string> origins;
     std::vector<std::string> notes;  // what a converted description says in comments
-    // The stored arrays when Ready starts from them and they were asked
-    // for; else null (the description's overlays make the start).
+    // The stored arrays when Ready starts from them: decoded when they
+    // were asked for, else their shape alone; null when Ready does not
+    // start from them (the description's overlays make the start).
     std::shared_ptr<const description::StoredStart> start;
     bool starts_from_arrays = false;  // whether Ready starts from the stored arrays
 };
@@ -62,6 +63,11 @@ struct ReadOptions {
 // (3-D or 1-D, a mesh, a kernel or inbuilt rule, an unknown encoding), in
 // one line that says what is not supported.
 Pattern read_pattern(const std::filesystem::path& file, const ReadOptions& options = {});
+
+// The arrays `d` (read by load_pattern without them) starts from,
+// decoded from its file now: after its figure was checked and its memory
+// estimated. Throws FileError for arrays that do not decode.
+void decode_stored_start(description::Description& d);
 
 // The same from the file's text, read already; `file` names it.
 Pattern read_pattern_text(const std::string& text, const std::filesystem::path& file, const ReadOptions& options = {});

@@ -304,7 +304,7 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
         m.pattern.overlays.push_back(overlay_schema.read(s, overlay).overlay);
     }
     if (const auto& stored = d.stored_start) {
-        const auto chemicals = static_cast<int>(stored->chemicals.size());
+        const int chemicals = stored->chemical_count;
         if (chemicals != r.chemicals)
             params.refuse("chemicals", "the pattern's " + std::to_string(chemicals) + ", the arrays its file stores");
         if (stored->width != m.width) params.refuse("width", "the pattern's " + std::to_string(stored->width) + ", its stored arrays'");
@@ -319,9 +319,11 @@ std::vector<sim::Grid<double>> formula_start(const FormulaModel& m, const Descri
                                          sim::Grid<double>(m.height, m.width, 0.0));
     // The arrays a Ready pattern stores, when it starts from them; the
     // overlays, if any, go on top (after zeroing, if zero_first).
-    if (const auto& stored = d.stored_start)
+    if (const auto& stored = d.stored_start) {
+        if (!stored->decoded()) throw std::logic_error("a pattern's stored arrays were not decoded before its run");
         for (std::size_t c = 0; c < start.size(); ++c)
             std::copy(stored->chemicals[c].begin(), stored->chemicals[c].end(), start[c].data());
+    }
     if (!d.stored_start || !m.pattern.overlays.empty()) {
         sim::Random rng(d.seed);
         formula::apply_pattern(m.pattern, start, m.rule.parameters, m.rule.double_precision, rng);
