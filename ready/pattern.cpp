@@ -15,6 +15,7 @@
 #include "description/integer_text.hpp"
 #include "description/plain_name.hpp"
 #include "description/toml_writer.hpp"
+#include "ready/reading.hpp"
 #include "ready/vtk_arrays.hpp"
 #include "sim/formula.hpp"
 #include "sim/formula_names.hpp"
@@ -22,6 +23,7 @@
 namespace ready {
 namespace {
 
+using namespace reading;
 using description::printable;
 using description::printable_short;
 using tinyxml2::XMLElement;
@@ -30,103 +32,6 @@ using tinyxml2::XMLElement;
 const char* const scene_keys[] = {"chemicals", "formula", "accuracy", "wrap",  "data_type", "block_x",
                                   "ready_edges", "width", "height",   "steps", "zero_first", "initial"};
 
-// What goes wrong in a file, before the file's name is put in front.
-struct Refused : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-std::string trimmed(const char* text) {
-    std::string s = text ? text : "";
-    const auto space = [](unsigned char c) { return std::isspace(c) != 0; };
-    s.erase(s.begin(), std::find_if_not(s.begin(), s.end(), space));
-    s.erase(std::find_if_not(s.rbegin(), s.rend(), space).base(), s.end());
-    return s;
-}
-
-// The lines after the first without the indentation they share (the XML's).
-std::string dedented(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    std::size_t common = std::string::npos;
-    for (std::size_t i = 1; i < lines.size(); ++i) {
-        const std::size_t indent = lines[i].find_first_not_of(" \t");
-        if (indent != std::string::npos) common = std::min(common, indent);
-    }
-    std::string out;
-    for (std::size_t i = 0; i < lines.size(); ++i) {
-        const bool cut = i > 0 && common != std::string::npos && lines[i].size() >= common;
-        if (i > 0) out += '\n';
-        out.append(lines[i], cut ? common : 0, std::string::npos);
-    }
-    return out;
-}
-
-// "<formula number_of_chemicals>", "<param name=\"k\">": an element, and
-// its attribute, as messages name them.
-std::string element(const XMLElement* e, const char* attribute = nullptr) {
-    return "<" + printable_short(e->Name(), 40) + (attribute ? std::string(" ") + attribute : "") + ">";
-}
-
-double number(const char* text, const std::string& what) {
-    const std::string s = trimmed(text);
-    double v = 0;
-    const char* from = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0);
-    const auto [end, ec] = std::from_chars(from, s.data() + s.size(), v);
-    if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
-        throw Refused(what + " is \"" + printable_short(s) + "\", not a finite number");
-    return v;
-}
-
-double attribute(const XMLElement* e, const char* name, std::optional<double> fallback = std::nullopt) {
-    const char* text = e->Attribute(name);
-    if (!text) {
-        if (fallback) return *fallback;
-        throw Refused(element(e) + " has no " + name);
-    }
-    return number(text, element(e, name));
-}
-
-// An integer attribute from `low` to `high`, refused as written otherwise.
-long long integer(const XMLElement* e, const char* name, long long fallback, long long low, long long high) {
-    const char* text = e->Attribute(name);
-    if (!text) return fallback;
-    const std::string s = trimmed(text);
-    if (const auto v = description::integer_text(s, low, high)) return *v;
-    throw Refused(element(e, name) + " is \"" + printable_short(s) + "\", not an integer from " + std::to_string(low) +
-                  " to " + std::to_string(high));
-}
-
-std::string text_attribute(const XMLElement* e, const char* name, const std::string& fallback) {
-    const char* text = e->Attribute(name);
-    return text ? trimmed(text) : fallback;
-}
-
-// Ready holds its parameters and overlay numbers as float: the value as
-// the shortest decimal of that float. A value past float's range is kept
-// as given, for the scene to refuse as it was written.
-double as_float(double v) {
-    if (std::fabs(v) > std::numeric_limits<float>::max()) return v;
-    const float f = static_cast<float>(v);
-    char text[32];
-    const auto [end, ec] = std::to_chars(text, text + sizeof text, f);
-    double out = 0;
-    std::from_chars(text, end, out);
-    return out;
-}
-
-// Text a description may hold: as given when it is text, else escaped.
-std::string as_text(const std::string& s, std::size_t most) {
-    return description::is_text(s) && s.size() <= most ? s : printable_short(s, most);
-}
-
-const XMLElement* child(const XMLElement* e, const char* name) { return e ? e->FirstChildElement(name) : nullptr; }
-
-const XMLElement* required(const XMLElement* e, const char* name) {
-    const XMLElement* c = child(e, name);
-    if (!c) throw Refused("no <" + std::string(name) + "> in " + element(e));
-    return c;
-}
 
 std::string read_file(const std::filesystem::path& file) {
     std::error_code ec;
@@ -169,11 +74,6 @@ void parse(const std::string& text, Parsed& p) {
 }
 
 // --- the file's parts, each read on its own --------------------------------
-
-// The grid: <ImageData WholeExtent>, 2-D.
-struct Grid {
-    long long width = 0, height = 0;
-};
 
 Grid grid_of(const XMLElement* image) {
     std::array<long long, 6> extent{};
@@ -253,187 +153,6 @@ std::optional<std::set<std::string>> names_read(const std::string& code) {
     }
 }
 
-toml::array point(const XMLElement* p) {
-    return toml::array{as_float(attribute(p, "x")), as_float(attribute(p, "y")), as_float(attribute(p, "z"))};
-}
-
-// The nested point elements (point3D, any case) in order.
-std::vector<const XMLElement*> points(const XMLElement* e, std::size_t count) {
-    std::vector<const XMLElement*> out;
-    for (const XMLElement* c = e->FirstChildElement(); c && out.size() <= count; c = c->NextSiblingElement())
-        out.push_back(c);
-    if (out.size() != count)
-        throw Refused(element(e) + " needs " + std::to_string(count) + " nested point3D elements");
-    return out;
-}
-
-// A fill's numbers (Ready's attribute, figgen's key, Ready's default if it
-// has one) and its nested points, in order.
-struct Number {
-    const char* attribute;
-    const char* key;
-    std::optional<double> fallback;
-};
-struct FillKeys {
-    const char* fill;
-    std::vector<Number> numbers;
-    std::vector<const char*> points;
-};
-const FillKeys fill_keys[] = {
-    {"constant", {{"value", "value", {}}}, {}},
-    {"white_noise", {{"low", "low", {}}, {"high", "high", {}}}, {}},
-    {"perlin_noise", {{"scale", "scale", 64}}, {}},
-    {"linear_gradient", {{"val1", "val1", {}}, {"val2", "val2", {}}}, {"from", "to"}},
-    {"radial_gradient", {{"val1", "val1", {}}, {"val2", "val2", {}}}, {"from", "to"}},
-    {"gaussian", {{"height", "height", {}}, {"sigma", "sigma", {}}}, {"centre"}},
-    {"sine", {{"phase", "phase", {}}, {"amplitude", "amplitude", {}}}, {"from", "to"}},
-    {"other_chemical", {}, {}},
-    {"parameter", {}, {}},
-};
-
-bool is_chemical(const std::string& name, int chemicals) {
-    return name.size() == 1 && name[0] >= 'a' && name[0] < 'a' + chemicals;
-}
-
-void read_fill(const XMLElement* e, int chemicals, toml::table& t, std::set<std::string>& parameters_used) {
-    const std::string name = e->Name();
-    t.insert_or_assign("fill", name);
-    for (const FillKeys& f : fill_keys) {
-        if (name != f.fill) continue;
-        for (const Number& n : f.numbers) t.insert(n.key, as_float(attribute(e, n.attribute, n.fallback)));
-        if (!f.points.empty()) {
-            const auto p = points(e, f.points.size());
-            for (std::size_t k = 0; k < p.size(); ++k) t.insert(f.points[k], point(p[k]));
-        }
-    }
-    if (name == "perlin_noise") t.insert("octaves", integer(e, "num_octaves", 8, 1, 16));
-    if (name == "other_chemical") {
-        const std::string other = text_attribute(e, "chemical", "");
-        if (!is_chemical(other, chemicals))
-            throw Refused("an overlay's <other_chemical chemical> is \"" + printable_short(other) +
-                          "\", not one of the rule's");
-        t.insert("other", other);
-    } else if (name == "parameter") {
-        const std::string p = text_attribute(e, "name", "");
-        if (!description::is_text(p)) throw Refused("an overlay's <parameter name> is not " + std::string(description::text_allowed));
-        t.insert("parameter", p);  // data: the scene checks it names one of the rule's parameters
-        parameters_used.insert(p);
-    }
-}
-
-// One shape of an overlay, or nothing when it can never apply to a 2-D grid.
-std::optional<toml::table> read_shape(const XMLElement* e) {
-    const std::string name = e->Name();
-    toml::table s{{"shape", name}};
-    if (name == "rectangle") {
-        const auto p = points(e, 2);
-        s.insert("from", point(p[0]));
-        s.insert("to", point(p[1]));
-    } else if (name == "circle") {
-        s.insert("radius", as_float(attribute(e, "radius")));
-        s.insert("centre", point(points(e, 1)[0]));
-    } else if (name == "pixel") {
-        const double x = attribute(e, "x"), y = attribute(e, "y"), z = attribute(e, "z", 0);
-        if (z != 0 || x < 0 || y < 0 || x > 1e6 || y > 1e6) return std::nullopt;  // never a cell of a 2-D grid
-        s.insert("at", toml::array{static_cast<std::int64_t>(x), static_cast<std::int64_t>(y)});
-    }
-    return s;
-}
-
-// One <overlay> as a table of params.initial, or nothing when it can never apply.
-std::optional<toml::table> overlay(const XMLElement* o, int chemicals, std::set<std::string>& parameters_used) {
-    toml::table t;
-    const std::string chemical = text_attribute(o, "chemical", "");
-    if (!is_chemical(chemical, chemicals))
-        throw Refused("an <overlay chemical> is \"" + printable_short(chemical) + "\", not one of the rule's");
-    t.insert("chemical", chemical);
-    static const std::set<std::string> operations = {"overwrite", "add", "subtract", "multiply", "divide"};
-    static const std::set<std::string> shape_names = {"everywhere", "rectangle", "circle", "pixel"};
-    toml::array shapes;
-    bool has_operation = false, has_fill = false, any_shape = false;
-    for (const XMLElement* e = o->FirstChildElement(); e; e = e->NextSiblingElement()) {
-        const std::string name = e->Name();
-        const bool fill = std::any_of(std::begin(fill_keys), std::end(fill_keys),
-                                      [&](const FillKeys& f) { return name == f.fill; });
-        if (operations.count(name)) {
-            t.insert_or_assign("operation", name);
-            has_operation = true;
-        } else if (fill) {
-            read_fill(e, chemicals, t, parameters_used);
-            has_fill = true;
-        } else if (shape_names.count(name)) {
-            any_shape = true;
-            if (auto s = read_shape(e)) shapes.push_back(std::move(*s));
-        } else {
-            throw Refused("an <overlay> holds " + element(e) + ", which Ready's overlays do not know");
-        }
-    }
-    if (!has_operation || !has_fill || !any_shape)
-        throw Refused("an <overlay> needs an operation, a fill and a shape, as Ready's do");
-    if (shapes.empty()) return std::nullopt;
-    t.insert("shapes", std::move(shapes));
-    return t;
-}
-
-std::string hex(double r, double g, double b) {
-    char text[8];
-    const auto c = [](double v) { return static_cast<int>(std::lround(std::clamp(v, 0.0, 1.0) * 255)); };
-    std::snprintf(text, sizeof text, "#%02x%02x%02x", c(r), c(g), c(b));
-    return text;
-}
-
-// [style] from Ready's render_settings: the active chemical through
-// Ready's colour map from low to high.
-toml::table style_of(const XMLElement* rs, int chemicals) {
-    const auto value = [&](const char* name) -> const XMLElement* { return child(rs, name); };
-    std::string active = "a";
-    if (const XMLElement* e = value("active_chemical")) active = text_attribute(e, "value", "a");
-    if (!is_chemical(active, chemicals)) active = "a";
-    double low = 0, high = 1;
-    if (const XMLElement* e = value("low")) low = as_float(attribute(e, "value", 0));
-    if (const XMLElement* e = value("high")) high = as_float(attribute(e, "value", 1));
-    if (!(high > low)) high = low + 1;
-    std::string map = "spectral";
-    if (const XMLElement* e = value("colormap")) map = text_attribute(e, "value", map);
-    bool bar = true;
-    if (const XMLElement* e = value("show_color_scale")) bar = text_attribute(e, "value", "true") == "true";
-    toml::table s{{"show", toml::array{active}}};
-    const std::string p = active + "_";
-    // Brewer's Spectral (9), red to blue, and Ready's terrain.
-    static const std::vector<std::string> spectral = {"#d53e4f", "#f46d43", "#fdae61", "#fee08b", "#ffffbf",
-                                                      "#e6f598", "#abdda4", "#66c2a5", "#3288bd"};
-    static const std::vector<std::string> terrain = {"#333399", "#0099ff", "#00cc66", "#ffff99", "#805c54", "#ffffff"};
-    std::vector<std::string> colours;
-    std::string blend = "rgb";
-    bool reverse = false;
-    if (map == "HSV blend") {
-        double r = 0, g = 0, b = 1, r2 = 1, g2 = 0, b2 = 0;
-        if (const XMLElement* e = value("color_low")) r = attribute(e, "r", 0), g = attribute(e, "g", 0), b = attribute(e, "b", 1);
-        if (const XMLElement* e = value("color_high")) r2 = attribute(e, "r", 1), g2 = attribute(e, "g", 0), b2 = attribute(e, "b", 0);
-        colours = {hex(r, g, b), hex(r2, g2, b2)};
-        blend = "hsv";
-    } else if (map == "inferno" || map == "inferno reversed") {
-        s.insert(p + "colormap", "inferno");
-    } else if (map == "terrain" || map == "terrain reversed") {
-        colours = terrain;
-        reverse = map == "terrain reversed";
-    } else {  // spectral, Ready's default: blue at low; "spectral reversed": red at low
-        colours = spectral;
-        reverse = map != "spectral reversed";
-    }
-    if (reverse) std::reverse(colours.begin(), colours.end());
-    if (!colours.empty()) {
-        toml::array list;
-        for (const auto& c : colours) list.push_back(c);
-        s.insert(p + "colours", std::move(list));
-        s.insert(p + "blend", blend);
-    }
-    s.insert(p + "vmin", low);
-    s.insert(p + "vmax", high);
-    s.insert(p + "colour_bar", bar);
-    s.insert(p + "sampling", "nearest");
-    return s;
-}
 
 // Ready's description: its HTML tags out, its lines joined, no control characters.
 std::string plain_text(const char* html) {
@@ -462,132 +181,6 @@ std::string plain_id(const std::string& stem) {
     while (id.find("..") != std::string::npos) id.replace(id.find(".."), 2, "_.");
     if (id.size() > 100) id.resize(100);
     return id.empty() ? "pattern" : id;
-}
-
-// The stored arrays: a, b, ... in PointData, as Ready names them; or, as
-// its older files have it, one array of a component per chemical.
-struct StoredArrays {
-    std::vector<const XMLElement*> named;  // a, b, ... in order
-    const XMLElement* components = nullptr;
-    bool float64 = false;
-    bool found() const { return !named.empty() || components; }
-};
-
-StoredArrays stored_arrays(const XMLElement* piece, int chemicals) {
-    StoredArrays s;
-    std::vector<const XMLElement*> all;
-    for (const XMLElement* a = child(child(piece, "PointData"), "DataArray"); a; a = a->NextSiblingElement("DataArray"))
-        all.push_back(a);
-    for (int c = 0; c < chemicals; ++c)
-        for (const XMLElement* a : all)
-            if (text_attribute(a, "Name", "") == sim::formula::chemical_name(c)) {
-                s.named.push_back(a);
-                break;
-            }
-    if (static_cast<int>(s.named.size()) != chemicals || static_cast<int>(all.size()) != chemicals) s.named.clear();
-    if (s.named.empty() && all.size() == 1 && integer(all[0], "NumberOfComponents", 1, 1, 64) == chemicals)
-        s.components = all[0];
-    // The number type is the arrays' (Ready's too), whether or not they are decoded.
-    if (s.found()) s.float64 = text_attribute(s.named.empty() ? s.components : s.named[0], "type", "") == "Float64";
-    return s;
-}
-
-// The file's arrays, decoded whichever way VTK wrote them.
-struct ArrayReader {
-    const XMLElement* vtk;
-    const std::string& raw;  // appended raw data
-    vtk::Encoding enc;
-    std::uint64_t cells;
-
-    // `array`'s values, `components` a cell; sets `float64` to its type.
-    std::vector<double> read(const XMLElement* array, int components, bool& float64) const {
-        const std::string name = "<DataArray Name=\"" + printable_short(text_attribute(array, "Name", ""), 20) + "\">";
-        const std::string t = text_attribute(array, "type", "");
-        if (t != "Float32" && t != "Float64")
-            throw Refused(name + " is type \"" + printable_short(t, 20) + "\": figgen reads Float32 and Float64");
-        float64 = t == "Float64";
-        const std::uint64_t count = cells * static_cast<std::uint64_t>(components);
-        const std::uint64_t bytes = count * (float64 ? 8 : 4);
-        const std::string format = text_attribute(array, "format", "ascii");
-        const std::string_view text = array->GetText() ? array->GetText() : "";
-        std::vector<double> values;
-        try {
-            if (format == "ascii") {
-                values = vtk::decode_ascii(text, count, float64);
-            } else if (format == "binary") {
-                values = vtk::numbers_of(vtk::decode_base64(text, enc, bytes), float64);
-            } else if (format == "appended") {
-                values = appended(array, name, bytes, float64);
-            } else {
-                throw Refused(name + "'s format is \"" + printable_short(format, 20) +
-                              "\": figgen reads ascii, binary and appended");
-            }
-        } catch (const vtk::DataError& e) {
-            throw Refused(name + ": " + e.what());
-        }
-        for (double v : values)
-            if (!std::isfinite(v)) throw Refused(name + " holds a value that is not a finite number");
-        return values;
-    }
-
-    std::vector<double> appended(const XMLElement* array, const std::string& name, std::uint64_t bytes,
-                                 bool float64) const {
-        const XMLElement* data = child(vtk, "AppendedData");
-        if (!data) throw Refused(name + " is appended, but there is no <AppendedData>");
-        const std::string offset_text = text_attribute(array, "offset", "");
-        const auto offset = description::integer_text(offset_text, 0, std::numeric_limits<long long>::max());
-        if (!offset) throw Refused(name + "'s offset is \"" + printable_short(offset_text, 20) + "\", not an integer >= 0");
-        const std::string encoding = text_attribute(data, "encoding", "");
-        if (encoding == "raw") {
-            if (static_cast<unsigned long long>(*offset) > raw.size()) throw Refused(name + "'s offset is past the data");
-            const std::string_view from = std::string_view(raw).substr(static_cast<std::size_t>(*offset));
-            return vtk::numbers_of(vtk::decode_raw(from, enc, bytes), float64);
-        }
-        if (encoding == "base64") {
-            std::string_view text = data->GetText() ? data->GetText() : "";
-            const std::size_t mark = text.find('_');
-            if (mark == std::string_view::npos) throw Refused("<AppendedData> has no '_' before its data");
-            text.remove_prefix(mark + 1);
-            if (static_cast<unsigned long long>(*offset) > text.size()) throw Refused(name + "'s offset is past the data");
-            return vtk::numbers_of(vtk::decode_base64(text.substr(static_cast<std::size_t>(*offset)), enc, bytes), float64);
-        }
-        throw Refused("<AppendedData encoding> is \"" + printable_short(encoding, 20) + "\": figgen reads raw and base64");
-    }
-};
-
-std::string no_arrays(int chemicals) {
-    return "it starts from its stored arrays, but holds neither arrays a, b, ... nor one of " +
-           std::to_string(chemicals) + " components";
-}
-
-std::shared_ptr<description::StoredStart> start_shape(const StoredArrays& stored, const Grid& grid, int chemicals) {
-    auto start = std::make_shared<description::StoredStart>();
-    start->width = static_cast<int>(grid.width);
-    start->height = static_cast<int>(grid.height);
-    start->chemical_count = chemicals;
-    start->float64 = stored.float64;
-    return start;
-}
-
-std::shared_ptr<description::StoredStart> decode_start(const StoredArrays& stored, const ArrayReader& reader,
-                                                       const Grid& grid, int chemicals) {
-    const double bytes = 8.0 * static_cast<double>(reader.cells) * chemicals;
-    if (bytes > static_cast<double>(max_start_bytes))
-        throw Refused("its stored arrays would take " + std::to_string(static_cast<long long>(bytes / (1 << 20))) +
-                      " MiB as doubles: figgen reads at most " + std::to_string(max_start_bytes >> 20) +
-                      " MiB of a pattern's arrays");
-    if (!stored.found()) throw Refused(no_arrays(chemicals));
-    auto start = start_shape(stored, grid, chemicals);
-    if (!stored.named.empty()) {
-        for (const XMLElement* a : stored.named) start->chemicals.push_back(reader.read(a, 1, start->float64));
-        return start;
-    }
-    const std::vector<double> v = reader.read(stored.components, chemicals, start->float64);
-    start->chemicals.assign(static_cast<std::size_t>(chemicals), std::vector<double>(reader.cells));
-    for (std::uint64_t i = 0; i < reader.cells; ++i)
-        for (int c = 0; c < chemicals; ++c)
-            start->chemicals[static_cast<std::size_t>(c)][i] = v[i * static_cast<std::uint64_t>(chemicals) + c];
-    return start;
 }
 
 // [figure] and [animation] for `steps`: panels at 0, N/2 and N, sized to the grid.
@@ -644,8 +237,7 @@ Pattern read(const std::string& text, const std::filesystem::path& file, const R
     // from zero: then its overlays (if it applies them) go on top.
     out.starts_from_arrays = !apply || !zero_first;
     if (out.starts_from_arrays && options.decode_arrays) {
-        const ArrayReader reader{vtk, p.raw, enc, static_cast<std::uint64_t>(grid.width * grid.height)};
-        out.start = decode_start(stored, reader, grid, rule.chemicals);
+        out.start = decode_start(stored, vtk, p.raw, enc, grid, rule.chemicals);
     } else if (out.starts_from_arrays) {
         if (!stored.found()) throw Refused(no_arrays(rule.chemicals));
         out.start = start_shape(stored, grid, rule.chemicals);  // its shape alone: nothing decoded
