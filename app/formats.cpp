@@ -33,21 +33,6 @@ std::string film_size(const Description& d, const OutputOptions& options) {
            std::to_string(scaled_even(d.animation->height, options.scale));
 }
 
-// The most a formula model's VTI file takes: every chemical's cells as
-// doubles in base64 (zlib's blocks can only grow by a few bytes each), and
-// the XML around them with the rule's name, description and formula.
-double vti_bytes(const Description& d) {
-    const auto value = [&](const char* key, long long fallback, long long most) {
-        return static_cast<double>(std::clamp<long long>(d.params[key].value_or(fallback), 1, most));
-    };
-    const double cells = value("width", 128, 4096) * value("height", 128, 4096);
-    // The texts it repeats (XML escapes a character in at most 6: &quot;).
-    const double texts = static_cast<double>(d.title.size() + d.caption.size() +
-                                             d.params["formula"].value_or(std::string()).size());
-    // And each parameter's element: its name (counted in the formula) and value.
-    return cells * value("chemicals", 2, 26) * 8 * 1.34 * 1.01 + 65536 + 6 * texts + 200.0 * d.params.size();
-}
-
 scenes::MemoryNeed vector_page(const Description& d, const OutputOptions& options) {
     return {"the PDF and SVG's vector page",
             render::vector::page_bytes + render::vector::page_bytes_per_pixel * figure_pixels(d, options)};
@@ -136,7 +121,10 @@ std::vector<OutputFormat> make_table() {
     t.push_back({"vti", ".vti", "the VTI file", "vti (a formula model's last step as Ready's file)", "VTI", {"vti"},
                  std::nullopt, Stage::figure, [](const Description&, const OutputOptions& o) { return o.vti; },
                  [](OutputOptions& o) { o.vti = true; },
-                 [](const Description& d, const OutputOptions&) { return vti_bytes(d); }});
+                 [](const Description& d, const OutputOptions&) {
+                     const scenes::ExtraFile* file = scenes::extra_file(d, "vti");
+                     return file ? file->disk(d) : 0.0;
+                 }});
     return t;
 }
 

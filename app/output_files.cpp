@@ -11,6 +11,7 @@
 #include "app/version.hpp"
 #include "base/atomic_file.hpp"
 #include "media/png_io.hpp"
+#include "ready/writers/vti_file.hpp"
 #include "render/gl/canvas.hpp"
 #include "render/gl/gl_context.hpp"
 #include "render/vector/vector.hpp"
@@ -332,9 +333,9 @@ void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json meta
     }
     if (!vector.empty()) metadata["vector"] = std::move(vector);
     if (options_.vti) {
-        if (!drawing.state_vti) throw std::logic_error(description_.id + ": its scene writes no VTI file");
+        if (!drawing.ready_state) throw std::logic_error(description_.id + ": its scene writes no VTI file");
         const std::string file_name = description_.id + ".vti";
-        const std::string bytes = drawing.state_vti();
+        const std::string bytes = ready::ready_vti(drawing.ready_state());
         base::write_file_atomically(folder_, file_name, bytes);  // with the figure's other files
         metadata["vti"] = {{"file", file_name}, {"bytes", bytes.size()}};
     }

@@ -176,9 +176,9 @@ CheckedFigure check_target(const std::string& target, const std::optional<std::s
     auto d = std::make_unique<Description>(
         text ? description::parse_description(*text, target, assignments, s.seed)
         : load_target(target, assignments, s.seed, false));
-    if (options.vti && d->scene != "formula")
+    if (options.vti && !scenes::extra_file(*d, "vti"))
         throw UsageError("--format vti: " + d->id + " is a " + d->scene +
-                         " figure; a VTI file holds a formula model's chemicals (scene = \"formula\")");
+                         " figure; the scenes that write a VTI file are " + scenes::scenes_writing("vti"));
     if (!s.cmap.empty()) scenes::apply_colormap(*d, s.cmap);
     if (s.fps && d->animation) d->animation->fps = *s.fps;
     auto scene = check_figure(*d, options);

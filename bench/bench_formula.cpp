@@ -1,12 +1,12 @@
-// Throughput of formula models (sim/formula.hpp) in cell-updates per
+// Throughput of formula models (sim/formula/rule.hpp) in cell-updates per
 // second, beside the hand-written kernels (bench_gray_scott.cpp): Ready's
 // own Gray-Scott formula (its File > New Pattern rule), compiled and fused
-// into three chains (sim/formula_fused.hpp), in float and double. Args: n,
+// into three chains (sim/formula/chain_kernels.hpp), in float and double. Args: n,
 // threads.
 #include <benchmark/benchmark.h>
 
 #include "kernel_throughput.hpp"
-#include "sim/formula.hpp"
+#include "sim/formula/run.hpp"
 #include "sim/gray_scott.hpp"
 #include "sim/random.hpp"
 

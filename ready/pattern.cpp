@@ -17,8 +17,8 @@
 #include "description/toml_writer.hpp"
 #include "ready/reading.hpp"
 #include "ready/vtk_arrays.hpp"
-#include "sim/formula.hpp"
-#include "sim/formula_names.hpp"
+#include "sim/formula/rule.hpp"
+#include "sim/formula/names.hpp"
 
 namespace ready {
 namespace {

@@ -8,7 +8,7 @@
 #include "description/integer_text.hpp"
 #include "description/plain_name.hpp"
 #include "ready/pattern.hpp"
-#include "sim/formula.hpp"
+#include "sim/formula/rule.hpp"
 
 namespace ready::reading {
 

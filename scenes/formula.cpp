@@ -1,4 +1,4 @@
-// Formula models (sim/formula.hpp): a rule of the user's own, written as
+// Formula models (sim/formula/rule.hpp): a rule of the user's own, written as
 // Ready writes its formula rules, run headless into panels and a film like
 // any field figure. [params] holds the rule (chemicals, formula, accuracy,
 // wrap, data_type, block_x, ready_edges), the grid (width, height), steps,
@@ -6,12 +6,12 @@
 // the rule's own parameters; [style] says which chemicals each panel shows
 // (show) and how (a_colormap, b_vmin, ... for each chemical). The model
 // itself is read by scenes/formula_model.cpp.
-#include "sim/formula.hpp"
+#include "sim/formula/run.hpp"
 
 #include <algorithm>
 #include <thread>
 
-#include "ready/vti_file.hpp"
+#include "ready/state.hpp"
 #include "base/digest.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/field_spec.hpp"
@@ -107,7 +107,7 @@ public:
     }
 
     // Two states of every chemical (rows with their halos and padding,
-    // sim/formula_run.cpp), each thread's registers (a chunk of at most
+    // sim/formula/run.cpp), each thread's registers (a chunk of at most
     // sim::formula::chunk_lanes cells each, a line apart), the start and the grids read at a
     // stop, and a copy per panel and frame of the chemicals shown, with
     // their textures.
@@ -169,12 +169,12 @@ public:
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"model_operations", model.operations()}};
-        run.write_field_figure(panels, meta, [&] { return state_vti(now); });
+        run.write_field_figure(panels, meta, [&] { return ready_state(now); });
     }
 
 private:
-    // The chemicals as Ready writes its own files (ready/vti_file.hpp).
-    std::string state_vti(const std::vector<sim::Grid<double>>& chemicals) const {
+    // The chemicals and the rule, for Ready's own files (--format vti).
+    ready::ReadyState ready_state(const std::vector<sim::Grid<double>>& chemicals) const {
         ready::ReadyState s;
         s.rule_name = d_.title;
         s.description = d_.caption;
@@ -191,7 +191,7 @@ private:
         s.height = m_.height;
         s.float64 = m_.rule.double_precision;
         for (const auto& g : chemicals) s.chemicals.emplace_back(g.cells().begin(), g.cells().end());
-        return ready::ready_vti(s);
+        return s;
     }
 
     nlohmann::json metadata(const std::vector<sim::Grid<double>>& chemicals, int step) const {
@@ -226,8 +226,34 @@ static std::vector<std::string> formula_colormap_keys() {
     return keys;
 }
 
+// Only the chemicals of the description's rule.
+static std::vector<std::string> rule_colormap_keys(const Description& d) {
+    std::vector<std::string> keys = formula_colormap_keys();
+    keys.resize(static_cast<std::size_t>(formula_chemicals(d)));
+    return keys;
+}
+
+// The most the VTI file of the last step takes: every chemical's cells as
+// doubles in base64 (zlib's blocks can only grow by a few bytes each), and
+// the XML around them with the rule's name, description and formula.
+static double vti_disk(const Description& d) {
+    const auto value = [&](const char* key, long long fallback, long long most) {
+        return static_cast<double>(std::clamp<long long>(d.params[key].value_or(fallback), 1, most));
+    };
+    const double cells = value("width", 128, formula_most_side) * value("height", 128, formula_most_side);
+    // The texts it repeats (XML escapes a character in at most 6: &quot;).
+    const double texts = static_cast<double>(d.title.size() + d.caption.size() +
+                                             d.params["formula"].value_or(std::string()).size());
+    // And each parameter's element: its name (counted in the formula) and value.
+    return cells * formula_chemicals(d) * 8 * 1.34 * 1.01 + 65536 + 6 * texts + 200.0 * d.params.size();
+}
+
 SceneInfo formula_scene() {
-    return {"formula", read_formula, formula_colormap_keys()};
+    return {.name = "formula",
+            .read = read_formula,
+            .colormap_keys = formula_colormap_keys(),
+            .colormap_keys_of = rule_colormap_keys,
+            .extra_files = {{.format = "vti", .disk = vti_disk}}};
 }
 
 }  // namespace scenes

@@ -23,7 +23,7 @@
 #include "scenes/field_stats.hpp"
 #include "scenes/figure_caption.hpp"
 #include "scenes/formula_model.hpp"
-#include "sim/formula_names.hpp"
+#include "sim/formula/names.hpp"
 #include "scenes/panel_grid.hpp"
 #include "scenes/plot_page.hpp"
 #include "scenes/scene.hpp"

@@ -8,8 +8,8 @@
 #include <set>
 
 #include "description/stored_start.hpp"
-#include "sim/formula_names.hpp"
-#include "sim/formula_program.hpp"
+#include "sim/formula/names.hpp"
+#include "sim/formula/program.hpp"
 #include "sim/random.hpp"
 
 namespace scenes {
@@ -184,16 +184,17 @@ const Schema<ModelValues> model_schema = [] {
     Schema<M> s;
     s.part_at(
         rule, [](auto& v) -> auto& { return v.model.rule; });
-    s.key({"width", "grid width in cells", "an integer", "an integer from 1 to 4096, a multiple of block_x", 128},
+    s.key({"width", "grid width in cells", "an integer",
+           "an integer from 1 to " + std::to_string(formula_most_side) + ", a multiple of block_x", 128},
           [](Settings& section, const std::string& key, M& v) {
-              v.model.width = section.count_in(key, v.model.width, 1, 4096);
+              v.model.width = section.count_in(key, v.model.width, 1, formula_most_side);
               if (v.model.width % v.model.rule.block_x != 0)
                   section.refuse(key, "a multiple of block_x (" + std::to_string(v.model.rule.block_x) + ")");
           });
     s.key({"height", "grid height in cells (Ready's 1-D stencils are not figgen's)", "an integer",
-           integers_allowed(2, 4096), 128},
+           integers_allowed(2, formula_most_side), 128},
           [](Settings& section, const std::string& key, M& v) {
-              v.model.height = section.count_in(key, v.model.height, 2, 4096);
+              v.model.height = section.count_in(key, v.model.height, 2, formula_most_side);
           });
     s.key({"steps", "how many steps the model runs", "an integer", integers_allowed(0, 10'000'000), 1000},
           [](Settings& section, const std::string& key, M& v) {
@@ -285,7 +286,7 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
         throw SettingError("params.timestep", "", "the rule's timestep: X + timestep * delta_X each step");
     try {
         r.validate(m.width, m.height);
-        const formula::Program program = formula::compile(r, m.width, m.height);
+        const formula::Program program = formula::compile(r);
         m.registers = program.registers;
         m.radius_x = program.radius_x;
         m.operations = program.operations;

@@ -1,5 +1,5 @@
 #pragma once
-// A formula model (sim/formula.hpp) as a description gives it in [params]:
+// A formula model (sim/formula/rule.hpp) as a description gives it in [params]:
 // the rule (chemicals, formula, accuracy, wrap, data_type, block_x,
 // ready_edges), the grid (width, height), steps, the start (initial:
 // Ready's overlays, in order; or the arrays a Ready pattern file stores)
@@ -12,11 +12,14 @@
 #include <vector>
 
 #include "scenes/scene.hpp"
-#include "sim/formula.hpp"
-#include "sim/formula_pattern.hpp"
+#include "sim/formula/run.hpp"
+#include "sim/formula/overlays.hpp"
 #include "sim/grid.hpp"
 
 namespace scenes {
+
+// The most cells a side of a formula model's grid has.
+constexpr int formula_most_side = 4096;
 
 struct FormulaModel {
     sim::formula::Rule rule;
@@ -43,7 +46,7 @@ int chemical_index(Settings& s, const std::string& key, const std::string& name,
 std::set<std::string> formula_names(Settings& params, const std::string& code);
 
 // Refuses (as params.NAME) a parameter's name that the rule cannot take
-// (sim/formula_names.hpp), naming the clash: the one check of a
+// (sim/formula/names.hpp), naming the clash: the one check of a
 // parameter's name, for descriptions and Ready's files alike.
 void refuse_clash(Settings& params, const std::string& name, int chemicals);
 

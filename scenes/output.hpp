@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/image.hpp"
+#include "ready/state.hpp"
 #include "render/surface.hpp"
 #include "scenes/work_items.hpp"
 
@@ -53,9 +54,10 @@ struct FigureDrawing {
     int width = 0, height = 0;
     bool depth = false;  // it draws 3-D tubes (a GL canvas with a depth buffer)
     std::function<void(render::Surface&)> draw;
-    // A formula model's last step as Ready's VTI file (--format vti); null
-    // for the scenes that write none.
-    std::function<std::string()> state_vti = {};
+    // A formula model's last step, for Ready's VTI file (--format vti,
+    // written by the command: ready/writers/); null for the scenes that
+    // write none.
+    std::function<ready::ReadyState()> ready_state = {};
 };
 
 // Where a scene's outputs go.

@@ -7,7 +7,6 @@
 #include "render/colormap.hpp"
 #include "render/gl/gl_context.hpp"
 #include "scenes/figure_caption.hpp"
-#include "scenes/formula_model.hpp"
 
 namespace scenes {
 
@@ -25,8 +24,6 @@ const std::vector<SceneInfo>& all_scenes() {
     return all;
 }
 
-namespace {
-
 const SceneInfo& scene_of(const Description& d) {
     for (const SceneInfo& scene : all_scenes())
         if (scene.name == d.scene) return scene;
@@ -35,7 +32,19 @@ const SceneInfo& scene_of(const Description& d) {
     throw SettingError("description.scene", "\"" + d.scene + "\"", "one of " + allowed);
 }
 
-}  // namespace
+const ExtraFile* extra_file(const Description& d, const std::string& format) {
+    for (const ExtraFile& file : scene_of(d).extra_files)
+        if (file.format == format) return &file;
+    return nullptr;
+}
+
+std::string scenes_writing(const std::string& format) {
+    std::string names;
+    for (const SceneInfo& scene : all_scenes())
+        for (const ExtraFile& file : scene.extra_files)
+            if (file.format == format) names += (names.empty() ? "" : ", ") + scene.name;
+    return names;
+}
 
 std::unique_ptr<Scene> read_scene(const Description& d, const SceneOptions& options) {
     const SceneInfo& scene = scene_of(d);
@@ -59,9 +68,7 @@ void apply_colormap(Description& d, const std::string& name) {
         throw UsageError("--cmap: " + d.id + " (scene " + d.scene + ") draws no field to colour; the field scenes are " +
                          fields);
     }
-    for (const std::string& key : scene.colormap_keys) {
-        // A formula's chemicals a, b, ...: only those of its rule have keys.
-        if (d.scene == "formula" && key[0] - 'a' >= formula_chemicals(d)) continue;
+    for (const std::string& key : scene.colormap_keys_of ? scene.colormap_keys_of(d) : scene.colormap_keys) {
         d.style.insert_or_assign(key, name);
         const std::string prefix = key.substr(0, key.size() - std::string("colormap").size());
         d.style.erase(prefix + "colours");

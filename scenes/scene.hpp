@@ -99,8 +99,19 @@ struct KeyNumber {
     int digits = 4;          // significant digits of a "number"
 };
 
+// A file a scene can write besides the figure and its film, chosen by
+// --format NAME: Ready's VTI of a formula run's last step. The scene hands
+// its content over in the FigureDrawing; the command writes it.
+struct ExtraFile {
+    std::string format;  // --format's word: "vti"
+    // The most the file takes on disk for this description, from the
+    // scene's own keys and their limits.
+    double (*disk)(const Description& d) = nullptr;
+};
+
 // A scene: each scene file defines its own (`SceneInfo diffusion_scene()`),
-// and scenes/registry.inc lists them, one line each.
+// and scenes/registry.inc lists them, one line each. What the command needs
+// to know of a scene it learns here, never by the scene's name.
 struct SceneInfo {
     std::string name;  // the description's `scene`
     SceneReader read;
@@ -111,6 +122,11 @@ struct SceneInfo {
     // Its key numbers, in the order of the card, with the catalog's
     // reference values (docs/catalog.md).
     std::vector<KeyNumber> key_numbers = {};
+    // Those of colormap_keys that this description has (a formula's
+    // chemicals: only its rule's); null: all of them.
+    std::vector<std::string> (*colormap_keys_of)(const Description& d) = nullptr;
+    // The files it can write besides the figure and film (--format).
+    std::vector<ExtraFile> extra_files = {};
 };
 
 const std::vector<SceneInfo>& all_scenes();
@@ -123,6 +139,14 @@ std::unique_ptr<Scene> read_scene(const Description& d, const SceneOptions& opti
 // Sets every colormap of a field figure to `name` (--cmap); throws
 // UsageError for an unknown colormap or a figure without a field.
 void apply_colormap(Description& d, const std::string& name);
+
+// The scene of `d` (SettingError for an unknown one).
+const SceneInfo& scene_of(const Description& d);
+// The file `format` (--format's word) that d's scene writes besides its
+// figure, or null when it writes none.
+const ExtraFile* extra_file(const Description& d, const std::string& format);
+// The scenes that write the file `format`: "formula, ...".
+std::string scenes_writing(const std::string& format);
 
 // Refuses `key` of `section` (SettingError) when it makes a field of rows x
 // cols cells that the renderer cannot hold as one texture; `what` names the

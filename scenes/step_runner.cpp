@@ -142,10 +142,10 @@ void StepRunner::finish_film() {
 }
 
 void StepRunner::write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta,
-                                    std::function<std::string()> state_vti) {
+                                    std::function<ready::ReadyState()> ready_state) {
     if (film_only()) return finish_film();
     FigureDrawing figure = field_figure(panels, description_, options_);
-    figure.state_vti = std::move(state_vti);
+    figure.ready_state = std::move(ready_state);
     write_figure(figure, std::move(meta));
 }
 

@@ -69,9 +69,9 @@ public:
     // figure's PNG and JSON and completes the progress bar.
     void write_figure(const FigureDrawing& figure, nlohmann::json meta);
     // The same for a figure that is a row of field panels, drawn at the
-    // figure's size; `state_vti`, if given, makes the --format vti file.
+    // figure's size; `ready_state`, if given, is the state for --format vti.
     void write_field_figure(const std::vector<FieldPanel>& panels, nlohmann::json meta,
-                            std::function<std::string()> state_vti = {});
+                            std::function<ready::ReadyState()> ready_state = {});
 
 private:
     int run_until(const StepHooks& hooks, int last);

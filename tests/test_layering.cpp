@@ -6,7 +6,8 @@
 //   render/vector/  the PDF and SVG page: render/ (and render/gl/ for the pictures it embeds)
 //   media/          PNG, films, thumbnails: render/ (images)
 //   description/    the description reader: nothing but description/
-//   ready/          Ready's files: description, sim (a pattern read as a description of its rule)
+//   ready/          Ready's files read: description, sim (a pattern read as a description of its rule)
+//   ready/writers/  Ready's files written, an output: ready/ (the app uses it; scenes may not)
 //   scenes/         sim, render, description, ready (models meet drawing here)
 //   app/            the command: everything
 // and no clock in sim/: a model's results never depend on time.
@@ -34,8 +35,10 @@ const std::map<std::string, std::set<std::string>> may_include = {
     {"media", {"media", "render", "base"}},
     {"description", {"description", "base"}},
     {"ready", {"ready", "description", "sim", "base"}},
+    {"ready/writers", {"ready/writers", "ready", "base"}},
     {"scenes", {"sim", "render", "render/gl", "description", "ready", "scenes", "base"}},
-    {"app", {"sim", "render", "render/gl", "render/vector", "media", "description", "ready", "scenes", "app", "base"}},
+    {"app", {"sim", "render", "render/gl", "render/vector", "media", "description", "ready", "ready/writers", "scenes",
+             "app", "base"}},
     // The Python module: figgen's library calls (app/) and what they hand over.
     {"python", {"app", "description", "ready", "scenes", "media", "base", "python"}},
 };

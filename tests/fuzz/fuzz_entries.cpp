@@ -17,7 +17,7 @@
 #include "base/utf8.hpp"
 #include "scenes/figure_caption.hpp"
 #include "scenes/scene.hpp"
-#include "sim/formula.hpp"
+#include "sim/formula/run.hpp"
 #include "sim/lsystem.hpp"
 #include "sim/snowflake.hpp"
 #include "sim/turtle.hpp"

@@ -1,4 +1,4 @@
-// Formula models (sim/formula.hpp): the grammar and its refusals, every
+// Formula models (sim/formula/rule.hpp): the grammar and its refusals, every
 // stencil keyword at every accuracy against values worked out by hand, both
 // kinds of edges (Ready's and true ones), and tc7-2's model written as a
 // formula against figgen's own Gray-Scott.
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/formula.hpp"
+#include "sim/formula/run.hpp"
 #include "sim/gray_scott.hpp"
 #include "sim/random.hpp"
 

@@ -1,4 +1,4 @@
-// Chains of a compiled formula (sim/formula_fused.hpp): operations fused
+// Chains of a compiled formula (sim/formula/chain_kernels.hpp): operations fused
 // into one pass round as each does alone (against the same arithmetic in
 // plain C++, term by term), on every instruction set the processor has,
 // and Ready's Gray-Scott fuses as expected.
@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "sim/formula.hpp"
-#include "sim/formula_fused.hpp"
-#include "sim/formula_program.hpp"
+#include "sim/formula/run.hpp"
+#include "sim/formula/chain_kernels.hpp"
+#include "sim/formula/program.hpp"
 #include "sim/random.hpp"
 
 using sim::Grid;
@@ -61,8 +61,8 @@ bool same_bits(const Grid<double>& a, const Grid<double>& b) {
 }
 
 // The kinds of operation the formula's chains use.
-std::set<fused::Kind> kinds_of(const Rule& rule, int width, int height) {
-    const Program program = compile(rule, width, height);
+std::set<fused::Kind> kinds_of(const Rule& rule) {
+    const Program program = compile(rule);
     std::set<fused::Kind> kinds;
     for (const Chain& chain : program.chains)
         for (const fused::Micro<float>& m : fused::plan_float(program, chain).code) kinds.insert(m.kind);
@@ -117,8 +117,8 @@ TEST_CASE("a chain rounds each operation as it does alone, on every instruction 
         nb = b + db;
     });
     // Between them the two formulas use most kinds of operation.
-    std::set<fused::Kind> used = kinds_of(two_chemicals(first), 70, 9);
-    for (fused::Kind k : kinds_of(two_chemicals(second), 70, 9)) used.insert(k);
+    std::set<fused::Kind> used = kinds_of(two_chemicals(first));
+    for (fused::Kind k : kinds_of(two_chemicals(second))) used.insert(k);
     for (fused::Kind k : {fused::Kind::acc_set_row, fused::Kind::acc_sub_row, fused::Kind::acc_rsub_row,
                           fused::Kind::acc_rsub_k, fused::Kind::acc_mul_row, fused::Kind::acc_mul_k,
                           fused::Kind::acc_div_k, fused::Kind::acc_add_row, fused::Kind::aux_set_k,
@@ -133,7 +133,7 @@ TEST_CASE("Ready's Gray-Scott fuses into three chains, the same bits on every in
     Rule rule = two_chemicals("delta_a = D_a * laplacian_a - a*b*b + F*(1.0f-a);\n"
                               "delta_b = D_b * laplacian_b + a*b*b - (F+K)*b;");
     rule.parameters = {{"timestep", 1.0}, {"D_a", 0.082}, {"D_b", 0.041}, {"K", 0.06}, {"F", 0.035}};
-    const Program program = compile(rule, 64, 48);
+    const Program program = compile(rule);
     // a*b*b, read twice, is a chain of its own; each chemical's update one
     // more, its F*(1-a) or (F+K)*b in the second accumulator.
     CHECK(program.chains.size() == 3);

@@ -1,4 +1,4 @@
-#include "ready/vti_file.hpp"
+#include "ready/writers/vti_file.hpp"
 
 #include <tinyxml2.h>
 

@@ -1,7 +1,7 @@
-// Chains of a compiled formula in one pass (sim/formula_fused.hpp): the
-// vector code of sim/formula_fused_body.inc for each instruction set, the
+// Chains of a compiled formula in one pass (sim/formula/chain_kernels.hpp): the
+// vector code of sim/formula/chain_kernels_body.inc for each instruction set, the
 // choice among them, and the proof behind each division by multiplication.
-#include "sim/formula_fused.hpp"
+#include "sim/formula/chain_kernels.hpp"
 
 #include <atomic>
 #include <cmath>
@@ -16,7 +16,7 @@
 #endif
 
 // The vector code jumps from operation to operation through a table of
-// label addresses (GCC's labels as values, sim/formula_fused_body.inc).
+// label addresses (GCC's labels as values, sim/formula/chain_kernels_body.inc).
 #pragma GCC diagnostic ignored "-Wpedantic"
 
 namespace sim::formula::fused {
@@ -40,7 +40,7 @@ struct Plain {
 };
 
 namespace plain {
-#include "sim/formula_fused_body.inc"
+#include "sim/formula/chain_kernels_body.inc"
 }  // namespace plain
 
 }  // namespace
@@ -82,7 +82,7 @@ struct D {
     static bool any(M m) { return _mm256_movemask_pd(m) != 0; }
 };
 
-#include "sim/formula_fused_body.inc"
+#include "sim/formula/chain_kernels_body.inc"
 
 }  // namespace
 
@@ -129,7 +129,7 @@ struct D {
     static bool any(M m) { return m != 0; }
 };
 
-#include "sim/formula_fused_body.inc"
+#include "sim/formula/chain_kernels_body.inc"
 
 }  // namespace
 
@@ -187,7 +187,7 @@ bool run_any(const Plan<Real>& p, const Real* const* view, Real* d, int n, bool 
     return bad;
 }
 
-// The chain's steps as operations on acc, aux and g (sim/formula_fused.hpp).
+// The chain's steps as operations on acc, aux and g (sim/formula/chain_kernels.hpp).
 template <class Real>
 Plan<Real> make_plan(const Program& program, const Chain& chain) {
     Plan<Real> plan;

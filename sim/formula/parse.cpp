@@ -1,4 +1,4 @@
-// The formula's grammar (sim/formula_ast.hpp): a lexer and a recursive
+// The formula's grammar (sim/formula/tree.hpp): a lexer and a recursive
 // descent parser for the part of OpenCL C that Ready's formula rules use.
 //
 //   statement   := declaration ';' | assignment ';' | '{' statement* '}' | ';'
@@ -24,8 +24,8 @@
 #include <utility>
 #include <vector>
 
-#include "sim/formula.hpp"
-#include "sim/formula_ast.hpp"
+#include "sim/formula/rule.hpp"
+#include "sim/formula/tree.hpp"
 
 namespace sim::formula {
 
@@ -504,12 +504,6 @@ private:
 };
 
 }  // namespace
-
-FormulaError::FormulaError(Pos pos, const std::string& what)
-    : std::invalid_argument("line " + std::to_string(pos.line) + ", column " + std::to_string(pos.column) + ": " +
-                            what),
-      pos_(pos),
-      message_(what) {}
 
 Formula parse(const std::string& text) {
     return Parser(lex(text)).formula();

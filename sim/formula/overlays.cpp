@@ -1,4 +1,4 @@
-#include "sim/formula_pattern.hpp"
+#include "sim/formula/overlays.hpp"
 
 #include <algorithm>
 #include <cmath>

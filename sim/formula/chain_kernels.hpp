@@ -1,12 +1,12 @@
 #pragma once
-// A chain of a compiled formula (sim/formula_program.hpp's Chain) run in
+// A chain of a compiled formula (sim/formula/program.hpp's Chain) run in
 // one pass over a chunk: for each block of cells the value so far stays in
 // vector registers from the chain's first operation to its last, instead
 // of going to memory between operations. Each operation rounds as it does
 // alone, in the same order, so that the result is the same bits as the
 // operations one by one (and as Ready's OpenCL).
 //
-// The vector code is written once (sim/formula_fused_body.inc) and built
+// The vector code is written once (sim/formula/chain_kernels_body.inc) and built
 // for AVX-512, for AVX2 with FMA and for plain C++; the widest the
 // processor runs is taken at run time. All give the same bits.
 
@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sim/formula_program.hpp"
+#include "sim/formula/program.hpp"
 
 namespace sim::formula::fused {
 

@@ -1,4 +1,4 @@
-// A formula's tree compiled into row operations (sim/formula_program.hpp).
+// The lowering: a formula's tree into row operations (sim/formula/program.hpp).
 //
 // Values are either fixed before the run (folded here, in the model's
 // number type, so that a folded operation gives what the run would) or
@@ -21,133 +21,17 @@
 #include <utility>
 #include <vector>
 
-#include "sim/formula.hpp"
-#include "sim/formula_ast.hpp"
-#include "sim/formula_program.hpp"
-#include "sim/formula_scalar.hpp"
+#include "sim/formula/builtins.hpp"
+#include "sim/formula/passes.hpp"
+#include "sim/formula/program.hpp"
+#include "sim/formula/rule.hpp"
+#include "sim/formula/scalar.hpp"
+#include "sim/formula/stencils.hpp"
+#include "sim/formula/tree.hpp"
 
 namespace sim::formula {
 
 namespace {
-
-// ---- Ready's stencils (its src/readybase/stencils.cpp, as data) ----
-
-struct StencilPoint {
-    int x, y, z, weight;
-};
-
-struct Stencil {
-    std::string label;
-    std::vector<StencilPoint> points;  // in Ready's order: rows north to south, columns west to east
-    int divisor = 1, dx_power = 0;
-};
-
-Stencil from_1d(const std::string& label, const std::vector<int>& weights, int divisor, int dx_power, int axis) {
-    Stencil s{label, {}, divisor, dx_power};
-    const int half = static_cast<int>(weights.size() - 1) / 2;
-    for (int i = 0; i < static_cast<int>(weights.size()); ++i)
-        if (weights[i] != 0) {
-            int offset[3] = {0, 0, 0};
-            offset[axis] = i - half;
-            s.points.push_back({offset[0], offset[1], offset[2], weights[i]});
-        }
-    return s;
-}
-
-// Rows in reading order: the first is the northmost (y + half).
-Stencil from_2d(const std::string& label, const std::vector<std::vector<int>>& rows, int divisor, int dx_power) {
-    Stencil s{label, {}, divisor, dx_power};
-    const int m = static_cast<int>(rows.size()), n = static_cast<int>(rows.front().size());
-    for (int j = 0; j < m; ++j)
-        for (int i = 0; i < n; ++i)
-            if (rows[j][i] != 0) s.points.push_back({i - (n - 1) / 2, -j + (m - 1) / 2, 0, rows[j][i]});
-    return s;
-}
-
-std::vector<std::vector<int>> symmetric_3x3(int c1, int c2, int c3) {
-    return {{c1, c2, c1}, {c2, c3, c2}, {c1, c2, c1}};
-}
-
-std::vector<std::vector<int>> symmetric_5x5(int c1, int c2, int c3, int c4, int c5, int c6) {
-    return {{c1, c2, c3, c2, c1}, {c2, c4, c5, c4, c2}, {c3, c5, c6, c5, c3}, {c2, c4, c5, c4, c2}, {c1, c2, c3, c2, c1}};
-}
-
-// Ready's 2-D stencils at an accuracy.
-std::vector<Stencil> stencils(Accuracy accuracy) {
-    const bool high = accuracy == Accuracy::high;
-    std::vector<Stencil> s;
-    const char* axes[3] = {"x", "y", "z"};
-    for (int axis = 0; axis < 3; ++axis) {
-        const std::string a = axes[axis];
-        if (high) {
-            s.push_back(from_1d(a + "_gradient", {1, -8, 0, 8, -1}, 12, 1, axis));
-            s.push_back(from_1d(a + "_deriv2", {-1, 16, -30, 16, -1}, 12, 2, axis));
-            s.push_back(from_1d(a + "_deriv3", {1, -8, 13, 0, -13, 8, -1}, 8, 3, axis));
-        } else {
-            s.push_back(from_1d(a + "_gradient", {-1, 0, 1}, 2, 1, axis));
-            s.push_back(from_1d(a + "_deriv2", {1, -2, 1}, 1, 2, axis));
-            s.push_back(from_1d(a + "_deriv3", {-1, 2, 0, -2, 1}, 2, 3, axis));
-        }
-    }
-    s.push_back(from_2d("gaussian", symmetric_5x5(1, 4, 7, 16, 26, 41), 273, 0));
-    switch (accuracy) {
-    case Accuracy::low: s.push_back(from_2d("laplacian", symmetric_3x3(0, 1, -4), 1, 2)); break;
-    case Accuracy::medium: s.push_back(from_2d("laplacian", symmetric_3x3(1, 4, -20), 6, 2)); break;
-    case Accuracy::high: s.push_back(from_2d("laplacian", symmetric_5x5(0, -2, -1, 16, 52, -252), 60, 2)); break;
-    }
-    s.push_back(from_2d("bilaplacian", symmetric_5x5(0, 1, 1, -2, -10, 36), 3, 4));
-    s.push_back(from_2d("trilaplacian",
-                        {{0, 1, 5, 6, 5, 1, 0},
-                         {1, 6, -33, -56, -33, 6, 1},
-                         {5, -33, 6, 314, 6, -33, 5},
-                         {6, -56, 314, -888, 314, -56, 6},
-                         {5, -33, 6, 314, 6, -33, 5},
-                         {1, 6, -33, -56, -33, 6, 1},
-                         {0, 1, 5, 6, 5, 1, 0}},
-                        18, 6));
-    s.push_back(from_2d("sobelN", {{1, 2, 1}, {0, 0, 0}, {-1, -2, -1}}, 1, 0));
-    s.push_back(from_2d("sobelS", {{-1, -2, -1}, {0, 0, 0}, {1, 2, 1}}, 1, 0));
-    s.push_back(from_2d("sobelE", {{-1, 0, 1}, {-2, 0, 2}, {-1, 0, 1}}, 1, 0));
-    s.push_back(from_2d("sobelW", {{1, 0, -1}, {2, 0, -2}, {1, 0, -1}}, 1, 0));
-    s.push_back(from_2d("sobelNW", {{2, 1, 0}, {1, 0, -1}, {0, -1, -2}}, 1, 0));
-    s.push_back(from_2d("sobelNE", {{0, 1, 2}, {-1, 0, 1}, {-2, -1, 0}}, 1, 0));
-    s.push_back(from_2d("sobelSW", {{0, -1, -2}, {1, 0, -1}, {2, 1, 0}}, 1, 0));
-    s.push_back(from_2d("sobelSE", {{-2, -1, 0}, {-1, 0, 1}, {0, 1, 2}}, 1, 0));
-    return s;
-}
-
-// ---- built-in functions ----
-
-struct Builtin {
-    const char* name;
-    int arity;
-    Fn fn;
-};
-
-// The allow-list: OpenCL's math built-ins a formula may call. select() is
-// an operation of its own; min and max are fmin and fmax (and for ints the
-// same values).
-const Builtin builtins[] = {
-    {"sin", 1, Fn::sin},       {"cos", 1, Fn::cos},           {"tan", 1, Fn::tan},       {"asin", 1, Fn::asin},
-    {"acos", 1, Fn::acos},     {"atan", 1, Fn::atan},         {"sinh", 1, Fn::sinh},     {"cosh", 1, Fn::cosh},
-    {"tanh", 1, Fn::tanh},     {"asinh", 1, Fn::asinh},       {"acosh", 1, Fn::acosh},   {"atanh", 1, Fn::atanh},
-    {"exp", 1, Fn::exp},       {"exp2", 1, Fn::exp2},         {"exp10", 1, Fn::exp10},   {"expm1", 1, Fn::expm1},
-    {"log", 1, Fn::log},       {"log2", 1, Fn::log2},         {"log10", 1, Fn::log10},   {"log1p", 1, Fn::log1p},
-    {"sqrt", 1, Fn::sqrt},     {"rsqrt", 1, Fn::rsqrt},       {"cbrt", 1, Fn::cbrt},     {"fabs", 1, Fn::fabs},
-    {"floor", 1, Fn::floor},   {"ceil", 1, Fn::ceil},         {"round", 1, Fn::round},   {"trunc", 1, Fn::trunc},
-    {"rint", 1, Fn::rint},     {"sign", 1, Fn::sign},         {"degrees", 1, Fn::degrees}, {"radians", 1, Fn::radians},
-    {"abs", 1, Fn::abs_int},   {"pow", 2, Fn::pow},           {"powr", 2, Fn::pow},      {"atan2", 2, Fn::atan2},
-    {"fmin", 2, Fn::fmin},     {"fmax", 2, Fn::fmax},         {"min", 2, Fn::fmin},      {"max", 2, Fn::fmax},
-    {"fmod", 2, Fn::fmod},     {"hypot", 2, Fn::hypot},       {"step", 2, Fn::step},     {"copysign", 2, Fn::copysign},
-    {"fdim", 2, Fn::fdim},     {"clamp", 3, Fn::clamp},       {"mix", 3, Fn::mix},       {"smoothstep", 3, Fn::smoothstep},
-    {"mad", 3, Fn::mad},       {"fma", 3, Fn::mad},
-};
-
-const Builtin* find_builtin(const std::string& name) {
-    for (const Builtin& b : builtins)
-        if (name == b.name) return &b;
-    return nullptr;
-}
 
 // ---- values ----
 
@@ -171,7 +55,7 @@ struct Variable {
 class Compiler {
 public:
     explicit Compiler(const Rule& rule) : rule_(rule) {
-        for (const Stencil& s : stencils(rule.accuracy)) stencils_[s.label] = s;
+        for (const Stencil& s : ready_stencils(rule.accuracy, 2)) stencils_[s.label] = s;
     }
 
     Program compile(const Formula& formula) {
@@ -185,7 +69,7 @@ public:
             Value next = arith(Op::add, x, arith(Op::mul, timestep, delta, {}), {});
             program_.outputs.push_back(materialise(next));
         }
-        finish();
+        finish_program(program_);
         return std::move(program_);
     }
 
@@ -866,255 +750,6 @@ private:
         var->elements[index] = value;
     }
 
-    // ---- the program's registers ----
-
-    std::vector<int> sources(const Instr& in) const { return formula::sources(program_, in); }
-
-    // ---- chains (sim/formula_program.hpp's Chain) ----
-
-    // Whether instruction `in` may go into a chain: nothing in it can fail.
-    bool chainable(const Instr& in, const std::vector<char>& is_constant, const std::vector<double>& value) const {
-        switch (in.op) {
-        case Op::stencil: return true;
-        case Op::add:
-        case Op::sub:
-        case Op::mul: return in.a >= 0 && in.b >= 0;
-        case Op::div: return in.a >= 0 && in.b >= 0 && is_constant[in.b] && value[in.b] != 0 && !is_constant[in.a];
-        default: return false;
-        }
-    }
-
-    // The SSA code `code` (each register written once) with runs of
-    // operations fused into chains: an operation whose value only the next
-    // in the chain reads goes into it, and so does a short chain that is
-    // one step's operand (as the second accumulator).
-    std::vector<Instr> fuse(const std::vector<Instr>& code) {
-        const int n = program_.registers;
-        const int count = static_cast<int>(code.size());
-        std::vector<char> is_constant(static_cast<std::size_t>(n), 0);
-        std::vector<double> value(static_cast<std::size_t>(n), 0);
-        for (const Program::Constant& c : program_.constants) {
-            is_constant[c.reg] = 1;
-            value[c.reg] = c.value;
-        }
-        std::vector<int> def(static_cast<std::size_t>(n), -1), uses(static_cast<std::size_t>(n), 0);
-        for (int i = 0; i < count; ++i) {
-            def[code[i].dst] = i;
-            for (int r : sources(code[i])) ++uses[r];
-        }
-        for (int out : program_.outputs) ++uses[out];
-        std::vector<char> can(static_cast<std::size_t>(count), 0);
-        for (int i = 0; i < count; ++i) can[i] = chainable(code[i], is_constant, value);
-        // through[i]: the operand (a or b) whose chain instruction i
-        // continues, or -1; length[i]: the chain's operations up to i.
-        std::vector<int> through(static_cast<std::size_t>(count), -1), length(static_cast<std::size_t>(count), 1);
-        std::vector<char> interior(static_cast<std::size_t>(count), 0);
-        for (int i = 0; i < count; ++i) {
-            const Instr& in = code[i];
-            if (!can[i] || in.op == Op::stencil || in.a == in.b) continue;
-            int best = -1;
-            for (int r : {in.a, in.b}) {
-                if (in.op == Op::div && r != in.a) continue;  // the divisor is the constant
-                const int d = def[r];
-                if (d < 0 || !can[d] || uses[r] != 1 || interior[d]) continue;
-                if (best < 0 || length[d] > length[def[best]]) best = r;
-            }
-            if (best < 0) continue;
-            through[i] = best;
-            interior[def[best]] = 1;
-            length[i] = length[def[best]] + 1;
-        }
-        // The path of a chain's operations, from its head to `root`.
-        auto path = [&](int root) {
-            std::vector<int> p{root};
-            while (through[p.back()] >= 0) p.push_back(def[through[p.back()]]);
-            std::reverse(p.begin(), p.end());
-            return p;
-        };
-        auto other = [&](int i) { return through[i] == code[i].a ? code[i].b : code[i].a; };
-        // Short chains taken whole as one step's operand.
-        constexpr int aux_most = 4;  // operations of such a chain
-        std::vector<char> absorbed(static_cast<std::size_t>(count), 0), has_aux(static_cast<std::size_t>(count), 0);
-        std::vector<char> has_stencil(static_cast<std::size_t>(count), 0);
-        for (int i = 0; i < count; ++i)
-            has_stencil[i] = code[i].op == Op::stencil || (through[i] >= 0 && has_stencil[def[through[i]]]);
-        for (int root = 0; root < count; ++root) {
-            if (!can[root] || interior[root]) continue;
-            for (int link : path(root)) {
-                if (through[link] < 0) continue;
-                const int o = other(link);
-                const int d = def[o];
-                if (d < 0 || !can[d] || interior[d] || absorbed[d] || uses[o] != 1 || has_stencil[d] || has_aux[d] ||
-                    length[d] > aux_most)
-                    continue;
-                absorbed[d] = 1;
-                has_aux[root] = 1;
-            }
-        }
-        auto operand = [&](int reg, int& x, double& k) {
-            if (is_constant[reg]) {
-                x = -1;
-                k = value[reg];
-            } else {
-                x = reg;
-            }
-        };
-        std::vector<Instr> fused;
-        for (int root = 0; root < count; ++root) {
-            if (!can[root]) {
-                fused.push_back(code[root]);
-                continue;
-            }
-            if (interior[root] || absorbed[root]) continue;
-            Chain chain;
-            const std::vector<int> steps = path(root);
-            // A chain's head, into acc (or aux).
-            auto head = [&](int i, bool aux) {
-                Chain::Step st;
-                const Instr& in = code[i];
-                if (in.op == Op::stencil) {
-                    st.kind = Chain::Kind::stencil;
-                    st.stencil = in.a;
-                } else {
-                    st.kind = aux ? Chain::Kind::aux : Chain::Kind::binary;
-                    st.op = in.op;
-                    operand(in.a, st.x, st.kx);
-                    operand(in.b, st.y, st.ky);
-                }
-                chain.steps.push_back(st);
-            };
-            // A link: the value so far (in acc or aux) with the other operand.
-            auto link = [&](int i, Chain::Kind kind) {
-                Chain::Step st;
-                st.kind = kind;
-                st.op = code[i].op;
-                st.t_first = through[i] == code[i].a;
-                if (kind != Chain::Kind::acc_aux) operand(other(i), st.x, st.kx);
-                chain.steps.push_back(st);
-            };
-            head(steps.front(), false);
-            for (std::size_t k = 1; k < steps.size(); ++k) {
-                const int i = steps[k];
-                const int d = def[other(i)];
-                if (d >= 0 && absorbed[d]) {
-                    const std::vector<int> side = path(d);
-                    head(side.front(), true);
-                    for (std::size_t j = 1; j < side.size(); ++j) link(side[j], Chain::Kind::aux_op);
-                    link(i, Chain::Kind::acc_aux);
-                } else {
-                    link(i, Chain::Kind::acc);
-                }
-            }
-            Instr in = code[root];
-            in.op = Op::chain;
-            in.a = static_cast<int>(program_.chains.size());
-            in.b = in.c = in.mask = -1;
-            program_.chains.push_back(std::move(chain));
-            fused.push_back(in);
-        }
-        return fused;
-    }
-
-    // Dead operations removed; registers renumbered so that buffers are
-    // shared by values whose lives do not overlap.
-    void finish() {
-        const int n = program_.registers;
-        std::vector<char> live(static_cast<std::size_t>(n), 0);
-        for (int out : program_.outputs) live[out] = 1;
-        std::vector<char> keep(program_.code.size(), 0);
-        for (int i = static_cast<int>(program_.code.size()) - 1; i >= 0; --i) {
-            const Instr& in = program_.code[i];
-            if (!live[in.dst]) continue;
-            keep[i] = 1;
-            for (int r : sources(in)) live[r] = 1;
-        }
-        std::vector<Instr> code;
-        for (std::size_t i = 0; i < keep.size(); ++i)
-            if (keep[i]) code.push_back(program_.code[i]);
-        program_.operations = static_cast<int>(code.size());
-        code = fuse(code);
-        std::fill(live.begin(), live.end(), 0);
-        for (int out : program_.outputs) live[out] = 1;
-        for (const Instr& in : code)
-            for (int r : sources(in)) live[r] = 1;
-        // Register kinds: inputs and x_pos/y_pos are views; constants filled once.
-        std::vector<char> temporary(static_cast<std::size_t>(n), 1);
-        for (const Program::Input& in : program_.inputs) temporary[in.reg] = 0;
-        for (const Program::Constant& c : program_.constants) temporary[c.reg] = 0;
-        for (int pos : {program_.x_pos, program_.y_pos})
-            if (pos >= 0) temporary[pos] = 0;
-        for (int out : program_.outputs) temporary[out] = 0;
-        std::vector<int> map(static_cast<std::size_t>(n), -1);
-        int next = 0;
-        std::vector<Program::Input> inputs;
-        for (const Program::Input& in : program_.inputs)
-            if (live[in.reg]) {
-                map[in.reg] = next++;
-                inputs.push_back({map[in.reg], in.chemical, in.dx, in.dy});
-            }
-        // radius from the inputs kept
-        program_.radius_x = program_.radius_y = 0;
-        for (const Program::Input& in : inputs) {
-            program_.radius_x = std::max(program_.radius_x, std::abs(in.dx));
-            program_.radius_y = std::max(program_.radius_y, std::abs(in.dy));
-        }
-        for (int* pos : {&program_.x_pos, &program_.y_pos})
-            if (*pos >= 0) *pos = live[*pos] ? (map[*pos] = next++) : -1;
-        std::vector<Program::Constant> constants;
-        for (const Program::Constant& c : program_.constants)
-            if (live[c.reg]) {
-                map[c.reg] = next++;
-                constants.push_back({map[c.reg], c.value});
-            }
-        // Temporaries: a buffer freed after its last use is taken again.
-        std::vector<int> last_use(static_cast<std::size_t>(n), -1);
-        for (int i = 0; i < static_cast<int>(code.size()); ++i)
-            for (int r : sources(code[i])) last_use[r] = i;
-        for (int out : program_.outputs) last_use[out] = static_cast<int>(code.size());
-        std::vector<int> free_buffers;
-        std::vector<StencilSum> stencils;
-        for (int i = 0; i < static_cast<int>(code.size()); ++i) {
-            Instr& in = code[i];
-            const std::vector<int> read = sources(in);
-            // Renumbered: the operands, a chain's operands and its stencils' inputs (in their own copies).
-            if (in.op == Op::chain) {
-                for (Chain::Step& st : program_.chains[in.a].steps) {
-                    for (int* r : {&st.x, &st.y})
-                        if (*r >= 0) *r = map[*r];
-                    if (st.stencil >= 0) {
-                        StencilSum sum = program_.stencils[st.stencil];
-                        for (StencilSum::Term& t : sum.terms)
-                            for (int& r : t.inputs) r = map[r];
-                        st.stencil = static_cast<int>(stencils.size());
-                        stencils.push_back(std::move(sum));
-                    }
-                }
-            } else {
-                for (int* r : {&in.a, &in.b, &in.c, &in.mask})
-                    if (*r >= 0) *r = map[*r];
-            }
-            for (int virt : read)
-                if (last_use[virt] == i && temporary[virt]) {
-                    free_buffers.push_back(map[virt]);
-                    last_use[virt] = -2;  // freed once
-                }
-            if (map[in.dst] < 0) {
-                if (!free_buffers.empty()) {
-                    map[in.dst] = free_buffers.back();
-                    free_buffers.pop_back();
-                } else {
-                    map[in.dst] = next++;
-                }
-            }
-            in.dst = map[in.dst];
-        }
-        for (int& out : program_.outputs) out = map[out];
-        program_.code = std::move(code);
-        program_.stencils = std::move(stencils);
-        program_.inputs = std::move(inputs);
-        program_.constants = std::move(constants);
-        program_.registers = next;
-    }
     const Rule& rule_;
     std::map<std::string, Stencil> stencils_;
     std::vector<std::unordered_map<std::string, Variable>> scopes_;
@@ -1129,46 +764,8 @@ private:
 
 }  // namespace
 
-std::vector<int> sources(const Program& program, const Instr& in) {
-    std::vector<int> read;
-    auto stencil = [&](int index) {
-        for (const StencilSum::Term& t : program.stencils[static_cast<std::size_t>(index)].terms)
-            read.insert(read.end(), t.inputs.begin(), t.inputs.end());
-    };
-    if (in.op == Op::stencil) {
-        stencil(in.a);
-    } else if (in.op == Op::chain) {
-        for (const Chain::Step& st : program.chains[static_cast<std::size_t>(in.a)].steps) {
-            if (st.kind == Chain::Kind::stencil) stencil(st.stencil);
-            for (int r : {st.x, st.y})
-                if (r >= 0) read.push_back(r);
-        }
-    } else {
-        for (int r : {in.a, in.b, in.c, in.mask})
-            if (r >= 0) read.push_back(r);
-    }
-    return read;
-}
-
-bool is_builtin_function(const std::string& name) {
-    return find_builtin(name) != nullptr;
-}
-
-const std::vector<std::string>& stencil_names() {
-    static const std::vector<std::string> names = [] {
-        std::vector<std::string> n;
-        for (const Stencil& s : stencils(Accuracy::medium)) n.push_back(s.label);
-        n.push_back("gradient_mag_squared");
-        return n;
-    }();
-    return names;
-}
-
-Program compile(const Rule& rule, int width, int height) {
-    const Formula formula = parse(rule.code);
-    (void)width;  // the grid's size shapes nothing of the program yet
-    (void)height;
-    return Compiler(rule).compile(formula);
+Program compile(const Rule& rule) {
+    return Compiler(rule).compile(parse(rule.code));
 }
 
 }  // namespace sim::formula

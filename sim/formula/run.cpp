@@ -1,6 +1,6 @@
-// Runs a compiled formula (sim/formula_program.hpp) over the grid: rows in
+// Runs a compiled formula (sim/formula/program.hpp) over the grid: rows in
 // chunks of up to chunk_lanes cells, each chain in one pass over the chunk
-// (sim/formula_fused.hpp), each other operation a loop over it (vectorised
+// (sim/formula/chain_kernels.hpp), each other operation a loop over it (vectorised
 // by the compiler, a clone per instruction set), the rows of a step split
 // among threads (sim/parallel_steps.hpp).
 //
@@ -24,10 +24,10 @@
 #include <utility>
 #include <vector>
 
-#include "sim/formula.hpp"
-#include "sim/formula_fused.hpp"
-#include "sim/formula_program.hpp"
-#include "sim/formula_scalar.hpp"
+#include "sim/formula/run.hpp"
+#include "sim/formula/chain_kernels.hpp"
+#include "sim/formula/program.hpp"
+#include "sim/formula/scalar.hpp"
 #include "sim/parallel_steps.hpp"
 
 namespace sim::formula {
@@ -40,7 +40,7 @@ namespace {
 #define FIGGEN_FORMULA_CLONES
 #endif
 
-// A division by the cells' values (chains, sim/formula_fused.hpp, take
+// A division by the cells' values (chains, sim/formula/chain_kernels.hpp, take
 // the rest of the arithmetic): a / b, k / b or a / k, one loop each.
 template <class Real>
 void divide_rows(Real* __restrict d, const Real* __restrict a, const Real* __restrict b, int n) {
@@ -201,7 +201,7 @@ public:
         // padding to the next row) are one run of memory, the lanes outside
         // the grid computed and thrown away.
         // As many rows as fit, or fewer that make whole blocks of 64 cells
-        // for the chains' vector code (sim/formula_fused.hpp).
+        // for the chains' vector code (sim/formula/chain_kernels.hpp).
         group_most_ = stride_ <= max_lanes ? static_cast<int>(max_lanes / stride_) : 1;
         for (int rows = group_most_; rows >= 2; --rows)
             if (rows * stride_ % 64 == 0) {
@@ -555,38 +555,6 @@ private:
 
 }  // namespace
 
-std::string chemical_name(int i) {
-    if (i < 0 || i >= max_chemicals) throw std::invalid_argument("chemical index " + std::to_string(i));
-    return std::string(1, static_cast<char>('a' + i));
-}
-
-void Rule::validate(int width, int height) const {
-    if (chemicals < 1 || chemicals > max_chemicals)
-        throw std::invalid_argument("number_of_chemicals is " + std::to_string(chemicals) + ", not from 1 to " +
-                                    std::to_string(max_chemicals));
-    if (block_x != 1 && block_x != 4)
-        throw std::invalid_argument("block_size_x is " + std::to_string(block_x) + ": figgen runs 1 or 4");
-    if (width < 1 || height < 1 || width > 16384 || height > 16384)
-        throw std::invalid_argument("the grid is " + std::to_string(width) + " x " + std::to_string(height) +
-                                    ", not from 1 x 1 to 16384 x 16384");
-    if (width % block_x != 0)
-        throw std::invalid_argument("the grid is " + std::to_string(width) + " cells wide: Ready's blocks of " +
-                                    std::to_string(block_x) + " need a multiple of " + std::to_string(block_x));
-    for (const auto& [name, value] : parameters) {
-        if (!std::isfinite(value))
-            throw std::invalid_argument("parameter " + name + " is " + std::to_string(value) + ", not a finite number");
-        if (name.empty() || name.size() > 64 || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
-            throw std::invalid_argument("parameter name \"" + name + "\" is not a name (letters, digits and _)");
-        for (char ch : name)
-            if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'))
-                throw std::invalid_argument("parameter name \"" + name + "\" is not a name (letters, digits and _)");
-    }
-    for (std::size_t i = 0; i < parameters.size(); ++i)
-        for (std::size_t j = 0; j < i; ++j)
-            if (parameters[i].first == parameters[j].first)
-                throw std::invalid_argument("parameter " + parameters[i].first + " is given twice");
-}
-
 Run::Run(const Rule& rule, int width, int height, const std::vector<Grid<double>>& start) {
     rule.validate(width, height);
     if (static_cast<int>(start.size()) != rule.chemicals)
@@ -597,7 +565,7 @@ Run::Run(const Rule& rule, int width, int height, const std::vector<Grid<double>
             throw std::invalid_argument("a chemical's start is " + std::to_string(g.cols()) + " x " +
                                         std::to_string(g.rows()) + ", not the grid's " + std::to_string(width) +
                                         " x " + std::to_string(height));
-    Program program = compile(rule, width, height);
+    Program program = compile(rule);
     if (program.radius_x * 2 >= width + 8 || program.radius_y > height * 4)
         throw std::invalid_argument("the grid is too small for the formula's stencils");
     if (rule.double_precision)

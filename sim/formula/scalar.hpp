@@ -1,13 +1,13 @@
 #pragma once
 // One value of a formula's operation or built-in function, in the model's
-// number type (float or double): what sim/formula_compile.cpp folds before
-// the run and what sim/formula_run.cpp computes for each cell, so that the
+// number type (float or double): what sim/formula/lower.cpp folds before
+// the run and what sim/formula/run.cpp computes for each cell, so that the
 // two agree bit for bit. OpenCL's definitions where C's differ (sign, step,
 // clamp, mix, smoothstep, rsqrt, degrees, radians).
 
 #include <cmath>
 
-#include "sim/formula_program.hpp"
+#include "sim/formula/program.hpp"
 
 namespace sim::formula {
 

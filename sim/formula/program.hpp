@@ -1,16 +1,16 @@
 #pragma once
-// A formula compiled for one grid (sim/formula_compile.cpp): a straight list
-// of operations, each over a run of cells of one row at a time (a chunk),
-// on numbered registers. Loops are unrolled, `if` and `?:` on values of the
+// A formula compiled (sim/formula/lower.cpp, then sim/formula/passes.hpp):
+// a straight list of operations, each over a run of cells of one row at a
+// time (a chunk), on numbered registers. Loops are unrolled, `if` and `?:` on values of the
 // cells become selections, and everything the formula fixes before the run
 // (parameters, literals, loop counters, array indices) is folded into
-// constants. sim/formula_run.cpp runs it.
+// constants. sim/formula/run.cpp runs it.
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "sim/formula.hpp"
+#include "sim/formula/rule.hpp"
 
 namespace sim::formula {
 
@@ -29,7 +29,7 @@ enum class Op : std::uint8_t {
     chain,                        // Program::chains[a]: several operations in one pass (below)
 };
 
-// The built-in functions (an allow-list, sim/formula_compile.cpp).
+// The built-in functions (an allow-list, sim/formula/lower.cpp).
 enum class Fn : std::uint8_t {
     sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, asinh, acosh, atanh,
     exp, exp2, exp10, expm1, log, log2, log10, log1p, sqrt, rsqrt, cbrt,
@@ -60,7 +60,7 @@ struct StencilSum {
     double divisor = 1;  // rounded to the number type
 };
 
-// Operations fused into one pass over the chunk (sim/formula_fused.hpp),
+// Operations fused into one pass over the chunk (sim/formula/chain_kernels.hpp),
 // each value rounded as the operation alone rounds it: a stencil or a
 // binary operation, then operations that each take the value so far and
 // one operand. An operand may itself be a short chain, kept in a second
@@ -114,7 +114,9 @@ struct Program {
 // chain's operands.
 std::vector<int> sources(const Program& program, const Instr& in);
 
-// Compiles `rule` (validated) for a width x height grid. Throws FormulaError.
-Program compile(const Rule& rule, int width, int height);
+// Compiles `rule` (validated): parsed (sim/formula/parse.cpp), lowered
+// (sim/formula/lower.cpp) and passed over (sim/formula/passes.hpp). The
+// program is the same for any grid. Throws FormulaError.
+Program compile(const Rule& rule);
 
 }  // namespace sim::formula

@@ -1,11 +1,12 @@
-#include "sim/formula_names.hpp"
+#include "sim/formula/names.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <set>
 #include <vector>
 
-#include "sim/formula.hpp"
+#include "sim/formula/rule.hpp"
+#include "sim/formula/stencils.hpp"
 
 namespace sim::formula {
 namespace {

@@ -1,8 +1,7 @@
 #pragma once
-// A formula run's last step as Ready writes its own pattern files (--format
-// vti): VTK XML ImageData with the <RD> element that holds the rule and its
-// parameters, apply_when_loading="false", so Ready, ParaView and figgen
-// continue from it.
+// A formula run's state as Ready's pattern files hold it: the rule, its
+// parameters, the drawn range and every chemical's cells. A scene hands it
+// over; the outputs write it (ready/writers/vti_file.hpp).
 
 #include <optional>
 #include <string>
@@ -26,9 +25,5 @@ struct ReadyState {
     bool float64 = false;
     std::vector<std::vector<double>> chemicals;  // as StoredStart
 };
-
-// The file's text: VTK XML ImageData, version 1.0, UInt64 headers, binary
-// zlib-compressed blocks of 32 KiB, as VTK 9's writer makes Ready's files.
-std::string ready_vti(const ReadyState& state);
 
 }  // namespace ready

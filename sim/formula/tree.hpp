@@ -1,7 +1,7 @@
 #pragma once
-// The syntax tree of a formula rule (sim/formula.hpp): what
-// sim/formula_parse.cpp reads from the formula's text with figgen's own
-// grammar, a small part of OpenCL C, and what sim/formula_compile.cpp turns
+// The syntax tree of a formula rule (sim/formula/rule.hpp): what
+// sim/formula/parse.cpp reads from the formula's text with figgen's own
+// grammar, a small part of OpenCL C, and what sim/formula/lower.cpp turns
 // into row operations. Nothing here is ever handed to a compiler.
 
 #include <memory>
@@ -92,7 +92,7 @@ struct Limits {
     static constexpr int max_operations = 50000;          // row operations of the compiled formula
 };
 
-// Parses `text` (a formula's code); throws FormulaError (sim/formula.hpp)
+// Parses `text` (a formula's code); throws FormulaError (sim/formula/rule.hpp)
 // with the line and column of the first thing outside the grammar.
 Formula parse(const std::string& text);
 

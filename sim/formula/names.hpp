@@ -10,7 +10,7 @@
 #include <set>
 #include <string>
 
-#include "sim/formula_ast.hpp"
+#include "sim/formula/tree.hpp"
 
 namespace sim::formula {
 

@@ -8,7 +8,7 @@
 // y_pos, and the rule's parameters.
 //
 // A formula is code from a stranger: it is read by figgen's own grammar
-// into a tree (sim/formula_ast.hpp), held to fixed bounds (Limits), and
+// into a tree (sim/formula/tree.hpp), held to fixed bounds (Limits), and
 // compiled into operations over whole rows; its text never reaches a
 // compiler, a shell or a shader. Only the built-in functions of an
 // allow-list can be called; loops must have a trip count fixed before the
@@ -20,14 +20,12 @@
 // edges index with `& (size - 1)`, a torus only for sizes (in blocks) that
 // are powers of two.
 
-#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "sim/formula_ast.hpp"
-#include "sim/grid.hpp"
+#include "sim/formula/tree.hpp"
 
 namespace sim::formula {
 
@@ -75,43 +73,8 @@ struct Rule {
     void validate(int width, int height) const;
 };
 
-// The stencil keywords, as in Ready: `name_X` for a chemical X.
-const std::vector<std::string>& stencil_names();
 // Whether `name` is one of the formula language's built-in functions of
-// numbers (the relational ones, isless ..., aside).
+// numbers (the relational ones, isless ..., aside): sim/formula/builtins.cpp.
 bool is_builtin_function(const std::string& name);
-
-// The most cells a run's register holds at once (a chunk of a row, or of
-// several rows with their halos): each thread has the compiled formula's
-// registers of this many cells, and a cache line more.
-constexpr int chunk_lanes = 2048;
-
-// A run of a rule on a width x height grid (grid(row y, column x)).
-class Run {
-public:
-    // Compiles the rule (FormulaError, std::invalid_argument) and loads the
-    // start: one width x height grid per chemical, rounded to the rule's
-    // number type.
-    Run(const Rule& rule, int width, int height, const std::vector<Grid<double>>& start);
-    ~Run();
-    Run(Run&&) noexcept;
-    Run& operator=(Run&&) noexcept;
-
-    // `steps` steps on `threads` threads (0: OpenMP's default); the same
-    // bits for any number. Throws Unstable at the first step that fails
-    // (the state is then that step's input).
-    void step(int steps, int threads = 0);
-    Grid<double> chemical(int i) const;
-    long long steps() const;
-    int width() const;
-    int height() const;
-    // Row operations a cell of one step takes: the compiled formula's size.
-    int operations() const;
-
-    struct Impl;  // the engine of the rule's number type (sim/formula_run.cpp)
-
-private:
-    std::unique_ptr<Impl> impl_;
-};
 
 }  // namespace sim::formula

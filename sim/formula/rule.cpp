@@ -1,0 +1,50 @@
+// A formula rule's checks, made before anything is compiled or run.
+
+#include "sim/formula/rule.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace sim::formula {
+
+FormulaError::FormulaError(Pos pos, const std::string& what)
+    : std::invalid_argument("line " + std::to_string(pos.line) + ", column " + std::to_string(pos.column) + ": " +
+                            what),
+      pos_(pos),
+      message_(what) {}
+
+std::string chemical_name(int i) {
+    if (i < 0 || i >= max_chemicals) throw std::invalid_argument("chemical index " + std::to_string(i));
+    return std::string(1, static_cast<char>('a' + i));
+}
+
+void Rule::validate(int width, int height) const {
+    if (chemicals < 1 || chemicals > max_chemicals)
+        throw std::invalid_argument("number_of_chemicals is " + std::to_string(chemicals) + ", not from 1 to " +
+                                    std::to_string(max_chemicals));
+    if (block_x != 1 && block_x != 4)
+        throw std::invalid_argument("block_size_x is " + std::to_string(block_x) + ": figgen runs 1 or 4");
+    if (width < 1 || height < 1 || width > 16384 || height > 16384)
+        throw std::invalid_argument("the grid is " + std::to_string(width) + " x " + std::to_string(height) +
+                                    ", not from 1 x 1 to 16384 x 16384");
+    if (width % block_x != 0)
+        throw std::invalid_argument("the grid is " + std::to_string(width) + " cells wide: Ready's blocks of " +
+                                    std::to_string(block_x) + " need a multiple of " + std::to_string(block_x));
+    for (const auto& [name, value] : parameters) {
+        if (!std::isfinite(value))
+            throw std::invalid_argument("parameter " + name + " is " + std::to_string(value) + ", not a finite number");
+        if (name.empty() || name.size() > 64 || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
+            throw std::invalid_argument("parameter name \"" + name + "\" is not a name (letters, digits and _)");
+        for (char ch : name)
+            if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'))
+                throw std::invalid_argument("parameter name \"" + name + "\" is not a name (letters, digits and _)");
+    }
+    for (std::size_t i = 0; i < parameters.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (parameters[i].first == parameters[j].first)
+                throw std::invalid_argument("parameter " + parameters[i].first + " is given twice");
+}
+
+}  // namespace sim::formula

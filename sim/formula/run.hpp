@@ -1,0 +1,46 @@
+#pragma once
+// A formula rule's run (sim/formula/run.cpp): the rule compiled into row
+// operations (sim/formula/program.hpp) and stepped over its grid.
+
+#include <memory>
+#include <vector>
+
+#include "sim/formula/rule.hpp"
+#include "sim/grid.hpp"
+
+namespace sim::formula {
+
+// The most cells a run's register holds at once (a chunk of a row, or of
+// several rows with their halos): each thread has the compiled formula's
+// registers of this many cells, and a cache line more.
+constexpr int chunk_lanes = 2048;
+
+// A run of a rule on a width x height grid (grid(row y, column x)).
+class Run {
+public:
+    // Compiles the rule (FormulaError, std::invalid_argument) and loads the
+    // start: one width x height grid per chemical, rounded to the rule's
+    // number type.
+    Run(const Rule& rule, int width, int height, const std::vector<Grid<double>>& start);
+    ~Run();
+    Run(Run&&) noexcept;
+    Run& operator=(Run&&) noexcept;
+
+    // `steps` steps on `threads` threads (0: OpenMP's default); the same
+    // bits for any number. Throws Unstable at the first step that fails
+    // (the state is then that step's input).
+    void step(int steps, int threads = 0);
+    Grid<double> chemical(int i) const;
+    long long steps() const;
+    int width() const;
+    int height() const;
+    // Row operations a cell of one step takes: the compiled formula's size.
+    int operations() const;
+
+    struct Impl;  // the engine of the rule's number type (sim/formula/run.cpp)
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sim::formula
