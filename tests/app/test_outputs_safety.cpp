@@ -132,12 +132,16 @@ TEST_CASE("a full disk gives a clear error and leaves no partial file", "[cli][s
         std::string file;
     };
     // A PDF (7 KiB) and an SVG (15 KiB) are written before the PNG.
+    // Each case's folder holds an earlier render of the figure, with its film.
+    const fs::path earlier = fresh_dir("full-disk-earlier");
+    REQUIRE(testkit::figgen("render tc7-1 --out " + earlier.string()).status == 0);
     for (const Case& c : {Case{{}, 4096, "tc7-1.mp4"}, Case{{"--no-video"}, 4096, "tc7-1.png"},
                           Case{{"--format", "pdf"}, 4096, "tc7-1.pdf"}, Case{{"--format", "svg"}, 4096, "tc7-1.svg"}}) {
         INFO(c.file);
         const fs::path out = fresh_dir("full-disk");
-        REQUIRE(testkit::figgen("render tc7-1 --out " + out.string()).status == 0);
+        fs::copy(earlier, out, fs::copy_options::recursive);
         const auto before = snapshot(out);
+        REQUIRE(before == snapshot(earlier));
         const fs::path log = out.parent_path() / "full-disk.log";
         std::vector<std::string> args = {"render", "tc7-1", "--seed", "3", "--out", out.string()};
         args.insert(args.end(), c.options.begin(), c.options.end());

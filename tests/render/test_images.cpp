@@ -115,7 +115,7 @@ TEST_CASE("every golden image renders as recorded", "[.golden]") {
             // against the very PNG it drew.
             const bool vector = c.figure && platform == "egl";
             if (c.figure) {
-                r = c.make("--gl " + platform + " --threads " + (platform == "osmesa" ? "1" : "2") +
+                r = c.make("--gl " + platform + " --threads " + (platform == "osmesa" ? "1" : "3") +
                            (vector ? " --format png,pdf,svg" : ""));
                 renderer = r.meta["renderer"]["gl_renderer"];
                 version = r.meta["renderer"]["gl_version"];
