@@ -8,7 +8,7 @@ namespace description {
 
 // The chemicals a file stores, a, b, c, ... in order. Known by their
 // shape first (the figure is checked, its memory estimated), decoded only
-// once that passed (app/targets.hpp).
+// once that passed (app/render/targets.hpp).
 struct StoredStart {
     int width = 0, height = 0;
     int chemical_count = 0;  // how many the file stores

@@ -54,7 +54,7 @@ struct VideoOptions {
 };
 
 // What the film encoders hold and write, measured on figgen's own films
-// (the estimates of app/formats.cpp add them up).
+// (the estimates of app/render/formats.cpp add them up).
 namespace film_costs {
 // x264 (preset medium: 40 frames of look-ahead, 3 B-frames, 3 references,
 // each frame with its half-pel planes and its quarter-size copy), over the

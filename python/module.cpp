@@ -22,8 +22,8 @@
 #include <sstream>
 #include <thread>
 
-#include "app/describe.hpp"
-#include "app/library.hpp"
+#include "app/command/describe.hpp"
+#include "app/command/library.hpp"
 #include "base/background.hpp"
 #include "description/catalog.hpp"
 #include "description/description.hpp"

@@ -131,7 +131,7 @@ std::unique_ptr<Scene> read_cell1d(const Description& d, const SceneOptions& opt
 }  // namespace
 
 SceneInfo cell1d_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"cell1d",
             read_cell1d,
             {"colormap"},

@@ -241,7 +241,7 @@ std::unique_ptr<Scene> read_cell1d_survey(const Description& d, const SceneOptio
 }  // namespace
 
 SceneInfo cell1d_survey_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {
         "cell1d_survey",
         read_cell1d_survey,

@@ -119,7 +119,7 @@ std::unique_ptr<Scene> read_cell_counts(const Description& d, const SceneOptions
 }  // namespace
 
 SceneInfo cell_counts_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"cell_counts",
             read_cell_counts,
             {},

@@ -205,7 +205,7 @@ std::unique_ptr<Scene> read_deposition(const Description& d, const SceneOptions&
 }  // namespace
 
 SceneInfo deposition_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"deposition",
             read_deposition,
             {"band_colormap"},

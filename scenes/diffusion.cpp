@@ -81,7 +81,7 @@ std::unique_ptr<Scene> read_diffusion(const Description& d, const SceneOptions& 
 }  // namespace
 
 SceneInfo diffusion_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"diffusion",
             read_diffusion,
             {"colormap"},

@@ -231,7 +231,7 @@ std::unique_ptr<Scene> read_forest_fire(const Description& d, const SceneOptions
 }  // namespace
 
 SceneInfo forest_fire_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"forest_fire",
             read_forest_fire,
             {"colormap"},

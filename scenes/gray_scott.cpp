@@ -170,7 +170,7 @@ std::unique_ptr<Scene> read_gray_scott(const Description& d, const SceneOptions&
 }  // namespace
 
 SceneInfo gray_scott_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"gray_scott",
             read_gray_scott,
             {"a_colormap", "b_colormap"},

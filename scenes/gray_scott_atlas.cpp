@@ -370,7 +370,7 @@ std::unique_ptr<Scene> read_gray_scott_atlas(const Description& d, const SceneOp
 }  // namespace
 
 SceneInfo gray_scott_atlas_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"gray_scott_atlas",
             read_gray_scott_atlas,
             {"colormap"},

@@ -281,7 +281,7 @@ std::unique_ptr<Scene> read_ifs(const Description& d, const SceneOptions& option
 }  // namespace
 
 SceneInfo ifs_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"ifs",
             read_ifs,
             {"colormap"},

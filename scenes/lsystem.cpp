@@ -408,7 +408,7 @@ std::unique_ptr<Scene> read_lsystem(const Description& d, const SceneOptions& op
 }  // namespace
 
 SceneInfo lsystem_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"lsystem",
             read_lsystem,
             {},

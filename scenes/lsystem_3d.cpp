@@ -431,7 +431,7 @@ std::unique_ptr<Scene> read_lsystem_3d(const Description& d, const SceneOptions&
 }  // namespace
 
 SceneInfo lsystem_3d_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"lsystem_3d",
             read_lsystem_3d,
             {},

@@ -71,7 +71,7 @@ public:
     virtual Progress& progress() = 0;
     // Every work item's result, in item order: run here on threads, over
     // MPI ranks, or read from the parts of earlier runs and shards
-    // (app/schedule.hpp decides). Advances progress() by one per item.
+    // (app/work/schedule.hpp decides). Advances progress() by one per item.
     virtual std::vector<nlohmann::json> results(const WorkItems& items) = 0;
     // The film's frames this run draws (scenes/step_runner.cpp keeps to it).
     virtual FrameRange film_frames() const { return {}; }

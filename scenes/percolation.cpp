@@ -85,7 +85,7 @@ std::unique_ptr<Scene> read_percolation(const Description& d, const SceneOptions
 }  // namespace
 
 SceneInfo percolation_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"percolation",
             read_percolation,
             {"colormap"},

@@ -221,7 +221,7 @@ std::unique_ptr<Scene> read_percolation_phase(const Description& d, const SceneO
 }  // namespace
 
 SceneInfo percolation_phase_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"percolation_phase",
             read_percolation_phase,
             {},

@@ -140,7 +140,7 @@ std::unique_ptr<Scene> read_percolation_scaling(const Description& d, const Scen
 }  // namespace
 
 SceneInfo percolation_scaling_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"percolation_scaling",
             read_percolation_scaling,
             {},

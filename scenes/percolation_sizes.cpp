@@ -119,7 +119,7 @@ std::unique_ptr<Scene> read_percolation_sizes(const Description& d, const SceneO
 }  // namespace
 
 SceneInfo percolation_sizes_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"percolation_sizes",
             read_percolation_sizes,
             {"colormap"},

@@ -450,7 +450,7 @@ std::unique_ptr<Scene> read_percolation_threshold(const Description& d, const Sc
 }  // namespace
 
 SceneInfo percolation_threshold_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"percolation_threshold",
             read_percolation_threshold,
             {},

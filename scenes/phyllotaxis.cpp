@@ -264,7 +264,7 @@ std::unique_ptr<Scene> read_phyllotaxis(const Description& d, const SceneOptions
 }  // namespace
 
 SceneInfo phyllotaxis_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"phyllotaxis",
             read_phyllotaxis,
             {},

@@ -386,7 +386,7 @@ std::unique_ptr<Scene> read_roughness(const Description& d, const SceneOptions& 
 }  // namespace
 
 SceneInfo roughness_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"roughness",
             read_roughness,
             {},

@@ -42,7 +42,10 @@ std::string scenes_writing(const std::string& format) {
     std::string names;
     for (const SceneInfo& scene : all_scenes())
         for (const ExtraFile& file : scene.extra_files)
-            if (file.format == format) names += (names.empty() ? "" : ", ") + scene.name;
+            if (file.format == format) {
+                if (!names.empty()) names += ", ";
+                names += scene.name;
+            }
     return names;
 }
 

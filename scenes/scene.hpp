@@ -77,7 +77,7 @@ struct KeyReference {
 };
 
 // One key number of a scene's metadata, as a gallery card shows it
-// (app/key_numbers.hpp reads them).
+// (app/gallery/key_numbers.hpp reads them).
 //
 // Conditions (KeyReference::when, KeyNumber::only) are "field=value" tests
 // joined by ",", all of which must hold: `field` is a field of the array

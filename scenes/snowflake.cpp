@@ -258,7 +258,7 @@ std::unique_ptr<Scene> read_snowflake(const Description& d, const SceneOptions& 
 }  // namespace
 
 SceneInfo snowflake_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"snowflake",
             read_snowflake,
             {},

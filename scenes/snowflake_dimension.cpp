@@ -169,7 +169,7 @@ std::unique_ptr<Scene> read_snowflake_dimension(const Description& d, const Scen
 }  // namespace
 
 SceneInfo snowflake_dimension_scene() {
-    // Its key numbers (app/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
+    // Its key numbers (app/gallery/key_numbers.hpp), with the catalog's reference values (docs/catalog.md).
     return {"snowflake_dimension",
             read_snowflake_dimension,
             {},

@@ -11,7 +11,7 @@
 
 #include "description/catalog.hpp"
 #include "description/description.hpp"
-#include "app/render_figure.hpp"
+#include "app/render/render_figure.hpp"
 #include "render/gl/canvas.hpp"
 #include "render/field.hpp"
 #include "render/plot.hpp"

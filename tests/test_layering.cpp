@@ -9,7 +9,10 @@
 //   ready/          Ready's files read: description, sim (a pattern read as a description of its rule)
 //   ready/writers/  Ready's files written, an output: ready/ (the app uses it; scenes may not)
 //   scenes/         sim, render, description, ready (models meet drawing here)
-//   app/            the command: everything
+//   app/command/    the command line and Python's library calls: everything
+//   app/gallery/    the gallery: app/render/, app/work/ and everything below app/
+//   app/render/     the render pipeline: app/work/ and everything below app/
+//   app/work/       work items, parts, the schedule, MPI: everything below app/
 // and no clock in sim/: a model's results never depend on time.
 #include <catch2/catch.hpp>
 
@@ -37,10 +40,20 @@ const std::map<std::string, std::set<std::string>> may_include = {
     {"ready", {"ready", "description", "sim", "base"}},
     {"ready/writers", {"ready/writers", "ready", "base"}},
     {"scenes", {"sim", "render", "render/gl", "description", "ready", "scenes", "base"}},
-    {"app", {"sim", "render", "render/gl", "render/vector", "media", "description", "ready", "ready/writers", "scenes",
-             "app", "base"}},
-    // The Python module: figgen's library calls (app/) and what they hand over.
-    {"python", {"app", "description", "ready", "scenes", "media", "base", "python"}},
+    // The command, by role, each floor over the ones after it: the command
+    // line and the library calls, the gallery, the render pipeline, the work.
+    {"app", {}},
+    {"app/command", {"sim", "render", "render/gl", "render/vector", "media", "description", "ready", "ready/writers",
+                     "scenes", "base", "app/command", "app/gallery", "app/render", "app/work"}},
+    {"app/gallery", {"sim", "render", "render/gl", "render/vector", "media", "description", "ready", "ready/writers",
+                     "scenes", "base", "app/gallery", "app/render", "app/work"}},
+    {"app/render", {"sim", "render", "render/gl", "render/vector", "media", "description", "ready", "ready/writers",
+                    "scenes", "base", "app/render", "app/work"}},
+    {"app/work", {"sim", "render", "render/gl", "render/vector", "media", "description", "ready", "ready/writers",
+                  "scenes", "base", "app/work", "app/work/mpi"}},
+    {"app/work/mpi", {"app/work/mpi", "base"}},
+    // The Python module: figgen's library calls (app/command/) and what they hand over.
+    {"python", {"app/command", "description", "ready", "scenes", "media", "base", "python"}},
 };
 
 // The layer a path (a file's, or an include's) belongs to: the longest
@@ -101,26 +114,29 @@ TEST_CASE("every folder includes only the folders below it, and sim/ reads no cl
 TEST_CASE("the layering check finds an include that goes up and a clock in sim/", "[layering]") {
     const fs::path root = fs::temp_directory_path() / "figgen-layering-check";
     fs::remove_all(root);
-    for (const char* folder : {"base", "sim", "render", "render/gl", "media", "description", "scenes", "app"})
+    for (const char* folder : {"base", "sim", "render", "render/gl", "media", "description", "scenes", "app/command",
+                               "app/render"})
         fs::create_directories(root / folder);
     std::ofstream(root / "scenes" / "fine.cpp") << "#include \"sim/model.hpp\"\n#include <vector>\n";
-    std::ofstream(root / "app" / "main.cpp") << "#include \"scenes/scene.hpp\"\n";
+    std::ofstream(root / "app" / "command" / "main.cpp") << "#include \"scenes/scene.hpp\"\n";
     std::ofstream(root / "render" / "gl" / "canvas.cpp") << "#include \"render/surface.hpp\"\n#include \"base/digest.hpp\"\n";
     std::ofstream(root / "media" / "video.cpp") << "#include \"render/image.hpp\"\n";
     CHECK(layering_violations(root).empty());
     std::ofstream(root / "render" / "up.hpp") << "#pragma once\n  #  include \"sim/grid.hpp\"\n";
     std::ofstream(root / "render" / "plot.hpp") << "#include \"render/gl/canvas.hpp\"\n";
     std::ofstream(root / "base" / "up.cpp") << "#include \"render/image.hpp\"\n";
-    std::ofstream(root / "scenes" / "up.cpp") << "#include \"app/output_files.hpp\"\n";
+    std::ofstream(root / "scenes" / "up.cpp") << "#include \"app/render/output_files.hpp\"\n";
     std::ofstream(root / "sim" / "timed.cpp") << "#include <chrono>\n";
     std::ofstream(root / "description" / "up.cpp") << "#include \"scenes/scene.hpp\"\n";
+    std::ofstream(root / "app" / "render" / "up.cpp") << "#include \"app/command/commands.hpp\"\n";
     auto violations = layering_violations(root);
     std::sort(violations.begin(), violations.end());
-    CHECK(violations == std::vector<std::string>{"base/up.cpp: includes render/image.hpp",
+    CHECK(violations == std::vector<std::string>{"app/render/up.cpp: includes app/command/commands.hpp",
+                                                 "base/up.cpp: includes render/image.hpp",
                                                  "description/up.cpp: includes scenes/scene.hpp",
                                                  "render/plot.hpp: includes render/gl/canvas.hpp",
                                                  "render/up.hpp: includes sim/grid.hpp",
-                                                 "scenes/up.cpp: includes app/output_files.hpp",
+                                                 "scenes/up.cpp: includes app/render/output_files.hpp",
                                                  "sim/timed.cpp: includes chrono"});
     fs::remove_all(root);
 }

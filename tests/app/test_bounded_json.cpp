@@ -1,7 +1,7 @@
-// app/bounded_json.hpp: JSON and CBOR from someone else, read with their
+// app/work/bounded_json.hpp: JSON and CBOR from someone else, read with their
 // nesting and their length headers checked before anything recursive or
 // anything large is done with them.
-#include "app/bounded_json.hpp"
+#include "app/work/bounded_json.hpp"
 
 #include <catch2/catch.hpp>
 #include <string>

@@ -1,4 +1,4 @@
-// Work items beyond one process (app/schedule.hpp): MPI ranks, job-array shards
+// Work items beyond one process (app/work/schedule.hpp): MPI ranks, job-array shards
 // and their merge, a resume after a kill. Each must give the very bytes of a
 // plain single-process run: the PNG, and the JSON with every state hash.
 #include <signal.h>

@@ -1,11 +1,13 @@
-// The output formats' table (app/formats.hpp): --format's names choose the
+// The output formats' table (app/render/formats.hpp): --format's names choose the
 // formats they name, each file has a name of its own, and the disk and
 // memory estimates are the table's entries added up.
 #include <catch2/catch.hpp>
 #include <set>
 #include <string>
 
-#include "app/formats.hpp"
+#include "app/render/estimates.hpp"
+#include "app/render/formats.hpp"
+#include "app/render/output_files.hpp"
 #include "description/catalog.hpp"
 #include "description/description.hpp"
 

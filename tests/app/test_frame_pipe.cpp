@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/frame_pipe.hpp"
+#include "app/render/frame_pipe.hpp"
 
 namespace {
 

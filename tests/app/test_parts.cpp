@@ -1,4 +1,4 @@
-// Parts (app/schedule.hpp) as someone else may have left them: changed, forged
+// Parts (app/work/schedule.hpp) as someone else may have left them: changed, forged
 // with a matching hash, nested without end, lying in a length header, a
 // FIFO where a file should be, a symlink where a folder should be. A merge
 // refuses each with exit 2 and one line naming the folder, the item and

@@ -1,4 +1,4 @@
-// A film's segments encoded side by side (app/segment_encoders.hpp): the
+// A film's segments encoded side by side (app/render/segment_encoders.hpp): the
 // MP4 is the same bytes with any number of workers, on a busy machine too,
 // and a worker's failure reaches the caller.
 #include <catch2/catch.hpp>
@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/segment_encoders.hpp"
+#include "app/render/segment_encoders.hpp"
 #include "figgen_run.hpp"
 #include "media/video.hpp"
 

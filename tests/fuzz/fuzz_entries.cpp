@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "app/bounded_json.hpp"
-#include "app/schedule.hpp"
+#include "app/work/bounded_json.hpp"
+#include "app/work/schedule.hpp"
 #include "description/catalog.hpp"
 #include "description/description.hpp"
 #include "description/plain_name.hpp"

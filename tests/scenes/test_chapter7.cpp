@@ -13,7 +13,7 @@
 #include "description/catalog.hpp"
 #include "description/description.hpp"
 #include "figgen_run.hpp"
-#include "app/render_figure.hpp"
+#include "app/render/render_figure.hpp"
 
 namespace {
 

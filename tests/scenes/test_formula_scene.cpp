@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/render_figure.hpp"
+#include "app/render/render_figure.hpp"
 #include "description/catalog.hpp"
 #include "description/description.hpp"
 #include "figgen_run.hpp"
