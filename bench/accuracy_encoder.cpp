@@ -1,6 +1,6 @@
 // x264 settings from measurements: the same drawn frames of two films, a
 // smooth field (tc7-2) and hard edges with text (bd-500), encoded through
-// render::VideoWriter with several presets and tunes at crf 18, timed
+// media::VideoWriter with several presets and tunes at crf 18, timed
 // (encoding only: the frames are decoded from their PNGs first), weighed,
 // and decoded by FFmpeg's ssim filter against the drawn frames. The default
 // is the fastest setting that keeps every film's RGB SSIM within 0.005 of
@@ -80,7 +80,7 @@ std::vector<render::Image> drawn_frames(const Paths& paths, const std::string& i
         std::snprintf(name, sizeof name, "%05d.png", i);
         const auto file = dir / (id + "-frames") / name;
         if (!std::filesystem::exists(file)) break;
-        frames.push_back(render::read_png(file).image);
+        frames.push_back(media::read_png(file).image);
     }
     if (frames.empty()) throw std::runtime_error("figgen wrote no frames for " + id + " into " + dir.string());
     return frames;
@@ -124,10 +124,10 @@ Quality measure(const std::filesystem::path& film, const std::filesystem::path& 
 // of `repeats` (the machine is shared: the least disturbed run).
 double encode(const std::vector<render::Image>& frames, const std::filesystem::path& file, const Setting& s, int fps,
               int repeats) {
-    render::VideoOptions options;
+    media::VideoOptions options;
     options.codec = "libx264";
     options.fps = fps;
-    options.threads = render::VideoOptions{}.threads;  // as figgen pins it
+    options.threads = media::VideoOptions{}.threads;  // as figgen pins it
     options.crf = 18;
     options.preset = s.preset;
     options.tune = s.tune;
@@ -135,7 +135,7 @@ double encode(const std::vector<render::Image>& frames, const std::filesystem::p
     for (int r = 0; r < repeats; ++r) {
         std::filesystem::remove(file);
         const auto t0 = Clock::now();
-        render::VideoWriter writer(file, frames[0].width, frames[0].height, options);
+        media::VideoWriter writer(file, frames[0].width, frames[0].height, options);
         for (const auto& f : frames) writer.add(f);
         writer.finish();
         best = std::min(best, seconds_since(t0));
@@ -210,7 +210,7 @@ std::string fixed(double x, int decimals) {
 // bench/results/encoder.md: one table per film, then the choice.
 std::string markdown(const nlohmann::json& out) {
     std::string md =
-        "# x264 settings on figgen's own frames (crf 18, " + std::to_string(render::VideoOptions{}.threads) + " encoder thread)\n\n"
+        "# x264 settings on figgen's own frames (crf 18, " + std::to_string(media::VideoOptions{}.threads) + " encoder thread)\n\n"
         "Encoding time only (frames already in memory, best of 2); SSIM from FFmpeg's ssim filter, "
         "decoded film against the drawn PNGs: RGB (the bound) and luma. Bounds: SSIM drop <= 0.005, "
         "size <= 1.25 x medium's.\n";

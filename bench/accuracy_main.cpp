@@ -50,7 +50,7 @@ void write_pareto(const std::filesystem::path& file, const bench::Curves& curves
                                        render::Legend::lower_left)},
                           style);
     const render::Image image = canvas.read();
-    render::write_png(file, image, {{"Title", "figgen: run time against error"}});
+    media::write_png(file, image, {{"Title", "figgen: run time against error"}});
 }
 
 }  // namespace

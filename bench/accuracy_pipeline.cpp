@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "accuracy.hpp"
+#include "app/render/frame_canvas.hpp"
 #include "media/video.hpp"
 #include "scenes/field_panels.hpp"
 #include "sim/gray_scott.hpp"
@@ -132,13 +133,13 @@ nlohmann::json frames_in_process() {
         {p.n, p.n, model.b().cells(), {&render::colormap("Blues"), 0, 0.5, 0.7f, render::Sampling::smooth}});
     const int frames = 120, width = 1280, height = 720;
     auto t0 = Clock::now();
-    for (int i = 0; i < frames; ++i) scenes::draw_field_panels({panel}, width, height, 1.0);
+    for (int i = 0; i < frames; ++i) app::drawn_image(scenes::field_page({panel}, width, height, 1.0), width, height);
     const double draw = seconds_since(t0);
     const auto dir = scratch_dir("frames");
     t0 = Clock::now();
     {
-        render::VideoWriter video(dir / "frames.mp4", width, height);
-        for (int i = 0; i < frames; ++i) video.add(scenes::draw_field_panels({panel}, width, height, 1.0));
+        media::VideoWriter video(dir / "frames.mp4", width, height);
+        for (int i = 0; i < frames; ++i) video.add(app::drawn_image(scenes::field_page({panel}, width, height, 1.0), width, height));
         video.finish();
     }
     const double both = seconds_since(t0);

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <filesystem>
 
+#include "render/gl/canvas.hpp"
 #include "render/hex_cells.hpp"
+#include "app/render/frame_canvas.hpp"
 #include "media/png_io.hpp"
 #include "media/video.hpp"
 #include "scenes/field_panels.hpp"
@@ -29,16 +31,16 @@ scenes::FieldPanel diffusion_panel(int n) {
 // One 900x450 three-panel figure: canvas, fields, frames, titles, read-back.
 static void draw_three_panels(benchmark::State& state) {
     const auto panel = diffusion_panel(static_cast<int>(state.range(0)));
-    for (auto _ : state) benchmark::DoNotOptimize(scenes::draw_field_panels({panel, panel, panel}, 900, 450, 1.0));
+    for (auto _ : state) benchmark::DoNotOptimize(app::drawn_image(scenes::field_page({panel, panel, panel}, 900, 450, 1.0), 900, 450));
 }
 BENCHMARK(draw_three_panels)->Arg(9)->Arg(300)->Unit(benchmark::kMillisecond);
 
 // Encoding a 480x520 frame with libx264 (2 pinned threads).
 static void encode_frame(benchmark::State& state) {
-    const auto frame = scenes::draw_field_panels({diffusion_panel(9)}, 480, 520, 1.0);
+    const auto frame = app::drawn_image(scenes::field_page({diffusion_panel(9)}, 480, 520, 1.0), 480, 520);
     const auto path = std::filesystem::temp_directory_path() / "figgen-bench.mp4";
     {
-        render::VideoWriter video(path, frame.width, frame.height);
+        media::VideoWriter video(path, frame.width, frame.height);
         for (auto _ : state) video.add(frame);
         video.finish();
     }
@@ -49,9 +51,9 @@ BENCHMARK(encode_frame)->Unit(benchmark::kMillisecond);
 
 // Writing the 900x450 figure PNG.
 static void write_figure_png(benchmark::State& state) {
-    const auto image = scenes::draw_field_panels({diffusion_panel(9)}, 900, 450, 1.0);
+    const auto image = app::drawn_image(scenes::field_page({diffusion_panel(9)}, 900, 450, 1.0), 900, 450);
     const auto path = std::filesystem::temp_directory_path() / "figgen-bench.png";
-    for (auto _ : state) render::write_png(path, image);
+    for (auto _ : state) media::write_png(path, image);
     std::filesystem::remove(path);
 }
 BENCHMARK(write_figure_png)->Unit(benchmark::kMillisecond);
@@ -69,7 +71,7 @@ static scenes::FieldPanel smooth_frame_panel() {
 // That frame at 480x520 as a figure draws it: four samples, a pass per layer.
 static void draw_smooth_frame(benchmark::State& state) {
     const scenes::FieldPanel panel = smooth_frame_panel();
-    for (auto _ : state) benchmark::DoNotOptimize(scenes::draw_field_panels({panel}, 480, 520, 1.0));
+    for (auto _ : state) benchmark::DoNotOptimize(app::drawn_image(scenes::field_page({panel}, 480, 520, 1.0), 480, 520));
 }
 BENCHMARK(draw_smooth_frame)->Unit(benchmark::kMillisecond);
 
@@ -77,8 +79,10 @@ BENCHMARK(draw_smooth_frame)->Unit(benchmark::kMillisecond);
 static void draw_smooth_frame_paired(benchmark::State& state) {
     const scenes::FieldPanel panel = smooth_frame_panel();
     render::Canvas canvas(480, 520, 1);
-    for (auto _ : state)
-        benchmark::DoNotOptimize(scenes::draw_field_panels(canvas, {panel}, 1.0, scenes::LayerPasses::paired));
+    for (auto _ : state) {
+        scenes::paint_field_panels(canvas, {panel}, 1.0, scenes::LayerPasses::paired);
+        benchmark::DoNotOptimize(canvas.read());
+    }
 }
 BENCHMARK(draw_smooth_frame_paired)->Unit(benchmark::kMillisecond);
 

@@ -29,7 +29,7 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
-namespace render::media {
+namespace media::codec {
 namespace {
 
 // Owning pointers for the FFmpeg objects, so every exit path frees them.
@@ -875,10 +875,19 @@ PreviewInfo write_preview_thumbnail(int fd, const std::filesystem::path& shown, 
     return write_webp(fd, shown, frames, duration_ms / 1000.0, options);
 }
 
-const Api functions{open_encoder,      open_segment, probe_video,       decode_frame,
-                    scale,             write_preview, probe_webp,       open_preview,
-                    write_webm,        decode_webp_frame, write_preview_thumbnail,
-                    decode_film_frame, webp_canvas};
+const Api functions{.open_encoder = open_encoder,
+                    .open_segment = open_segment,
+                    .probe_video = probe_video,
+                    .decode_frame = decode_frame,
+                    .scale = scale,
+                    .write_preview = write_preview,
+                    .probe_preview = probe_webp,
+                    .open_preview = open_preview,
+                    .write_webm = write_webm,
+                    .decode_preview_frame = decode_webp_frame,
+                    .write_preview_thumbnail = write_preview_thumbnail,
+                    .decode_film_frame = decode_film_frame,
+                    .webp_canvas = webp_canvas};
 
 }  // namespace
 
@@ -886,4 +895,4 @@ const Api& implementation() {
     return functions;
 }
 
-}  // namespace render::media
+}  // namespace media::codec

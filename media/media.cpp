@@ -9,7 +9,7 @@
 #include "base/module.hpp"
 #include "media/media_abi.h"
 
-namespace render::media {
+namespace media::codec {
 namespace {
 
 constexpr base::ModuleSpec spec{FIGGEN_MEDIA_RELATIVE,
@@ -310,4 +310,4 @@ void preload() {
     base::module_of<figgen_media_api, spec>().preload();
 }
 
-}  // namespace render::media
+}  // namespace media::codec

@@ -18,7 +18,7 @@
 #include "render/image.hpp"
 #include "media/video.hpp"
 
-namespace render::media {
+namespace media::codec {
 
 using Packet = VideoPacket;
 
@@ -66,7 +66,7 @@ public:
 
 // Both sides hold this C++ vocabulary; between them it crosses in plain C
 // types (media/media_abi.h): media.cpp turns it into C calls, the module's
-// media_module.cpp turns those back into calls of its implementation().
+// media_abi.cpp turns those back into calls of its implementation().
 struct Api {
     // An MP4 writer on `fd` (open for reading and writing; the muxer reads
     // back for faststart); `shown` is the path errors name. Throws
@@ -126,4 +126,4 @@ void preload();
 // The module's own implementation (media/ffmpeg.cpp): defined in the module only.
 const Api& implementation();
 
-}  // namespace render::media
+}  // namespace media::codec

@@ -3,7 +3,7 @@
  * caller owns, opaque handles for the encoders, callbacks through which the
  * module hands back images and packets (written straight into the
  * program's own buffers), and an error record in place of an exception.
- * media/media_module.cpp is the module's side, media/media.cpp the
+ * media/media_abi.cpp is the module's side, media/media.cpp the
  * program's; both keep media/media.hpp's C++ vocabulary on their side. */
 #ifndef FIGGEN_MEDIA_ABI_H
 #define FIGGEN_MEDIA_ABI_H

@@ -15,7 +15,7 @@
 
 #include "base/atomic_file.hpp"
 
-namespace render {
+namespace media {
 namespace {
 
 struct FileCloser {
@@ -268,4 +268,4 @@ PngFile read_png(const std::filesystem::path& path) {
     return read_png_from(in, path);
 }
 
-}  // namespace render
+}  // namespace media

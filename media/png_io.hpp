@@ -10,7 +10,11 @@
 #include "base/atomic_file.hpp"
 #include "render/image.hpp"
 
-namespace render {
+namespace media {
+
+using render::any_pixels;
+using render::Image;
+using render::ImageTooLarge;
 
 using TextChunks = std::vector<std::pair<std::string, std::string>>;  // keyword, Latin-1 text
 
@@ -41,4 +45,4 @@ PngFile read_png(const std::filesystem::path& path);
 // pixel is allocated.
 PngFile read_png(const base::Folder& folder, const std::string& name, std::uint64_t max_pixels = any_pixels);
 
-}  // namespace render
+}  // namespace media

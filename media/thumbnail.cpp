@@ -6,7 +6,7 @@
 
 #include "media/media.hpp"
 
-namespace render {
+namespace media {
 
 Image thumbnail(const Image& image, int max_width, int max_height) {
     if (image.width < 1 || image.height < 1 || image.rgba.size() != std::size_t(image.width) * image.height * 4)
@@ -17,7 +17,7 @@ Image thumbnail(const Image& image, int max_width, int max_height) {
     if (factor == 1.0) return image;
     const int width = std::max(1, int(std::lround(image.width * factor)));
     const int height = std::max(1, int(std::lround(image.height * factor)));
-    return media::api().scale(image, width, height);
+    return codec::api().scale(image, width, height);
 }
 
-}  // namespace render
+}  // namespace media

@@ -5,11 +5,13 @@
 
 #include "render/image.hpp"
 
-namespace render {
+namespace media {
+
+using render::Image;
 
 // `image` scaled to fit `max_width` x `max_height`, keeping its aspect ratio
 // (each side at least 1); an image already inside is returned as it is.
 // Throws std::invalid_argument for an empty image or a size below 1.
 Image thumbnail(const Image& image, int max_width, int max_height);
 
-}  // namespace render
+}  // namespace media

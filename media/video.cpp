@@ -15,7 +15,7 @@
 // The arguments are checked here; FFmpeg's work is done by the media module
 // (media/media.hpp), opened on first use.
 
-namespace render {
+namespace media {
 
 // The file, and the module's encoder writing into it.
 struct VideoWriter::Encoder {
@@ -24,7 +24,7 @@ struct VideoWriter::Encoder {
     // Declared first so it is destroyed last: the encoder closes its I/O
     // before the temporary is removed.
     base::AtomicFile file;
-    std::unique_ptr<media::Encoder> media;
+    std::unique_ptr<codec::Encoder> media;
     bool finished = false;
 };
 
@@ -104,7 +104,7 @@ VideoWriter::VideoWriter(const base::Folder& folder, const std::string& name, in
                          const VideoOptions& options)
     : path_(folder / name), width_(width), height_(height), fps_(options.fps) {
     validate(width, height, options);
-    const media::Api& media = media::api();
+    const codec::Api& media = codec::api();
     auto e = std::make_unique<Encoder>(folder, name);
     e->media = media.open_encoder(e->file.fd(), path_, width, height, options);
     codec_name_ = e->media->codec_name();
@@ -133,7 +133,7 @@ PreviewInfo VideoWriter::preview_of_film(int fd, const std::filesystem::path& sh
     // Made beside the film, if it is this film's: the same pixels as
     // decoding the film here.
     if (preview_ && preview_->film_frames() == frames_ && preview_->complete()) return preview_->write(fd, shown);
-    return media::api().write_preview(fd, shown, encoder_->file.fd(), frames_, fps_, options);
+    return codec::api().write_preview(fd, shown, encoder_->file.fd(), frames_, fps_, options);
 }
 
 void VideoWriter::set_preview(std::unique_ptr<PreviewAnimation> preview) {
@@ -142,7 +142,7 @@ void VideoWriter::set_preview(std::unique_ptr<PreviewAnimation> preview) {
 }
 
 struct PreviewAnimation::Encoder {
-    std::unique_ptr<media::PreviewEncoder> media;
+    std::unique_ptr<codec::PreviewEncoder> media;
 };
 
 PreviewAnimation::PreviewAnimation(const std::string& shown, int film_frames, int film_fps,
@@ -153,7 +153,7 @@ PreviewAnimation::PreviewAnimation(const std::string& shown, int film_frames, in
         throw std::invalid_argument("a preview needs a film of a frame or more at a frame a second or more");
     wanted_ = static_cast<int>(preview_frame_indices(film_frames, options).size());
     encoder_ = std::make_unique<Encoder>();
-    encoder_->media = media::api().open_preview(shown, film_frames, film_fps, options);
+    encoder_->media = codec::api().open_preview(shown, film_frames, film_fps, options);
 }
 
 PreviewAnimation::~PreviewAnimation() = default;
@@ -170,14 +170,14 @@ PreviewInfo PreviewAnimation::write(int fd, const std::filesystem::path& shown) 
 }
 
 struct VideoSegment::Encoder {
-    std::unique_ptr<media::SegmentEncoder> media;
+    std::unique_ptr<codec::SegmentEncoder> media;
 };
 
 VideoSegment::VideoSegment(const std::string& shown, int width, int height, const VideoOptions& options)
     : width_(width), height_(height) {
     validate(width, height, options);
     encoder_ = std::make_unique<Encoder>();
-    encoder_->media = media::api().open_segment(shown, width, height, options);
+    encoder_->media = codec::api().open_segment(shown, width, height, options);
 }
 
 VideoSegment::~VideoSegment() = default;
@@ -242,7 +242,7 @@ VideoWriter::Copies VideoWriter::finish(const base::Folder& folder, const std::s
     if (!webm_name.empty()) {
         webm.emplace(folder, webm_name);
         copies.webm_bytes =
-            media::api().write_webm(webm->fd(), folder / webm_name, encoder_->file.fd(), fps_, webm_options);
+            codec::api().write_webm(webm->fd(), folder / webm_name, encoder_->file.fd(), fps_, webm_options);
     }
     if (keep_mp4) encoder_->file.commit();  // else the temporary MP4 goes with the writer
     preview.commit();
@@ -252,12 +252,12 @@ VideoWriter::Copies VideoWriter::finish(const base::Folder& folder, const std::s
 }
 
 PreviewInfo probe_preview(const std::filesystem::path& path) {
-    return media::api().probe_preview(path);
+    return codec::api().probe_preview(path);
 }
 
 Image decode_preview_frame(const std::filesystem::path& path, int index) {
     if (index < 0) throw std::out_of_range("preview frame index " + std::to_string(index) + " is negative");
-    return media::api().decode_preview_frame(path, index);
+    return codec::api().decode_preview_frame(path, index);
 }
 
 PreviewInfo write_preview_thumbnail(const base::Folder& source, const std::string& source_name,
@@ -267,24 +267,24 @@ PreviewInfo write_preview_thumbnail(const base::Folder& source, const std::strin
     const ReadOnly in(source, source_name);
     base::AtomicFile file(folder, name);
     const PreviewInfo info =
-        media::api().write_preview_thumbnail(file.fd(), folder / name, in.fd, in.shown, max_pixels, options);
+        codec::api().write_preview_thumbnail(file.fd(), folder / name, in.fd, in.shown, max_pixels, options);
     file.commit();
     return info;
 }
 
 PreviewInfo preview_canvas(const base::Folder& folder, const std::string& name) {
     const ReadOnly in(folder, name);
-    return media::api().webp_canvas(in.fd, in.shown);
+    return codec::api().webp_canvas(in.fd, in.shown);
 }
 
 VideoInfo probe_video(const std::filesystem::path& path) {
-    return media::api().probe_video(path);
+    return codec::api().probe_video(path);
 }
 
 Image decode_frame(const std::filesystem::path& path, int index, int threads) {
     if (index < 0) throw std::out_of_range("video frame index " + std::to_string(index) + " is negative");
     if (threads < 0) throw std::invalid_argument("decoder threads " + std::to_string(threads) + " is negative");
-    return media::api().decode_frame(path, index, threads);
+    return codec::api().decode_frame(path, index, threads);
 }
 
 Image decode_frame(const base::Folder& folder, const std::string& name, int index, int threads,
@@ -292,7 +292,7 @@ Image decode_frame(const base::Folder& folder, const std::string& name, int inde
     if (index < 0) throw std::out_of_range("video frame index " + std::to_string(index) + " is negative");
     if (threads < 0) throw std::invalid_argument("decoder threads " + std::to_string(threads) + " is negative");
     const ReadOnly in(folder, name);
-    return media::api().decode_film_frame(in.fd, in.shown, index, threads, max_pixels);
+    return codec::api().decode_film_frame(in.fd, in.shown, index, threads, max_pixels);
 }
 
-}  // namespace render
+}  // namespace media

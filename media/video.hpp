@@ -18,7 +18,11 @@
 #include "base/atomic_file.hpp"
 #include "render/image.hpp"
 
-namespace render {
+namespace media {
+
+using render::any_pixels;
+using render::Image;
+using render::ImageTooLarge;
 
 struct VideoOptions {
     int fps = 30;  // frames per second, >= 1
@@ -308,4 +312,4 @@ Image decode_frame(const std::filesystem::path& path, int index, int threads = 1
 Image decode_frame(const base::Folder& folder, const std::string& name, int index, int threads,
                    std::uint64_t max_pixels);
 
-}  // namespace render
+}  // namespace media

@@ -17,7 +17,7 @@
 #include <string>
 #include <utility>
 
-namespace render::media {
+namespace media::codec {
 namespace {
 
 struct FreeDecoder {
@@ -293,4 +293,4 @@ Image decode_webp_frame(const std::filesystem::path& path, int index) {
     }
 }
 
-}  // namespace render::media
+}  // namespace media::codec

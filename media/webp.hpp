@@ -14,7 +14,7 @@
 struct WebPAnimEncoder;
 struct WebPConfig;
 
-namespace render::media {
+namespace media::codec {
 
 // libwebp's animation encoder (WebPAnimEncoder, lossy at `quality`, one
 // thread), fed one frame at a time, each shown `frame_ms`; loops for ever.
@@ -68,4 +68,4 @@ PreviewInfo webp_canvas(int fd, const std::filesystem::path& shown);
 // The largest WebP read: figgen's previews are at most 2 MiB.
 constexpr std::size_t max_webp_bytes = 64u << 20;
 
-}  // namespace render::media
+}  // namespace media::codec

@@ -14,6 +14,11 @@
 
 namespace render {
 
+// The most cells a side of a field the renderer draws as one texture:
+// GL 4.5's least GL_MAX_TEXTURE_SIZE, so a description is checked against
+// it without opening GL (render/gl/ refuses a context with less).
+constexpr int max_texture_side = 16384;
+
 enum class Sampling {
     nearest,  // each cell a flat square: imshow(interpolation="nearest")
     smooth,   // cubic B-spline through the cells: imshow(interpolation="bicubic"), Agg's bicubic filter

@@ -14,6 +14,23 @@
 
 namespace render {
 
+// What drawing costs on the GL canvas (render/gl/), for the scenes' memory
+// estimates.
+//
+// The most triangles one GL draw call hands llvmpipe before glFinish. Its
+// setup bins the triangles of a draw into scenes and queues up to 64 of them
+// (tens of MiB each) while its threads rasterise, so one draw of millions of
+// triangles peaked at hundreds of MiB more than its vertices, differently
+// from run to run (pl-lsys-3d at depth 10: 324 to 484 MiB; 177 MiB without
+// rasteriser threads). Drawn in batches of this many, finishing each, the
+// queue holds one batch; the triangles and their order, so the pixels, are
+// the same.
+inline constexpr long long triangles_per_finish = 1 << 18;
+// What that queue may hold on top of the triangles' own vertices, for memory
+// estimates: measured 28 to 37 MiB above the vertices on the plant figures
+// (pl-lsys-lycopodium at depth 6, pl-lsys-3d's film at depths 7 and 8).
+inline constexpr double queued_triangles_bytes = 64.0 * 1024 * 1024;
+
 struct Rect {
     float x = 0, y = 0, w = 0, h = 0;  // top-left corner and size, pixels
     float right() const { return x + w; }

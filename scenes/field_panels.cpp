@@ -128,15 +128,12 @@ void paint_field_panels(render::Surface& surface, const std::vector<FieldPanel>&
                       static_cast<int>(panels.size()), scale, passes);
 }
 
-render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
-                                LayerPasses passes) {
-    paint_field_panels(canvas, panels, scale, passes);
-    return canvas.read();
-}
-
-render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale) {
-    render::Canvas canvas(width, height, field_page_samples(panels, width, height, scale));
-    return draw_field_panels(canvas, panels, scale);
+FrameDrawing field_page(std::vector<FieldPanel> panels, int width, int height, double scale, LayerPasses passes) {
+    const int samples = field_page_samples(panels, width, height, scale);
+    return {[panels = std::move(panels), scale, passes](render::Surface& surface) {
+                paint_field_panels(surface, panels, scale, passes);
+            },
+            samples};
 }
 
 FigureDrawing field_figure(const std::vector<FieldPanel>& panels, const Description& d, const SceneOptions& options) {

@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "render/gl/canvas.hpp"
 #include "render/field.hpp"
 #include "render/image.hpp"
 #include "scenes/output.hpp"
@@ -90,16 +89,12 @@ FigureDrawing field_figure(const std::vector<FieldPanel>& panels, const Descript
 // (render::draw_field_pair: faster, the same but for rounding; films).
 enum class LayerPasses { each, paired };
 
-// The same on an existing canvas of the page's size (reused frame after
-// frame, saving its framebuffers' set-up): clears it, draws, reads it back.
-render::Image draw_field_panels(render::Canvas& canvas, const std::vector<FieldPanel>& panels, double scale,
-                                LayerPasses passes = LayerPasses::each);
-// On a fresh canvas of width x height, with the samples the page needs
-// (field_page_samples): a page drawn once (benchmarks).
-render::Image draw_field_panels(const std::vector<FieldPanel>& panels, int width, int height, double scale);
-// The same on any surface of the page's size, not read back (a film's
-// frame, read by a FrameReader).
+// The page of `panels` on any surface of its size: clears it and draws.
 void paint_field_panels(render::Surface& surface, const std::vector<FieldPanel>& panels, double scale,
+                        LayerPasses passes = LayerPasses::each);
+// That page as a frame of width x height pixels, with the samples it needs
+// (field_page_samples): what a film's frame of field panels is.
+FrameDrawing field_page(std::vector<FieldPanel> panels, int width, int height, double scale,
                         LayerPasses passes = LayerPasses::each);
 
 // The text draw_field_panels would draw: the titles and the colour bars'

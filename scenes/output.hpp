@@ -27,11 +27,25 @@ public:
     virtual void finish() {}
 };
 
-// The animation's frames, passed on as they are drawn.
+// A film's frame as the scene describes it: `draw` draws it on a surface of
+// the film's frame size, and the canvas it needs (made once, from the first
+// frame's samples and depth buffer). The command draws it (on the GL
+// canvas it owns, app/render/frame_canvas.hpp) and reads it back.
+struct FrameDrawing {
+    std::function<void(render::Surface&)> draw;
+    int samples = 4;     // the canvas's multisampling
+    bool depth = false;  // a depth buffer, for 3-D scenes
+};
+
+// The animation: its frames handed over as drawings, in step order.
 class Film {
 public:
     virtual ~Film() = default;
-    virtual void add(render::Image frame, int step) = 0;  // by value: a sink may keep it (a queue to its encoder)
+    // Draws `frame`, the film's frame at `step`, at once (what it captures
+    // need not outlive the call); it reaches the files a few frames later.
+    virtual void add(const FrameDrawing& frame, int step) = 0;
+    // Every frame added so far passed on to the files (the end of a model's run).
+    virtual void flush() {}
     virtual nlohmann::json finish() = 0;  // completes it; returns the animation's metadata
 };
 

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "description/schema.hpp"
-#include "render/gl/canvas.hpp"
 #include "render/image.hpp"
 #include "render/plot.hpp"
 #include "scenes/description_names.hpp"

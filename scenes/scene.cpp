@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "render/colormap.hpp"
-#include "render/gl/gl_context.hpp"
+#include "render/field.hpp"
 #include "scenes/figure_caption.hpp"
 
 namespace scenes {

@@ -93,33 +93,16 @@ void StepRunner::final_frame(const StepHooks& hooks, int step) {
 }
 
 void StepRunner::frame(const FrameDrawing& drawing, int step) {
-    if (!frame_canvas_)
-        frame_canvas_ = std::make_unique<render::Canvas>(frame_width_, frame_height_, drawing.samples, drawing.depth);
-    drawing.draw(*frame_canvas_);
-    if (!reader_) reader_ = std::make_unique<render::FrameReader>();
-    reading_.push_back(step);
-    if (std::optional<render::Image> image = reader_->read(*frame_canvas_)) {
-        film_->add(std::move(*image), reading_.front());
-        reading_.pop_front();
-    }
+    film_->add(drawing, step);
     progress_.advance();
 }
 
 void StepRunner::drain_frames() {
-    if (!reader_) return;
-    while (std::optional<render::Image> image = reader_->next()) {
-        film_->add(std::move(*image), reading_.front());
-        reading_.pop_front();
-    }
+    if (film_) film_->flush();
 }
 
 FrameDrawing StepRunner::field_frame(std::vector<FieldPanel> panels) const {
-    const int samples = field_page_samples(panels, frame_width_, frame_height_, options_.scale);
-    const double scale = options_.scale;
-    return {[panels = std::move(panels), scale](render::Surface& surface) {
-                paint_field_panels(surface, panels, scale, LayerPasses::paired);
-            },
-            samples};
+    return field_page(std::move(panels), frame_width_, frame_height_, options_.scale, LayerPasses::paired);
 }
 
 void StepRunner::stepped() {

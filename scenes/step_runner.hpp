@@ -4,26 +4,16 @@
 // step any output needs, so the model never runs past it. Frames go straight
 // to the MP4 / PNG sequence as they are drawn.
 
-#include <deque>
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "render/gl/canvas.hpp"
 #include "render/surface.hpp"
 #include "render/image.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/scene.hpp"
 
 namespace scenes {
-
-// A film's frame: what it draws, on any surface, and the canvas it needs
-// (made once, from the first frame's; the runner reads it back).
-struct FrameDrawing {
-    std::function<void(render::Surface&)> draw;
-    int samples = 4;     // the canvas's multisampling
-    bool depth = false;  // a depth buffer, for 3-D scenes
-};
 
 // What a scene does at each step of the run.
 struct StepHooks {
@@ -87,8 +77,8 @@ private:
     // order, and a final frame at a stop between two of them comes after
     // the earlier one.
     int frame_index(int step) const;
-    void frame(const FrameDrawing& drawing, int step);  // draws a frame and reads it back for the sinks
-    void drain_frames();                                 // every frame read back handed to the film
+    void frame(const FrameDrawing& drawing, int step);  // hands a frame to the film
+    void drain_frames();                                 // every frame handed over reaches the film's files
     void stepped();                             // counts one model step (progress bar and metadata)
 
     const Description& description_;
@@ -100,10 +90,6 @@ private:
     int frame_width_ = 0, frame_height_ = 0;
     FrameRange frames_;  // of the film's frames, those this run draws
     std::unique_ptr<Film> film_;
-    std::unique_ptr<render::Canvas> frame_canvas_;
-    // Frames in flight from the GPU (pixel buffer objects), with their steps.
-    std::unique_ptr<render::FrameReader> reader_;
-    std::deque<int> reading_;
 };
 
 }  // namespace scenes

@@ -127,7 +127,7 @@ render::Image render_catalog_figure(const std::string& id, double scale, const s
     options.video = false;
     scenes::Progress quiet;  // shows nothing
     app::render_figure(d, options, quiet);
-    render::Image image = render::read_png(options.dir / (d.id + ".png")).image;
+    render::Image image = media::read_png(options.dir / (d.id + ".png")).image;
     std::filesystem::remove_all(options.dir);
     return image;
 }
@@ -170,7 +170,7 @@ Rendered render_through_command(const std::string& id, double scale, const std::
         throw std::runtime_error(command.str() + " failed (status " + std::to_string(status) + "): " + output);
     }
     Rendered r;
-    r.image = render::read_png(out / (id + ".png")).image;
+    r.image = media::read_png(out / (id + ".png")).image;
     std::ifstream in(out / (id + ".json"));
     r.meta = nlohmann::json::parse(in);
     for (const char* extension : {".pdf", ".svg"})

@@ -58,9 +58,9 @@ GoldenCheck check_golden(const std::string& name, const render::Image& actual, c
         result.message = name + ": no golden " + golden_png.string() + " (run `make goldens`)";
         return result;
     }
-    const render::Image golden = render::read_png(golden_png).image;
+    const render::Image golden = media::read_png(golden_png).image;
     std::filesystem::create_directories(artifact_dir);
-    render::write_png(artifact_dir / (name + "-actual.png"), actual);
+    media::write_png(artifact_dir / (name + "-actual.png"), actual);
     if (golden.width != actual.width || golden.height != actual.height) {
         std::ostringstream m;
         m << name << ": size " << actual.width << "x" << actual.height << " differs from the golden's "
@@ -78,7 +78,7 @@ GoldenCheck check_golden(const std::string& name, const render::Image& actual, c
         }
     const long allowed = static_cast<long>(max_differing_fraction * golden.width * golden.height);
     result.within_tolerance = result.differing_pixels <= allowed;
-    render::write_png(artifact_dir / (name + "-diff.png"), diff_image(golden, actual));
+    media::write_png(artifact_dir / (name + "-diff.png"), diff_image(golden, actual));
     std::ostringstream m;
     m << name << ": hash differs (golden made with " << recorded_renderer << ", this is "
       << renderer << "); " << result.differing_pixels << " pixels differ by more than "
@@ -91,7 +91,7 @@ GoldenCheck check_golden(const std::string& name, const render::Image& actual, c
 void write_golden(const std::filesystem::path& dir, const std::string& name, const render::Image& image,
                   const std::string& renderer, const std::string& version) {
     std::filesystem::create_directories(dir);
-    render::write_png(dir / (name + ".png"), image);
+    media::write_png(dir / (name + ".png"), image);
     std::ofstream out(dir / (name + ".sha256"));
     out << pixel_hash(image) << "\n" << renderer << "\n" << version << "\n";
     if (!out) throw std::runtime_error("cannot write " + (dir / (name + ".sha256")).string());

@@ -8,7 +8,7 @@
 //   description/    the description reader: nothing but description/
 //   ready/          Ready's files read: description, sim (a pattern read as a description of its rule)
 //   ready/writers/  Ready's files written, an output: ready/ (the app uses it; scenes may not)
-//   scenes/         sim, render, description, ready (models meet drawing here)
+//   scenes/         sim, render (not render/gl/), description, ready (models meet drawing here)
 //   app/command/    the command line and Python's library calls: everything
 //   app/gallery/    the gallery: app/render/, app/work/ and everything below app/
 //   app/render/     the render pipeline: app/work/ and everything below app/
@@ -39,7 +39,9 @@ const std::map<std::string, std::set<std::string>> may_include = {
     {"description", {"description", "base"}},
     {"ready", {"ready", "description", "sim", "base"}},
     {"ready/writers", {"ready/writers", "ready", "base"}},
-    {"scenes", {"sim", "render", "render/gl", "description", "ready", "scenes", "base"}},
+    // Scenes hand figures and frames as drawings: what owns a canvas and
+    // reads it back is the command's (app/render/frame_canvas.hpp).
+    {"scenes", {"sim", "render", "description", "ready", "scenes", "base"}},
     // The command, by role, each floor over the ones after it: the command
     // line and the library calls, the gallery, the render pipeline, the work.
     {"app", {}},

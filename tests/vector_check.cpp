@@ -29,7 +29,7 @@ std::string quoted(const std::filesystem::path& path) {
 }
 
 render::Image read_and_remove(const std::filesystem::path& png) {
-    render::Image image = render::read_png(png).image;
+    render::Image image = media::read_png(png).image;
     std::filesystem::remove(png);
     return image;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // figgen's render and describe as library calls, for the Python module
-// (python/module.cpp): one figure in this process, through the same phases,
+// (python/extension.cpp): one figure in this process, through the same phases,
 // options and checks as `figgen render`, and the same bits.
 
 #include <filesystem>

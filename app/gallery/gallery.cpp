@@ -369,9 +369,9 @@ ThumbnailsWritten write_thumbnails(const std::filesystem::path& from, const std:
     for (const auto& file : catalog_files()) {
         const std::string id = file.stem().string();
         if (!is_file_in(source, id + ".png")) continue;
-        render::PngFile png;
+        media::PngFile png;
         try {
-            png = render::read_png(source, id + ".png", max_pixels(max_memory, png_bytes_per_pixel));
+            png = media::read_png(source, id + ".png", max_pixels(max_memory, png_bytes_per_pixel));
         } catch (const std::runtime_error& e) {
             refused(id + ".png", e);
             continue;
@@ -379,19 +379,19 @@ ThumbnailsWritten write_thumbnails(const std::filesystem::path& from, const std:
         std::string title = id;
         for (const auto& [key, value] : png.text)
             if (key == "Title") title = value;
-        render::write_png(target, id + ".png", render::thumbnail(png.image, max_width, max_height),
+        media::write_png(target, id + ".png", media::thumbnail(png.image, max_width, max_height),
                           {{"Title", title}});
         // A film's preview as an animated thumbnail too, for pages that
         // show the animated figures moving (the README's grid): half the
         // preview's frames, within 400 KB.
         if (is_file_in(source, id + ".webp")) {
-            render::PreviewOptions small;
+            media::PreviewOptions small;
             small.max_width = max_width;
             small.max_height = max_height;
             small.max_frames = 24;
             small.max_bytes = 400u << 10;
             try {
-                render::write_preview_thumbnail(source, id + ".webp", target, id + ".webp", small,
+                media::write_preview_thumbnail(source, id + ".webp", target, id + ".webp", small,
                                                 max_pixels(max_memory, webp_bytes_per_pixel));
             } catch (const std::runtime_error& e) {
                 refused(id + ".webp", e);
@@ -419,7 +419,7 @@ std::string film_identity(const base::Folder& folder, const std::string& movie, 
 std::string png_text(const base::Folder& folder, const std::string& name, const std::string& key,
                      std::uint64_t max_pixels) {
     try {
-        for (const auto& [k, value] : render::read_png(folder, name, max_pixels).text)
+        for (const auto& [k, value] : media::read_png(folder, name, max_pixels).text)
             if (k == key) return value;
     } catch (const std::exception&) {
     }
@@ -436,7 +436,7 @@ std::string preview_html(const Folders& folders, std::uint64_t max_memory, const
     const std::string preview = id + ".webp";
     if (!is_file_in(folders.figures, preview)) return "";
     try {
-        const render::PreviewInfo canvas = render::preview_canvas(folders.figures, preview);
+        const media::PreviewInfo canvas = media::preview_canvas(folders.figures, preview);
         const std::uint64_t pixels =
             static_cast<std::uint64_t>(canvas.width) * static_cast<std::uint64_t>(canvas.height);
         const std::uint64_t allowed = max_pixels(max_memory, webp_bytes_per_pixel);
@@ -487,9 +487,9 @@ std::string film_html(const Folders& folders, std::uint64_t max_memory, const st
         if (source.empty() || !is_file_in(folders.posters, id + ".png") ||
             png_text(folders.posters, id + ".png", "Source", max_pixels(max_memory, png_bytes_per_pixel)) != source) {
             const int threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, poster_threads));
-            const render::Image frame = render::decode_frame(folders.figures, movie, poster_frame, threads,
+            const render::Image frame = media::decode_frame(folders.figures, movie, poster_frame, threads,
                                                              max_pixels(max_memory, film_bytes_per_pixel));
-            render::write_png(folders.posters, id + ".png", frame,
+            media::write_png(folders.posters, id + ".png", frame,
                               {{"Title", title + " (frame " + std::to_string(poster_frame) + " of " + movie + ")"},
                                {"Source", source}});
         }
@@ -591,10 +591,10 @@ std::string card_html(const Folders& folders, std::uint64_t max_memory, const st
          << "<div class=\"id\">" << escape(id) << "</div>\n"
          << "<p class=\"source\">" << escape(text_of(meta, "source", "")) << "</p>\n";
     try {
-        const render::Image thumb = render::thumbnail(
-            render::read_png(folders.figures, id + ".png", max_pixels(max_memory, png_bytes_per_pixel)).image,
+        const render::Image thumb = media::thumbnail(
+            media::read_png(folders.figures, id + ".png", max_pixels(max_memory, png_bytes_per_pixel)).image,
             thumb_width, thumb_height);
-        render::write_png(folders.thumbs, id + ".png", thumb, {{"Title", title}});
+        media::write_png(folders.thumbs, id + ".png", thumb, {{"Title", title}});
         card << "<a href=\"" << escape(id) << ".png\"><img src=\"thumbs/" << escape(id) << ".png\" width=\""
              << thumb.width << "\" height=\"" << thumb.height << "\" alt=\"" << escape(title) << "\"></a>\n";
     } catch (const render::ImageTooLarge& e) {

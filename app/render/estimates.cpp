@@ -103,7 +103,7 @@ void format_needs(const Description& d, const OutputOptions& options, OutputForm
 MemoryEstimate estimate_memory(const Description& d, const OutputOptions& options,
                                const std::vector<scenes::MemoryNeed>& needs) {
     using scenes::MemoryNeed;
-    namespace film = render::film_costs;
+    namespace film = media::film_costs;
     std::vector<MemoryNeed> all = needs;
     int film_encoders = 1;
     all.push_back({"figure " + std::to_string(figure_width(d, options)) + " x " +

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "app/render/frame_canvas.hpp"
 #include "render/text.hpp"
 #include "scenes/work_codec.hpp"
 
@@ -32,7 +33,7 @@ public:
 
     nlohmann::json result() {
         nlohmann::json packets = nlohmann::json::array();
-        for (const render::VideoPacket& p : packets_)
+        for (const media::VideoPacket& p : packets_)
             packets.push_back({scenes::binary_of<std::uint8_t>(p.data), p.pts, p.dts, p.key});
         return {{"steps", steps_}, {"packets", packets}};
     }
@@ -40,17 +41,22 @@ public:
 private:
     struct SegmentFilm : scenes::Film {
         SegmentFilm(SegmentOutput& out, int width, int height)
-            : out_(out), video_(out.d_.id + " film segment", width, height, film_video_options(out.d_, out.options_)) {}
-        void add(render::Image frame, int step) override {
-            video_.add(frame);
-            out_.steps_.push_back(step);
-        }
+            : out_(out),
+              video_(out.d_.id + " film segment", width, height, film_video_options(out.d_, out.options_)),
+              canvas_(width, height, [this](render::Image frame, int step) {
+                  video_.add(frame);
+                  out_.steps_.push_back(step);
+              }) {}
+        void add(const scenes::FrameDrawing& frame, int step) override { canvas_.draw(frame, step); }
+        void flush() override { canvas_.flush(); }
         nlohmann::json finish() override {
+            canvas_.flush();
             out_.packets_ = video_.finish();
             return {};
         }
         SegmentOutput& out_;
-        render::VideoSegment video_;
+        media::VideoSegment video_;
+        FrameCanvas canvas_;  // last: it hands its frames to video_
     };
 
     const Description& d_;
@@ -58,13 +64,13 @@ private:
     scenes::FrameRange range_;
     scenes::Progress quiet_;
     std::vector<int> steps_;
-    std::vector<render::VideoPacket> packets_;
+    std::vector<media::VideoPacket> packets_;
 };
 
 }  // namespace
 
-render::VideoOptions film_video_options(const Description& d, const OutputOptions& options) {
-    render::VideoOptions v = options.video_options;
+media::VideoOptions film_video_options(const Description& d, const OutputOptions& options) {
+    media::VideoOptions v = options.video_options;
     v.fps = d.animation->fps;
     v.segment_frames = d.animation->segment_frames;
     return v;
@@ -140,7 +146,7 @@ double FilmSegments::item_bytes() const {
 // and their encoding.
 std::string FilmSegments::depends_on() const {
     const description::Animation& a = *d_.animation;
-    const render::VideoOptions v = film_video_options(d_, options_);
+    const media::VideoOptions v = film_video_options(d_, options_);
     std::ostringstream text;
     text << toml::json_formatter{d_.style} << "\npanels";
     for (int p : d_.panels) text << ' ' << p;

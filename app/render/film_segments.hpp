@@ -1,7 +1,7 @@
 #pragma once
 // A film made in segments by the ranks of an MPI job. Every film is encoded
 // in segments of the description's animation.segment_frames frames, each by
-// an encoder of its own (render::VideoSegment: a closed group of pictures
+// an encoder of its own (media::VideoSegment: a closed group of pictures
 // from a key frame), and joined by stream copy; a lone process encodes them
 // one after another from its one run. Under mpirun each segment is a work
 // item: a rank runs the figure's scene again from step 0 (recomputing the
@@ -46,11 +46,11 @@ private:
 // A segment's result, decoded: its frames' steps and its packets.
 struct FilmSegment {
     std::vector<int> steps;
-    std::vector<render::VideoPacket> packets;
+    std::vector<media::VideoPacket> packets;
 };
 FilmSegment film_segment(const nlohmann::json& result);
 
 // The video settings of d's film (what FrameSink's writer and every segment use).
-render::VideoOptions film_video_options(const Description& d, const OutputOptions& options);
+media::VideoOptions film_video_options(const Description& d, const OutputOptions& options);
 
 }  // namespace app

@@ -42,87 +42,108 @@ scenes::MemoryNeed vector_page(const Description& d, const OutputOptions& option
 std::vector<OutputFormat> make_table() {
     using render::vector::Format;
     using Stage = OutputFormat::Stage;
-    namespace film = render::film_costs;
+    namespace film = media::film_costs;
     std::vector<OutputFormat> t;
-    t.push_back({"png", ".png", "the PNG", "png (nothing more)", nullptr, {}, std::nullopt, Stage::figure,
-                 [](const Description&, const OutputOptions&) { return true; }, [](OutputOptions&) {},
-                 [](const Description& d, const OutputOptions& o) { return 4.0 * figure_pixels(d, o); }});
-    t.push_back({nullptr, ".json", "the JSON", nullptr, nullptr, {}, std::nullopt, Stage::figure,
-                 [](const Description&, const OutputOptions&) { return true; }, nullptr,
-                 [](const Description&, const OutputOptions&) { return 0.0; }});
+    const auto always = [](const Description&, const OutputOptions&) { return true; };
+    t.push_back({.name = "png",
+                 .suffix = ".png",
+                 .shown = "the PNG",
+                 .help = "png (nothing more)",
+                 .wanted = always,
+                 .choose = [](OutputOptions&) {},
+                 .disk = [](const Description& d, const OutputOptions& o) { return 4.0 * figure_pixels(d, o); }});
+    t.push_back({.suffix = ".json",
+                 .shown = "the JSON",
+                 .wanted = always,
+                 .disk = [](const Description&, const OutputOptions&) { return 0.0; }});
     // Vector files: --format's, or else those the description asks for.
-    t.push_back({"pdf", ".pdf", "the PDF", "pdf and svg (the figure as vector graphics)", "PDF", {"vector", "pdf"},
-                 Format::pdf, Stage::figure,
-                 [](const Description& d, const OutputOptions& o) { return chosen(d, o, "pdf"); },
-                 [](OutputOptions& o) { o.chosen.insert("pdf"); },
-                 [](const Description& d, const OutputOptions& o) {
-                     return render::vector::file_bytes(figure_width(d, o), figure_height(d, o));
-                 },
-                 vector_page});
-    t.push_back({"svg", ".svg", "the SVG", nullptr, "SVG", {"vector", "svg"}, Format::svg, Stage::figure,
-                 [](const Description& d, const OutputOptions& o) { return chosen(d, o, "svg"); },
-                 [](OutputOptions& o) { o.chosen.insert("svg"); },
-                 [](const Description& d, const OutputOptions& o) {
-                     return render::vector::file_bytes(figure_width(d, o), figure_height(d, o));
-                 },
-                 vector_page});
+    const auto vector_bytes = [](const Description& d, const OutputOptions& o) {
+        return render::vector::file_bytes(figure_width(d, o), figure_height(d, o));
+    };
+    t.push_back({.name = "pdf",
+                 .suffix = ".pdf",
+                 .shown = "the PDF",
+                 .help = "pdf and svg (the figure as vector graphics)",
+                 .link = "PDF",
+                 .json = {"vector", "pdf"},
+                 .vector = Format::pdf,
+                 .wanted = [](const Description& d, const OutputOptions& o) { return chosen(d, o, "pdf"); },
+                 .choose = [](OutputOptions& o) { o.chosen.insert("pdf"); },
+                 .disk = vector_bytes,
+                 .memory = vector_page});
+    t.push_back({.name = "svg",
+                 .suffix = ".svg",
+                 .shown = "the SVG",
+                 .link = "SVG",
+                 .json = {"vector", "svg"},
+                 .vector = Format::svg,
+                 .wanted = [](const Description& d, const OutputOptions& o) { return chosen(d, o, "svg"); },
+                 .choose = [](OutputOptions& o) { o.chosen.insert("svg"); },
+                 .disk = vector_bytes,
+                 .memory = vector_page});
     // The MP4 is encoded for the WebM too, kept or not.
-    t.push_back({"mp4", ".mp4", "the MP4", "mp4 (the animation)", nullptr, {}, std::nullopt, Stage::film,
-                 [](const Description& d, const OutputOptions& o) { return films(d) && o.encodes(); },
-                 [](OutputOptions& o) { o.video = true; },
-                 [](const Description& d, const OutputOptions& o) {
+    t.push_back({.name = "mp4",
+                 .suffix = ".mp4",
+                 .shown = "the MP4",
+                 .help = "mp4 (the animation)",
+                 .stage = Stage::film,
+                 .wanted = [](const Description& d, const OutputOptions& o) { return films(d) && o.encodes(); },
+                 .choose = [](OutputOptions& o) { o.video = true; },
+                 .disk = [](const Description& d, const OutputOptions& o) {
                      return film::file_bytes_per_pixel_frame * film_pixels(d, o);
                  }});
     // The film's looping preview, with its MP4: at most its budget.
-    t.push_back({nullptr,
-                 ".webp",
-                 "the preview",
-                 nullptr,
-                 nullptr,
-                 {},
-                 std::nullopt,
-                 Stage::film,
-                 [](const Description& d, const OutputOptions& o) { return films(d) && o.encodes(); },
-                 nullptr,
-                 [](const Description&, const OutputOptions&) {
-                     return static_cast<double>(render::PreviewOptions{}.max_bytes);
+    t.push_back({.suffix = ".webp",
+                 .shown = "the preview",
+                 .stage = Stage::film,
+                 .wanted = [](const Description& d, const OutputOptions& o) { return films(d) && o.encodes(); },
+                 .disk = [](const Description&, const OutputOptions&) {
+                     return static_cast<double>(media::PreviewOptions{}.max_bytes);
                  },
                  // Its frames, at most max_frames fitted into its size, held
                  // from their segments' encoding to the film's end.
-                 [](const Description& d, const OutputOptions& o) -> scenes::MemoryNeed {
-                     const render::PreviewOptions preview;
+                 .memory = [](const Description& d, const OutputOptions& o) -> scenes::MemoryNeed {
+                     const media::PreviewOptions preview;
                      const double fit = std::min(
                          {1.0, double(preview.max_width) / std::max(1, scaled_even(d.animation->width, o.scale)),
                           double(preview.max_height) / std::max(1, scaled_even(d.animation->height, o.scale))});
                      return {"the preview's frames", 4.0 * std::min(preview.max_frames, d.animation->frame_count()) *
                                                          fit * fit * frame_pixels(d, o)};
                  }});
-    t.push_back({"webm",
-                 ".webm",
-                 "the WebM",
-                 "webm (the animation as VP9 in WebM)",
-                 "WebM",
-                 {"animation", "webm"},
-                 std::nullopt,
-                 Stage::film,
-                 [](const Description& d, const OutputOptions& o) { return films(d) && o.webm; },
-                 [](OutputOptions& o) { o.webm = true; },
-                 [](const Description& d, const OutputOptions& o) {
+    t.push_back({.name = "webm",
+                 .suffix = ".webm",
+                 .shown = "the WebM",
+                 .help = "webm (the animation as VP9 in WebM)",
+                 .link = "WebM",
+                 .json = {"animation", "webm"},
+                 .stage = Stage::film,
+                 .wanted = [](const Description& d, const OutputOptions& o) { return films(d) && o.webm; },
+                 .choose = [](OutputOptions& o) { o.webm = true; },
+                 .disk = [](const Description& d, const OutputOptions& o) {
                      return film::file_bytes_per_pixel_frame * film_pixels(d, o);
                  },
-                 [](const Description& d, const OutputOptions& o) -> scenes::MemoryNeed {
+                 .memory = [](const Description& d, const OutputOptions& o) -> scenes::MemoryNeed {
                      return {"the WebM encoder " + film_size(d, o),
                              film::vp9_bytes + film::vp9_bytes_per_pixel * frame_pixels(d, o)};
                  }});
-    t.push_back({"frames", "-frames", "the PNG sequence", "frames (the animation as a PNG sequence)", nullptr, {},
-                 std::nullopt, Stage::film,
-                 [](const Description& d, const OutputOptions& o) { return films(d) && o.frames; },
-                 [](OutputOptions& o) { o.frames = true; },
-                 [](const Description& d, const OutputOptions& o) { return 4.0 * film_pixels(d, o); }});
-    t.push_back({"vti", ".vti", "the VTI file", "vti (a formula model's last step as Ready's file)", "VTI", {"vti"},
-                 std::nullopt, Stage::figure, [](const Description&, const OutputOptions& o) { return o.vti; },
-                 [](OutputOptions& o) { o.vti = true; },
-                 [](const Description& d, const OutputOptions&) {
+    t.push_back({.name = "frames",
+                 .suffix = "-frames",
+                 .shown = "the PNG sequence",
+                 .help = "frames (the animation as a PNG sequence)",
+                 .stage = Stage::film,
+                 .wanted = [](const Description& d, const OutputOptions& o) { return films(d) && o.frames; },
+                 .choose = [](OutputOptions& o) { o.frames = true; },
+                 .disk = [](const Description& d, const OutputOptions& o) { return 4.0 * film_pixels(d, o); }});
+    // A file the figure's scene writes besides it (SceneInfo::extra_files).
+    t.push_back({.name = "vti",
+                 .suffix = ".vti",
+                 .shown = "the VTI file",
+                 .help = "vti (a formula model's last step as Ready's file)",
+                 .link = "VTI",
+                 .json = {"vti"},
+                 .wanted = [](const Description&, const OutputOptions& o) { return o.vti; },
+                 .choose = [](OutputOptions& o) { o.vti = true; },
+                 .disk = [](const Description& d, const OutputOptions&) {
                      const scenes::ExtraFile* file = scenes::extra_file(d, "vti");
                      return file ? file->disk(d) : 0.0;
                  }});

@@ -21,19 +21,19 @@ struct OutputFormat {
     // (after the PNG's canvas has gone) or with the film.
     enum class Stage { figure, film };
 
-    const char* name;    // the word --format (and a description's figure.formats) uses; null: not chosen by name
-    const char* suffix;  // the file's (or folder's) name after the figure's id
-    const char* shown;   // in messages: "the PNG"
-    const char* help;    // --format's help for it (null: not named there)
-    const char* link;    // the gallery's link to it (null: none, or linked otherwise)
+    const char* name = nullptr;    // the word --format (and a description's figure.formats) uses; null: not chosen by name
+    const char* suffix = nullptr;  // the file's (or folder's) name after the figure's id
+    const char* shown = nullptr;   // in messages: "the PNG"
+    const char* help = nullptr;    // --format's help for it (null: not named there)
+    const char* link = nullptr;    // the gallery's link to it (null: none, or linked otherwise)
     // Where the figure's JSON names its file ({"vector", "pdf"}: meta.vector.pdf.file).
-    std::vector<const char*> json;
-    std::optional<render::vector::Format> vector;  // drawn on a vector page and written by the vector module
+    std::vector<const char*> json = {};
+    std::optional<render::vector::Format> vector = std::nullopt;  // drawn on a vector page and written by the vector module
     Stage stage = Stage::figure;
-    bool (*wanted)(const Description& d, const OutputOptions& options);
-    void (*choose)(OutputOptions& options);  // --format names it (null: not chosen by name)
+    bool (*wanted)(const Description& d, const OutputOptions& options) = nullptr;
+    void (*choose)(OutputOptions& options) = nullptr;  // --format names it (null: not chosen by name)
     // The most its file takes on disk.
-    double (*disk)(const Description& d, const OutputOptions& options);
+    double (*disk)(const Description& d, const OutputOptions& options) = nullptr;
     // Its own stage's peak memory, beyond what every figure counts (the
     // canvas, the film's frames and its x264 encoders); null: nothing more.
     // Formats that share a stage (PDF and SVG) name it alike; it is counted once.

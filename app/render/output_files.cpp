@@ -25,16 +25,22 @@ using scenes::scaled;
 namespace {
 
 // The film's preview: render's defaults.
-const render::PreviewOptions preview_options{};
+const media::PreviewOptions preview_options{};
 
 }  // namespace
 
 FrameSink::FrameSink(const Description& d, const OutputOptions& options, const base::Folder& folder, int width,
                      int height, const std::vector<nlohmann::json>* segments, int encoders)
-    : description_(d), options_(options), folder_(folder), width_(width), height_(height), segments_(segments) {
+    : description_(d),
+      options_(options),
+      folder_(folder),
+      width_(width),
+      height_(height),
+      segments_(segments),
+      canvas_(width, height, [this](render::Image frame, int step) { pipe_->push(std::move(frame), step); }) {
     if (options.encodes()) {
-        const render::VideoOptions video = film_video_options(d, options);
-        video_ = std::make_unique<render::VideoWriter>(folder, d.id + ".mp4", width, height, video);
+        const media::VideoOptions video = film_video_options(d, options);
+        video_ = std::make_unique<media::VideoWriter>(folder, d.id + ".mp4", width, height, video);
         // Segments side by side; a film of one segment, or one encoder, as before.
         if (!segments && encoders > 1 && video.segment_frames > 0)
             encoders_ = std::make_unique<SegmentEncoders>(*video_, (folder / (d.id + ".mp4")).string(), width, height,
@@ -48,18 +54,22 @@ FrameSink::FrameSink(const Description& d, const OutputOptions& options, const b
 
 FrameSink::~FrameSink() = default;
 
-void FrameSink::add(render::Image frame, int step) {
-    pipe_->push(std::move(frame), step);
+void FrameSink::add(const scenes::FrameDrawing& frame, int step) {
+    canvas_.draw(frame, step);
+}
+
+void FrameSink::flush() {
+    canvas_.flush();
 }
 
 void FrameSink::write(render::Image& frame, int step) {
     if (frames_) {
         char name[32];
         std::snprintf(name, sizeof name, "%05d.png", static_cast<int>(steps_.size()));
-        render::write_png(frames_->folder(), name, frame,
+        media::write_png(frames_->folder(), name, frame,
                           {{"Title", description_.id + " " + description::format_step("step {step}", step)}},
                           base::AtomicFile::Commit::now,  // inside the temporary folder
-                          render::PngCompression::fast);
+                          media::PngCompression::fast);
     }
     if (encoders_)
         encoders_->add(std::move(frame));
@@ -69,6 +79,7 @@ void FrameSink::write(render::Image& frame, int step) {
 }
 
 nlohmann::json FrameSink::finish() {
+    canvas_.flush();
     pipe_->finish();                     // every frame encoded and written, or what failed is thrown here
     if (encoders_) encoders_->finish();  // every segment in the MP4
     if (segments_)
@@ -100,10 +111,10 @@ nlohmann::json FrameSink::finish() {
     if (asked_width != width_ || asked_height != height_)
         meta["size_rounded"] = {{"from", {asked_width, asked_height}}, {"why", "H.264 in yuv420p needs even sizes"}};
     if (video_) {
-        const render::WebmOptions webm;
+        const media::WebmOptions webm;
         const auto copies = video_->finish(folder_, description_.id + ".webp", preview_options,
                                            options_.webm ? description_.id + ".webm" : "", webm, options_.video);
-        const render::PreviewInfo& preview = copies.preview;
+        const media::PreviewInfo& preview = copies.preview;
         if (options_.video) meta["file"] = description_.id + ".mp4";
         if (options_.webm)
             meta["webm"] = {{"file", description_.id + ".webm"},
@@ -230,7 +241,7 @@ void write_figure(const Description& d, const OutputOptions& options, const base
     meta["image"] = {{"file", d.id + ".png"}, {"size", {image.width, image.height}}};
     if (options.transparent) meta["image"]["transparent"] = true;
 
-    render::write_png(folder, d.id + ".png", image,
+    media::write_png(folder, d.id + ".png", image,
                       {{"Title", d.title},
                        {"Source", d.source},
                        {"Software", std::string("figgen ") + base::version()},

@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "app/render/estimates.hpp"
+#include "app/render/frame_canvas.hpp"
 #include "app/render/frame_pipe.hpp"
 #include "app/render/output_options.hpp"
 #include "app/render/segment_encoders.hpp"
@@ -33,8 +34,9 @@
 
 namespace app {
 
-// Receives the animation's frames as the model runs and passes each to a
-// thread that encodes and writes it (app/render/frame_pipe.hpp) while the next is
+// Receives the animation's frames as the model runs, draws each on the
+// film's canvas (app/render/frame_canvas.hpp) and passes it to a thread
+// that encodes and writes it (app/render/frame_pipe.hpp) while the next is
 // simulated and drawn: nothing is kept in memory but the frames queued
 // (frames_queued) and the one being encoded.
 class FrameSink : public scenes::Film {
@@ -47,7 +49,8 @@ public:
     FrameSink(const Description& d, const OutputOptions& options, const base::Folder& folder, int width, int height,
               const std::vector<nlohmann::json>* segments = nullptr, int encoders = 1);
     ~FrameSink() override;
-    void add(render::Image frame, int step) override;
+    void add(const scenes::FrameDrawing& frame, int step) override;
+    void flush() override;
     nlohmann::json finish() override;  // completes the MP4; returns the animation's metadata
 
 private:
@@ -56,13 +59,14 @@ private:
     const Description& description_;
     const OutputOptions& options_;
     base::Folder folder_;
-    std::unique_ptr<render::VideoWriter> video_;
+    std::unique_ptr<media::VideoWriter> video_;
     std::unique_ptr<SegmentEncoders> encoders_;  // the film's segments side by side, into video_
     std::unique_ptr<base::AtomicDir> frames_;    // the PNG sequence, in place at finish()
     nlohmann::json steps_ = nlohmann::json::array();
     int width_, height_;
     const std::vector<nlohmann::json>* segments_;
-    std::unique_ptr<FramePipe> pipe_;  // last: its thread stops before the writers it uses go
+    std::unique_ptr<FramePipe> pipe_;  // its thread stops before the writers it uses go
+    FrameCanvas canvas_;               // last: it hands its frames to the pipe
 };
 
 // A figure's files in the output folder: what a scene writes through.

@@ -30,7 +30,7 @@ struct OutputOptions {
     bool vti = false;                   // write <id>.vti, a formula model's last step as Ready's file (--format vti)
     bool formats_given = false;         // --format was given: a description's figure.formats is not used
     bool transparent = false;           // no background in the PNG, PDF and SVG
-    render::VideoOptions video_options;
+    media::VideoOptions video_options;
     // Limits on what one figure may need (--max-memory, --max-disk); a figure
     // whose estimate exceeds them is refused before anything is allocated.
     std::uint64_t max_memory = 4ull << 30;

@@ -242,7 +242,7 @@ void render_all(const std::vector<CheckedFigure>& figures, const OutputOptions& 
     // And FFmpeg's module when a film will be encoded.
     if (options.encodes() && std::any_of(figures.begin(), figures.end(),
                                          [](const CheckedFigure& f) { return f.description->animation.has_value(); }))
-        render::media::preload();
+        media::codec::preload();
     // And cairo's when a figure is written as PDF or SVG.
     if (std::any_of(figures.begin(), figures.end(),
                     [&](const CheckedFigure& f) { return writes_vector(*f.description, options); }))

@@ -27,7 +27,6 @@ struct InternalError : std::runtime_error {
 // a size from 1 byte to 1 PiB.
 std::uint64_t parse_size(const std::string& option, const std::string& text);
 
-
 // figgen render's options (docs/commands.md), as the command line or Python gives them.
 struct RenderSettings {
     std::vector<std::string> overrides, from;  // --set; merge's --from

@@ -21,18 +21,18 @@ struct SegmentEncoders::Segment {
     bool done = false;     // packets (or failure) are set
     int number = 0;        // in film order, from 0
     int first = 0;         // the film's index of its first frame
-    std::vector<render::VideoPacket> packets;
+    std::vector<media::VideoPacket> packets;
     std::exception_ptr failure;
     std::thread worker;  // last: started once everything above exists
 
     // `taken` is called after each frame is taken from `waiting`.
     // `preview(number, frames)` adds its preview frames in turn.
     template <class Taken, class Preview>
-    void encode(const std::string& shown, int width, int height, const render::VideoOptions& options,
-                const std::vector<int>& preview_wanted, const render::PreviewOptions& preview_options, Taken taken,
+    void encode(const std::string& shown, int width, int height, const media::VideoOptions& options,
+                const std::vector<int>& preview_wanted, const media::PreviewOptions& preview_options, Taken taken,
                 Preview preview) {
         try {
-            render::VideoSegment encoder(shown, width, height, options);
+            media::VideoSegment encoder(shown, width, height, options);
             for (;;) {
                 render::Image frame;
                 {
@@ -42,7 +42,7 @@ struct SegmentEncoders::Segment {
                     if (waiting.empty()) {  // closed, every frame encoded
                         const int count = frames;
                         hold.unlock();
-                        std::vector<render::VideoPacket> encoded = encoder.finish();
+                        std::vector<media::VideoPacket> encoded = encoder.finish();
                         std::vector<int> local;
                         for (int wanted : preview_wanted)
                             if (wanted >= first && wanted < first + count) local.push_back(wanted - first);
@@ -69,9 +69,9 @@ struct SegmentEncoders::Segment {
     }
 };
 
-SegmentEncoders::SegmentEncoders(render::VideoWriter& writer, std::string shown, int width, int height,
-                                 const render::VideoOptions& options, int workers, int film_frames,
-                                 const render::PreviewOptions& preview)
+SegmentEncoders::SegmentEncoders(media::VideoWriter& writer, std::string shown, int width, int height,
+                                 const media::VideoOptions& options, int workers, int film_frames,
+                                 const media::PreviewOptions& preview)
     : writer_(writer),
       shown_(std::move(shown)),
       width_(width),
@@ -84,8 +84,8 @@ SegmentEncoders::SegmentEncoders(render::VideoWriter& writer, std::string shown,
     if (workers < 1) throw std::invalid_argument("SegmentEncoders: workers < 1");
     if (film_frames < 0) throw std::invalid_argument("SegmentEncoders: film_frames < 0");
     if (film_frames > 0) {
-        preview_wanted_ = render::preview_frame_indices(film_frames, preview);
-        preview_ = std::make_unique<render::PreviewAnimation>(shown_, film_frames, options.fps, preview);
+        preview_wanted_ = media::preview_frame_indices(film_frames, preview);
+        preview_ = std::make_unique<media::PreviewAnimation>(shown_, film_frames, options.fps, preview);
     }
 }
 

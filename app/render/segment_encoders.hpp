@@ -1,7 +1,7 @@
 #pragma once
 // A film's segments encoded side by side. Frames arrive in film order from
 // one thread; every segment_frames of them make a segment, encoded on a
-// worker thread of its own by an encoder of its own (render::VideoSegment:
+// worker thread of its own by an encoder of its own (media::VideoSegment:
 // one x264 thread, a closed group of pictures from a key frame), and the
 // segments are joined in film order by stream copy (VideoWriter::
 // add_segment). Each segment's bytes depend only on its frames, so the MP4
@@ -35,9 +35,9 @@ public:
     // preview_frame_indices with `preview`) and, in film order, adds them to
     // the preview's animation, beside the drawing rather than after the
     // film; finish() gives the animation to the writer.
-    SegmentEncoders(render::VideoWriter& writer, std::string shown, int width, int height,
-                    const render::VideoOptions& options, int workers, int film_frames = 0,
-                    const render::PreviewOptions& preview = {});
+    SegmentEncoders(media::VideoWriter& writer, std::string shown, int width, int height,
+                    const media::VideoOptions& options, int workers, int film_frames = 0,
+                    const media::PreviewOptions& preview = {});
     // Without finish(): stops every worker after the frame it is on, and
     // nothing more reaches the writer.
     ~SegmentEncoders();
@@ -62,15 +62,15 @@ private:
     void abandon_preview();  // no more preview frames: no worker waits for its turn
     void stop_all();
 
-    render::VideoWriter& writer_;
+    media::VideoWriter& writer_;
     std::string shown_;
     int width_, height_;
-    render::VideoOptions options_;
+    media::VideoOptions options_;
     int workers_;
     int film_frames_;  // planned, 0: unknown
-    render::PreviewOptions preview_options_;
+    media::PreviewOptions preview_options_;
     std::vector<int> preview_wanted_;  // the film's frames the preview shows
-    std::unique_ptr<render::PreviewAnimation> preview_;
+    std::unique_ptr<media::PreviewAnimation> preview_;
     // Whose turn it is to add to preview_: the segments' numbers, in film
     // order; a failed or stopped film lets every worker go.
     std::mutex preview_lock_;

@@ -18,20 +18,6 @@
 
 namespace render {
 
-// The most triangles one GL draw call hands llvmpipe before glFinish. Its
-// setup bins the triangles of a draw into scenes and queues up to 64 of them
-// (tens of MiB each) while its threads rasterise, so one draw of millions of
-// triangles peaked at hundreds of MiB more than its vertices, differently
-// from run to run (pl-lsys-3d at depth 10: 324 to 484 MiB; 177 MiB without
-// rasteriser threads). Drawn in batches of this many, finishing each, the
-// queue holds one batch; the triangles and their order, so the pixels, are
-// the same.
-inline constexpr long long triangles_per_finish = 1 << 18;
-// What that queue may hold on top of the triangles' own vertices, for memory
-// estimates: measured 28 to 37 MiB above the vertices on the plant figures
-// (pl-lsys-lycopodium at depth 6, pl-lsys-3d's film at depths 7 and 8).
-inline constexpr double queued_triangles_bytes = 64.0 * 1024 * 1024;
-
 // A destroyed canvas of at most this many bytes of GL storage is kept for the
 // next canvas of its size (see canvas.cpp); memory estimates count it.
 inline constexpr double max_spare_canvas_bytes = 32.0 * 1024 * 1024;

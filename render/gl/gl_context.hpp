@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "render/field.hpp"
 #include "render/gl/gl.hpp"
 
 namespace render {
@@ -22,10 +23,8 @@ namespace detail {
 class GlLibrary;
 }
 
-// The most cells a side of a field the renderer draws as one texture:
-// GL 4.5's least GL_MAX_TEXTURE_SIZE, so a description is checked against
-// it without opening GL. GlContext refuses a context with less.
-constexpr int max_texture_side = 16384;
+// The most cells a side of a field (render/field.hpp's max_texture_side):
+// GlContext refuses a context with less.
 
 // Samples per pixel of every multisampled canvas: always 4, whatever more
 // the GL offers (Mesa 25.3's llvmpipe offers 8), so the pixels do not change

@@ -54,7 +54,7 @@ TEST_CASE("each document's own caption is drawn beneath its figure in its script
         CHECK(caption["lines"] == nlohmann::json::array({c.caption}));
         CHECK(caption["language"] == c.language);
         // The band is taken from the figure, which keeps its size.
-        const render::Image png = render::read_png(out / (std::string(c.id) + ".png")).image;
+        const render::Image png = media::read_png(out / (std::string(c.id) + ".png")).image;
         CHECK(png.width == c.width);
         CHECK(png.height == c.height);
         const int band = caption["band"].get<int>();
@@ -99,7 +99,7 @@ TEST_CASE("the title as a caption wraps to the figure's width", "[cli][text]") {
         joined.append(line.get<std::string>());
     }
     CHECK(joined == metadata(out / "tc7-9.json")["title"]);
-    const render::Image png = render::read_png(out / "tc7-9.png").image;
+    const render::Image png = media::read_png(out / "tc7-9.png").image;
     CHECK(png.height == 400);
 }
 

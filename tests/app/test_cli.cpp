@@ -442,7 +442,7 @@ TEST_CASE("render writes the PNG with its text chunks and the metadata JSON, and
     std::sort(files.begin(), files.end());
     CHECK(files == std::vector<std::string>{"tc7-1.json", "tc7-1.png"});
 
-    const auto png = render::read_png(out / "tc7-1.png");
+    const auto png = media::read_png(out / "tc7-1.png");
     CHECK(png.image.width == 900);
     CHECK(png.image.height == 450);
     auto chunk = [&](const std::string& key) {
@@ -481,7 +481,7 @@ TEST_CASE("render with --frames writes the animation as a numbered PNG sequence"
         ++count;
     }
     CHECK(count == 10);
-    const auto last = render::read_png(out / "tc7-1-frames" / "00009.png");
+    const auto last = media::read_png(out / "tc7-1-frames" / "00009.png");
     CHECK(last.image.width == 120);  // 480 * 0.25
     CHECK(last.image.height == 130);
     std::ifstream in(out / "tc7-1.json");
@@ -494,7 +494,7 @@ TEST_CASE("render writes an MP4 that decodes to every animation step", "[cli]") 
     const fs::path out = fresh_dir("video");
     const Run run = figgen("render tc7-1 --scale 0.5 --out " + out.string());
     REQUIRE(run.status == 0);
-    const auto info = render::probe_video(out / "tc7-1.mp4");
+    const auto info = media::probe_video(out / "tc7-1.mp4");
     CHECK(info.frames == 61);  // steps 0..60
     CHECK(info.width == 240);
     CHECK(info.height == 260);
@@ -503,7 +503,7 @@ TEST_CASE("render writes an MP4 that decodes to every animation step", "[cli]") 
     CHECK(info.duration_seconds == Approx(6.1).margin(1e-6));  // 61 frames at 10 fps
     // The first frame is step 0: the block's centre is Reds' darkest colour
     // at alpha 0.8 over white, (133, 51, 61), give or take the YUV round trip.
-    const render::Image first = render::decode_frame(out / "tc7-1.mp4", 0);
+    const render::Image first = media::decode_frame(out / "tc7-1.mp4", 0);
     const std::uint8_t* centre = first.pixel(first.width / 2, first.height / 2 + 10);
     CHECK(int(centre[0]) == Approx(133).margin(8));
     CHECK(int(centre[1]) == Approx(51).margin(8));
@@ -513,7 +513,7 @@ TEST_CASE("render writes an MP4 that decodes to every animation step", "[cli]") 
 TEST_CASE("a film comes with a looping WebP preview that its JSON describes, the same bytes every run", "[cli][preview]") {
     const fs::path out = fresh_dir("preview"), again = fresh_dir("preview-again");
     REQUIRE(figgen("render tc7-1 --scale 0.5 --out " + out.string()).status == 0);
-    const render::PreviewInfo preview = render::probe_preview(out / "tc7-1.webp");
+    const media::PreviewInfo preview = media::probe_preview(out / "tc7-1.webp");
     std::ifstream in(out / "tc7-1.json");
     const nlohmann::json meta = nlohmann::json::parse(in)["animation"]["preview"];
     CHECK(meta["file"] == "tc7-1.webp");
@@ -527,9 +527,9 @@ TEST_CASE("a film comes with a looping WebP preview that its JSON describes, the
     CHECK(meta["frames"] == preview.frames);
     CHECK(meta["size"] == nlohmann::json::array({preview.width, preview.height}));
     CHECK(meta["duration_ms"] == preview.duration_ms);
-    CHECK(preview.bytes <= render::PreviewOptions{}.max_bytes);
+    CHECK(preview.bytes <= media::PreviewOptions{}.max_bytes);
     // Its last frame is the film's: the same colours but for lossy coding.
-    const render::Image last = render::decode_preview_frame(out / "tc7-1.webp", 47);
+    const render::Image last = media::decode_preview_frame(out / "tc7-1.webp", 47);
     // Mean difference a channel: lossy WebP after H.264 leaves about 5;
     // the film's first frame, against which it is checked too, more than twice that.
     const auto mean_difference = [&](const render::Image& film) {
@@ -537,8 +537,8 @@ TEST_CASE("a film comes with a looping WebP preview that its JSON describes, the
         for (std::size_t i = 0; i < last.rgba.size(); ++i) differ += std::abs(int(last.rgba[i]) - int(film.rgba[i]));
         return differ / double(last.rgba.size());
     };
-    const double to_last = mean_difference(render::decode_frame(out / "tc7-1.mp4", 60));
-    const double to_first = mean_difference(render::decode_frame(out / "tc7-1.mp4", 0));
+    const double to_last = mean_difference(media::decode_frame(out / "tc7-1.mp4", 60));
+    const double to_first = mean_difference(media::decode_frame(out / "tc7-1.mp4", 0));
     CHECK(to_last < 8.0);
     CHECK(to_first > 2 * to_last);
     REQUIRE(figgen("render tc7-1 --scale 0.5 --out " + again.string()).status == 0);
@@ -555,8 +555,8 @@ TEST_CASE("render --format webm writes VP9 in WebM that decodes to every frame, 
         REQUIRE(r.status == 0);
         std::ifstream in(out / "tc7-1.json");
         const nlohmann::json film = nlohmann::json::parse(in)["animation"];
-        const render::VideoInfo mp4 = render::probe_video(out / "tc7-1.mp4");
-        const render::VideoInfo webm = render::probe_video(out / "tc7-1.webm");
+        const media::VideoInfo mp4 = media::probe_video(out / "tc7-1.mp4");
+        const media::VideoInfo webm = media::probe_video(out / "tc7-1.webm");
         CHECK(webm.codec == "vp9");
         CHECK(webm.frames == film["frames"].get<int>());
         CHECK(webm.frames == mp4.frames);
@@ -566,8 +566,8 @@ TEST_CASE("render --format webm writes VP9 in WebM that decodes to every frame, 
         CHECK(film["webm"]["file"] == "tc7-1.webm");
         CHECK(film["webm"]["bytes"].get<std::uintmax_t>() == fs::file_size(out / "tc7-1.webm"));
         // Its last frame is the film's last frame, but for the two lossy codecs.
-        const render::Image a = render::decode_frame(out / "tc7-1.mp4", mp4.frames - 1);
-        const render::Image b = render::decode_frame(out / "tc7-1.webm", webm.frames - 1);
+        const render::Image a = media::decode_frame(out / "tc7-1.mp4", mp4.frames - 1);
+        const render::Image b = media::decode_frame(out / "tc7-1.webm", webm.frames - 1);
         double difference = 0;
         for (std::size_t i = 0; i < a.rgba.size(); ++i) difference += std::abs(int(a.rgba[i]) - int(b.rgba[i]));
         CHECK(difference / double(a.rgba.size()) < 3.0);
@@ -632,11 +632,11 @@ nlohmann::json metadata(const fs::path& file) {
 TEST_CASE("render --size sets the figure's pixels before --scale", "[cli][options]") {
     const fs::path out = fresh_dir("size");
     REQUIRE(figgen("render tc7-1 --format png --size 300x200 --out " + out.string()).status == 0);
-    const auto png = render::read_png(out / "tc7-1.png").image;
+    const auto png = media::read_png(out / "tc7-1.png").image;
     CHECK(png.width == 300);
     CHECK(png.height == 200);
     REQUIRE(figgen("render tc7-1 --format png --size 300x200 --scale 2 --out " + out.string()).status == 0);
-    CHECK(render::read_png(out / "tc7-1.png").image.width == 600);
+    CHECK(media::read_png(out / "tc7-1.png").image.width == 600);
     CHECK(metadata(out / "tc7-1.json")["image"]["size"] == nlohmann::json({600, 400}));
 }
 
@@ -658,7 +658,7 @@ TEST_CASE("a plot whose text does not fit is refused with a size at which it ren
         REQUIRE(figgen(std::string("render ") + id + " --format png --size " + std::to_string(w) + "x" +
                        std::to_string(h) + " --out " + out.string())
                     .status == 0);
-        CHECK(render::read_png(out / (std::string(id) + ".png")).image.width == w);
+        CHECK(media::read_png(out / (std::string(id) + ".png")).image.width == w);
         fs::remove_all(out);
         fs::create_directories(out);
     }
@@ -675,18 +675,18 @@ TEST_CASE("a figure is the exact size asked for and only its film rounds to even
                                                                : "";
         REQUIRE(figgen(std::string("render ") + id + extra + " --format png,pdf --size 333x111 --out " + out.string())
                     .status == 0);
-        const auto png = render::read_png(out / (std::string(id) + ".png")).image;
+        const auto png = media::read_png(out / (std::string(id) + ".png")).image;
         CHECK(png.width == 333);
         CHECK(png.height == 111);
         CHECK(metadata(out / (std::string(id) + ".json"))["image"]["size"] == nlohmann::json({333, 111}));
     }
     // 0.5 of 900 x 450 is 450 x 225, not 226.
     REQUIRE(figgen("render tc7-1 --scale 0.5 --set 'animation.size=[333,111]' --out " + out.string()).status == 0);
-    CHECK(render::read_png(out / "tc7-1.png").image.height == 225);
+    CHECK(media::read_png(out / "tc7-1.png").image.height == 225);
     const nlohmann::json film = metadata(out / "tc7-1.json")["animation"];
     CHECK(film["size"] == nlohmann::json({168, 56}));  // 166.5 x 55.5 rounds to 167 x 56, then up to even
     CHECK(film["size_rounded"]["from"] == nlohmann::json({167, 56}));
-    const render::VideoInfo mp4 = render::probe_video(out / "tc7-1.mp4");
+    const media::VideoInfo mp4 = media::probe_video(out / "tc7-1.mp4");
     CHECK(mp4.width == 168);
     CHECK(mp4.height == 56);
     // An even film says nothing.
@@ -699,7 +699,7 @@ TEST_CASE("render --fps sets the animation's frame rate in the MP4 and its metad
     REQUIRE(figgen("render tc7-1 --fps 5 --scale 0.5 --out " + out.string()).status == 0);
     const auto meta = metadata(out / "tc7-1.json");
     CHECK(meta["animation"]["fps"] == 5);
-    const render::VideoInfo video = render::probe_video(out / "tc7-1.mp4");
+    const media::VideoInfo video = media::probe_video(out / "tc7-1.mp4");
     CHECK(video.fps == Approx(5.0));
     CHECK(video.frames == meta["animation"]["frames"].get<int>());
     CHECK(video.duration_seconds == Approx(video.frames / 5.0).margin(0.21));
@@ -717,7 +717,7 @@ TEST_CASE("render --cmap recolours a field figure with matplotlib's colormap", "
         REQUIRE(figgen("render tc7-1 --format png --cmap " + name + " --out " + out.string()).status == 0);
         const auto meta = metadata(out / "tc7-1.json");
         CHECK(meta["style"]["colormap"] == name);
-        const auto png = render::read_png(out / "tc7-1.png").image;
+        const auto png = media::read_png(out / "tc7-1.png").image;
         // A background cell of the first panel: its frame starts a little way
         // in; take a pixel well inside the first panel, away from the block.
         const auto* p = png.pixel(png.width / 12, png.height / 2);
@@ -893,7 +893,7 @@ TEST_CASE("render --transparent leaves the background out: alpha 0 at the corner
     const Run run = figgen("render tc7-7 --transparent --format png,svg --out " + out.string());
     INFO(run.output);
     REQUIRE(run.status == 0);
-    const render::Image png = render::read_png(out / "tc7-7.png").image;
+    const render::Image png = media::read_png(out / "tc7-7.png").image;
     for (const auto& [x, y] : {std::pair{0, 0}, std::pair{png.width - 1, 0}, std::pair{0, png.height - 1},
                                std::pair{png.width - 1, png.height - 1}})
         CHECK(int(png.pixel(x, y)[3]) == 0);
@@ -911,7 +911,7 @@ TEST_CASE("render --transparent leaves the background out: alpha 0 at the corner
     const Run svg = testkit::run_command("rsvg-convert '" + (out / "tc7-7.svg").string() + "' -o '" +
                                          (out / "svg.png").string() + "'");
     REQUIRE(svg.status == 0);
-    const render::Image raster = render::read_png(out / "svg.png").image;
+    const render::Image raster = media::read_png(out / "svg.png").image;
     CHECK(int(raster.pixel(0, 0)[3]) == 0);
     CHECK(int(raster.pixel(raster.width - 1, raster.height - 1)[3]) == 0);
 }
@@ -976,7 +976,7 @@ TEST_CASE("only a command that encodes or decodes a film opens FFmpeg's codec li
     CHECK_FALSE(opens_ffmpeg("render tc7-1 --format png --out " + out.string()));
     CHECK_FALSE(opens_ffmpeg("render tc7-1 --format frames --scale 0.3 --out " + out.string()));
     CHECK(opens_ffmpeg("render tc7-1 --scale 0.3 --out " + out.string()));  // the MP4
-    CHECK(render::probe_video(out / "tc7-1.mp4").frames > 1);
+    CHECK(media::probe_video(out / "tc7-1.mp4").frames > 1);
 }
 
 TEST_CASE("cmake --install puts figgen and the descriptions in a prefix, and the installed figgen reads them", "[cli][install]") {

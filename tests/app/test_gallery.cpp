@@ -50,7 +50,7 @@ TEST_CASE("thumbnails average the pixels they cover and keep the aspect ratio", 
             p[2] = 100;
             p[3] = 255;
         }
-    const render::Image half = render::thumbnail(image, 2, 100);
+    const render::Image half = media::thumbnail(image, 2, 100);
     REQUIRE(half.width == 2);
     REQUIRE(half.height == 1);
     CHECK(int(half.pixel(0, 0)[0]) == 255);
@@ -59,8 +59,8 @@ TEST_CASE("thumbnails average the pixels they cover and keep the aspect ratio", 
     CHECK(std::abs(int(half.pixel(1, 0)[1]) - 150) <= 1);
     CHECK(int(half.pixel(0, 0)[2]) == 100);
     // Already small enough: unchanged.
-    CHECK(render::thumbnail(image, 10, 10).rgba == image.rgba);
-    CHECK_THROWS_AS(render::thumbnail(image, 0, 10), std::invalid_argument);
+    CHECK(media::thumbnail(image, 10, 10).rgba == image.rgba);
+    CHECK_THROWS_AS(media::thumbnail(image, 0, 10), std::invalid_argument);
 }
 
 TEST_CASE("figgen gallery shows every rendered figure with thumbnail, film, parameters and numbers", "[gallery][cli]") {
@@ -88,7 +88,7 @@ TEST_CASE("figgen gallery shows every rendered figure with thumbnail, film, para
     std::ifstream in(out / "tc7-1.json");
     const auto meta = nlohmann::json::parse(in);
     // The thumbnail: a real file, its size in the tag, within 480 x 360.
-    const auto thumb = render::read_png(out / "thumbs" / "tc7-1.png").image;
+    const auto thumb = media::read_png(out / "thumbs" / "tc7-1.png").image;
     CHECK(thumb.width <= 480);
     CHECK(thumb.height <= 360);
     CHECK_THAT(page, Catch::Contains("<img src=\"thumbs/tc7-1.png\" width=\"" + std::to_string(thumb.width) +
@@ -109,7 +109,7 @@ TEST_CASE("figgen gallery shows every rendered figure with thumbnail, film, para
     // outputs") until the film is opened to play: the preview at the size
     // its header and metadata give, as the summary of a <details> that
     // holds the <video>, whose poster stays the poster frame.
-    const render::PreviewInfo preview = render::probe_preview(out / "tc7-1.webp");
+    const media::PreviewInfo preview = media::probe_preview(out / "tc7-1.webp");
     CHECK(film["preview"]["file"] == "tc7-1.webp");
     CHECK(film["preview"]["size"] == nlohmann::json::array({preview.width, preview.height}));
     CHECK(preview.frames > 1);
@@ -141,8 +141,8 @@ TEST_CASE("figgen thumbnails makes a film's preview an animated thumbnail of the
         testkit::figgen("thumbnails --from " + out.string() + " --to " + thumbs.string() + " --width 120 --height 90");
     INFO(run.output);
     REQUIRE(run.status == 0);
-    const render::PreviewInfo preview = render::probe_preview(out / "tc7-1.webp");
-    const render::PreviewInfo thumb = render::probe_preview(thumbs / "tc7-1.webp");
+    const media::PreviewInfo preview = media::probe_preview(out / "tc7-1.webp");
+    const media::PreviewInfo thumb = media::probe_preview(thumbs / "tc7-1.webp");
     // The preview's 240 x 260 fitted into 120 x 90: 83 x 90; 24 of its 48 frames.
     CHECK(thumb.width == 83);
     CHECK(thumb.height == 90);
@@ -151,8 +151,8 @@ TEST_CASE("figgen thumbnails makes a film's preview an animated thumbnail of the
     CHECK(thumb.duration_ms == preview.duration_ms);
     CHECK(thumb.bytes <= 400u << 10);
     // Its last frame is the preview's, scaled: the same mean colour.
-    const render::Image last = render::decode_preview_frame(thumbs / "tc7-1.webp", 23);
-    const render::Image big = render::decode_preview_frame(out / "tc7-1.webp", 47);
+    const render::Image last = media::decode_preview_frame(thumbs / "tc7-1.webp", 23);
+    const render::Image big = media::decode_preview_frame(out / "tc7-1.webp", 47);
     for (int c = 0; c < 3; ++c) {
         double small_mean = 0, big_mean = 0;
         for (std::size_t i = c; i < last.rgba.size(); i += 4) small_mean += last.rgba[i];
@@ -196,8 +196,8 @@ TEST_CASE("gallery poster is the frame the description names and else the last f
         CHECK_THAT(page, Catch::Contains("data-poster-frame=\"" + std::to_string(frame) + "\""));
         // The poster is that frame of the film as a browser decodes it, and
         // the same render's lossless frame within H.264's loss.
-        const auto poster = render::read_png(out / "posters" / (id + ".png")).image;
-        const auto decoded = render::decode_frame(out / (id + ".mp4"), frame);
+        const auto poster = media::read_png(out / "posters" / (id + ".png")).image;
+        const auto decoded = media::decode_frame(out / (id + ".mp4"), frame);
         REQUIRE(poster.width == film["size"][0].get<int>());
         REQUIRE(poster.height == film["size"][1].get<int>());
         REQUIRE(decoded.width == poster.width);
@@ -205,11 +205,11 @@ TEST_CASE("gallery poster is the frame the description names and else the last f
         if (id == "tc7-1-early") continue;  // its frames are in the other folder's film only
         char name[16];
         std::snprintf(name, sizeof name, "%05d.png", frame);
-        const auto lossless = render::read_png(out / (id + "-frames") / name).image;
+        const auto lossless = media::read_png(out / (id + "-frames") / name).image;
         CHECK(mean_difference(poster, lossless) < 1.5);
         if (step >= 0) {
             std::snprintf(name, sizeof name, "%05d.png", frames - 1);
-            const auto last = render::read_png(out / (id + "-frames") / name).image;
+            const auto last = media::read_png(out / (id + "-frames") / name).image;
             CHECK(mean_difference(poster, last) > 5 * mean_difference(poster, lossless));
         }
     }
@@ -225,7 +225,7 @@ TEST_CASE("gallery poster is the frame the description names and else the last f
     CHECK(fs::last_write_time(out / "posters" / "tc7-1-early.png") == kept);
     for (const auto& [id, frame] : {std::pair{std::string("tc7-1"), 20}, {std::string("tc7-5"), 2}}) {
         INFO(id);
-        CHECK(mean_difference(render::read_png(out / "posters" / (id + ".png")).image,
-                              render::decode_frame(out / (id + ".mp4"), frame)) < 0.01);
+        CHECK(mean_difference(media::read_png(out / "posters" / (id + ".png")).image,
+                              media::decode_frame(out / (id + ".mp4"), frame)) < 0.01);
     }
 }

@@ -166,7 +166,7 @@ TEST_CASE("gallery and thumbnails take --max-memory and hold an image's header t
     // and the program's 64 MiB: more than 80M, well within 1G.
     render::Image big(3000, 3000);
     for (std::size_t i = 0; i < big.rgba.size(); ++i) big.rgba[i] = i % 4 == 3 ? 255 : 200;
-    render::write_png(out / "tc7-9.png", big);
+    media::write_png(out / "tc7-9.png", big);
 
     const testkit::Run tight = figgen_in_time("gallery --out " + out.string() + " --max-memory 80M");
     INFO(tight.output);
@@ -195,7 +195,7 @@ TEST_CASE("gallery and thumbnails take --max-memory and hold an image's header t
     const testkit::Run made = figgen_in_time("thumbnails" + to + " --max-memory 1G");
     INFO(made.output);
     CHECK(made.status == 0);
-    CHECK(render::read_png(thumbs / "tc7-9.png").image.width == 180);
+    CHECK(media::read_png(thumbs / "tc7-9.png").image.width == 180);
 
     // The option is read as render's is.
     for (const std::string& command : {"gallery --out " + out.string(), "thumbnails" + to}) {
@@ -218,7 +218,7 @@ TEST_CASE("thumbnails refuses a bomb PNG and a bomb preview from their headers a
                                            " is not decoded: its header claims 20000 x 20000 pixels"));
     CHECK_THAT(run.output, Catch::Contains((out / "tc7-1.webp").string() +
                                            " is not decoded: its header claims 16000 x 16000 pixels"));
-    CHECK(render::read_png(thumbs / "tc7-1.png").image.width == 120);  // 450 x 225 fitted into 120 x 90
+    CHECK(media::read_png(thumbs / "tc7-1.png").image.width == 120);  // 450 x 225 fitted into 120 x 90
     CHECK_FALSE(fs::exists(thumbs / "tc7-9.png"));
     CHECK_FALSE(fs::exists(thumbs / "tc7-1.webp"));
 }

@@ -100,7 +100,7 @@ TEST_CASE("each --gl platform draws and says so in the JSON", "[gl]") {
         // Mesa's software device, the one device of a machine without a GPU.
         if (platform == "egl-device") CHECK(renderer["device"] == "software");
         else CHECK_FALSE(renderer.contains("device"));
-        const std::string pixels = testkit::pixel_hash(render::read_png(dir / "tc7-7.png").image);
+        const std::string pixels = testkit::pixel_hash(media::read_png(dir / "tc7-7.png").image);
         if (first_pixels.empty()) first_pixels = pixels;
         CHECK(pixels == first_pixels);
     }
@@ -121,7 +121,7 @@ TEST_CASE("with libOSMesa hidden figures render through EGL with the golden pixe
     for (const std::string id : {"tc7-2", "sf87-3", "pl-lsys-3d"}) {
         INFO(id);
         CHECK(metadata(out / (id + ".json"))["renderer"]["platform"] == "egl");
-        CHECK(testkit::pixel_hash(render::read_png(out / (id + ".png")).image) == golden_hash(id));
+        CHECK(testkit::pixel_hash(media::read_png(out / (id + ".png")).image) == golden_hash(id));
     }
     // And asked for by name, OSMesa is refused in one line naming its package.
     const Hidden osmesa = figgen_without({"libOSMesa.so.8"}, "render tc7-7 --format png --gl osmesa --out " +

@@ -191,7 +191,7 @@ TEST_CASE("two figgen processes rendering into one folder leave whole, matching 
         INFO(id);
         // Each figure's files all come from one of the two runs, whole: the
         // PNG's seed says which, and every file equals that run's alone.
-        const auto png = render::read_png(out / (id + ".png"));
+        const auto png = media::read_png(out / (id + ".png"));
         std::string seed;
         for (const auto& [key, value] : png.text)
             if (key == "figgen:seed") seed = value;

@@ -84,14 +84,14 @@ TEST_CASE("the README's grid shows a committed thumbnail of every catalog figure
         const fs::path thumb = project / "docs" / "thumbs" / name;
         REQUIRE(fs::exists(thumb));
         if (film) {
-            const render::PreviewInfo preview = render::probe_preview(thumb);
+            const media::PreviewInfo preview = media::probe_preview(thumb);
             CHECK(preview.width <= 240);
             CHECK(preview.height <= 180);
             CHECK(preview.frames > 1);
             CHECK(preview.loop_count == 0);
             ++moving;
         } else {
-            const auto png = render::read_png(thumb).image;
+            const auto png = media::read_png(thumb).image;
             CHECK(png.width <= 240);
             CHECK(png.height <= 180);
         }

@@ -35,8 +35,8 @@ Image frame(int i) {
     return image;
 }
 
-render::VideoOptions options() {
-    render::VideoOptions o;
+media::VideoOptions options() {
+    media::VideoOptions o;
     o.segment_frames = 5;  // 8 segments, the last of 2 frames
     return o;
 }
@@ -48,7 +48,7 @@ fs::path scratch(const std::string& name) {
 
 // The film encoded by `workers` side by side.
 std::string side_by_side(const fs::path& path, int workers) {
-    render::VideoWriter writer(path, width, height, options());
+    media::VideoWriter writer(path, width, height, options());
     app::SegmentEncoders encoders(writer, path.string(), width, height, options(), workers);
     for (int i = 0; i < frames; ++i) encoders.add(frame(i));
     encoders.finish();
@@ -62,7 +62,7 @@ std::string side_by_side(const fs::path& path, int workers) {
 TEST_CASE("segments encoded side by side give the film encoded one segment after another", "[video][segments]") {
     const fs::path whole = scratch("whole.mp4");
     {
-        render::VideoWriter writer(whole, width, height, options());
+        media::VideoWriter writer(whole, width, height, options());
         for (int i = 0; i < frames; ++i) writer.add(frame(i));
         writer.finish();
     }
@@ -79,7 +79,7 @@ TEST_CASE("segments encoded side by side give the film encoded one segment after
         INFO("run " << run << " beside a CPU hog");
         CHECK(side_by_side(scratch("hog" + std::to_string(run) + ".mp4"), 4) == expected);
     }
-    const render::VideoInfo info = render::probe_video(whole);
+    const media::VideoInfo info = media::probe_video(whole);
     CHECK(info.frames == frames);
     CHECK(info.key_frames == std::vector<int>{0, 5, 10, 15, 20, 25, 30, 35});
 }
@@ -87,7 +87,7 @@ TEST_CASE("segments encoded side by side give the film encoded one segment after
 TEST_CASE("a segment's failure reaches the caller and no film is written", "[video][segments]") {
     const fs::path path = scratch("failed.mp4");
     {
-        render::VideoWriter writer(path, width, height, options());
+        media::VideoWriter writer(path, width, height, options());
         app::SegmentEncoders encoders(writer, path.string(), width, height, options(), 3);
         encoders.add(frame(0));
         encoders.add(Image(width + 2, height));  // a frame of the wrong size: its worker throws
@@ -107,7 +107,7 @@ TEST_CASE("a segment's failure reaches the caller and no film is written", "[vid
 TEST_CASE("segment encoders dropped without finish stop their workers", "[video][segments]") {
     const fs::path path = scratch("dropped.mp4");
     {
-        render::VideoWriter writer(path, width, height, options());
+        media::VideoWriter writer(path, width, height, options());
         app::SegmentEncoders encoders(writer, path.string(), width, height, options(), 4);
         for (int i = 0; i < 17; ++i) encoders.add(frame(i));
     }
@@ -116,8 +116,8 @@ TEST_CASE("segment encoders dropped without finish stop their workers", "[video]
 
 TEST_CASE("segment encoders need segments and a worker", "[video][segments]") {
     const fs::path path = scratch("refused.mp4");
-    render::VideoWriter writer(path, width, height, options());
-    CHECK_THROWS_AS(app::SegmentEncoders(writer, "x", width, height, render::VideoOptions{}, 2), std::invalid_argument);
+    media::VideoWriter writer(path, width, height, options());
+    CHECK_THROWS_AS(app::SegmentEncoders(writer, "x", width, height, media::VideoOptions{}, 2), std::invalid_argument);
     CHECK_THROWS_AS(app::SegmentEncoders(writer, "x", width, height, options(), 0), std::invalid_argument);
 }
 
@@ -127,9 +127,9 @@ namespace {
 // workers planned for `planned` frames (0: none planned), of which `given`
 // come; returns the preview's bytes.
 std::string preview_beside(const fs::path& dir, int workers, int planned, int given,
-                           const render::PreviewOptions& preview) {
+                           const media::PreviewOptions& preview) {
     fs::create_directories(dir);
-    render::VideoWriter writer(dir / "film.mp4", width, height, options());
+    media::VideoWriter writer(dir / "film.mp4", width, height, options());
     app::SegmentEncoders encoders(writer, (dir / "film.mp4").string(), width, height, options(), workers, planned,
                                   preview);
     for (int i = 0; i < given; ++i) encoders.add(frame(i));
@@ -139,9 +139,9 @@ std::string preview_beside(const fs::path& dir, int workers, int planned, int gi
 }
 
 // The same film's preview decoded from the finished MP4, one encoder.
-std::string preview_after(const fs::path& dir, int given, const render::PreviewOptions& preview) {
+std::string preview_after(const fs::path& dir, int given, const media::PreviewOptions& preview) {
     fs::create_directories(dir);
-    render::VideoWriter writer(dir / "film.mp4", width, height, options());
+    media::VideoWriter writer(dir / "film.mp4", width, height, options());
     for (int i = 0; i < given; ++i) writer.add(frame(i));
     writer.finish(base::Folder::of(dir / "x"), "film.webp", preview);
     return testkit::slurp(dir / "film.webp");
@@ -150,14 +150,14 @@ std::string preview_after(const fs::path& dir, int given, const render::PreviewO
 }  // namespace
 
 TEST_CASE("a preview made beside the film is the preview decoded from it", "[video][segments][preview]") {
-    render::PreviewOptions few;  // fewer frames than the film, spread over its segments
+    media::PreviewOptions few;  // fewer frames than the film, spread over its segments
     few.max_frames = 9;
-    render::PreviewOptions all;  // every frame
+    media::PreviewOptions all;  // every frame
     all.max_frames = 48;
-    render::PreviewOptions tight = few;  // over its budget: a lower quality, as write_webp's loop gives
+    media::PreviewOptions tight = few;  // over its budget: a lower quality, as write_webp's loop gives
     tight.max_bytes = 3000;
     int n = 0;
-    for (const render::PreviewOptions& preview : {few, all, tight}) {
+    for (const media::PreviewOptions& preview : {few, all, tight}) {
         const std::string expected = preview_after(scratch("after" + std::to_string(n)), frames, preview);
         REQUIRE(expected.size() > 100);
         for (int workers : {2, 3, 8}) {
@@ -168,27 +168,27 @@ TEST_CASE("a preview made beside the film is the preview decoded from it", "[vid
         ++n;
     }
     // The budget was what made the tight one smaller.
-    CHECK(render::probe_preview(scratch("after2") / "film.webp").bytes <= 3000);
-    CHECK(render::probe_preview(scratch("after0") / "film.webp").bytes > 3000);
+    CHECK(media::probe_preview(scratch("after2") / "film.webp").bytes <= 3000);
+    CHECK(media::probe_preview(scratch("after0") / "film.webp").bytes > 3000);
 
     // A film that ends before its planned end (a model at a fixed point):
     // its preview is decoded from it as before, not made of the planned frames.
     const std::string short_film = preview_after(scratch("short-after"), 23, few);
     CHECK(preview_beside(scratch("short-beside"), 3, frames, 23, few) == short_film);
-    CHECK(render::probe_preview(scratch("short-beside") / "film.webp").frames == 9);
+    CHECK(media::probe_preview(scratch("short-beside") / "film.webp").frames == 9);
 }
 
 TEST_CASE("a preview animation takes its frames in order, and no more", "[video][preview]") {
-    render::PreviewOptions preview;
+    media::PreviewOptions preview;
     preview.max_frames = 3;
-    CHECK(render::preview_frame_indices(37, preview) == std::vector<int>{0, 18, 36});
-    CHECK(render::preview_frame_indices(2, preview) == std::vector<int>{0, 1});
-    CHECK(render::preview_frame_indices(1, preview) == std::vector<int>{0});
-    CHECK_THROWS_AS(render::preview_frame_indices(0, preview), std::invalid_argument);
-    CHECK_THROWS_AS(render::PreviewAnimation("x", 0, 30, preview), std::invalid_argument);
-    CHECK_THROWS_AS(render::PreviewAnimation("x", 10, 0, preview), std::invalid_argument);
+    CHECK(media::preview_frame_indices(37, preview) == std::vector<int>{0, 18, 36});
+    CHECK(media::preview_frame_indices(2, preview) == std::vector<int>{0, 1});
+    CHECK(media::preview_frame_indices(1, preview) == std::vector<int>{0});
+    CHECK_THROWS_AS(media::preview_frame_indices(0, preview), std::invalid_argument);
+    CHECK_THROWS_AS(media::PreviewAnimation("x", 0, 30, preview), std::invalid_argument);
+    CHECK_THROWS_AS(media::PreviewAnimation("x", 10, 0, preview), std::invalid_argument);
 
-    render::PreviewAnimation animation("x.webp", 37, 30, preview);
+    media::PreviewAnimation animation("x.webp", 37, 30, preview);
     CHECK_FALSE(animation.complete());
     CHECK_THROWS_AS(animation.write(-1, "x.webp"), std::logic_error);  // before its last frame
     for (int i : {0, 18, 36}) animation.add(frame(i));

@@ -30,9 +30,9 @@ TEST_CASE("a PNG written and read back gives the same pixels and text chunks", "
             p[3] = static_cast<std::uint8_t>(255 - x);
         }
     const fs::path path = scratch("round-trip.png");
-    const render::TextChunks chunks = {{"Title", "round trip"}, {"figgen:seed", "42"}, {"Caption", "10⁻³ α"}};
-    render::write_png(path, image, chunks);
-    const render::PngFile back = render::read_png(path);
+    const media::TextChunks chunks = {{"Title", "round trip"}, {"figgen:seed", "42"}, {"Caption", "10⁻³ α"}};
+    media::write_png(path, image, chunks);
+    const media::PngFile back = media::read_png(path);
     CHECK(back.image.width == 7);
     CHECK(back.image.height == 5);
     CHECK(back.image.rgba == image.rgba);
@@ -42,7 +42,7 @@ TEST_CASE("a PNG written and read back gives the same pixels and text chunks", "
     CHECK(back.text[1] == std::pair<std::string, std::string>{"figgen:seed", "42"});
     // Same image, same bytes: no timestamp chunk.
     const fs::path again = scratch("round-trip-2.png");
-    render::write_png(again, image, chunks);
+    media::write_png(again, image, chunks);
     std::ifstream a(path, std::ios::binary), b(again, std::ios::binary);
     CHECK(std::string(std::istreambuf_iterator<char>(a), {}) == std::string(std::istreambuf_iterator<char>(b), {}));
 }
@@ -63,10 +63,10 @@ TEST_CASE("a PNG written fast holds the same pixels as one written smallest", "[
         }
     const fs::path dir = scratch("fast").parent_path();
     const base::Folder folder(dir);
-    render::write_png(folder, "smallest.png", image);
-    render::write_png(folder, "fast.png", image, {}, base::AtomicFile::Commit::now, render::PngCompression::fast);
-    CHECK(render::read_png(dir / "fast.png").image.rgba == image.rgba);
-    CHECK(render::read_png(dir / "smallest.png").image.rgba == image.rgba);
+    media::write_png(folder, "smallest.png", image);
+    media::write_png(folder, "fast.png", image, {}, base::AtomicFile::Commit::now, media::PngCompression::fast);
+    CHECK(media::read_png(dir / "fast.png").image.rgba == image.rgba);
+    CHECK(media::read_png(dir / "smallest.png").image.rgba == image.rgba);
     CHECK(fs::file_size(dir / "fast.png") > fs::file_size(dir / "smallest.png"));
 }
 
@@ -75,15 +75,15 @@ TEST_CASE("a PNG that cannot be written leaves nothing behind", "[png]") {
     const fs::path inside_a_file = scratch("not-a-folder.txt");
     std::ofstream(inside_a_file) << "x";
     const fs::path target = inside_a_file / "image.png";
-    CHECK_THROWS_WITH(render::write_png(target, image), Catch::Contains(target.string()));
+    CHECK_THROWS_WITH(media::write_png(target, image), Catch::Contains(target.string()));
 
 }
 
 TEST_CASE("reading a file that is not a PNG fails with its name", "[png]") {
     const fs::path bogus = scratch("bogus.png");
     std::ofstream(bogus) << "definitely not a PNG";
-    CHECK_THROWS_WITH(render::read_png(bogus), Catch::Contains("bogus.png"));
-    CHECK_THROWS_WITH(render::read_png(scratch("missing.png")), Catch::Contains("missing.png"));
+    CHECK_THROWS_WITH(media::read_png(bogus), Catch::Contains("bogus.png"));
+    CHECK_THROWS_WITH(media::read_png(scratch("missing.png")), Catch::Contains("missing.png"));
 }
 
 TEST_CASE("a disk that fills up mid-write leaves no PNG, whole or partial", "[png]") {
@@ -102,7 +102,7 @@ TEST_CASE("a disk that fills up mid-write leaves no PNG, whole or partial", "[pn
     setrlimit(RLIMIT_FSIZE, &small);
     std::string message;
     try {
-        render::write_png(target, noise);
+        media::write_png(target, noise);
     } catch (const std::runtime_error& e) {
         message = e.what();
     }
@@ -126,13 +126,13 @@ TEST_CASE("an opaque image is stored as RGB and one with any transparency as RGB
         return static_cast<int>(static_cast<unsigned char>(bytes[25]));
     };
     const fs::path opaque = scratch("opaque.png");
-    render::write_png(opaque, image);
+    media::write_png(opaque, image);
     CHECK(colour_type(opaque) == 2);
-    CHECK(render::read_png(opaque).image.rgba == image.rgba);
+    CHECK(media::read_png(opaque).image.rgba == image.rgba);
 
     image.pixel(8, 3)[3] = 254;
     const fs::path translucent = scratch("translucent.png");
-    render::write_png(translucent, image);
+    media::write_png(translucent, image);
     CHECK(colour_type(translucent) == 6);
-    CHECK(render::read_png(translucent).image.rgba == image.rgba);
+    CHECK(media::read_png(translucent).image.rgba == image.rgba);
 }

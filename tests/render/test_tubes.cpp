@@ -233,7 +233,7 @@ TEST_CASE("a branching plant of a few hundred tubes is framed whole", "[tubes]")
     const Camera camera = render::frame_bounds(lo, hi, -25, 15, 1);
     render::draw_tubes(canvas, {0, 0, float(size), float(size)}, plant, camera);
     const render::Image image = canvas.read();
-    render::write_png(std::filesystem::temp_directory_path() / "figgen-tubes-plant.png", image);
+    media::write_png(std::filesystem::temp_directory_path() / "figgen-tubes-plant.png", image);
     int left = size, right = -1, top = size, bottom = -1;
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x)

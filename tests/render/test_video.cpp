@@ -12,8 +12,8 @@
 
 namespace fs = std::filesystem;
 using render::Image;
-using render::VideoOptions;
-using render::VideoWriter;
+using media::VideoOptions;
+using media::VideoWriter;
 
 namespace {
 
@@ -89,7 +89,7 @@ TEST_CASE("an encoded video decodes back to its frame count, size, format and du
     const std::string codec = encode_bar(path);
     CHECK((codec == "libx264" || codec == "mpeg4"));
     REQUIRE(fs::exists(path));
-    const render::VideoInfo info = render::probe_video(path);
+    const media::VideoInfo info = media::probe_video(path);
     CHECK(info.frames == kFrames);
     CHECK(info.width == kWidth);
     CHECK(info.height == kHeight);
@@ -103,7 +103,7 @@ TEST_CASE("an encoded video decodes back to its frame count, size, format and du
 TEST_CASE("a decoded frame keeps the pattern's colours and position", "[video]") {
     const fs::path path = scratch("bar_colour.mp4");
     encode_bar(path);
-    const Image frame = render::decode_frame(path, 12);  // bar at x = 24..31
+    const Image frame = media::decode_frame(path, 12);  // bar at x = 24..31
     REQUIRE(frame.width == kWidth);
     REQUIRE(frame.height == kHeight);
     // Inside the bar, away from its edges: white.
@@ -117,7 +117,7 @@ TEST_CASE("a decoded frame keeps the pattern's colours and position", "[video]")
     CHECK(mean_luma(frame, 34, 36) < 120);
     CHECK(mean_luma(frame, 24, 25) > 200);
     CHECK(mean_luma(frame, 31, 32) > 200);
-    CHECK_THROWS_AS(render::decode_frame(path, kFrames), std::out_of_range);
+    CHECK_THROWS_AS(media::decode_frame(path, kFrames), std::out_of_range);
 }
 
 // The media module returns its failures through a C error record
@@ -128,7 +128,7 @@ TEST_CASE("the media module's failures come back as the exceptions they were", "
     const base::Folder folder = base::Folder::of(path);
     const std::uint64_t allowed = static_cast<std::uint64_t>(kWidth) * kHeight - 1;
     try {
-        render::decode_frame(folder, path.filename().string(), 0, 1, allowed);
+        media::decode_frame(folder, path.filename().string(), 0, 1, allowed);
         FAIL("a film larger than max_pixels decoded");
     } catch (const render::ImageTooLarge& e) {
         CHECK(e.width == static_cast<std::uint64_t>(kWidth));
@@ -137,23 +137,23 @@ TEST_CASE("the media module's failures come back as the exceptions they were", "
         CHECK_THAT(e.file, Catch::Contains("bar_too_large.mp4"));
         CHECK_THAT(e.what(), Catch::Contains("more than the " + std::to_string(allowed) + " allowed"));
     }
-    CHECK(render::decode_frame(folder, path.filename().string(), 0, 1, allowed + 1).width == kWidth);
-    CHECK_THROWS_AS(render::decode_frame(path, kFrames), std::out_of_range);
-    CHECK_THROWS_AS(render::probe_video(scratch("no-such-film.mp4")), std::runtime_error);
+    CHECK(media::decode_frame(folder, path.filename().string(), 0, 1, allowed + 1).width == kWidth);
+    CHECK_THROWS_AS(media::decode_frame(path, kFrames), std::out_of_range);
+    CHECK_THROWS_AS(media::probe_video(scratch("no-such-film.mp4")), std::runtime_error);
 }
 
 TEST_CASE("decoding on more threads gives the same pixels", "[video]") {
     const fs::path path = scratch("bar_threads.mp4");
     encode_bar(path);
-    const Image one = render::decode_frame(path, kFrames - 1, 1);
+    const Image one = media::decode_frame(path, kFrames - 1, 1);
     for (const int threads : {0, 2, 3}) {
         INFO("threads " << threads);
-        const Image many = render::decode_frame(path, kFrames - 1, threads);
+        const Image many = media::decode_frame(path, kFrames - 1, threads);
         CHECK(many.width == one.width);
         CHECK(many.height == one.height);
         CHECK(many.rgba == one.rgba);
     }
-    CHECK_THROWS_WITH(render::decode_frame(path, 0, -1), "decoder threads -1 is negative");
+    CHECK_THROWS_WITH(media::decode_frame(path, 0, -1), "decoder threads -1 is negative");
 }
 
 TEST_CASE("the mpeg4 fallback encodes the same frames", "[video]") {
@@ -162,7 +162,7 @@ TEST_CASE("the mpeg4 fallback encodes the same frames", "[video]") {
     options.codec = "mpeg4";
     options.fps = 25;
     CHECK(encode_bar(path, options) == "mpeg4");
-    const render::VideoInfo info = render::probe_video(path);
+    const media::VideoInfo info = media::probe_video(path);
     CHECK(info.frames == kFrames);
     CHECK(info.width == kWidth);
     CHECK(info.height == kHeight);
@@ -170,7 +170,7 @@ TEST_CASE("the mpeg4 fallback encodes the same frames", "[video]") {
     CHECK(info.codec == "mpeg4");
     CHECK(info.fps == Approx(25.0));
     CHECK(info.duration_seconds == Approx(1.0).margin(0.5 / 25));
-    const Image frame = render::decode_frame(path, 12);
+    const Image frame = media::decode_frame(path, 12);
     CHECK(mean_luma(frame, 26, 30) == Approx(255).margin(6));
     for (int c = 0; c < 3; ++c) CHECK(mean_channel(frame, 40, 60, c) == Approx(kBackground[c]).margin(6));
 }
@@ -232,7 +232,7 @@ TEST_CASE("a video in a missing folder fails naming the path", "[video]") {
 
 TEST_CASE("a missing video cannot be probed", "[video]") {
     const fs::path path = scratch("missing.mp4");
-    CHECK_THROWS_AS(render::probe_video(path), std::runtime_error);
+    CHECK_THROWS_AS(media::probe_video(path), std::runtime_error);
 }
 
 TEST_CASE("the same frames with the same options give the same bytes", "[video]") {
@@ -314,7 +314,7 @@ TEST_CASE("a film from segments encoded apart is the file encoded whole in segme
         VideoWriter writer(joined, kWidth, kHeight, options);
         for (int first = 0; first < kFrames; first += options.segment_frames) {
             // As another process would: its own encoder, its packets sent as bytes.
-            render::VideoSegment segment("segment", kWidth, kHeight, options);
+            media::VideoSegment segment("segment", kWidth, kHeight, options);
             for (int i = first; i < std::min(kFrames, first + options.segment_frames); ++i) segment.add(moving_bar(i));
             const int frames = segment.frames();
             writer.add_segment(segment.finish(), frames);
@@ -323,13 +323,13 @@ TEST_CASE("a film from segments encoded apart is the file encoded whole in segme
         writer.finish();
     }
     CHECK(read_bytes(joined) == read_bytes(whole));
-    const render::VideoInfo info = render::probe_video(joined);
+    const media::VideoInfo info = media::probe_video(joined);
     CHECK(info.frames == kFrames);
     // Each segment starts with a key frame: frames 0, 10 and 20.
     for (int k : {0, 10, 20}) CHECK(std::count(info.key_frames.begin(), info.key_frames.end(), k) == 1);
     // Decoded, every frame still shows its bar where it was drawn.
     for (int i : {0, 9, 10, 24}) {
-        const Image frame = render::decode_frame(joined, i);
+        const Image frame = media::decode_frame(joined, i);
         CHECK(mean_luma(frame, 2 * i + 2, 2 * i + kBarWidth - 2) > 200);
     }
 }
@@ -339,14 +339,14 @@ TEST_CASE("a film's preview loops over evenly spread frames of the film scaled t
     const fs::path preview = scratch("preview-bar.webp");
     VideoWriter writer(film, kWidth, kHeight);
     for (int i = 0; i < kFrames; ++i) writer.add(moving_bar(i));
-    render::PreviewOptions options;
+    media::PreviewOptions options;
     options.max_width = 32;  // half the film's width: 32 x 24
     options.max_frames = 5;  // frames 0, 6, 12, 18 and 24 of 25
-    const render::PreviewInfo written = writer.finish(base::Folder::of(preview), preview.filename().string(), options);
+    const media::PreviewInfo written = writer.finish(base::Folder::of(preview), preview.filename().string(), options);
     REQUIRE(fs::exists(film));
-    CHECK(render::probe_video(film).frames == kFrames);  // the film is whole
+    CHECK(media::probe_video(film).frames == kFrames);  // the film is whole
 
-    const render::PreviewInfo read = render::probe_preview(preview);
+    const media::PreviewInfo read = media::probe_preview(preview);
     CHECK(read.frames == 5);
     CHECK(read.width == 32);
     CHECK(read.height == 24);
@@ -361,7 +361,7 @@ TEST_CASE("a film's preview loops over evenly spread frames of the film scaled t
     // is at x = 6k at half size, 4 pixels wide.
     for (int k = 0; k < 5; ++k) {
         INFO("preview frame " << k);
-        const Image frame = render::decode_preview_frame(preview, k);
+        const Image frame = media::decode_preview_frame(preview, k);
         REQUIRE(frame.width == 32);
         const int bar = 6 * k;
         CHECK(mean_luma(frame, bar + 1, bar + 3) > 200);                       // the bar, white
@@ -369,7 +369,7 @@ TEST_CASE("a film's preview loops over evenly spread frames of the film scaled t
         CHECK(mean_luma(frame, away, away + 3) < 120);                        // the background, blue
         CHECK(mean_channel(frame, away, away + 3, 2) > 150);
     }
-    CHECK_THROWS_AS(render::decode_preview_frame(preview, 5), std::out_of_range);
+    CHECK_THROWS_AS(media::decode_preview_frame(preview, 5), std::out_of_range);
     CHECK(files_named_like(preview) == 1);
 }
 
@@ -388,13 +388,13 @@ TEST_CASE("a preview too big for its budget is made smaller until it fits", "[vi
         }
         writer.add(frame);
     }
-    render::PreviewOptions options;
+    media::PreviewOptions options;
     options.max_bytes = 20000;
-    const render::PreviewInfo written = writer.finish(base::Folder::of(preview), preview.filename().string(), options);
+    const media::PreviewInfo written = writer.finish(base::Folder::of(preview), preview.filename().string(), options);
     CHECK(fs::file_size(preview) <= options.max_bytes);
     CHECK(written.bytes == fs::file_size(preview));
     CHECK(written.quality < options.quality);
-    CHECK(render::probe_preview(preview).frames == written.frames);
+    CHECK(media::probe_preview(preview).frames == written.frames);
 }
 
 TEST_CASE("a film with a preview leaves neither file when the preview cannot be written", "[video][preview]") {
@@ -403,7 +403,7 @@ TEST_CASE("a film with a preview leaves neither file when the preview cannot be 
     {
         VideoWriter writer(film, kWidth, kHeight);
         for (int i = 0; i < kFrames; ++i) writer.add(moving_bar(i));
-        render::PreviewOptions options;
+        media::PreviewOptions options;
         options.max_bytes = 10;  // no WebP is this small
         CHECK_THROWS_WITH(writer.finish(base::Folder::of(preview), preview.filename().string(), options),
                           Catch::Contains("cannot write") && Catch::Contains("preview-refused.webp"));
@@ -427,7 +427,7 @@ TEST_CASE("a film whose last segment is one frame keeps its frame rate and decod
         for (int i = 0; i < 21; ++i) writer.add(moving_bar(i % kFrames));
         writer.finish();
     }
-    const render::VideoInfo info = render::probe_video(path);
+    const media::VideoInfo info = media::probe_video(path);
     CHECK(info.frames == 21);
     CHECK(info.fps == Approx(5.0));
     CHECK(info.duration_seconds == Approx(21 / 5.0));

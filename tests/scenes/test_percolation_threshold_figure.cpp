@@ -33,7 +33,7 @@ struct Rendered {
 
 Rendered read_rendered(const fs::path& out) {
     Rendered r;
-    r.image = render::read_png(out / "pc-threshold.png").image;
+    r.image = media::read_png(out / "pc-threshold.png").image;
     std::ifstream in(out / "pc-threshold.json");
     r.meta = nlohmann::json::parse(in);
     return r;

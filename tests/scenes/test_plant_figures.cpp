@@ -122,7 +122,7 @@ TEST_CASE("the 3-D plant fills at least 80% of its panels' height and stays insi
                            out.string());
     INFO(run.output);
     REQUIRE(run.status == 0);
-    const render::Image figure = render::read_png(out / "pl-lsys-3d.png").image;
+    const render::Image figure = media::read_png(out / "pl-lsys-3d.png").image;
     std::ifstream in(out / "pl-lsys-3d.json");
     const nlohmann::json meta = nlohmann::json::parse(in);
     CHECK(meta["polygons"].get<int>() > 1000);  // the leaves are there
@@ -159,7 +159,7 @@ TEST_CASE("the 3-D plant fills at least 80% of its panels' height and stays insi
         if (entry.path().extension() != ".png") continue;
         ++frames;
         INFO(entry.path().filename().string());
-        const render::Image frame = render::read_png(entry.path()).image;
+        const render::Image frame = media::read_png(entry.path()).image;
         const InkBox ink = ink_in(frame, 0, 0, frame.width, frame.height);
         const double fill = double(ink.y1 - ink.y0) / double(frame.height);
         INFO("ink " << ink.x0 << "," << ink.y0 << " to " << ink.x1 << "," << ink.y1 << ", height fill " << fill);

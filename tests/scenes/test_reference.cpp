@@ -20,7 +20,7 @@ TEST_CASE("tc7-1 has the printed Figure 7.1's colour in every cell", "[reference
                 "FIGGEN_REFERENCE_DIR at them, to compare");
         return;
     }
-    const render::Image printed = render::read_png(scan).image;
+    const render::Image printed = media::read_png(scan).image;
     REQUIRE(printed.width == 900);
     REQUIRE(printed.height == 450);
     const render::Image ours = testkit::render_catalog_figure("tc7-1", 1.0);

@@ -7,6 +7,7 @@
 #include "description/catalog.hpp"
 #include "description/description.hpp"
 #include "render/colormap.hpp"
+#include "render/gl/canvas.hpp"
 #include "scenes/field_panels.hpp"
 #include "scenes/field_stats.hpp"
 #include "scenes/plot_page.hpp"
@@ -82,12 +83,16 @@ TEST_CASE("a film's page of field panels takes one sample a pixel where its fram
     // At scale 1 the frames lie on whole pixels (a film's frames); at 0.5 their 0.5-pixel lines do not.
     CHECK(scenes::field_page_samples(page, 480, 520, 1.0) == 1);
     CHECK(scenes::field_page_samples(page, 240, 260, 0.5) == 4);
+    const auto drawn = [&](render::Canvas& canvas, double scale) {
+        scenes::paint_field_panels(canvas, page, scale);
+        return canvas.read().rgba;
+    };
     for (const auto& [width, height, scale] : {std::tuple{480, 520, 1.0}, std::tuple{1280, 720, 1.0}}) {
         render::Canvas one(width, height, 1), four(width, height, 4);
-        CHECK(scenes::draw_field_panels(one, page, scale).rgba == scenes::draw_field_panels(four, page, scale).rgba);
+        CHECK(drawn(one, scale) == drawn(four, scale));
     }
     render::Canvas one(240, 260, 1), four(240, 260, 4);
-    CHECK(scenes::draw_field_panels(one, page, 0.5).rgba != scenes::draw_field_panels(four, page, 0.5).rgba);
+    CHECK(drawn(one, 0.5) != drawn(four, 0.5));
 }
 
 TEST_CASE("plots side by side make room for their measured y tick labels", "[plot][layout]") {

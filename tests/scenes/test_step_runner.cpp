@@ -14,7 +14,7 @@ namespace {
 struct RecordingFilm : scenes::Film {
     std::vector<int>* steps;
     explicit RecordingFilm(std::vector<int>* s) : steps(s) {}
-    void add(render::Image, int step) override { steps->push_back(step); }
+    void add(const scenes::FrameDrawing&, int step) override { steps->push_back(step); }
     nlohmann::json finish() override { return {{"frames", steps->size()}}; }
 };
 

@@ -13,7 +13,7 @@
 #include "media/media.hpp"
 #include "media/media_abi.h"
 
-namespace render::media {
+namespace media::codec {
 namespace {
 
 void set_text(char* out, std::size_t size, const std::string& text) {
@@ -120,9 +120,9 @@ std::vector<Packet> packets_of(const figgen_media_packet* packets, std::size_t c
 }
 
 }  // namespace
-}  // namespace render::media
+}  // namespace media::codec
 
-using namespace render::media;
+using namespace media::codec;
 using render::Image;
 
 struct figgen_media_encoder {
@@ -223,7 +223,7 @@ void preview_close(figgen_media_preview* p) {
 
 int probe_video(const char* path, figgen_video_info* info, figgen_media_error* error) {
     return guard(error, [&] {
-        thread_local render::VideoInfo held;
+        thread_local media::VideoInfo held;
         held = implementation().probe_video(text(path));
         *info = {held.frames,        held.width,           held.height,
                  held.pixel_format.c_str(), held.codec.c_str(), held.duration_seconds,
@@ -252,7 +252,7 @@ int write_webm(int fd, const char* shown, int film_fd, int32_t fps, const figgen
                uint64_t* bytes, figgen_media_error* error) {
     return guard(error, [&] {
         if (!options) throw std::invalid_argument("no WebM options");
-        render::WebmOptions webm;
+        media::WebmOptions webm;
         webm.crf = options->crf;
         webm.speed = options->speed;
         *bytes = implementation().write_webm(fd, text(shown), film_fd, fps, webm);
@@ -279,32 +279,32 @@ int webp_canvas(int fd, const char* shown, figgen_preview_info* info, figgen_med
     return guard(error, [&] { set_info(info, implementation().webp_canvas(fd, text(shown))); });
 }
 
-const figgen_media_api functions{FIGGEN_MEDIA_ABI_VERSION,
-                                 open_encoder,
-                                 encoder_add,
-                                 encoder_add_segment,
-                                 encoder_finish,
-                                 encoder_codec,
-                                 encoder_close,
-                                 open_segment,
-                                 segment_add,
-                                 segment_finish,
-                                 segment_preview_frames,
-                                 segment_close,
-                                 open_preview,
-                                 preview_add,
-                                 preview_write,
-                                 preview_close,
-                                 probe_video,
-                                 decode_frame,
-                                 scale,
-                                 write_preview,
-                                 probe_preview,
-                                 write_webm,
-                                 decode_preview_frame,
-                                 write_preview_thumbnail,
-                                 decode_film_frame,
-                                 webp_canvas};
+const figgen_media_api functions{.version = FIGGEN_MEDIA_ABI_VERSION,
+                                  .open_encoder = open_encoder,
+                                  .encoder_add = encoder_add,
+                                  .encoder_add_segment = encoder_add_segment,
+                                  .encoder_finish = encoder_finish,
+                                  .encoder_codec = encoder_codec,
+                                  .encoder_close = encoder_close,
+                                  .open_segment = open_segment,
+                                  .segment_add = segment_add,
+                                  .segment_finish = segment_finish,
+                                  .segment_preview_frames = segment_preview_frames,
+                                  .segment_close = segment_close,
+                                  .open_preview = open_preview,
+                                  .preview_add = preview_add,
+                                  .preview_write = preview_write,
+                                  .preview_close = preview_close,
+                                  .probe_video = probe_video,
+                                  .decode_frame = decode_frame,
+                                  .scale = scale,
+                                  .write_preview = write_preview,
+                                  .probe_preview = probe_preview,
+                                  .write_webm = write_webm,
+                                  .decode_preview_frame = decode_preview_frame,
+                                  .write_preview_thumbnail = write_preview_thumbnail,
+                                  .decode_film_frame = decode_film_frame,
+                                  .webp_canvas = webp_canvas};
 
 }  // namespace
 

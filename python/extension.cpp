@@ -1,5 +1,6 @@
-// figgen's Python module, _figgen: the catalog, a figure's settings, and a
-// render in this process, through the same library calls as the command.
+// figgen's Python extension, _figgen (a CPython extension; figgen's own "modules" are the
+// shared objects it opens on use): the catalog, a figure's settings, and a render in this
+// process, through the same library calls as the command.
 // The package around it (python/figgen/__init__.py) gives them their
 // Python face: Figure, SettingError, RenderError.
 #include "base/module.hpp"
@@ -435,7 +436,7 @@ PYBIND11_MODULE(_figgen, m) {
     m.def("toml_value",
           [](const py::object& value, const std::string& name) { return py::bytes(toml_text(value, name)); });
     m.def("read_png", [](const std::string& path) {
-        const render::Image image = without_gil([&] { return render::read_png(path).image; });
+        const render::Image image = without_gil([&] { return media::read_png(path).image; });
         return py::make_tuple(image.width, image.height,
                               py::bytes(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size()));
     });
