@@ -220,12 +220,12 @@ def golden_overrides(figure):
 
 
 def same_bits_figures():
-    """tests/python/same_bits_figures.txt: figure id -> the formats compared."""
+    """tests/python/same_bits_figures.txt: figure id -> (the formats compared, --set lines)."""
     cases = {}
     for line in (pathlib.Path(__file__).parent / "same_bits_figures.txt").read_text().splitlines():
         words = line.split("#")[0].split()
         if words:
-            cases[words[0]] = words[1]
+            cases[words[0]] = (words[1], words[2:])
     return cases
 
 
@@ -235,17 +235,18 @@ SAME_BITS = same_bits_figures()
 def test_each_route_has_a_figure_held_to_the_command():
     catalog = {p.stem for p in FIGURES.glob("*.toml")}
     assert set(SAME_BITS) <= catalog
-    assert any("mp4" in formats for formats in SAME_BITS.values())
+    assert any("mp4" in formats for formats, _ in SAME_BITS.values())
     assert any((GOLDEN / f"{figure}.set").exists() for figure in SAME_BITS)
 
 
 @pytest.mark.parametrize("figure", sorted(SAME_BITS))
 def test_the_same_bits_as_the_command(figure, tmp_path):
-    """A figure at scale 0.5, as its golden is made: the PNG's pixels, every state hash and the MP4's bytes."""
+    """A figure at scale 0.5, as its golden is made (and with the list's own --set lines): the PNG's pixels,
+    every state hash and the MP4's bytes."""
     by_command, by_python = tmp_path / "command", tmp_path / "python"
-    formats = SAME_BITS[figure]
+    formats, own_sets = SAME_BITS[figure]
     films = "mp4" in formats
-    sets = golden_overrides(figure)
+    sets = golden_overrides(figure) + own_sets
     run = command("render", figure, "--scale", "0.5", "--format", formats, "--out", str(by_command),
                   *[arg for s in sets for arg in ("--set", s)])
     assert run.returncode == 0, run.stderr
