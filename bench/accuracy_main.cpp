@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "accuracy.hpp"
-#include "scenes/plot_page.hpp"
+#include "scenes/helpers/plot_page.hpp"
 #include "base/atomic_file.hpp"
 #include "render/gl/canvas.hpp"
 #include "render/colormap.hpp"

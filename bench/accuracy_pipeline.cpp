@@ -14,7 +14,7 @@
 #include "accuracy.hpp"
 #include "app/render/frame_canvas.hpp"
 #include "media/video.hpp"
-#include "scenes/field_panels.hpp"
+#include "scenes/helpers/field_panels.hpp"
 #include "sim/gray_scott.hpp"
 #include "sim/gray_scott_kernels.hpp"
 #include "sim/percolation.hpp"

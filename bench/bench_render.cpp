@@ -10,7 +10,7 @@
 #include "app/render/frame_canvas.hpp"
 #include "media/png_io.hpp"
 #include "media/video.hpp"
-#include "scenes/field_panels.hpp"
+#include "scenes/helpers/field_panels.hpp"
 #include "sim/diffusion.hpp"
 
 namespace {

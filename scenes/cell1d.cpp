@@ -1,11 +1,11 @@
 // Elementary cellular automata side by side (Think Complexity 2e, Fig 7.6):
 // rows are time, top to bottom, one panel per rule, drawn in Blues.
-#include "render/field.hpp"
-#include "scenes/field_spec.hpp"
-#include "scenes/model_check.hpp"
-#include "scenes/scene.hpp"
-#include "scenes/figure_caption.hpp"
 #include "base/digest.hpp"
+#include "render/field.hpp"
+#include "scenes/helpers/field_spec.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/model_check.hpp"
+#include "scenes/scene.hpp"
 #include "sim/cell1d.hpp"
 #include "sim/check.hpp"
 

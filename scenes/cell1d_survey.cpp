@@ -6,15 +6,15 @@
 #include <thread>
 #include <cmath>
 
-#include "scenes/field_panels.hpp"
-#include "scenes/field_spec.hpp"
-#include "scenes/field_stats.hpp"
-#include "scenes/work_codec.hpp"
-#include "scenes/panel_grid.hpp"
-#include "scenes/plot_page.hpp"
-#include "scenes/scene.hpp"
-#include "scenes/figure_caption.hpp"
 #include "base/digest.hpp"
+#include "scenes/helpers/field_panels.hpp"
+#include "scenes/helpers/field_spec.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/panel_grid.hpp"
+#include "scenes/helpers/plot_page.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/work_codec.hpp"
 #include "sim/cell1d.hpp"
 #include "sim/fractal.hpp"
 

@@ -2,11 +2,11 @@
 // Complexity 2e, Fig 7.7): the box-counting estimate of a 1-D CA's dimension.
 #include <cmath>
 
-#include "scenes/field_stats.hpp"
-#include "scenes/model_check.hpp"
-#include "scenes/plot_page.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/model_check.hpp"
+#include "scenes/helpers/plot_page.hpp"
 #include "scenes/scene.hpp"
-#include "scenes/figure_caption.hpp"
 #include "sim/cell1d.hpp"
 #include "sim/check.hpp"
 #include "sim/fractal.hpp"

@@ -4,13 +4,13 @@
 
 #include <algorithm>
 
-#include "render/colormap.hpp"
 #include "base/digest.hpp"
-#include "scenes/field_spec.hpp"
-#include "scenes/model_check.hpp"
+#include "render/colormap.hpp"
+#include "scenes/helpers/field_spec.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/model_check.hpp"
+#include "scenes/helpers/step_runner.hpp"
 #include "scenes/scene.hpp"
-#include "scenes/step_runner.hpp"
-#include "scenes/figure_caption.hpp"
 
 namespace scenes {
 namespace {

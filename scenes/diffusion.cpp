@@ -2,12 +2,12 @@
 // from it as it passes their steps.
 #include "sim/diffusion.hpp"
 
-#include "scenes/field_panels.hpp"
-#include "scenes/field_spec.hpp"
-#include "scenes/field_stats.hpp"
-#include "scenes/model_check.hpp"
+#include "scenes/helpers/field_panels.hpp"
+#include "scenes/helpers/field_spec.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/model_check.hpp"
+#include "scenes/helpers/step_runner.hpp"
 #include "scenes/scene.hpp"
-#include "scenes/step_runner.hpp"
 
 namespace scenes {
 namespace {

@@ -7,14 +7,14 @@
 #include <numeric>
 
 #include "base/digest.hpp"
-#include "scenes/field_panels.hpp"
-#include "scenes/field_spec.hpp"
-#include "scenes/model_check.hpp"
-#include "scenes/panel_grid.hpp"
-#include "scenes/plot_page.hpp"
+#include "scenes/helpers/field_panels.hpp"
+#include "scenes/helpers/field_spec.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/model_check.hpp"
+#include "scenes/helpers/panel_grid.hpp"
+#include "scenes/helpers/plot_page.hpp"
+#include "scenes/helpers/step_runner.hpp"
 #include "scenes/scene.hpp"
-#include "scenes/step_runner.hpp"
-#include "scenes/figure_caption.hpp"
 #include "sim/fractal.hpp"
 
 namespace scenes {

@@ -5,20 +5,20 @@
 // the start (initial: Ready's overlays, in order) and, as every other key,
 // the rule's own parameters; [style] says which chemicals each panel shows
 // (show) and how (a_colormap, b_vmin, ... for each chemical). The model
-// itself is read by scenes/formula_model.cpp.
+// itself is read by scenes/helpers/formula_model.cpp.
 #include "sim/formula/run.hpp"
 
 #include <algorithm>
 #include <thread>
 
-#include "ready/state.hpp"
 #include "base/digest.hpp"
-#include "scenes/field_panels.hpp"
-#include "scenes/field_spec.hpp"
-#include "scenes/field_stats.hpp"
-#include "scenes/formula_model.hpp"
+#include "ready/state.hpp"
+#include "scenes/helpers/field_panels.hpp"
+#include "scenes/helpers/field_spec.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/formula_model.hpp"
+#include "scenes/helpers/step_runner.hpp"
 #include "scenes/scene.hpp"
-#include "scenes/step_runner.hpp"
 
 namespace scenes {
 namespace {

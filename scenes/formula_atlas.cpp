@@ -2,7 +2,7 @@
 // rule's parameters swept over a grid of tiles, each tile its own run of
 // the model from the same start, one chemical of each drawn at its last
 // step, as gs-atlas maps Gray-Scott over (f, k). [params] is the formula
-// scene's (scenes/formula_model.hpp) and x_parameter, x_range, y_parameter,
+// scene's (scenes/helpers/formula_model.hpp) and x_parameter, x_range, y_parameter,
 // y_range, tiles; the swept parameters get each tile's values (tile
 // centres: the first column at x_lo + half a tile), x to the right, y up.
 //
@@ -18,18 +18,18 @@
 #include <thread>
 
 #include "render/colormap.hpp"
-#include "scenes/field_panels.hpp"
-#include "scenes/field_spec.hpp"
-#include "scenes/field_stats.hpp"
-#include "scenes/figure_caption.hpp"
-#include "scenes/formula_model.hpp"
-#include "sim/formula/names.hpp"
-#include "scenes/panel_grid.hpp"
-#include "scenes/plot_page.hpp"
+#include "scenes/helpers/field_panels.hpp"
+#include "scenes/helpers/field_spec.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/formula_model.hpp"
+#include "scenes/helpers/panel_grid.hpp"
+#include "scenes/helpers/plot_page.hpp"
+#include "scenes/helpers/tile_map.hpp"
 #include "scenes/scene.hpp"
-#include "scenes/tile_map.hpp"
-#include "scenes/work_items.hpp"
 #include "scenes/work_codec.hpp"
+#include "scenes/work_items.hpp"
+#include "sim/formula/names.hpp"
 
 namespace scenes {
 namespace {

@@ -17,15 +17,15 @@
 #include <thread>
 #include <tuple>
 
-#include "scenes/field_panels.hpp"
-#include "scenes/field_spec.hpp"
-#include "scenes/field_stats.hpp"
-#include "scenes/figure_caption.hpp"
-#include "scenes/model_check.hpp"
-#include "scenes/panel_grid.hpp"
-#include "scenes/plot_page.hpp"
+#include "scenes/helpers/field_panels.hpp"
+#include "scenes/helpers/field_spec.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/model_check.hpp"
+#include "scenes/helpers/panel_grid.hpp"
+#include "scenes/helpers/plot_page.hpp"
+#include "scenes/helpers/tile_map.hpp"
 #include "scenes/scene.hpp"
-#include "scenes/tile_map.hpp"
 #include "scenes/work_codec.hpp"
 
 namespace scenes {

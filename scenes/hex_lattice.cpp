@@ -1,14 +1,14 @@
 // Liu & Zhang 1987, Fig 2: the lattices of the paper's automata, a 1-D row
 // of cells and a 2-D hexagonal patch with the centre 0 and its neighbours
 // 1..6 numbered as in the paper's equation (2). A schematic: no model runs.
-#include "scenes/field_stats.hpp"
-#include "scenes/plot_page.hpp"
-#include "scenes/scene.hpp"
-#include "scenes/figure_caption.hpp"
-#include "scenes/panel_grid.hpp"
 #include "render/hex_cells.hpp"
 #include "render/layout.hpp"
 #include "render/text.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/panel_grid.hpp"
+#include "scenes/helpers/plot_page.hpp"
+#include "scenes/scene.hpp"
 
 namespace scenes {
 namespace {

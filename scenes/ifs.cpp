@@ -5,12 +5,12 @@
 #include <optional>
 #include <sstream>
 
-#include "scenes/field_spec.hpp"
-#include "scenes/field_stats.hpp"
-#include "scenes/model_check.hpp"
-#include "scenes/scene.hpp"
-#include "scenes/figure_caption.hpp"
 #include "render/layout.hpp"
+#include "scenes/helpers/field_spec.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/model_check.hpp"
+#include "scenes/scene.hpp"
 #include "sim/check.hpp"
 #include "sim/ifs.hpp"
 #include "sim/random.hpp"

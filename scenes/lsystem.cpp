@@ -5,15 +5,15 @@
 #include <cmath>
 #include <limits>
 
-#include "scenes/field_stats.hpp"
-#include "scenes/model_check.hpp"
-#include "scenes/plot_page.hpp"
-#include "scenes/scene.hpp"
-#include "scenes/figure_caption.hpp"
-#include "scenes/panel_grid.hpp"
 #include "render/layout.hpp"
 #include "render/shapes.hpp"
 #include "render/text.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/model_check.hpp"
+#include "scenes/helpers/panel_grid.hpp"
+#include "scenes/helpers/plot_page.hpp"
+#include "scenes/scene.hpp"
 #include "sim/check.hpp"
 #include "sim/lsystem.hpp"
 #include "sim/turtle.hpp"

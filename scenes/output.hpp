@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "render/image.hpp"
 #include "ready/state.hpp"
+#include "render/image.hpp"
 #include "render/surface.hpp"
 #include "scenes/work_items.hpp"
 
@@ -87,7 +87,7 @@ public:
     // MPI ranks, or read from the parts of earlier runs and shards
     // (app/work/schedule.hpp decides). Advances progress() by one per item.
     virtual std::vector<nlohmann::json> results(const WorkItems& items) = 0;
-    // The film's frames this run draws (scenes/step_runner.cpp keeps to it).
+    // The film's frames this run draws (scenes/helpers/step_runner.cpp keeps to it).
     virtual FrameRange film_frames() const { return {}; }
     // False for a run that only makes film frames: its figure is not drawn.
     virtual bool wants_figure() const { return true; }

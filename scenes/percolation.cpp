@@ -1,11 +1,11 @@
 // Percolation as the book's cellular automaton (Think Complexity 2e, Fig 7.5):
 // blocked 0, porous 1, wet 5, drawn in Blues from 0 to 5. tc7-5: one small
 // model, panels after the first steps, the animation to the end.
-#include "scenes/field_panels.hpp"
-#include "scenes/model_check.hpp"
-#include "scenes/percolation_common.hpp"
+#include "scenes/helpers/field_panels.hpp"
+#include "scenes/helpers/model_check.hpp"
+#include "scenes/helpers/percolation_common.hpp"
+#include "scenes/helpers/step_runner.hpp"
 #include "scenes/scene.hpp"
-#include "scenes/step_runner.hpp"
 #include "sim/random.hpp"
 
 namespace scenes {

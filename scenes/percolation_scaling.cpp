@@ -3,11 +3,11 @@
 // critical, log-log, with the lines of dimension 2 and 1.
 #include <stdexcept>
 
-#include "scenes/field_stats.hpp"
-#include "scenes/percolation_common.hpp"
-#include "scenes/plot_page.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/percolation_common.hpp"
+#include "scenes/helpers/plot_page.hpp"
 #include "scenes/scene.hpp"
-#include "scenes/figure_caption.hpp"
 #include "sim/fractal.hpp"
 
 namespace scenes {

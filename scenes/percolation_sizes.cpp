@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <climits>
 
-#include "scenes/field_panels.hpp"
-#include "scenes/model_check.hpp"
-#include "scenes/percolation_common.hpp"
+#include "scenes/helpers/field_panels.hpp"
+#include "scenes/helpers/model_check.hpp"
+#include "scenes/helpers/percolation_common.hpp"
+#include "scenes/helpers/step_runner.hpp"
 #include "scenes/scene.hpp"
-#include "scenes/step_runner.hpp"
 #include "sim/random.hpp"
 
 namespace scenes {

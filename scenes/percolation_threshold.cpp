@@ -19,10 +19,10 @@
 #include <stdexcept>
 #include <thread>
 
-#include "scenes/field_stats.hpp"
-#include "scenes/figure_caption.hpp"
-#include "scenes/percolation_common.hpp"
-#include "scenes/plot_page.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/percolation_common.hpp"
+#include "scenes/helpers/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/work_codec.hpp"
 

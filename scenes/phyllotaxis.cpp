@@ -4,16 +4,16 @@
 // the same spiral at divergences that miss the golden angle.
 #include <cmath>
 
-#include "scenes/field_stats.hpp"
-#include "scenes/model_check.hpp"
-#include "scenes/plot_page.hpp"
-#include "scenes/scene.hpp"
-#include "scenes/step_runner.hpp"
-#include "scenes/figure_caption.hpp"
-#include "scenes/panel_grid.hpp"
 #include "render/layout.hpp"
 #include "render/shapes.hpp"
 #include "render/text.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/model_check.hpp"
+#include "scenes/helpers/panel_grid.hpp"
+#include "scenes/helpers/plot_page.hpp"
+#include "scenes/helpers/step_runner.hpp"
+#include "scenes/scene.hpp"
 #include "sim/phyllotaxis.hpp"
 
 namespace scenes {

@@ -9,10 +9,10 @@
 #include <functional>
 #include <stdexcept>
 
-#include "scenes/field_stats.hpp"
-#include "scenes/figure_caption.hpp"
-#include "scenes/model_check.hpp"
-#include "scenes/plot_page.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/model_check.hpp"
+#include "scenes/helpers/plot_page.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/work_codec.hpp"
 #include "sim/deposition.hpp"

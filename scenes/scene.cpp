@@ -6,7 +6,7 @@
 
 #include "render/colormap.hpp"
 #include "render/field.hpp"
-#include "scenes/figure_caption.hpp"
+#include "scenes/helpers/figure_caption.hpp"
 
 namespace scenes {
 

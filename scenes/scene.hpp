@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "scenes/description_names.hpp"
 #include "render/ticks.hpp"
+#include "scenes/description_names.hpp"
 #include "scenes/output.hpp"
 
 namespace scenes {

@@ -3,15 +3,15 @@
 // each panel's letter and rule code beneath it as the paper labels them.
 #include <algorithm>
 
-#include "scenes/plot_page.hpp"
-#include "scenes/scene.hpp"
-#include "scenes/snowflake_setup.hpp"
-#include "scenes/step_runner.hpp"
-#include "scenes/figure_caption.hpp"
-#include "scenes/panel_grid.hpp"
 #include "render/hex_cells.hpp"
 #include "render/layout.hpp"
 #include "render/text.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/panel_grid.hpp"
+#include "scenes/helpers/plot_page.hpp"
+#include "scenes/helpers/snowflake_setup.hpp"
+#include "scenes/helpers/step_runner.hpp"
+#include "scenes/scene.hpp"
 
 namespace scenes {
 namespace {

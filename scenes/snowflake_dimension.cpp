@@ -7,12 +7,12 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "scenes/field_stats.hpp"
-#include "scenes/plot_page.hpp"
-#include "scenes/scene.hpp"
-#include "scenes/snowflake_setup.hpp"
-#include "scenes/figure_caption.hpp"
 #include "render/colormap.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/plot_page.hpp"
+#include "scenes/helpers/snowflake_setup.hpp"
+#include "scenes/scene.hpp"
 #include "sim/fractal.hpp"
 
 namespace scenes {

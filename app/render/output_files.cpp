@@ -16,7 +16,7 @@
 #include "render/gl/gl_context.hpp"
 #include "render/vector/vector.hpp"
 #include "render/vector/vector_page.hpp"
-#include "scenes/figure_caption.hpp"
+#include "scenes/helpers/figure_caption.hpp"
 
 namespace app {
 

@@ -15,7 +15,7 @@
 #include "render/layout.hpp"
 #include "render/text.hpp"
 #include "base/utf8.hpp"
-#include "scenes/figure_caption.hpp"
+#include "scenes/helpers/figure_caption.hpp"
 #include "scenes/scene.hpp"
 #include "sim/formula/run.hpp"
 #include "sim/lsystem.hpp"

@@ -20,8 +20,8 @@
 #include "render/text.hpp"
 #include "render/vector/vector.hpp"
 #include "render/vector/vector_page.hpp"
-#include "scenes/field_panels.hpp"
-#include "scenes/field_spec.hpp"
+#include "scenes/helpers/field_panels.hpp"
+#include "scenes/helpers/field_spec.hpp"
 #include "sim/grid.hpp"
 #include "vector_check.hpp"
 

@@ -8,9 +8,9 @@
 #include "description/description.hpp"
 #include "render/colormap.hpp"
 #include "render/gl/canvas.hpp"
-#include "scenes/field_panels.hpp"
-#include "scenes/field_stats.hpp"
-#include "scenes/plot_page.hpp"
+#include "scenes/helpers/field_panels.hpp"
+#include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/plot_page.hpp"
 #include "scenes/scene.hpp"
 
 TEST_CASE("every catalog description names a known scene", "[scenes]") {

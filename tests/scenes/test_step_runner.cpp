@@ -7,7 +7,7 @@
 
 #include "description/description.hpp"
 #include "render/gl/canvas.hpp"
-#include "scenes/step_runner.hpp"
+#include "scenes/helpers/step_runner.hpp"
 
 namespace {
 

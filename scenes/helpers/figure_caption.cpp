@@ -1,4 +1,4 @@
-#include "scenes/figure_caption.hpp"
+#include "scenes/helpers/figure_caption.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "scenes/model_check.hpp"
+#include "scenes/helpers/model_check.hpp"
 
 #include "sim/check.hpp"
 

@@ -79,7 +79,7 @@ struct FieldPanel {
 // Figures keep four samples, so their pixels do not change at all.
 int field_page_samples(const std::vector<FieldPanel>& panels, int width, int height, double scale);
 
-// The panels on a white page of the figure's size (scenes/figure_caption.hpp),
+// The panels on a white page of the figure's size (scenes/helpers/figure_caption.hpp),
 // in rows of [figure] columns or of the count that makes them largest: the
 // figure, drawing `panels`, which must outlive it. Throws a SettingError
 // for figure.size when the panels' titles do not fit on it.

@@ -1,4 +1,4 @@
-#include "scenes/tile_map.hpp"
+#include "scenes/helpers/tile_map.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "scenes/field_spec.hpp"
+#include "scenes/helpers/field_spec.hpp"
 
 #include <algorithm>
 #include <cmath>

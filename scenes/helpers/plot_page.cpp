@@ -1,10 +1,10 @@
-#include "scenes/plot_page.hpp"
+#include "scenes/helpers/plot_page.hpp"
 
 #include <cmath>
 
 #include "render/colormap.hpp"
-#include "scenes/figure_caption.hpp"
-#include "scenes/panel_grid.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/panel_grid.hpp"
 
 namespace scenes {
 

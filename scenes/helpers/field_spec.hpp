@@ -10,7 +10,7 @@
 #include "description/schema.hpp"
 #include "render/colormap.hpp"
 #include "scenes/description_names.hpp"
-#include "scenes/field_panels.hpp"
+#include "scenes/helpers/field_panels.hpp"
 #include "sim/grid.hpp"
 
 namespace scenes {

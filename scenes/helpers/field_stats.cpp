@@ -1,4 +1,4 @@
-#include "scenes/field_stats.hpp"
+#include "scenes/helpers/field_stats.hpp"
 
 #include <algorithm>
 #include <cmath>

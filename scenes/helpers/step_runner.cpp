@@ -1,5 +1,5 @@
-#include "scenes/step_runner.hpp"
-#include "scenes/figure_caption.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/step_runner.hpp"
 
 #include <algorithm>
 #include <limits>

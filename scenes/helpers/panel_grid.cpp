@@ -1,9 +1,9 @@
-#include "scenes/panel_grid.hpp"
+#include "scenes/helpers/panel_grid.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "scenes/figure_caption.hpp"
+#include "scenes/helpers/figure_caption.hpp"
 
 namespace scenes {
 

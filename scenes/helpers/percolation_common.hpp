@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scenes/description_names.hpp"
-#include "scenes/field_spec.hpp"
+#include "scenes/helpers/field_spec.hpp"
 #include "sim/percolation.hpp"
 #include "sim/random.hpp"
 

@@ -1,9 +1,9 @@
-#include "scenes/snowflake_setup.hpp"
+#include "scenes/helpers/snowflake_setup.hpp"
 
 #include <algorithm>
 
-#include "scenes/model_check.hpp"
 #include "base/digest.hpp"
+#include "scenes/helpers/model_check.hpp"
 
 namespace scenes {
 namespace {

@@ -1,7 +1,7 @@
-#include "scenes/percolation_common.hpp"
+#include "scenes/helpers/percolation_common.hpp"
 
 #include "base/digest.hpp"
-#include "scenes/model_check.hpp"
+#include "scenes/helpers/model_check.hpp"
 
 namespace scenes {
 

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "scenes/scene.hpp"
-#include "sim/formula/run.hpp"
 #include "sim/formula/overlays.hpp"
+#include "sim/formula/run.hpp"
 #include "sim/grid.hpp"
 
 namespace scenes {

@@ -8,9 +8,9 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "render/surface.hpp"
 #include "render/image.hpp"
-#include "scenes/field_panels.hpp"
+#include "render/surface.hpp"
+#include "scenes/helpers/field_panels.hpp"
 #include "scenes/scene.hpp"
 
 namespace scenes {

@@ -28,7 +28,7 @@ const description::Schema<PlotSettings>& plot_settings_schema();
 render::PlotStyle plot_style(const PlotSettings& settings, double output_scale);
 
 // A row of plots on a white page of the figure's size
-// (scenes/figure_caption.hpp): the figure. Throws a SettingError for
+// (scenes/helpers/figure_caption.hpp): the figure. Throws a SettingError for
 // figure.size, with a size that holds it, when their text does not fit:
 // tick labels, axis labels and titles that overlap each other or a frame or
 // leave the page, legends and notes that leave their frames.

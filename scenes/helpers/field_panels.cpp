@@ -1,9 +1,9 @@
-#include "scenes/field_panels.hpp"
+#include "scenes/helpers/field_panels.hpp"
 
 #include <cmath>
 
-#include "scenes/figure_caption.hpp"
-#include "scenes/panel_grid.hpp"
+#include "scenes/helpers/figure_caption.hpp"
+#include "scenes/helpers/panel_grid.hpp"
 
 namespace scenes {
 namespace {

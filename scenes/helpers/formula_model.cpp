@@ -1,6 +1,6 @@
 // What the formula scenes share (scenes/formula.cpp, formula_atlas.cpp):
 // a formula model read from [params] and checked before anything runs.
-#include "scenes/formula_model.hpp"
+#include "scenes/helpers/formula_model.hpp"
 
 #include <algorithm>
 #include <cctype>
