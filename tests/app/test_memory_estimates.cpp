@@ -146,7 +146,6 @@ TEST_CASE("memory estimates hold: peak RSS <= estimate <= 3 x peak, and --max-me
     // One or two cases per model family, small and fast; films for the encoder.
     const std::vector<MemoryCase> cases = {
         {"tc7-1", "film, scale 0.5", "--scale 0.5"},
-        {"tc7-1", "n 1000", "--no-video --set n=1000"},
         {"tc7-1", "n 2000, PDF and SVG", "--format pdf,svg --set n=2000"},
         {"tc7-2", "n 400, panels at 10..30", "--no-video --set n=400 --set figure.panels=[10,20,30]"},
         {"tc7-2", "film as WebM, scale 0.5", "--format webm --scale 0.5"},
