@@ -1,4 +1,7 @@
-#include "app/gallery/gallery.hpp"
+// One figure's card: its thumbnail (and poster, preview and film), title,
+// source, key numbers, parameters, seed and the numbers it computed.
+
+#include "app/gallery/cards.hpp"
 
 #include <dirent.h>
 #include <fcntl.h>
@@ -27,98 +30,10 @@
 #include "media/thumbnail.hpp"
 #include "media/video.hpp"
 
-namespace app {
-using description::catalog_files;
+namespace app::gallery {
+
 namespace {
 
-constexpr int thumb_width = 480, thumb_height = 360;
-// Figures of other descriptions shown at most: a folder of a million JSON
-// files makes a long page, not an endless one.
-constexpr std::size_t max_other_figures = 1000;
-
-// The gallery's folder (the rendered figures, index.html) and the two it makes.
-struct Folders {
-    base::Folder figures, thumbs, posters;
-};
-
-// What decoding an image takes, to keep it within --max-memory: the
-// program itself (figgen with FFmpeg's and libwebp's libraries loaded),
-// and bytes a pixel of the size the image's header claims. Measured with
-// /usr/bin/time -v (maximum resident set size) on `figgen gallery`: a
-// gallery of tc7-1 (with its film) and tc7-9 at half size peaks at 44 MB.
-constexpr double program_bytes = 64.0 * 1024 * 1024;
-// A PNG: its RGBA pixels, and libswscale's rows as it scales them down
-// (measured: 47.6 MB for a 2000 x 2000 PNG, 173.9 MB for 6000 x 6000, 4.04
-// bytes a pixel between them).
-constexpr double png_bytes_per_pixel = 4.5;
-// A film's poster frame: the decoder's frames (H.264 keeps up to 16 for
-// reference, and one a decoding thread, of which there are at most
-// poster_threads), each 1.5 bytes a pixel in YUV 4:2:0, and the frame in
-// RGBA: (16 + 8 + 2) * 1.5 + 4 and libswscale's rows. tc7-1's x264 film
-// measured 18 bytes a pixel on 2 threads (53.7 MB at 800 x 800, 143.6 MB
-// at 2400 x 2400).
-constexpr double film_bytes_per_pixel = 48.0;
-constexpr unsigned poster_threads = 8;
-// A preview's canvas: libwebp's two canvases (the frame shown and the one
-// before it), the frame being decoded, and our copy of it.
-constexpr double webp_bytes_per_pixel = 16.0;
-
-// The most pixels an image may claim under `max_memory`, at `bytes_per_pixel`.
-std::uint64_t max_pixels(std::uint64_t max_memory, double bytes_per_pixel) {
-    const double room = static_cast<double>(max_memory) - program_bytes;
-    return room <= 0 ? 0 : static_cast<std::uint64_t>(room / bytes_per_pixel);
-}
-
-// Why `file` was not read: one line with the size its header claims and
-// the memory that would take.
-std::string refusal(const std::string& file, const render::ImageTooLarge& e, std::uint64_t max_memory,
-                    double bytes_per_pixel) {
-    const double needs = program_bytes + bytes_per_pixel * static_cast<double>(e.width) * static_cast<double>(e.height);
-    return file + " is not decoded: its header claims " + std::to_string(e.width) + " x " + std::to_string(e.height) +
-           " pixels, which would take about " + format_bytes(needs) + " to decode, more than --max-memory " +
-           format_bytes(static_cast<double>(max_memory));
-}
-
-std::string escape(const std::string& text) {
-    std::string out;
-    out.reserve(text.size());
-    for (const char c : text) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&#39;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
-
-// What the metadata says, read as untrusted: a missing or mistyped field
-// gives the fallback, never an exception.
-const nlohmann::json& member(const nlohmann::json& node, const char* key) {
-    static const nlohmann::json none;
-    if (!node.is_object()) return none;
-    const auto found = node.find(key);
-    return found == node.end() ? none : *found;
-}
-std::string text_of(const nlohmann::json& node, const char* key, const std::string& fallback) {
-    const nlohmann::json& value = member(node, key);
-    return value.is_string() ? value.get<std::string>() : fallback;
-}
-// A positive integer up to a million (a size, a count), else 0.
-int count_of(const nlohmann::json& value) {
-    return value.is_number_integer() && value.get<long long>() > 0 && value.get<long long>() <= 1'000'000
-               ? static_cast<int>(value.get<long long>())
-               : 0;
-}
-// An index below `limit` (a frame of a film), else -1.
-int index_of(const nlohmann::json& value, int limit) {
-    return value.is_number_integer() && value.get<long long>() >= 0 && value.get<long long>() < limit
-               ? static_cast<int>(value.get<long long>())
-               : -1;
-}
 std::string seed_of(const nlohmann::json& meta) {
     const nlohmann::json& seed = member(meta, "seed");
     return seed.is_number_unsigned() ? std::to_string(seed.get<std::uint64_t>()) : "?";
@@ -226,183 +141,6 @@ std::string parameter_list(const nlohmann::json& meta) {
     }
     return html;
 }
-
-const char* style_sheet = R"(
-:root { color-scheme: light; --ink: #1d2430; --muted: #5b6577; --line: #d8dde6; }
-* { box-sizing: border-box; }
-body { margin: 0; font: 16px/1.5 "DejaVu Sans", system-ui, sans-serif; color: var(--ink); background: #f5f6f8; }
-header { padding: 1.2rem 1rem 0.6rem; max-width: 1400px; margin: 0 auto; }
-header h1 { margin: 0 0 0.2rem; font-size: 1.6rem; }
-header p { margin: 0.2rem 0; color: var(--muted); }
-main { display: grid; gap: 1rem; padding: 1rem; max-width: 1400px; margin: 0 auto;
-       grid-template-columns: repeat(auto-fill, minmax(min(100%, 420px), 1fr)); }
-article { background: #fff; border: 1px solid var(--line); border-radius: 8px; padding: 0.8rem; min-width: 0; }
-article h2 { font-size: 1.1rem; margin: 0 0 0.2rem; }
-article .id { font-family: "DejaVu Sans Mono", monospace; font-size: 0.85rem; color: var(--muted); }
-article .source { margin: 0.2rem 0 0.6rem; color: var(--muted); font-size: 0.9rem; }
-img, video { display: block; max-width: 100%; height: auto; border: 1px solid var(--line); background: #fff; }
-video { margin-top: 0.6rem; max-height: 420px; width: auto; }
-details.film { margin-top: 0.6rem; font-size: inherit; }
-details.film > summary { list-style: none; color: inherit; }
-details.film > summary::-webkit-details-marker { display: none; }
-details.film > summary span { display: block; font-size: 0.85rem; color: var(--muted); }
-details.film[open] > summary img { display: none; }
-details.film video { margin-top: 0.2rem; }
-.refused { color: #8a1c1c; font-size: 0.9rem; overflow-wrap: anywhere; }
-.links { margin: 0.5rem 0; font-size: 0.9rem; }
-.links a { margin-right: 1rem; }
-details { margin-top: 0.4rem; font-size: 0.85rem; }
-summary { cursor: pointer; color: var(--muted); }
-table { border-collapse: collapse; width: 100%; table-layout: fixed; }
-th, td { text-align: left; vertical-align: top; padding: 0.1rem 0.4rem 0.1rem 0; overflow-wrap: anywhere; }
-th { font-weight: normal; color: var(--muted); width: 42%; }
-td { font-family: "DejaVu Sans Mono", monospace; }
-table.key { margin: 0.4rem 0 0.2rem; font-size: 0.9rem; }
-table.key caption { text-align: left; color: var(--muted); font-size: 0.85rem; }
-table.key thead th { font-size: 0.8rem; border-bottom: 1px solid var(--line); }
-table.key thead th:first-child { width: 34%; }
-table.key th { width: auto; }
-table.key td.reference { font-family: inherit; color: var(--muted); font-size: 0.85rem; }
-)";
-
-}  // namespace
-
-namespace {
-
-// Whether `name` in `folder` is a file of its own: not a symlink (which could
-// lead out of the folder), not a folder.
-bool is_file_in(const base::Folder& folder, const std::string& name) {
-    struct stat st {};
-    return ::fstatat(folder.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode);
-}
-
-// A figure's metadata is at most 16 MiB and nests at most 64 levels (the
-// catalog's nest 5): the parser stops deeper, so that a hand-made JSON of a
-// million nested `[` is refused as it is read, never walked, copied or
-// dumped by recursion.
-constexpr std::size_t max_metadata_bytes = 16u << 20;
-constexpr int max_metadata_depth = most_nesting;
-
-// Whether something other than a regular file (a FIFO, a folder, a
-// symlink) stands at `name` in `folder`.
-bool is_other_than_file(const base::Folder& folder, const std::string& name) {
-    struct stat st {};
-    return ::fstatat(folder.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && !S_ISREG(st.st_mode);
-}
-
-// The metadata folder/name, read as a regular file (no symlink followed, no
-// FIFO waited on); null when it is not there or is not JSON, and also when
-// it is not a regular file, is too large or nests too deep, which
-// `problem` then says.
-nlohmann::json read_metadata(const base::Folder& folder, const std::string& name, std::string* problem = nullptr) {
-    const auto refused = [&](const std::string& why) {
-        if (problem) *problem = name + " " + why;
-        return nullptr;
-    };
-    struct stat st {};
-    if (::fstatat(folder.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0) return nullptr;  // not there
-    if (!S_ISREG(st.st_mode)) return refused("is not a regular file");
-    if (st.st_size > static_cast<off_t>(max_metadata_bytes))
-        return refused("holds more than " + std::to_string(max_metadata_bytes >> 20) + " MiB");
-    // Read through a descriptor checked again: the name may have changed since.
-    const std::optional<std::string> text = base::read_file_at(folder, name, max_metadata_bytes);
-    if (!text)
-        return refused("could not be read as a regular file of at most " + std::to_string(max_metadata_bytes >> 20) +
-                       " MiB");
-    try {
-        return json_bounded(*text, max_metadata_depth);
-    } catch (const MalformedData& e) {
-        if (std::string_view(e.what()).rfind("nests", 0) == 0) return refused(e.what());
-        return nlohmann::json(nlohmann::json::value_t::discarded);  // not JSON: as before, no card data
-    }
-}
-
-// The figures in the folder that are not the catalog's: every ID.json
-// figgen wrote (an object whose "id" is its file's name, a plain id, and
-// which names the figgen that wrote it) beside its ID.png, in name order.
-// Names come from the folder's listing, never from a JSON; symlinks are
-// passed over, as everywhere in the gallery.
-std::vector<std::string> figures_outside(const base::Folder& folder, const std::vector<std::string>& catalog,
-                                         std::vector<std::string>& unreadable) {
-    std::vector<std::string> ids;
-    const int fd = ::openat(folder.fd(), ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0) return ids;
-    DIR* listing = ::fdopendir(fd);
-    if (!listing) {
-        ::close(fd);
-        return ids;
-    }
-    while (const dirent* entry = ::readdir(listing)) {
-        const std::string name = entry->d_name;
-        if (name.size() <= 5 || name.compare(name.size() - 5, 5, ".json") != 0) continue;
-        const std::string id = name.substr(0, name.size() - 5);
-        if (!description::is_plain_id(id) || std::find(catalog.begin(), catalog.end(), id) != catalog.end()) continue;
-        if (!is_file_in(folder, name) || !is_file_in(folder, id + ".png")) continue;
-        ids.push_back(id);
-        if (ids.size() >= max_other_figures) break;
-    }
-    ::closedir(listing);
-    std::sort(ids.begin(), ids.end());
-    std::erase_if(ids, [&](const std::string& id) {
-        std::string problem;
-        const nlohmann::json meta = read_metadata(folder, id + ".json", &problem);
-        if (!problem.empty()) unreadable.push_back(id + ": " + problem);
-        return !(meta.is_object() && text_of(meta, "id", "") == id && !text_of(meta, "figgen_version", "").empty());
-    });
-    return ids;
-}
-
-}  // namespace
-
-ThumbnailsWritten write_thumbnails(const std::filesystem::path& from, const std::filesystem::path& to, int max_width,
-                                   int max_height, std::uint64_t max_memory) {
-    const base::Folder source(from), target(to, true);
-    ThumbnailsWritten made;
-    // A file that cannot be read is named and passed over; the error
-    // names the file and says why (not a regular file, not an image, or a
-    // header claiming more than --max-memory allows).
-    const auto refused = [&](const std::string& name, const std::exception& e) {
-        const auto* large = dynamic_cast<const render::ImageTooLarge*>(&e);
-        const double per_pixel = name.ends_with(".webp") ? webp_bytes_per_pixel : png_bytes_per_pixel;
-        made.refused.push_back(large ? refusal((source / name).string(), *large, max_memory, per_pixel) : e.what());
-    };
-    for (const auto& file : catalog_files()) {
-        const std::string id = file.stem().string();
-        if (!is_file_in(source, id + ".png")) continue;
-        media::PngFile png;
-        try {
-            png = media::read_png(source, id + ".png", max_pixels(max_memory, png_bytes_per_pixel));
-        } catch (const std::runtime_error& e) {
-            refused(id + ".png", e);
-            continue;
-        }
-        std::string title = id;
-        for (const auto& [key, value] : png.text)
-            if (key == "Title") title = value;
-        media::write_png(target, id + ".png", media::thumbnail(png.image, max_width, max_height),
-                          {{"Title", title}});
-        // A film's preview as an animated thumbnail too, for pages that
-        // show the animated figures moving (the README's grid): half the
-        // preview's frames, within 400 KB.
-        if (is_file_in(source, id + ".webp")) {
-            media::PreviewOptions small;
-            small.max_width = max_width;
-            small.max_height = max_height;
-            small.max_frames = 24;
-            small.max_bytes = 400u << 10;
-            try {
-                media::write_preview_thumbnail(source, id + ".webp", target, id + ".webp", small,
-                                                max_pixels(max_memory, webp_bytes_per_pixel));
-            } catch (const std::runtime_error& e) {
-                refused(id + ".webp", e);
-            }
-        }
-        ++made.written;
-    }
-    return made;
-}
-
-namespace {
 
 // Which film and frame a poster shows: the film's name, size, inode and
 // time of its last change (a render puts a new file in place), and the frame.
@@ -582,6 +320,8 @@ void details_html(const base::Folder& figures, const std::string& id, const std:
 // One figure's card; writes its thumbnail (and poster). A PNG whose header
 // claims more pixels than --max-memory allows is not decoded: the card
 // says why in the thumbnail's place.
+}  // namespace
+
 std::string card_html(const Folders& folders, std::uint64_t max_memory, const std::string& id,
                       const nlohmann::json& meta) {
     const std::string title = text_of(meta, "title", id);
@@ -606,62 +346,20 @@ std::string card_html(const Folders& folders, std::uint64_t max_memory, const st
     return card.str();
 }
 
-std::string page_html(const std::string& cards, int shown, int missing, int others,
-                      const std::vector<std::string>& unreadable) {
-    std::ostringstream page;
-    page << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-         << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-         << "<link rel=\"icon\" href=\"data:,\">\n"  // no favicon request
-         << "<title>figgen gallery</title>\n<style>" << style_sheet << "</style>\n</head>\n<body>\n"
-         << "<header><h1>figgen gallery</h1>\n<p>" << shown << " figure" << (shown == 1 ? "" : "s")
-         << " rendered by figgen " << escape(base::version()) << " from the descriptions in figures/";
-    if (others > 0) page << " (" << others << " from descriptions outside it)";
-    if (missing > 0) page << "; " << missing << " of the catalog not rendered here";
-    for (const std::string& failure : unreadable) page << "; could not show " << escape(failure);
-    page << ".</p></header>\n<main>\n" << cards << "</main>\n</body>\n</html>\n";
-    return page.str();
+std::string escape(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    for (const char c : text) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&#39;"; break;
+            default: out += c;
+        }
+    }
+    return out;
 }
 
-}  // namespace
-
-int write_gallery(const std::filesystem::path& dir, std::uint64_t max_memory) {
-    const base::Folder figures(dir);
-    const Folders folders{figures, base::Folder(figures, "thumbs"), base::Folder(figures, "posters")};
-    std::string cards;
-    int shown = 0, missing = 0;
-    std::vector<std::string> unreadable;
-    // One card; a figure whose files cannot be read (a PNG that is not
-    // one) is named in the header instead of stopping the gallery.
-    const auto show = [&](const std::string& id, const nlohmann::json& meta) {
-        try {
-            cards += card_html(folders, max_memory, id, meta);
-            ++shown;
-        } catch (const std::exception& e) {
-            unreadable.push_back(id + ": " + e.what());
-        }
-    };
-    std::vector<std::string> catalog;
-    for (const auto& file : catalog_files()) {
-        const std::string id = file.stem().string();
-        catalog.push_back(id);
-        std::string problem;
-        const nlohmann::json meta = read_metadata(figures, id + ".json", &problem);
-        if (!problem.empty()) unreadable.push_back(id + ": " + problem);
-        if (meta.is_object() && is_other_than_file(figures, id + ".png"))
-            unreadable.push_back(id + ": " + id + ".png is not a regular file");
-        if (!meta.is_object() || !is_file_in(figures, id + ".png")) {
-            ++missing;
-            continue;
-        }
-        show(id, meta);
-    }
-    int others = 0;
-    for (const std::string& id : figures_outside(figures, catalog, unreadable)) {
-        show(id, read_metadata(figures, id + ".json"));
-        ++others;
-    }
-    base::write_file_atomically(figures, "index.html", page_html(cards, shown, missing, others, unreadable));
-    return shown;
-}
-
-}  // namespace app
+}  // namespace app::gallery
