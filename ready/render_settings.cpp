@@ -22,7 +22,7 @@ toml::table style_of(const XMLElement* rs, int chemicals) {
     const auto value = [&](const char* name) -> const XMLElement* { return child(rs, name); };
     std::string active = "a";
     if (const XMLElement* e = value("active_chemical")) active = text_attribute(e, "value", "a");
-    if (!is_chemical(active, chemicals)) active = "a";
+    if (!is_chemical(active, chemicals)) active.assign(1, 'a');  // not = "a": GCC 12's -Wrestrict misfires on it
     double low = 0, high = 1;
     if (const XMLElement* e = value("low")) low = as_float(attribute(e, "value", 0));
     if (const XMLElement* e = value("high")) high = as_float(attribute(e, "value", 1));

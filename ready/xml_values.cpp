@@ -45,7 +45,15 @@ std::string dedented(const std::string& text) {
 // "<formula number_of_chemicals>", "<param name=\"k\">": an element, and
 // its attribute, as messages name them.
 std::string element(const XMLElement* e, const char* attribute) {
-    return "<" + printable_short(e->Name(), 40) + (attribute ? std::string(" ") + attribute : "") + ">";
+    // Appended piece by piece: GCC 12's -Wrestrict misfires on "<" + string.
+    std::string text(1, '<');
+    text += printable_short(e->Name(), 40);
+    if (attribute) {
+        text += ' ';
+        text += attribute;
+    }
+    text += '>';
+    return text;
 }
 
 double number(const char* text, const std::string& what) {
