@@ -81,6 +81,10 @@ std::vector<OutputFormat> make_table() {
                  .choose = [](OutputOptions& o) { o.chosen.insert("svg"); },
                  .disk = vector_bytes,
                  .memory = vector_page});
+    // A film's file, MP4 or WebM: at most the measured bytes a pixel and frame.
+    const auto film_file_bytes = [](const Description& d, const OutputOptions& o) {
+        return film::file_bytes_per_pixel_frame * film_pixels(d, o);
+    };
     // The MP4 is encoded for the WebM too, kept or not.
     t.push_back({.name = "mp4",
                  .suffix = ".mp4",
@@ -89,9 +93,7 @@ std::vector<OutputFormat> make_table() {
                  .stage = Stage::film,
                  .wanted = [](const Description& d, const OutputOptions& o) { return films(d) && o.encodes(); },
                  .choose = [](OutputOptions& o) { o.video = true; },
-                 .disk = [](const Description& d, const OutputOptions& o) {
-                     return film::file_bytes_per_pixel_frame * film_pixels(d, o);
-                 }});
+                 .disk = film_file_bytes});
     // The film's looping preview, with its MP4: at most its budget.
     t.push_back({.suffix = ".webp",
                  .shown = "the preview",
@@ -119,9 +121,7 @@ std::vector<OutputFormat> make_table() {
                  .stage = Stage::film,
                  .wanted = [](const Description& d, const OutputOptions& o) { return films(d) && o.webm; },
                  .choose = [](OutputOptions& o) { o.webm = true; },
-                 .disk = [](const Description& d, const OutputOptions& o) {
-                     return film::file_bytes_per_pixel_frame * film_pixels(d, o);
-                 },
+                 .disk = film_file_bytes,
                  .memory = [](const Description& d, const OutputOptions& o) -> scenes::MemoryNeed {
                      return {"the WebM encoder " + film_size(d, o),
                              film::vp9_bytes + film::vp9_bytes_per_pixel * frame_pixels(d, o)};
