@@ -143,7 +143,10 @@ DAEMON = textwrap.dedent("""
         try:
             figgen.render("tc7-2", set={"n": 256}, progress=lambda *a: calls.append(a))
         except BaseException as e:
-            print(type(e).__name__, e, flush=True)
+            # One write: print() writes its words one by one, and Python may
+            # freeze this daemon thread between two of them once it exits.
+            sys.stdout.write(f"{type(e).__name__} {e}\\n")
+            sys.stdout.flush()
 
     threading.Thread(target=work, daemon=True).start()
     while len(calls) < int(sys.argv[1]):
