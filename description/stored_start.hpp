@@ -10,10 +10,10 @@ namespace description {
 // shape first (the figure is checked, its memory estimated), decoded only
 // once that passed (app/render/targets.hpp).
 struct StoredStart {
-    int width = 0, height = 0;
+    int width = 0, height = 0, depth = 1;
     int chemical_count = 0;  // how many the file stores
     bool float64 = false;    // Float64 arrays (else Float32)
-    std::vector<std::vector<double>> chemicals;  // width * height values each, x fastest, row y = 0 first; empty until decoded
+    std::vector<std::vector<double>> chemicals;  // width * height * depth values each, x fastest, then y, then z; empty until decoded
     bool decoded() const { return !chemicals.empty(); }
 };
 

@@ -77,7 +77,7 @@ void read_fill(const XMLElement* e, int chemicals, toml::table& t, std::set<std:
     }
 }
 
-// One shape of an overlay, or nothing when it can never apply to a 2-D grid.
+// One shape of an overlay, or nothing when it can never apply.
 std::optional<toml::table> read_shape(const XMLElement* e) {
     const std::string name = e->Name();
     toml::table s{{"shape", name}};
@@ -89,9 +89,13 @@ std::optional<toml::table> read_shape(const XMLElement* e) {
         s.insert("radius", as_float(attribute(e, "radius")));
         s.insert("centre", point(points(e, 1)[0]));
     } else if (name == "pixel") {
+        // Ready compares the cell's coordinates along the grid's axes alone
+        // (z is ignored on a 2-D grid, y and z on a 1-D one).
         const double x = attribute(e, "x"), y = attribute(e, "y"), z = attribute(e, "z", 0);
-        if (z != 0 || x < 0 || y < 0 || x > 1e6 || y > 1e6) return std::nullopt;  // never a cell of a 2-D grid
-        s.insert("at", toml::array{static_cast<std::int64_t>(x), static_cast<std::int64_t>(y)});
+        if (x < 0 || y < 0 || z < 0 || x > 1e5 || y > 1e5 || z > 1e5) return std::nullopt;  // never a cell
+        toml::array at{static_cast<std::int64_t>(x), static_cast<std::int64_t>(y)};
+        if (z != 0) at.push_back(static_cast<std::int64_t>(z));
+        s.insert("at", std::move(at));
     }
     return s;
 }

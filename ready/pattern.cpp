@@ -30,7 +30,7 @@ using tinyxml2::XMLElement;
 
 // The formula scene's own [params] keys: a Ready parameter may not take one.
 const char* const scene_keys[] = {"chemicals", "formula", "accuracy", "wrap",  "data_type", "block_x",
-                                  "ready_edges", "width", "height",   "steps", "zero_first", "initial"};
+                                  "ready_edges", "width", "height",   "depth", "steps", "zero_first", "initial"};
 
 
 std::string read_file(const std::filesystem::path& file) {
@@ -83,14 +83,10 @@ Grid grid_of(const XMLElement* image) {
         if (!(s >> v) || v < -1'000'000'000 || v > 1'000'000'000)
             throw Refused("<ImageData WholeExtent> is not six integers of at most 10^9");
     const long long nx = extent[1] - extent[0] + 1, ny = extent[3] - extent[2] + 1, nz = extent[5] - extent[4] + 1;
-    if (nx < 1 || ny < 1 || nz < 1 || nx > 4096 || ny > 4096 || nz > 4096)
+    if (nx < 1 || ny < 1 || nz < 1 || nx > 4096 || ny > 4096 || nz > 4096 || nx * ny * nz > 4096LL * 4096LL)
         throw Refused("its extent is " + std::to_string(nx) + " x " + std::to_string(ny) + " x " + std::to_string(nz) +
-                      ": figgen runs grids up to 4096 x 4096");
-    if (nz > 1)
-        throw Refused("it is 3-D (" + std::to_string(nx) + " x " + std::to_string(ny) + " x " + std::to_string(nz) +
-                      "): figgen runs 2-D patterns");
-    if (ny == 1) throw Refused("it is 1-D (" + std::to_string(nx) + " cells): figgen runs 2-D patterns");
-    return {nx, ny};
+                      ": figgen runs grids of up to 4096 cells a side and 4096 x 4096 cells in all");
+    return {nx, ny, nz};
 }
 
 // How the file stores its arrays: <VTKFile byte_order header_type compressor>.
@@ -116,14 +112,42 @@ struct Rule {
     int chemicals = 2, block_x = 4;
     std::string accuracy = "medium", code;
     bool wrap = true;
+    bool ready_edges = true;  // false: a true torus, or each cell clamped
+    bool inbuilt = false;     // Ready's inbuilt rule, written as the formula it computes
 };
+
+// Ready's inbuilt Gray-Scott rule (its GrayScottImageRD.cpp) as the formula
+// it computes, in its order of operations: a seven-point Laplacian on every
+// grid (on a 2-D or 1-D grid the missing neighbours are the cell itself, as
+// Ready's indexing makes them), one cell a block, its edges a true torus or
+// each cell clamped. Ready builds it with USE_SSE, so it adds nothing to
+// keep numbers from becoming subnormal: the flush does that.
+constexpr const char* inbuilt_gray_scott =
+    "// Ready's inbuilt Gray-Scott rule (GrayScottImageRD.cpp), written as the formula it computes.\n"
+    "float dda = a_s + a_n + a_w + a_e + a_d + a_u - 6*a;\n"
+    "float ddb = b_s + b_n + b_w + b_e + b_d + b_u - 6*b;\n"
+    "delta_a = D_a*dda - a*b*b + F*(1-a);\n"
+    "delta_b = D_b*ddb + a*b*b - (F+k)*b;";
 
 Rule rule_of(const XMLElement* rule) {
     const std::string kind = text_attribute(rule, "type", "");
+    if (kind == "inbuilt") {
+        const std::string name = text_attribute(rule, "name", "");
+        if (name != "Gray-Scott")
+            throw Refused("its rule is Ready's inbuilt \"" + printable_short(name) +
+                          "\": figgen runs Ready's inbuilt Gray-Scott and formula rules");
+        Rule r;
+        r.block_x = 1;
+        r.code = inbuilt_gray_scott;
+        r.wrap = text_attribute(rule, "wrap", "1") == "1";
+        r.ready_edges = false;
+        r.inbuilt = true;
+        return r;
+    }
     if (kind != "formula")
         throw Refused("its rule is type \"" + printable_short(kind) +
-                      "\": figgen runs formula rules (type=\"formula\"), not full OpenCL kernels or Ready's inbuilt "
-                      "rules");
+                      "\": figgen runs formula rules (type=\"formula\") and Ready's inbuilt Gray-Scott, not full "
+                      "OpenCL kernels yet");
     const XMLElement* formula = required(rule, "formula");
     Rule r;
     if (!formula->Attribute("number_of_chemicals")) throw Refused("<formula> has no number_of_chemicals");
@@ -183,24 +207,30 @@ std::string plain_id(const std::string& stem) {
     return id.empty() ? "pattern" : id;
 }
 
-// [figure] and [animation] for `steps`: panels at 0, N/2 and N, sized to the grid.
+// [figure] and [animation] for `steps`: panels at 0, N/2 and N, sized to
+// the grid; a 1-D grid's space-time diagram and a 3-D grid's isosurface and
+// slices on a page of their own shape.
 void layout(toml::table& root, int steps, const Grid& grid) {
     std::vector<int> panels = {0, steps / 2, steps};
     panels.erase(std::unique(panels.begin(), panels.end()), panels.end());
     toml::array panel_list;
     for (int s : panels) panel_list.push_back(s);
+    const bool line = grid.height == 1 && grid.depth == 1, solid = grid.depth > 1;
     const int side = 300;
     const double aspect = static_cast<double>(grid.height) / static_cast<double>(grid.width);
     const int panel_height = static_cast<int>(std::clamp(0.72 * side * aspect, 60.0, 900.0));  // a colour bar beside each
-    root.insert("figure", toml::table{{"panels", std::move(panel_list)},
-                                      {"size", toml::array{side * static_cast<int>(panels.size()), panel_height + 70}}});
+    const toml::array size = line    ? toml::array{900, 420}
+                             : solid ? toml::array{960, 480}
+                                     : toml::array{side * static_cast<int>(panels.size()), panel_height + 70};
+    root.insert("figure", toml::table{{"panels", std::move(panel_list)}, {"size", size}});
     if (steps > 0) {
         const int stride = std::max(1, steps / 100);
         const int film_height = static_cast<int>(std::clamp(480 * aspect, 64.0, 1440.0)) / 2 * 2 + 60;
+        const toml::array film = line ? toml::array{960, 420} : solid ? toml::array{640, 480} : toml::array{480, film_height};
         root.insert("animation", toml::table{{"steps", toml::array{0, steps}},
                                              {"stride", stride},
                                              {"fps", 25},
-                                             {"size", toml::array{480, film_height}}});
+                                             {"size", film}});
     }
 }
 
@@ -258,21 +288,29 @@ Pattern read(const std::string& text, const std::filesystem::path& file, const R
 
     toml::table params;
     params.insert("chemicals", rule.chemicals);
-    origin("params.chemicals", "<formula number_of_chemicals>");
+    origin("params.chemicals", rule.inbuilt ? "<rule type=\"inbuilt\">" : "<formula number_of_chemicals>");
     params.insert("formula", rule.code + "\n");
-    origin("params.formula", "<formula>");
+    origin("params.formula", rule.inbuilt ? "<rule type=\"inbuilt\" name=\"Gray-Scott\">" : "<formula>");
     params.insert("accuracy", rule.accuracy);
-    origin("params.accuracy", "<formula accuracy>");
+    origin("params.accuracy", rule.inbuilt ? "<rule type=\"inbuilt\">" : "<formula accuracy>");
     params.insert("wrap", rule.wrap);
     origin("params.wrap", "<rule wrap>");
     params.insert("data_type", stored.float64 ? "double" : "float");
     origin("params.data_type", "<DataArray type>");
     params.insert("block_x", rule.block_x);
-    origin("params.block_x", "<formula block_size_x>");
+    origin("params.block_x", rule.inbuilt ? "<rule type=\"inbuilt\">" : "<formula block_size_x>");
+    if (!rule.ready_edges) {
+        params.insert("ready_edges", false);
+        origin("params.ready_edges", "<rule type=\"inbuilt\">");
+    }
     params.insert("width", grid.width);
     params.insert("height", grid.height);
     origin("params.width", "<ImageData WholeExtent>");
     origin("params.height", "<ImageData WholeExtent>");
+    if (grid.depth > 1) {
+        params.insert("depth", grid.depth);
+        origin("params.depth", "<ImageData WholeExtent>");
+    }
     params.insert("steps", steps);
 
     std::optional<std::set<std::string>> used = names_read(rule.code);
@@ -405,8 +443,8 @@ std::string converted_text(const Pattern& pattern, const std::filesystem::path& 
          << " (GollyGang/Ready).\n";
     for (const std::string& note : pattern.notes) text << "# " << printable(note) << "\n";
     text << "\n";
-    const std::vector<std::string> rule = {"chemicals", "formula", "accuracy", "wrap", "data_type", "block_x",
-                                           "width",     "height",  "steps",    "timestep", "dx"};
+    const std::vector<std::string> rule = {"chemicals", "formula", "accuracy", "wrap",  "data_type", "block_x",
+                                           "ready_edges", "width", "height",   "depth", "steps",     "timestep", "dx"};
     description::write_toml(text, pattern.description, {"id", "title", "source", "scene", "seed", "caption"},
                             {{"params", rule}, {"style", {"show"}}, {"figure", {}}, {"animation", {}}});
     return text.str();

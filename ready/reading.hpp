@@ -48,9 +48,9 @@ const XMLElement* child(const XMLElement* e, const char* name);
 const XMLElement* required(const XMLElement* e, const char* name);
 bool is_chemical(const std::string& name, int chemicals);
 
-// The grid: <ImageData WholeExtent>, 2-D.
+// The grid: <ImageData WholeExtent>, in 1, 2 or 3 dimensions.
 struct Grid {
-    long long width = 0, height = 0;
+    long long width = 0, height = 0, depth = 1;
 };
 
 // --- the start's overlays (ready/overlays.cpp) ---

@@ -66,6 +66,11 @@ toml::table style_of(const XMLElement* rs, int chemicals) {
     s.insert(p + "vmax", high);
     s.insert(p + "colour_bar", bar);
     s.insert(p + "sampling", "nearest");
+    // The level of a 3-D grid's isosurface (the scene's default is Ready's 0.25).
+    if (const XMLElement* e = value("contour_level")) {
+        const double level = as_float(attribute(e, "value", 0.25));
+        if (std::isfinite(level) && std::fabs(level) <= 1e30) s.insert("contour_level", level);
+    }
     return s;
 }
 

@@ -21,9 +21,9 @@ struct ReadyState {
     std::vector<std::pair<std::string, double>> parameters;
     std::string active_chemical = "a";
     std::optional<double> low, high;  // the drawn range of the active chemical
-    int width = 0, height = 0;
+    int width = 0, height = 0, depth = 1;
     bool float64 = false;
-    std::vector<std::vector<double>> chemicals;  // as StoredStart
+    std::vector<std::vector<double>> chemicals;  // as StoredStart: x fastest, then y, then z
 };
 
 }  // namespace ready

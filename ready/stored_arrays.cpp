@@ -109,6 +109,7 @@ std::shared_ptr<description::StoredStart> start_shape(const StoredArrays& stored
     auto start = std::make_shared<description::StoredStart>();
     start->width = static_cast<int>(grid.width);
     start->height = static_cast<int>(grid.height);
+    start->depth = static_cast<int>(grid.depth);
     start->chemical_count = chemicals;
     start->float64 = stored.float64;
     return start;
@@ -117,7 +118,7 @@ std::shared_ptr<description::StoredStart> start_shape(const StoredArrays& stored
 std::shared_ptr<description::StoredStart> decode_start(const StoredArrays& stored, const XMLElement* vtk,
                                                        const std::string& raw, vtk::Encoding enc, const Grid& grid,
                                                        int chemicals) {
-    const ArrayReader reader{vtk, raw, enc, static_cast<std::uint64_t>(grid.width * grid.height)};
+    const ArrayReader reader{vtk, raw, enc, static_cast<std::uint64_t>(grid.width * grid.height * grid.depth)};
     const double bytes = 8.0 * static_cast<double>(reader.cells) * chemicals;
     if (bytes > static_cast<double>(max_start_bytes))
         throw Refused("its stored arrays would take " + std::to_string(static_cast<long long>(bytes / (1 << 20))) +

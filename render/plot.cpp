@@ -443,7 +443,9 @@ void lay_out_axes(TextSink& text, const Rect& frame, const Axes& axes, const Plo
     const auto [x_lo, x_hi] = view_range(axes, true);
     const auto [y_lo, y_hi] = view_range(axes, false);
     const AxisMap mx{axes.x_scale, x_lo, x_hi, frame.x, frame.right()};
-    const AxisMap my{axes.y_scale, y_lo, y_hi, frame.bottom(), frame.y};  // y up on the page
+    // y up on the page, or down (the low end at the top).
+    const AxisMap my{axes.y_scale, y_lo, y_hi, axes.y_down ? frame.y : frame.bottom(),
+                     axes.y_down ? frame.bottom() : frame.y};
     if (text.drawing()) draw_data(*text.surface(), frame, axes, mx, my, style);
     draw_decorations(text, frame, axes, mx, my, style);
     draw_legend(text, frame, axes, style);

@@ -62,6 +62,7 @@ struct Axes {
     std::vector<Series> series;        // drawn in order; legend lists them in order
     std::vector<ReferenceLine> reference_lines;  // drawn under the series
     std::vector<Note> notes;
+    bool y_down = false;               // matplotlib's invert_yaxis: the y range's low end at the top (time down)
 };
 
 struct PlotStyle {

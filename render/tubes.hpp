@@ -30,6 +30,9 @@ struct Tube {
 struct Facet {
     glm::vec3 a, b, c;           // corners, world units; a facet with no area draws nothing
     glm::vec4 colour;            // straight RGBA; meant opaque, as a tube's
+    // The surface's normals at a, b and c, for smooth shading (an
+    // isosurface's); zero: the facet's own, flat (a leaf's).
+    glm::vec3 na{0}, nb{0}, nc{0};
 };
 
 struct Camera {

@@ -6,17 +6,26 @@
 // the rule's own parameters; [style] says which chemicals each panel shows
 // (show) and how (a_colormap, b_vmin, ... for each chemical). The model
 // itself is read by scenes/helpers/formula_model.cpp.
+//
+// As a person looks at each grid: a 2-D grid as panels at the figure's
+// steps; a 1-D grid as a space-time diagram per chemical shown (x across,
+// steps down) beside the last step as a line plot; a 3-D grid as the
+// active chemical's lit isosurface beside three slices through the centre.
 #include "sim/formula/run.hpp"
 
 #include <algorithm>
 #include <thread>
 
 #include "base/digest.hpp"
+#include "render/isosurface.hpp"
+#include "render/tubes.hpp"
 #include "ready/state.hpp"
 #include "scenes/helpers/field_panels.hpp"
 #include "scenes/helpers/field_spec.hpp"
 #include "scenes/helpers/field_stats.hpp"
+#include "scenes/helpers/figure_caption.hpp"
 #include "scenes/helpers/formula_model.hpp"
+#include "scenes/helpers/plot_page.hpp"
 #include "scenes/helpers/step_runner.hpp"
 #include "scenes/scene.hpp"
 
@@ -39,6 +48,7 @@ struct Style {
     std::vector<std::string> show{"a"};
     std::vector<int> shown{0};
     bool upper = false;
+    double contour_level = 0.25;  // a 3-D grid's isosurface: Ready's default level
     std::vector<FieldSpec> chemicals;  // each chemical's drawing, read and checked; those shown are drawn
 };
 
@@ -65,6 +75,8 @@ Schema<Style> style_schema(int chemicals) {
         [](const Style& d) { return nlohmann::json(d.show); });
     s.choice("origin", &Style::upper, {{"lower", false}, {"upper", true}},
              "where y = 0 is drawn: lower (Ready's, y up) or upper (the book's arrays, row 0 on top)");
+    s.number("contour_level", &Style::contour_level,
+             "a 3-D grid's isosurface: the first chemical shown at this value (Ready's contour_level)", -1e30, 1e30);
     for (int c = 0; c < chemicals; ++c)
         s.part_at(
             field_spec_schema(), [c](auto& v) -> auto& { return v.chemicals[static_cast<std::size_t>(c)]; },
@@ -116,19 +128,31 @@ public:
         const double panels = static_cast<double>(d_.panels.size()) + 1;
         const double row = m_.width + 2.0 * m_.radius_x + 64 / cell;  // a row, halos and padding
         const double threads = model_threads() > 0 ? model_threads() : std::max(1u, std::thread::hardware_concurrency());
-        return {grid_need("the arrays a Ready pattern stores", m_.height, m_.width, 8, d_.stored_start ? chemicals : 0),
-                grid_need("the chemicals' grids", m_.height + 3, row, cell, 2 * chemicals),
+        const double rows = static_cast<double>(m_.height) * m_.depth, shown = static_cast<double>(s_.shown.size());
+        return {grid_need("the arrays a Ready pattern stores", rows, m_.width, 8, d_.stored_start ? chemicals : 0),
+                grid_need("the chemicals' grids", rows + 3, row, cell, 2 * chemicals),
                 grid_need("the formula's registers", threads * (m_.registers + 1),
                           sim::formula::chunk_lanes + 64 / cell, cell, 1),
-                grid_need("the start and the grids read", m_.height, m_.width, 8, 2 * chemicals),
-                grid_need("panels' copies", m_.height, m_.width, 8 + field_layer_bytes_per_cell,
-                          panels * static_cast<double>(s_.shown.size()))};
+                grid_need("the start and the grids read", rows, m_.width, 8, 2 * chemicals),
+                grid_need("panels' copies", m_.height, m_.width, 8 + field_layer_bytes_per_cell, panels * shown),
+                // A 1-D run's space-time diagram: its rows, and a copy drawn with its texture.
+                grid_need("the space-time diagram", dimensions_ == 1 ? space_time_rows + 1 : 0, m_.width,
+                          16 + field_layer_bytes_per_cell, shown),
+                // A 3-D run's isosurface (the figure's and a frame's) with its corners as GL takes
+                // them, the queue llvmpipe keeps, and the slices' copies.
+                grid_need("the isosurface", 1, static_cast<double>(most_facets),
+                          sizeof(render::Facet) + 3 * 40.0, m_.depth > 1 ? 2 : 0),
+                grid_need("the isosurface's draw queue", 1, render::queued_triangles_bytes, 1, m_.depth > 1 ? 1 : 0),
+                grid_need("the slices", m_.depth, std::max(m_.width, m_.height), 8 + field_layer_bytes_per_cell,
+                          m_.depth > 1 ? 3 : 0)};
     }
 
     // One thread below 256^2 cells (the frame is drawn meanwhile), every core (0) above.
-    int model_threads() const { return m_.width * m_.height < 65536 ? 1 : 0; }
+    int model_threads() const { return static_cast<long long>(m_.width) * m_.height * m_.depth < 65536 ? 1 : 0; }
 
     void render(Output& out) const override {
+        if (dimensions_ == 1) return render_line(out);
+        if (m_.depth > 1) return render_solid(out);
         StepRunner run(d_, options_, out);
         formula::Run model(m_.rule, m_.width, m_.height, formula_start(m_, d_));
         const int threads = model_threads();
@@ -142,7 +166,7 @@ public:
             now.clear();
             for (int c = 0; c < m_.rule.chemicals; ++c) now.push_back(model.chemical(c));
             drawn.clear();
-            for (int c : s_.shown) drawn.push_back(s_.upper ? now[c] : flipped(now[c]));
+            for (int c : s_.shown) drawn.push_back(s_.upper ? plane(now[c]) : flipped(plane(now[c])));
         };
         look();
         std::vector<FieldPanel> panels;
@@ -173,6 +197,252 @@ public:
     }
 
 private:
+    // The plane through the grid's centre (z = depth / 2) of a chemical's
+    // cells: the grid itself in 2-D.
+    sim::Grid<double> plane(const sim::Grid<double>& g) const {
+        if (m_.depth == 1) return g;
+        sim::Grid<double> out(m_.height, m_.width);
+        const std::size_t from = static_cast<std::size_t>(m_.depth / 2) * m_.height * m_.width;
+        std::copy(g.data() + from, g.data() + from + out.cells().size(), out.data());
+        return out;
+    }
+
+    // The rows a 1-D run's space-time diagram keeps: every `stride`-th step
+    // up to the last, at most space_time_rows of them.
+    static constexpr int space_time_rows = 512;
+    int space_time_stride() const {
+        const int last = std::max(d_.panels.back(), d_.animation ? d_.animation->last : 0);
+        return std::max(1, (last + space_time_rows - 1) / space_time_rows);
+    }
+
+    // A 1-D run (height 1): each chemical shown as a space-time diagram,
+    // x across and the steps down, with real axes and its colour bar; and
+    // every chemical shown at the step as a line plot. Films grow the
+    // diagram as the run goes.
+    struct SpaceTime {
+        std::vector<std::vector<double>> rows;  // per chemical shown: its rows so far, one after another
+        std::vector<int> steps;                 // the step of each row
+    };
+
+    void draw_line_page(render::Surface& surface, const SpaceTime& history, const std::vector<sim::Grid<double>>& now,
+                        int step, int last, double scale) const {
+        surface.background({1, 1, 1, 1});
+        const render::PlotStyle style = plot_style(PlotSettings{}, scale);
+        const int shown = static_cast<int>(s_.shown.size());
+        const int rows = static_cast<int>(history.steps.size());
+        // Each diagram's layer (its colours, range and bar), then the frames with room for the bars.
+        std::vector<FieldLayer> layers;
+        float bar_room = 0;
+        for (int i = 0; i < shown; ++i) {
+            sim::Grid<double> g(std::max(rows, 1), m_.width, 0.0);
+            std::copy(history.rows[i].begin(), history.rows[i].end(), g.data());
+            layers.push_back(field_layer(g, specs_[i]));
+            if (layers.back().colour_bar)
+                bar_room = std::max(bar_room, render::colour_bar_room(*layers.back().colour_bar,
+                                                                      surface.width() / (shown + 1.0f),
+                                                                      surface.height() * 0.7f, style));
+        }
+        const std::vector<render::Rect> frames =
+            render::plot_row(surface.width(), surface.height(), shown + 1, style, 0, bar_room + 80 * float(scale));
+        for (int i = 0; i < shown; ++i) {
+            const render::Rect& f = frames[i];
+            // The rows so far fill the frame's top; the steps still to come are blank.
+            const float filled = last > 0 ? f.h * std::min(1.0f, float(history.steps.back() + std::max(1, space_time_stride())) /
+                                                                     float(last + space_time_stride()))
+                                          : f.h;
+            if (rows > 0) surface.field({f.x, f.y, f.w, filled}, rows, m_.width, layers[i].values, layers[i].style);
+            render::Axes axes;
+            axes.x_range = {0.0, double(m_.width)};
+            axes.y_range = {0.0, double(std::max(last, 1))};
+            axes.y_down = true;
+            axes.x_label = "x (cells)";
+            axes.y_label = i == 0 ? "step" : "";
+            axes.title = "chemical " + formula::chemical_name(s_.shown[i]);
+            render::draw_axes(surface, f, axes, style);
+            if (layers[i].colour_bar) render::draw_colour_bar(surface, f, *layers[i].colour_bar, style);
+        }
+        render::Axes plot;
+        plot.x_range = {0.0, double(m_.width - 1)};
+        plot.x_label = "x (cells)";
+        plot.title = format_step("step {step}", step);
+        static const glm::vec4 palette[] = {{0.12f, 0.47f, 0.71f, 1}, {1.0f, 0.5f, 0.05f, 1},
+                                            {0.17f, 0.63f, 0.17f, 1}, {0.84f, 0.15f, 0.16f, 1}};
+        for (int i = 0; i < shown; ++i) {
+            std::vector<double> x(static_cast<std::size_t>(m_.width)), y(x.size());
+            for (int c = 0; c < m_.width; ++c) x[c] = c, y[c] = now[s_.shown[i]](0, c);
+            plot.series.push_back(line_series(std::move(x), std::move(y), formula::chemical_name(s_.shown[i]),
+                                              palette[i % 4], 1.5f, false));
+        }
+        if (shown > 1) plot.legend = render::Legend::upper_right;
+        render::draw_axes(surface, frames.back(), plot, style);
+    }
+
+    void render_line(Output& out) const {
+        StepRunner run(d_, options_, out);
+        formula::Run model(m_.rule, m_.width, m_.height, m_.depth, formula_start(m_, d_));
+        const int threads = model_threads();
+        const int stride = space_time_stride(), last = run.last_step();
+        std::vector<sim::Grid<double>> now;
+        SpaceTime history;
+        history.rows.resize(s_.shown.size());
+        auto look = [&] {
+            now.clear();
+            for (int c = 0; c < m_.rule.chemicals; ++c) now.push_back(model.chemical(c));
+        };
+        look();
+        nlohmann::json panel_meta = nlohmann::json::array();
+        run.run({
+            .check =
+                [&](int step) {
+                    if (step % stride != 0 && step != last) return;
+                    if (!history.steps.empty() && history.steps.back() == step) return;
+                    for (std::size_t i = 0; i < s_.shown.size(); ++i)
+                        history.rows[i].insert(history.rows[i].end(), now[s_.shown[i]].cells().begin(),
+                                               now[s_.shown[i]].cells().end());
+                    history.steps.push_back(step);
+                },
+            .panel = [&](int step) { panel_meta.push_back(metadata(now, step)); },
+            .frame =
+                [&](int step) -> FrameDrawing {
+                    return {[this, &history, &now, step, last](render::Surface& s) {
+                                draw_line_page(s, history, now, step, last, options_.scale);
+                            },
+                            4, false};
+                },
+            .advance = {},
+            .leap =
+                [&](int steps) {
+                    model.step(steps, threads);
+                    look();
+                },
+            .stop_at = [stride](int step) { return step % stride == 0; },
+        });
+        nlohmann::json meta = {{"params", params_.used()},
+                               {"style", style_.used()},
+                               {"panels", panel_meta},
+                               {"space_time", {{"rows", history.steps.size()}, {"stride", stride}}},
+                               {"model_operations", model.operations()}};
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
+        const int shown_last = history.steps.empty() ? 0 : history.steps.back();
+        FigureDrawing figure{width, height, false,
+                             [this, &history, &now, shown_last](render::Surface& s) {
+                                 draw_line_page(s, history, now, shown_last, shown_last, options_.scale);
+                             },
+                             [&] { return ready_state(now); }};
+        run.write_figure(figure, meta);
+    }
+
+    // A 3-D run (depth above 1): the first chemical shown as its isosurface
+    // at contour_level, lit, from a three-quarter view, inside the grid's
+    // box; beside it three slices through the centre in its colours. The
+    // film shows the isosurface.
+    static constexpr long long most_facets = 1'000'000;  // a finer surface is sampled more coarsely
+
+    std::vector<render::Facet> surface_of(const sim::Grid<double>& cells) const {
+        const FieldSpec& spec = specs_.front();
+        const double lo = spec.vmin.value_or(0.0), hi = spec.vmax.value_or(1.0);
+        const double t = hi > lo ? (s_.contour_level - lo) / (hi - lo) : 0.5;
+        const glm::vec4 colour(spec.colormap.at(std::clamp(t, 0.0, 1.0)), 1.0f);
+        std::vector<render::Facet> facets = render::isosurface_within(
+            {m_.width, m_.height, m_.depth, cells.cells()}, s_.contour_level, colour, most_facets);
+        // The grid's z up on the page: world (x, z, -y), a rotation (windings keep their sense).
+        auto turn = [](glm::vec3& v) { v = glm::vec3(v.x, v.z, -v.y); };
+        for (render::Facet& f : facets)
+            for (glm::vec3* v : {&f.a, &f.b, &f.c, &f.na, &f.nb, &f.nc}) turn(*v);
+        return facets;
+    }
+
+    void draw_solid(render::Surface& surface, const render::Rect& view, const std::vector<render::Facet>& facets) const {
+        const glm::vec3 lo(0, 0, -float(m_.height - 1)), hi(float(m_.width - 1), float(m_.depth - 1), 0);
+        // The box's twelve edges, thin and grey.
+        std::vector<render::Tube> edges;
+        const float r = 0.004f * float(std::max({m_.width, m_.height, m_.depth}));
+        const glm::vec4 grey(0.55f, 0.55f, 0.55f, 1);
+        for (int axis = 0; axis < 3; ++axis)
+            for (int k = 0; k < 4; ++k) {
+                glm::vec3 a, b;
+                for (int i = 0, bit = 0; i < 3; ++i) {
+                    if (i == axis) {
+                        a[i] = lo[i], b[i] = hi[i];
+                    } else {
+                        a[i] = b[i] = (k >> bit & 1) ? hi[i] : lo[i];
+                        ++bit;
+                    }
+                }
+                edges.push_back({a, b, r, r, grey});
+            }
+        const render::Camera camera = render::frame_bounds(lo, hi, 35, 25, view.w / view.h);
+        render::draw_tubes(surface, view, edges, facets, camera, render::Light{}, 8);
+    }
+
+    // The three slices through the centre: z = depth/2 (x across, y up),
+    // y = height/2 (x across, z up), x = width/2 (y across, z up).
+    std::vector<FieldPanel> slices(const sim::Grid<double>& cells) const {
+        const int w = m_.width, h = m_.height, d = m_.depth;
+        auto at = [&](int x, int y, int z) { return cells(z * h + y, x); };
+        sim::Grid<double> xy(h, w), xz(d, w), yz(d, h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) xy(h - 1 - y, x) = at(x, y, d / 2);
+        for (int z = 0; z < d; ++z)
+            for (int x = 0; x < w; ++x) xz(d - 1 - z, x) = at(x, h / 2, z);
+        for (int z = 0; z < d; ++z)
+            for (int y = 0; y < h; ++y) yz(d - 1 - z, y) = at(w / 2, y, z);
+        return {{"z = " + std::to_string(d / 2), {field_layer(xy, specs_.front())}},
+                {"y = " + std::to_string(h / 2), {field_layer(xz, specs_.front())}},
+                {"x = " + std::to_string(w / 2), {field_layer(yz, specs_.front())}}};
+    }
+
+    void render_solid(Output& out) const {
+        StepRunner run(d_, options_, out);
+        formula::Run model(m_.rule, m_.width, m_.height, m_.depth, formula_start(m_, d_));
+        const int threads = model_threads();
+        std::vector<sim::Grid<double>> now;
+        auto look = [&] {
+            now.clear();
+            for (int c = 0; c < m_.rule.chemicals; ++c) now.push_back(model.chemical(c));
+        };
+        look();
+        nlohmann::json panel_meta = nlohmann::json::array();
+        run.run({
+            .check = {},
+            .panel = [&](int step) { panel_meta.push_back(metadata(now, step)); },
+            .frame =
+                [&](int) -> FrameDrawing {
+                    auto facets = std::make_shared<const std::vector<render::Facet>>(surface_of(now[s_.shown.front()]));
+                    return {[this, facets](render::Surface& s) {
+                                s.background({1, 1, 1, 1});
+                                draw_solid(s, {0, 0, float(s.width()), float(s.height())}, *facets);
+                            },
+                            4, true};
+                },
+            .advance = {},
+            .leap =
+                [&](int steps) {
+                    model.step(steps, threads);
+                    look();
+                },
+        });
+        const std::vector<render::Facet> facets = surface_of(now[s_.shown.front()]);
+        const std::vector<FieldPanel> panels = slices(now[s_.shown.front()]);
+        nlohmann::json meta = {{"params", params_.used()},
+                               {"style", style_.used()},
+                               {"panels", panel_meta},
+                               {"isosurface", {{"level", s_.contour_level}, {"facets", facets.size()}}},
+                               {"model_operations", model.operations()}};
+        const int width = figure_width(d_, options_), height = figure_height(d_, options_);
+        const double scale = options_.scale;
+        FigureDrawing figure{width, height, true,
+                             [this, &facets, &panels, scale](render::Surface& s) {
+                                 s.background({1, 1, 1, 1});
+                                 const float side = std::min(float(s.height()), 0.5f * float(s.width()));
+                                 draw_solid(s, {0, (float(s.height()) - side) / 2, side, side}, facets);
+                                 draw_field_panels(s, {side, 0, float(s.width()) - side, float(s.height())}, panels, 2,
+                                                   scale);
+                             },
+                             [&] { return ready_state(now); }};
+        run.write_figure(figure, meta);
+    }
+
     // The chemicals and the rule, for Ready's own files (--format vti).
     ready::ReadyState ready_state(const std::vector<sim::Grid<double>>& chemicals) const {
         ready::ReadyState s;
@@ -189,6 +459,7 @@ private:
         s.high = specs_.front().vmax;
         s.width = m_.width;
         s.height = m_.height;
+        s.depth = m_.depth;
         s.float64 = m_.rule.double_precision;
         for (const auto& g : chemicals) s.chemicals.emplace_back(g.cells().begin(), g.cells().end());
         return s;
@@ -211,6 +482,7 @@ private:
     const FormulaModel m_;
     const Style s_;
     const std::vector<FieldSpec> specs_;  // of the chemicals shown
+    const int dimensions_ = formula::dimensionality(m_.width, m_.height, m_.depth);
 };
 
 std::unique_ptr<Scene> read_formula(const Description& d, const SceneOptions& options) {
@@ -240,7 +512,8 @@ static double vti_disk(const Description& d) {
     const auto value = [&](const char* key, long long fallback, long long most) {
         return static_cast<double>(std::clamp<long long>(d.params[key].value_or(fallback), 1, most));
     };
-    const double cells = value("width", 128, formula_most_side) * value("height", 128, formula_most_side);
+    const double cells = value("width", 128, formula_most_side) * value("height", 128, formula_most_side) *
+                         value("depth", 1, formula_most_side);
     // The texts it repeats (XML escapes a character in at most 6: &quot;).
     const double texts = static_cast<double>(d.title.size() + d.caption.size() +
                                              d.params["formula"].value_or(std::string()).size());

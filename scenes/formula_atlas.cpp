@@ -140,6 +140,9 @@ public:
                 params_.refuse(key, "its name is " + *clash + "; " + sim::formula::parameter_name_allowed);
             if (!words.count(name)) params_.refuse(key, parameter_allowed);
         }
+        // Each tile is a 2-D field: 1-D and 3-D grids are the formula scene's alone (for now).
+        if (m_.depth > 1) params_.refuse("depth", "1: the atlas tiles 2-D grids");
+        if (m_.height == 1) params_.refuse("height", integers_allowed(2, formula_most_side) + ": the atlas tiles 2-D grids");
         require_drawable(params_, "width", "each tile", m_.height, m_.width);
         require_text_fits(
             d, options, [&](const render::Rect& area) { return tile_map().text(area, plot_); }, plot_remedy);

@@ -49,7 +49,8 @@ std::string ready_vti(const ReadyState& s) {
     if (s.low) rs->InsertNewChildElement("low")->SetAttribute("value", *s.low);
     if (s.high) rs->InsertNewChildElement("high")->SetAttribute("value", *s.high);
     XMLElement* image = vtk->InsertNewChildElement("ImageData");
-    const std::string extent = "0 " + std::to_string(s.width - 1) + " 0 " + std::to_string(s.height - 1) + " 0 0";
+    const std::string extent = "0 " + std::to_string(s.width - 1) + " 0 " + std::to_string(s.height - 1) + " 0 " +
+                               std::to_string(s.depth - 1);
     image->SetAttribute("WholeExtent", extent.c_str());
     image->SetAttribute("Origin", "0 0 0");
     image->SetAttribute("Spacing", "1 1 1");

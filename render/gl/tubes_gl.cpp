@@ -84,7 +84,8 @@ void main() {
     gl_Position = view_projection * vec4(position, 1.0);
 })";
 
-// A facet's corner as GL reads it: the facet's normal, the same at each corner.
+// A facet's corner as GL reads it: the facet's normal, the same at each
+// corner, or the surface's own at the corner when the facet gives it.
 struct FacetVertex {
     glm::vec3 position, normal;
     glm::vec4 colour;
@@ -247,7 +248,13 @@ struct FacetPipeline {
             const float area = glm::length(across);
             if (!(area > 0) || !std::isfinite(area)) continue;  // no normal to light it by
             const glm::vec3 n = across / area;
-            for (const glm::vec3& p : {f.a, f.b, f.c}) corners.push_back({p, n, f.colour});
+            auto normal = [&](const glm::vec3& given) {
+                const float length = glm::length(given);
+                return length > 0 && std::isfinite(length) ? given / length : n;
+            };
+            corners.push_back({f.a, normal(f.na), f.colour});
+            corners.push_back({f.b, normal(f.nb), f.colour});
+            corners.push_back({f.c, normal(f.nc), f.colour});
         }
         glBindVertexArray(vao);
         glBindBuffer(GL_ARRAY_BUFFER, vbo);

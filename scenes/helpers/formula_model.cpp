@@ -22,13 +22,14 @@ bool is_key(const std::vector<Key>& keys, const std::string& name) {
     return std::any_of(keys.begin(), keys.end(), [&](const Key& k) { return k.name == name; });
 }
 
-// A point [x, y] or [x, y, z], fractions of the grid.
+// A point [x, y] or [x, y, z], fractions of the grid; z is the
+// default's when not given.
 std::array<double, 3> point(Settings& s, const std::string& key, std::array<double, 3> fallback) {
     const std::vector<double> v = s.numbers(key, {fallback[0], fallback[1]});
     if (v.size() < 2 || v.size() > 3) s.refuse(key, "[x, y] or [x, y, z]: fractions of the grid");
     for (double x : v)
         if (!std::isfinite(x) || std::fabs(x) > 1e6) s.refuse(key, "finite numbers, fractions of the grid");
-    return {v[0], v[1], v.size() > 2 ? v[2] : 0.0};
+    return {v[0], v[1], v.size() > 2 ? v[2] : fallback[2]};
 }
 
 // A point key read into `member`, with its default.
@@ -39,7 +40,8 @@ void point_key(Schema<T>& schema, const std::string& name, std::array<double, 3>
         {name, meaning, "a list of numbers", "[x, y] or [x, y, z], fractions of the grid"},
         [member](Settings& s, const std::string& key, T& v) { v.*member = point(s, key, v.*member); },
         [member](const T& d) {
-            return nlohmann::json({(d.*member)[0], (d.*member)[1]});
+            const auto& p = d.*member;
+            return p[2] != 0 ? nlohmann::json({p[0], p[1], p[2]}) : nlohmann::json({p[0], p[1]});
         });
 }
 
@@ -47,7 +49,8 @@ void point_key(Schema<T>& schema, const std::string& name, std::array<double, 3>
 // checked, whichever the shape uses.
 struct ShapeValues {
     formula::Shape shape;
-    std::array<double, 3> centre{0.5, 0.5, 0}, from{0, 0, 0}, to{1, 1, 0};
+    // A rectangle given [x, y] corners spans every plane of a 3-D grid.
+    std::array<double, 3> centre{0.5, 0.5, 0}, from{0, 0, 0}, to{1, 1, 1};
     std::vector<long long> at{0, 0};
 };
 
@@ -57,24 +60,26 @@ const Schema<ShapeValues> shape_schema = [] {
     Schema<formula::Shape> kind;
     kind.choice("shape", &formula::Shape::kind, formula::shape_names(), "where the overlay applies");
     s.part(kind, &S::shape);
-    point_key(s, "from", &S::from, "rectangle: [x, y], its lower corner, a fraction of the grid");
-    point_key(s, "to", &S::to, "rectangle: [x, y], its upper corner, a fraction of the grid");
-    point_key(s, "centre", &S::centre, "circle: [x, y], a fraction of the grid");
+    point_key(s, "from", &S::from, "rectangle: [x, y] or [x, y, z], its lower corner, a fraction of the grid");
+    point_key(s, "to", &S::to, "rectangle: [x, y] or [x, y, z], its upper corner, a fraction of the grid");
+    point_key(s, "centre", &S::centre, "circle (a sphere in 3-D): [x, y] or [x, y, z], a fraction of the grid");
     s.key(
         {"radius", "circle: a fraction of the grid's larger side", "a number", numbers_allowed(0, 1e6), 0.1},
         [](Settings& section, const std::string& key, S& v) { v.shape.radius = section.number_in(key, 0.1, 0, 1e6); });
     s.key(
-        {"at", "pixel: [x, y], the cell", "a list of integers", "[x, y]: a cell of the grid"},
+        {"at", "pixel: [x, y] or [x, y, z], the cell", "a list of integers", "[x, y] or [x, y, z]: a cell of the grid"},
         [](Settings& section, const std::string& key, S& v) {
             v.at = section.integers(key, v.at);
-            if (v.at.size() != 2 || v.at[0] < 0 || v.at[1] < 0 || v.at[0] > 100000 || v.at[1] > 100000)
-                section.refuse(key, "[x, y]: a cell of the grid");
+            if (v.at.size() < 2 || v.at.size() > 3 ||
+                std::any_of(v.at.begin(), v.at.end(), [](long long c) { return c < 0 || c > 100000; }))
+                section.refuse(key, "[x, y] or [x, y, z]: a cell of the grid");
         },
         [](const S& d) { return nlohmann::json(d.at); });
     s.check([](Settings&, const std::string&, S& v) {
         v.shape.a = v.shape.kind == formula::Shape::Kind::circle ? v.centre : v.from;
         v.shape.b = v.to;
-        v.shape.pixel = {static_cast<int>(v.at[0]), static_cast<int>(v.at[1]), 0};
+        v.shape.pixel = {static_cast<int>(v.at[0]), static_cast<int>(v.at[1]),
+                         v.at.size() > 2 ? static_cast<int>(v.at[2]) : 0};
     });
     return s;
 }();
@@ -191,10 +196,21 @@ const Schema<ModelValues> model_schema = [] {
               if (v.model.width % v.model.rule.block_x != 0)
                   section.refuse(key, "a multiple of block_x (" + std::to_string(v.model.rule.block_x) + ")");
           });
-    s.key({"height", "grid height in cells (Ready's 1-D stencils are not figgen's)", "an integer",
-           integers_allowed(2, formula_most_side), 128},
+    s.key({"height", "grid height in cells (1: a 1-D grid)", "an integer", integers_allowed(1, formula_most_side), 128},
           [](Settings& section, const std::string& key, M& v) {
-              v.model.height = section.count_in(key, v.model.height, 2, formula_most_side);
+              v.model.height = section.count_in(key, v.model.height, 1, formula_most_side);
+          });
+    s.key({"depth", "grid depth in cells (more than 1: a 3-D grid)", "an integer",
+           integers_allowed(1, formula_most_side) + ", with width x height x depth at most " +
+               std::to_string(formula_most_cells) + " cells",
+           1},
+          [](Settings& section, const std::string& key, M& v) {
+              v.model.depth = section.count_in(key, v.model.depth, 1, formula_most_side);
+              const long long cells = static_cast<long long>(v.model.width) * v.model.height * v.model.depth;
+              if (cells > formula_most_cells)
+                  section.refuse(key, integers_allowed(1, formula_most_side) + ", with width x height x depth at most " +
+                                          std::to_string(formula_most_cells) + " cells (here " +
+                                          std::to_string(cells) + ")");
           });
     s.key({"steps", "how many steps the model runs", "an integer", integers_allowed(0, 10'000'000), 1000},
           [](Settings& section, const std::string& key, M& v) {
@@ -285,8 +301,8 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
     if (!has_timestep)
         throw SettingError("params.timestep", "", "the rule's timestep: X + timestep * delta_X each step");
     try {
-        r.validate(m.width, m.height);
-        const formula::Program program = formula::compile(r);
+        r.validate(m.width, m.height, m.depth);
+        const formula::Program program = formula::compile(r, formula::dimensionality(m.width, m.height, m.depth));
         m.registers = program.registers;
         m.radius_x = program.radius_x;
         m.operations = program.operations;
@@ -311,13 +327,15 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
         if (stored->width != m.width) params.refuse("width", "the pattern's " + std::to_string(stored->width) + ", its stored arrays'");
         if (stored->height != m.height)
             params.refuse("height", "the pattern's " + std::to_string(stored->height) + ", its stored arrays'");
+        if (stored->depth != m.depth)
+            params.refuse("depth", "the pattern's " + std::to_string(stored->depth) + ", its stored arrays'");
     }
     return m;
 }
 
 std::vector<sim::Grid<double>> formula_start(const FormulaModel& m, const Description& d) {
     std::vector<sim::Grid<double>> start(static_cast<std::size_t>(m.rule.chemicals),
-                                         sim::Grid<double>(m.height, m.width, 0.0));
+                                         sim::Grid<double>(m.height * m.depth, m.width, 0.0));
     // The arrays a Ready pattern stores, when it starts from them; the
     // overlays, if any, go on top (after zeroing, if zero_first).
     if (const auto& stored = d.stored_start) {
@@ -327,7 +345,7 @@ std::vector<sim::Grid<double>> formula_start(const FormulaModel& m, const Descri
     }
     if (!d.stored_start || !m.pattern.overlays.empty()) {
         sim::Random rng(d.seed);
-        formula::apply_pattern(m.pattern, start, m.rule.parameters, m.rule.double_precision, rng);
+        formula::apply_pattern(m.pattern, start, m.depth, m.rule.parameters, m.rule.double_precision, rng);
     }
     return start;
 }

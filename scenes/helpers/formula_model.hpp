@@ -1,7 +1,7 @@
 #pragma once
 // A formula model (sim/formula/rule.hpp) as a description gives it in [params]:
 // the rule (chemicals, formula, accuracy, wrap, data_type, block_x,
-// ready_edges), the grid (width, height), steps, the start (initial:
+// ready_edges), the grid (width, height, depth), steps, the start (initial:
 // Ready's overlays, in order; or the arrays a Ready pattern file stores)
 // and, as every other key, the rule's own parameters. Shared by the
 // formula scene and the formula atlas.
@@ -18,12 +18,15 @@
 
 namespace scenes {
 
-// The most cells a side of a formula model's grid has.
+// The most cells a side of a formula model's grid has, and the most cells
+// it has in all (4096^2, or 256^3).
 constexpr int formula_most_side = 4096;
+constexpr long long formula_most_cells = 4096LL * 4096LL;
 
 struct FormulaModel {
     sim::formula::Rule rule;
-    int width = 128, height = 128, steps = 1000;
+    // The grid: height 1 is 1-D, depth above 1 is 3-D (the row of (y, z) is z * height + y).
+    int width = 128, height = 128, depth = 1, steps = 1000;
     sim::formula::Pattern pattern;
     int registers = 0, radius_x = 0;  // of the compiled formula, for the memory estimate
     int operations = 0;               // row operations a cell of one step takes (Run::operations)

@@ -75,7 +75,9 @@ int StepRunner::next_stop(const StepHooks& hooks, int step, int last) const {
     // A leap of at most this many steps when no output bounds it (run_to_stop).
     constexpr int longest_leap = 1000;
     int next = step + 1;
-    while (next < last && next - step < longest_leap && !is_panel(next) && !(hooks.frame && wants_frame(next))) ++next;
+    while (next < last && next - step < longest_leap && !is_panel(next) && !(hooks.frame && wants_frame(next)) &&
+           !(hooks.stop_at && hooks.stop_at(next)))
+        ++next;
     return next;
 }
 

@@ -29,6 +29,9 @@ struct StepHooks {
     // throw naming the first that was not), since check() then runs only at
     // the steps the runner stops at.
     std::function<void(int steps)> leap = {};
+    // Optional: more steps a leap stops at, for check() to see (a 1-D
+    // model's space-time diagram keeps a row every so many steps).
+    std::function<bool(int step)> stop_at = {};
 };
 
 class StepRunner {

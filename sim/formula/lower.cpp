@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <cctype>
 #include <string>
 #include <unordered_map>
@@ -54,8 +55,8 @@ struct Variable {
 
 class Compiler {
 public:
-    explicit Compiler(const Rule& rule) : rule_(rule) {
-        for (const Stencil& s : ready_stencils(rule.accuracy, 2)) stencils_[s.label] = s;
+    Compiler(const Rule& rule, int dimensions) : rule_(rule), dimensions_(dimensions) {
+        for (const Stencil& s : ready_stencils(rule.accuracy, dimensions)) stencils_[s.label] = s;
     }
 
     Program compile(const Formula& formula) {
@@ -288,14 +289,15 @@ private:
         return "";
     }
 
-    Value input(int chemical, int dx, int dy) {
-        const auto key = std::make_tuple(chemical, dx, dy);
+    Value input(int chemical, int dx, int dy, int dz) {
+        const auto key = std::make_tuple(chemical, dx, dy, dz);
         auto it = inputs_.find(key);
         if (it != inputs_.end()) return it->second;
         const int reg = new_register();
-        program_.inputs.push_back({reg, chemical, dx, dy});
+        program_.inputs.push_back({reg, chemical, dx, dy, dz});
         program_.radius_x = std::max(program_.radius_x, std::abs(dx));
         program_.radius_y = std::max(program_.radius_y, std::abs(dy));
+        program_.radius_z = std::max(program_.radius_z, std::abs(dz));
         const Value v = in_register(reg, false, rule_.block_x == 4);
         inputs_[key] = v;
         return v;
@@ -316,7 +318,7 @@ private:
             if (name == chem) {
                 Variable var;
                 var.type = Type::real4;
-                var.elements = {input(i, 0, 0)};
+                var.elements = {input(i, 0, 0, 0)};
                 return &(predefined_[name] = var);
             }
             if (name == "delta_" + chem) {
@@ -336,21 +338,20 @@ private:
                                                                 "a parameter of the rule"));
             }
         if (name == "dx") return &(predefined_[name] = constant_variable(constant(1, false), "the grid spacing"));
-        if (name == "x_pos" || name == "y_pos") {
+        if (name == "x_pos" || name == "y_pos" || name == "z_pos") {
             const int reg = new_register();
-            (name == "x_pos" ? program_.x_pos : program_.y_pos) = reg;
+            (name == "x_pos" ? program_.x_pos : name == "y_pos" ? program_.y_pos : program_.z_pos) = reg;
             return &(predefined_[name] =
                          constant_variable(in_register(reg, false, rule_.block_x == 4), "the cell's position"));
         }
-        if (name == "z_pos")
-            return &(predefined_[name] = constant_variable(constant(0, false, rule_.block_x == 4), "the cell's position"));
         if (name == "M_PI" || name == "M_PI_F")
             return &(predefined_[name] = constant_variable(constant(3.14159265358979323846, false), "a constant"));
         if (name == "M_E" || name == "M_E_F")
             return &(predefined_[name] = constant_variable(constant(2.71828182845904523536, false), "a constant"));
         // A neighbour: chemical, then u/d, n/s and e/w each with a count
-        // (Ready's names: a_n, a_se, a_e2, a_n2w3; u and d, the same cell
-        // on a 2-D grid).
+        // (Ready's names: a_n, a_se, a_e2, a_n2w3, a_ud2; on a grid of fewer
+        // dimensions the offsets along the missing axes wrap or clamp to
+        // the cell itself, as Ready's indexing does).
         if (name.size() > 2 && name[1] == '_' && !chemical_of(name.substr(0, 1)).empty()) {
             std::size_t at = 2;
             int offset[3] = {0, 0, 0};  // z, y, x
@@ -379,7 +380,7 @@ private:
                 std::abs(offset[2]) <= 10) {
                 const int chem = name[0] - 'a';
                 return &(predefined_[name] =
-                             constant_variable(input(chem, offset[2], offset[1]), "a neighbour's value"));
+                             constant_variable(input(chem, offset[2], offset[1], offset[0]), "a neighbour's value"));
             }
         }
         // A stencil: label_chemical.
@@ -392,12 +393,16 @@ private:
                     return &(predefined_[name] = constant_variable(apply_stencil(stencils_.at(label), c),
                                                                     "a stencil of the rule's chemicals"));
                 if (label == "gradient_mag_squared") {
-                    // pow(x_gradient, 2) + pow(y_gradient, 2), as Ready writes it.
+                    // pow(x_gradient, 2) + pow(y_gradient, 2) + ..., one
+                    // term a dimension, as Ready writes it.
                     const Value two = constant(2, false);
-                    const Value gx = call(Fn::pow, {apply_stencil(stencils_.at("x_gradient"), c), two}, {});
-                    const Value gy = call(Fn::pow, {apply_stencil(stencils_.at("y_gradient"), c), two}, {});
-                    return &(predefined_[name] =
-                                 constant_variable(arith(Op::add, gx, gy, {}), "a stencil of the rule's chemicals"));
+                    Value sum = call(Fn::pow, {apply_stencil(stencils_.at("x_gradient"), c), two}, {});
+                    for (const char* axis : {"y_gradient", "z_gradient"}) {
+                        if ((axis[0] == 'y' && dimensions_ < 2) || (axis[0] == 'z' && dimensions_ < 3)) break;
+                        const Value g = call(Fn::pow, {apply_stencil(stencils_.at(axis), c), two}, {});
+                        sum = arith(Op::add, sum, g, {});
+                    }
+                    return &(predefined_[name] = constant_variable(sum, "a stencil of the rule's chemicals"));
                 }
             }
         }
@@ -415,7 +420,7 @@ private:
         for (const auto& [weight, points] : by_weight) {
             if (weight == 1) {
                 for (const StencilPoint& p : points) {
-                    const Value v = input(chemical, p.x, p.y);
+                    const Value v = input(chemical, p.x, p.y, p.z);
                     vector |= v.vector;
                     sum.terms.push_back({1.0, {v.reg}});
                 }
@@ -423,7 +428,7 @@ private:
             }
             StencilSum::Term term{round_real(weight), {}};
             for (const StencilPoint& p : points) {
-                const Value v = input(chemical, p.x, p.y);
+                const Value v = input(chemical, p.x, p.y, p.z);
                 vector |= v.vector;
                 term.inputs.push_back(v.reg);
             }
@@ -751,10 +756,11 @@ private:
     }
 
     const Rule& rule_;
+    int dimensions_ = 2;
     std::map<std::string, Stencil> stencils_;
     std::vector<std::unordered_map<std::string, Variable>> scopes_;
     std::unordered_map<std::string, Variable> predefined_;
-    std::map<std::tuple<int, int, int>, Value> inputs_;
+    std::map<std::tuple<int, int, int, int>, Value> inputs_;
     std::map<std::pair<double, bool>, int> constant_regs_;
     int division_mask_ = -1;
     std::map<std::tuple<int, int, int, int, int, double, int>, int> emitted_;
@@ -764,8 +770,10 @@ private:
 
 }  // namespace
 
-Program compile(const Rule& rule) {
-    return Compiler(rule).compile(parse(rule.code));
+Program compile(const Rule& rule, int dimensions) {
+    if (dimensions < 1 || dimensions > 3)
+        throw std::invalid_argument("a grid of " + std::to_string(dimensions) + " dimensions: figgen runs 1, 2 or 3");
+    return Compiler(rule, dimensions).compile(parse(rule.code));
 }
 
 }  // namespace sim::formula

@@ -1,5 +1,7 @@
 #include "sim/formula/overlays.hpp"
 
+#include "sim/formula/rule.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -89,11 +91,15 @@ std::vector<std::pair<std::string, Shape::Kind>> shape_names() {
     return {{"everywhere", K::everywhere}, {"rectangle", K::rectangle}, {"circle", K::circle}, {"pixel", K::pixel}};
 }
 
-void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals,
+void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals, int depth,
                    const std::vector<std::pair<std::string, double>>& parameters, bool double_precision, Random& rng) {
     if (chemicals.empty()) return;
-    const int width = chemicals.front().cols(), height = chemicals.front().rows();
-    const double X = width, Y = height, Z = 1, largest = std::max({X, Y, Z});
+    if (depth < 1 || chemicals.front().rows() % depth != 0)
+        throw std::invalid_argument("a grid of " + std::to_string(chemicals.front().rows()) + " rows is not " +
+                                    std::to_string(depth) + " planes");
+    const int width = chemicals.front().cols(), height = chemicals.front().rows() / depth;
+    const double X = width, Y = height, Z = depth, largest = std::max({X, Y, Z});
+    const int dimensions = dimensionality(width, height, depth);
     const auto stored = [&](double v) { return double_precision ? v : static_cast<double>(static_cast<float>(v)); };
     if (pattern.zero_first)
         for (Grid<double>& g : chemicals) g.fill(0.0);
@@ -116,25 +122,35 @@ void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals,
     }
     const int n = static_cast<int>(chemicals.size());
     std::vector<double> values(static_cast<std::size_t>(n));
+    for (int z = 0; z < depth; ++z)
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
             for (std::size_t k = 0; k < pattern.overlays.size(); ++k) {
                 const Overlay& o = pattern.overlays[k];
                 if (o.chemical < 0 || o.chemical >= n) continue;  // as Ready: an overlay of a chemical not there is skipped
-                for (int c = 0; c < n; ++c) values[c] = chemicals[c](y, x);
+                const int row = z * height + y;
+                for (int c = 0; c < n; ++c) values[c] = chemicals[c](row, x);
                 double& target = values[o.chemical];
-                const double fx = x, fy = y, fz = 0;
+                const double fx = x, fy = y, fz = z;
                 for (const Shape& s : o.shapes) {
                     bool inside = false;
                     switch (s.kind) {
                     case Shape::Kind::everywhere: inside = true; break;
                     case Shape::Kind::rectangle:
-                        inside = fx / X >= s.a[0] && fx / X <= s.b[0] && fy / Y >= s.a[1] && fy / Y <= s.b[1];
+                        inside = fx / X >= s.a[0] && fx / X <= s.b[0];
+                        if (dimensions >= 2) inside = inside && fy / Y >= s.a[1] && fy / Y <= s.b[1];
+                        if (dimensions >= 3) inside = inside && fz / Z >= s.a[2] && fz / Z <= s.b[2];
                         break;
-                    case Shape::Kind::circle:
-                        inside = std::hypot(fx - s.a[0] * X, fy - s.a[1] * Y) < s.radius * largest;
+                    case Shape::Kind::circle: {
+                        const double ex = fx - s.a[0] * X, ey = dimensions >= 2 ? fy - s.a[1] * Y : 0.0,
+                                     ez = dimensions >= 3 ? fz - s.a[2] * Z : 0.0;
+                        inside = hypot3(ex, ey, ez) < s.radius * largest;
                         break;
-                    case Shape::Kind::pixel: inside = x == s.pixel[0] && y == s.pixel[1]; break;
+                    }
+                    case Shape::Kind::pixel:
+                        inside = x == s.pixel[0] && (dimensions < 2 || y == s.pixel[1]) &&
+                                 (dimensions < 3 || z == s.pixel[2]);
+                        break;
                     }
                     if (!inside) continue;
                     const Fill& f = o.fill;
@@ -177,7 +193,7 @@ void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals,
                     case Overlay::Operation::divide: target /= v; break;
                     }
                 }
-                chemicals[o.chemical](y, x) = stored(target);
+                chemicals[o.chemical](row, x) = stored(target);
             }
 }
 

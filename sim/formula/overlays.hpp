@@ -1,11 +1,13 @@
 #pragma once
 // A formula model's start, as Ready's initial pattern generator makes it:
-// overlays applied in order to every cell (x fastest, then y), each
+// overlays applied in order to every cell (x fastest, then y, then z), each
 // combining a fill with the chemical's value where any of its shapes holds
 // the cell. Ready's definitions (its src/readybase/overlays.cpp): shapes and
 // points are fractions of the grid, radii and sigmas of its largest side;
 // each value is stored in the model's number type before the next overlay
-// reads it. Noise comes from figgen's own seeded generator.
+// reads it. Shapes test the axes of the grid's dimensions (Ready's
+// dimensionality: a rectangle on a 1-D grid is an interval of x, a circle
+// on a 3-D grid a sphere). Noise comes from figgen's own seeded generator.
 
 #include <array>
 #include <string>
@@ -59,11 +61,12 @@ std::vector<std::pair<std::string, Overlay::Operation>> operation_names();
 std::vector<std::pair<std::string, Fill::Kind>> fill_names();
 std::vector<std::pair<std::string, Shape::Kind>> shape_names();
 
-// Applies `pattern` to `chemicals` (each height x width, changed in place),
+// Applies `pattern` to `chemicals` (each a grid of `depth` planes of its
+// rows / depth rows, the row of (y, z) z * height + y, changed in place),
 // with the rule's `parameters` (for `parameter` fills), rounding each value
 // to float unless `double_precision`. Throws std::invalid_argument for an
 // overlay naming a chemical or parameter the rule does not have.
-void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals,
+void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals, int depth,
                    const std::vector<std::pair<std::string, double>>& parameters, bool double_precision, Random& rng);
 
 }  // namespace sim::formula

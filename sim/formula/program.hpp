@@ -96,27 +96,29 @@ struct Program {
         double value;  // already rounded to the model's number type
     };
     std::vector<Constant> constants;
-    // Chemical `chemical` at offset (dx, dy) from each cell.
+    // Chemical `chemical` at offset (dx, dy, dz) from each cell.
     struct Input {
-        int reg, chemical, dx, dy;
+        int reg, chemical, dx, dy, dz;
     };
     std::vector<Input> inputs;
-    int x_pos = -1, y_pos = -1;  // registers of x_pos and y_pos, if used
+    int x_pos = -1, y_pos = -1, z_pos = -1;  // registers of x_pos, y_pos and z_pos, if used
     std::vector<Instr> code;
     std::vector<StencilSum> stencils;
     std::vector<Chain> chains;
     int operations = 0;  // the operations before any were fused into chains
     std::vector<int> outputs;  // per chemical: the register of its new value
-    int radius_x = 0, radius_y = 0;  // the farthest neighbour read
+    int radius_x = 0, radius_y = 0, radius_z = 0;  // the farthest neighbour read
 };
 
 // The registers an instruction reads: its operands, a stencil's inputs, a
 // chain's operands.
 std::vector<int> sources(const Program& program, const Instr& in);
 
-// Compiles `rule` (validated): parsed (sim/formula/parse.cpp), lowered
-// (sim/formula/lower.cpp) and passed over (sim/formula/passes.hpp). The
-// program is the same for any grid. Throws FormulaError.
-Program compile(const Rule& rule);
+// Compiles `rule` (validated) for a grid of `dimensions` (1, 2 or 3, as
+// dimensionality() counts them: its stencils): parsed
+// (sim/formula/parse.cpp), lowered (sim/formula/lower.cpp) and passed over
+// (sim/formula/passes.hpp). The program is the same for any grid of those
+// dimensions. Throws FormulaError.
+Program compile(const Rule& rule, int dimensions = 2);
 
 }  // namespace sim::formula

@@ -32,11 +32,11 @@ void finish_program(Program& program) {
     for (int out : program.outputs) live[out] = 1;
     for (const Instr& in : code)
         for (int r : sources(program, in)) live[r] = 1;
-    // Register kinds: inputs and x_pos/y_pos are views; constants filled once.
+    // Register kinds: inputs and the positions are views; constants filled once.
     std::vector<char> temporary(static_cast<std::size_t>(n), 1);
     for (const Program::Input& in : program.inputs) temporary[in.reg] = 0;
     for (const Program::Constant& c : program.constants) temporary[c.reg] = 0;
-    for (int pos : {program.x_pos, program.y_pos})
+    for (int pos : {program.x_pos, program.y_pos, program.z_pos})
         if (pos >= 0) temporary[pos] = 0;
     for (int out : program.outputs) temporary[out] = 0;
     std::vector<int> map(static_cast<std::size_t>(n), -1);
@@ -45,15 +45,16 @@ void finish_program(Program& program) {
     for (const Program::Input& in : program.inputs)
         if (live[in.reg]) {
             map[in.reg] = next++;
-            inputs.push_back({map[in.reg], in.chemical, in.dx, in.dy});
+            inputs.push_back({map[in.reg], in.chemical, in.dx, in.dy, in.dz});
         }
     // radius from the inputs kept
-    program.radius_x = program.radius_y = 0;
+    program.radius_x = program.radius_y = program.radius_z = 0;
     for (const Program::Input& in : inputs) {
         program.radius_x = std::max(program.radius_x, std::abs(in.dx));
         program.radius_y = std::max(program.radius_y, std::abs(in.dy));
+        program.radius_z = std::max(program.radius_z, std::abs(in.dz));
     }
-    for (int* pos : {&program.x_pos, &program.y_pos})
+    for (int* pos : {&program.x_pos, &program.y_pos, &program.z_pos})
         if (*pos >= 0) *pos = live[*pos] ? (map[*pos] = next++) : -1;
     std::vector<Program::Constant> constants;
     for (const Program::Constant& c : program.constants)

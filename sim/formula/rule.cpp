@@ -20,7 +20,12 @@ std::string chemical_name(int i) {
     return std::string(1, static_cast<char>('a' + i));
 }
 
-void Rule::validate(int width, int height) const {
+int dimensionality(int width, int height, int depth) {
+    const int n = (width > 1) + (height > 1) + (depth > 1);
+    return n == 0 ? 1 : n;
+}
+
+void Rule::validate(int width, int height, int depth) const {
     if (chemicals < 1 || chemicals > max_chemicals)
         throw std::invalid_argument("number_of_chemicals is " + std::to_string(chemicals) + ", not from 1 to " +
                                     std::to_string(max_chemicals));
@@ -29,6 +34,10 @@ void Rule::validate(int width, int height) const {
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
         throw std::invalid_argument("the grid is " + std::to_string(width) + " x " + std::to_string(height) +
                                     ", not from 1 x 1 to 16384 x 16384");
+    if (depth < 1 || depth > 16384 || static_cast<long long>(width) * height * depth > max_cells)
+        throw std::invalid_argument("the grid is " + std::to_string(width) + " x " + std::to_string(height) + " x " +
+                                    std::to_string(depth) + ", not from 1 to 16384 a side and at most " +
+                                    std::to_string(max_cells) + " cells");
     if (width % block_x != 0)
         throw std::invalid_argument("the grid is " + std::to_string(width) + " cells wide: Ready's blocks of " +
                                     std::to_string(block_x) + " need a multiple of " + std::to_string(block_x));

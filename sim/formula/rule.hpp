@@ -1,11 +1,12 @@
 #pragma once
 // Formula models, as GollyGang/Ready writes them: a rule of `chemicals`
-// chemicals (a, b, c, ...) on a 2-D grid, each updated by forward Euler,
+// chemicals (a, b, c, ...) on a grid of 1, 2 or 3 dimensions, each updated
+// by forward Euler,
 //     X_new = X + timestep * delta_X,
 // where delta_X is what the formula, a small part of OpenCL C, assigns from
 // the cell's chemicals, its neighbours (a_n, a_se, a_e2, ...), Ready's
-// stencils (laplacian_a, x_gradient_b, ... at three accuracies), x_pos and
-// y_pos, and the rule's parameters.
+// stencils (laplacian_a, x_gradient_b, ... at three accuracies, those of
+// the grid's dimensions), x_pos, y_pos and z_pos, and the rule's parameters.
 //
 // A formula is code from a stranger: it is read by figgen's own grammar
 // into a tree (sim/formula/tree.hpp), held to fixed bounds (Limits), and
@@ -70,8 +71,16 @@ struct Rule {
 
     // Throws std::invalid_argument naming what is wrong, FormulaError for
     // the code, before anything runs.
-    void validate(int width, int height) const;
+    void validate(int width, int height, int depth = 1) const;
 };
+
+// The most cells a grid holds, in any number of dimensions (16384^2).
+constexpr long long max_cells = 16384LL * 16384LL;
+
+// A grid's dimensions as Ready counts them: its sides longer than one cell
+// (a 256 x 1 x 1 grid is 1-D, 32 x 32 x 32 is 3-D). Ready's stencils and
+// gradient_mag_squared follow it; a grid of one cell counts as 1-D.
+int dimensionality(int width, int height, int depth);
 
 // Whether `name` is one of the formula language's built-in functions of
 // numbers (the relational ones, isless ..., aside): sim/formula/builtins.cpp.

@@ -7,7 +7,8 @@
 // Neighbours: each chemical's rows are stored with `radius_x` cells of halo
 // on both sides, filled after each row is written as Ready's indexing reads
 // them, so that a neighbour at offset dx is the row read dx cells along;
-// rows at dy are looked up in a table made once.
+// rows at (dy, dz) are looked up in a table made once. A 3-D grid is its
+// rows one plane after another (the row of (y, z) is z * height + y).
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -150,7 +151,7 @@ struct Run::Impl {
     virtual void step(int steps, int threads) = 0;
     virtual Grid<double> chemical(int i) const = 0;
     long long steps = 0;
-    int width = 0, height = 0, operations = 0, chemicals = 0;
+    int width = 0, height = 0, depth = 1, operations = 0, chemicals = 0;
 };
 
 namespace {
@@ -158,11 +159,13 @@ namespace {
 template <class Real>
 class Engine final : public Run::Impl {
 public:
-    Engine(const Rule& rule, Program program, int w, int h, const std::vector<Grid<double>>& start)
+    Engine(const Rule& rule, Program program, int w, int h, int d, const std::vector<Grid<double>>& start)
         : rule_(rule), program_(std::move(program)), id_(next_id()) {
         chemicals = rule.chemicals;
         width = w;
         height = h;
+        depth = d;
+        rows_ = h * d;
         operations = program_.operations;
         // The instruction that makes a chemical's new value writes it
         // straight into the chemical's next rows (no copy after), where it
@@ -217,22 +220,27 @@ public:
             halo_source_[halo_ + i] = source_column(w + i, w, rule.block_x, rule.wrap, rule.ready_edges);
         }
         for (int c = 0; c < rule.chemicals; ++c)
-            for (int y = 0; y < h; ++y) {
+            for (int y = 0; y < rows_; ++y) {
                 Real* row = state_[0][c].row(y);
                 for (int x = 0; x < w; ++x) row[x] = static_cast<Real>(start[c](y, x));
                 fill_halo(row);
             }
-        for (int dy = -program_.radius_y; dy <= program_.radius_y; ++dy) {
-            std::vector<int> rows(static_cast<std::size_t>(h));
-            for (int y = 0; y < h; ++y) rows[y] = source_row(y + dy, h, rule.wrap, rule.ready_edges);
-            row_at_.push_back(std::move(rows));
-        }
-        // Row y follows row y - 1 in memory for every neighbour row: they can share a chunk.
-        follows_.assign(static_cast<std::size_t>(h), 0);
-        for (int y = 1; y < h; ++y) {
+        // The row of each neighbour at (dy, dz), z as y is: wrapped or clamped.
+        for (int dz = -program_.radius_z; dz <= program_.radius_z; ++dz)
+            for (int dy = -program_.radius_y; dy <= program_.radius_y; ++dy) {
+                std::vector<int> rows(static_cast<std::size_t>(rows_));
+                for (int z = 0; z < d; ++z)
+                    for (int y = 0; y < h; ++y)
+                        rows[z * h + y] = source_row(z + dz, d, rule.wrap, rule.ready_edges) * h +
+                                          source_row(y + dy, h, rule.wrap, rule.ready_edges);
+                row_at_.push_back(std::move(rows));
+            }
+        // Row r follows row r - 1 in memory for every neighbour row: they can share a chunk.
+        follows_.assign(static_cast<std::size_t>(rows_), 0);
+        for (int r = 1; r < rows_; ++r) {
             bool follows = true;
-            for (const std::vector<int>& rows : row_at_) follows &= rows[y] == rows[y - 1] + 1;
-            follows_[y] = follows;
+            for (const std::vector<int>& rows : row_at_) follows &= rows[r] == rows[r - 1] + 1;
+            follows_[r] = follows;
         }
         // x_pos as Ready computes it, for every lane of a chunk of rows (0 outside the grid).
         if (program_.x_pos >= 0) {
@@ -256,7 +264,7 @@ public:
         Failure failure;
         failure.base = steps;
         const int first = current_;
-        parallel_steps(height, steps_wanted, threads, [&](int s, int begin, int end) {
+        parallel_steps(rows_, steps_wanted, threads, [&](int s, int begin, int end) {
             // A failed step still ends on every thread (the first cell in
             // row order wins, whatever the timing); no later step runs.
             if (failure.failed_step.load(std::memory_order_relaxed) < s) return;
@@ -287,9 +295,9 @@ public:
     }
 
     Grid<double> chemical(int i) const override {
-        Grid<double> g(height, width);
+        Grid<double> g(rows_, width);
         const Rows<Real>& rows = state_[current_][i];
-        for (int y = 0; y < height; ++y)
+        for (int y = 0; y < rows_; ++y)
             for (int x = 0; x < width; ++x) g(y, x) = static_cast<double>(rows.row(y)[x]);
         return g;
     }
@@ -366,12 +374,12 @@ private:
     Rows<Real> make_rows() const {
         Rows<Real> r;
         r.width = width;
-        r.height = height;
+        r.height = rows_;
         r.halo = halo_;
         r.stride = stride_;
         const std::ptrdiff_t line = 64 / static_cast<std::ptrdiff_t>(sizeof(Real));
         const std::ptrdiff_t pad = (stride_ + 2 * halo_ + 64 + line - 1) / line * line;
-        r.cells.reset(new Real[static_cast<std::size_t>(stride_ * height + 2 * pad + line)]());
+        r.cells.reset(new Real[static_cast<std::size_t>(stride_ * rows_ + 2 * pad + line)]());
         const std::uintptr_t misaligned = reinterpret_cast<std::uintptr_t>(r.cells.get()) % 64;
         r.offset = pad + (misaligned ? (64 - static_cast<std::ptrdiff_t>(misaligned)) / static_cast<std::ptrdiff_t>(sizeof(Real)) : 0);
         return r;
@@ -384,11 +392,19 @@ private:
         }
     }
 
-    void record_zero(Failure& failure, long long s, int y, int x, const Instr& in, const char* what) {
-        failure.record(s, y, x,
-                       "step " + std::to_string(s + 1) + ", cell (x " + std::to_string(x) + ", y " + std::to_string(y) +
-                           "): " + what + " at line " + std::to_string(in.pos.line) + ", column " +
-                           std::to_string(in.pos.column) + " of the formula");
+    // The cell at column x of row r, as its coordinates: "(x 3, y 5)", "(x 3)" in 1-D, "(x 3, y 5, z 2)" in 3-D.
+    std::string cell_name(int x, int r) const {
+        std::string name = "(x " + std::to_string(x);
+        if (height > 1 || depth > 1) name += ", y " + std::to_string(r % height);
+        if (depth > 1) name += ", z " + std::to_string(r / height);
+        return name + ")";
+    }
+
+    void record_zero(Failure& failure, long long s, int r, int x, const Instr& in, const char* what) {
+        failure.record(s, r, x,
+                       "step " + std::to_string(s + 1) + ", cell " + cell_name(x, r) + ": " + what + " at line " +
+                           std::to_string(in.pos.line) + ", column " + std::to_string(in.pos.column) +
+                           " of the formula");
     }
 
     // Rows y0 .. y0 + rows - 1 of step s (counted from this call's first)
@@ -420,15 +436,21 @@ private:
         const int first_cell = padded ? -x0 : 0, cells = padded ? width : n;
         auto cell_x = [&](int lane) { return (padded ? lane % static_cast<int>(stride_) - halo_ : x0 + lane); };
         auto cell_y = [&](int lane) { return y0 + (padded ? lane / static_cast<int>(stride_) : 0); };
-        for (const Program::Input& in : p.inputs)
-            sc.view[in.reg] = from[in.chemical].row(row_at_[in.dy + p.radius_y][y0]) + x0 + in.dx;
+        for (const Program::Input& in : p.inputs) {
+            const int table = (in.dz + p.radius_z) * (2 * p.radius_y + 1) + in.dy + p.radius_y;
+            sc.view[in.reg] = from[in.chemical].row(row_at_[table][y0]) + x0 + in.dx;
+        }
         if (p.x_pos >= 0) sc.view[p.x_pos] = x_pos_.data() + (padded ? 0 : x0);
-        if (p.y_pos >= 0) {
-            Real* yp = sc.reg[p.y_pos];
-            for (int r = 0; r < rows; ++r)
-                std::fill(yp + r * (padded ? stride_ : 0), yp + (padded ? (r + 1) * stride_ : n),
-                          static_cast<Real>(y0 + r) / static_cast<Real>(height));
-            sc.view[p.y_pos] = yp;
+        // y_pos and z_pos as Ready computes them: index / size.
+        for (const auto& [reg, coordinate, size] : {std::tuple{p.y_pos, 0, height}, std::tuple{p.z_pos, 1, depth}}) {
+            if (reg < 0) continue;
+            Real* pos = sc.reg[reg];
+            for (int r = 0; r < rows; ++r) {
+                const int at = coordinate == 0 ? (y0 + r) % height : (y0 + r) / height;
+                std::fill(pos + r * (padded ? stride_ : 0), pos + (padded ? (r + 1) * stride_ : n),
+                          static_cast<Real>(at) / static_cast<Real>(size));
+            }
+            sc.view[reg] = pos;
         }
         std::uint32_t verify = ~std::uint32_t(0);  // the chemicals whose new values are still to check
         for (std::size_t k = 0; k < p.code.size(); ++k) {
@@ -525,9 +547,9 @@ private:
                     while (std::isfinite(v[bad])) ++bad;
                     failure.record(step, y0 + r, (padded ? 0 : x0) + bad,
                                    "step " + std::to_string(step + 1) + ": chemical " + chemical_name(chem) +
-                                       " became " + (std::isnan(v[bad]) ? "NaN" : "infinite") + " at cell (x " +
-                                       std::to_string((padded ? 0 : x0) + bad) + ", y " + std::to_string(y0 + r) +
-                                       "): the model is unstable here; try a smaller timestep");
+                                       " became " + (std::isnan(v[bad]) ? "NaN" : "infinite") + " at cell " +
+                                       cell_name((padded ? 0 : x0) + bad, y0 + r) +
+                                       ": the model is unstable here; try a smaller timestep");
                     return false;
                 }
             }
@@ -541,10 +563,11 @@ private:
     int halo_ = 0;
     std::ptrdiff_t stride_ = 0, lanes_ = 0;
     int group_most_ = 1;
+    int rows_ = 0;  // height * depth
     std::vector<Rows<Real>> state_[2];
     int current_ = 0;
-    std::vector<std::vector<int>> row_at_;  // [dy + radius_y][y]
-    std::vector<char> follows_;             // row y follows row y - 1 for every dy
+    std::vector<std::vector<int>> row_at_;  // [(dz + radius_z) * (2 radius_y + 1) + dy + radius_y][row]
+    std::vector<char> follows_;             // row r follows row r - 1 for every (dy, dz)
     std::vector<int> halo_source_;          // the halo's source columns: left, then right
     std::vector<Real> x_pos_;
     std::vector<int> writes_output_;  // per instruction: the chemical whose next rows it writes, or -1
@@ -555,23 +578,23 @@ private:
 
 }  // namespace
 
-Run::Run(const Rule& rule, int width, int height, const std::vector<Grid<double>>& start) {
-    rule.validate(width, height);
+Run::Run(const Rule& rule, int width, int height, int depth, const std::vector<Grid<double>>& start) {
+    rule.validate(width, height, depth);
     if (static_cast<int>(start.size()) != rule.chemicals)
         throw std::invalid_argument("the start has " + std::to_string(start.size()) + " chemicals, the rule " +
                                     std::to_string(rule.chemicals));
     for (const Grid<double>& g : start)
-        if (g.rows() != height || g.cols() != width)
+        if (g.rows() != height * depth || g.cols() != width)
             throw std::invalid_argument("a chemical's start is " + std::to_string(g.cols()) + " x " +
                                         std::to_string(g.rows()) + ", not the grid's " + std::to_string(width) +
-                                        " x " + std::to_string(height));
-    Program program = compile(rule);
-    if (program.radius_x * 2 >= width + 8 || program.radius_y > height * 4)
+                                        " x " + std::to_string(height * depth) + " (height x depth rows)");
+    Program program = compile(rule, dimensionality(width, height, depth));
+    if (program.radius_x * 2 >= width + 8 || program.radius_y > height * 4 || program.radius_z > depth * 4)
         throw std::invalid_argument("the grid is too small for the formula's stencils");
     if (rule.double_precision)
-        impl_ = std::make_unique<Engine<double>>(rule, std::move(program), width, height, start);
+        impl_ = std::make_unique<Engine<double>>(rule, std::move(program), width, height, depth, start);
     else
-        impl_ = std::make_unique<Engine<float>>(rule, std::move(program), width, height, start);
+        impl_ = std::make_unique<Engine<float>>(rule, std::move(program), width, height, depth, start);
 }
 
 Run::~Run() = default;
@@ -596,6 +619,9 @@ int Run::width() const {
 }
 int Run::height() const {
     return impl_->height;
+}
+int Run::depth() const {
+    return impl_->depth;
 }
 int Run::operations() const {
     return impl_->operations;

@@ -15,13 +15,18 @@ namespace sim::formula {
 // registers of this many cells, and a cache line more.
 constexpr int chunk_lanes = 2048;
 
-// A run of a rule on a width x height grid (grid(row y, column x)).
+// A run of a rule on a width x height x depth grid. A chemical's cells are
+// a Grid of height * depth rows: the row of (y, z) is z * height + y, its
+// column x.
 class Run {
 public:
-    // Compiles the rule (FormulaError, std::invalid_argument) and loads the
-    // start: one width x height grid per chemical, rounded to the rule's
-    // number type.
-    Run(const Rule& rule, int width, int height, const std::vector<Grid<double>>& start);
+    // Compiles the rule (FormulaError, std::invalid_argument) for the
+    // grid's dimensions (dimensionality()) and loads the start: one grid
+    // per chemical, rounded to the rule's number type.
+    Run(const Rule& rule, int width, int height, int depth, const std::vector<Grid<double>>& start);
+    // A 2-D (or 1-D: height 1) grid.
+    Run(const Rule& rule, int width, int height, const std::vector<Grid<double>>& start)
+        : Run(rule, width, height, 1, start) {}
     ~Run();
     Run(Run&&) noexcept;
     Run& operator=(Run&&) noexcept;
@@ -34,6 +39,7 @@ public:
     long long steps() const;
     int width() const;
     int height() const;
+    int depth() const;
     // Row operations a cell of one step takes: the compiled formula's size.
     int operations() const;
 

@@ -94,7 +94,7 @@ TEST_CASE("a parameter's name cannot inject a setting: it is refused, or it is d
         "ascii-f32.vti",
         {{R"(<initial_pattern_generator apply_when_loading="false" />)",
           R"(<initial_pattern_generator apply_when_loading="true"><overlay chemical="a"><overwrite /><parameter name=")" +
-              injected + R"(" /><pixel x="3" y="2" z="5" /></overlay><overlay chemical="a"><overwrite /><constant value="0.5" /><everywhere /></overlay></initial_pattern_generator>)"}},
+              injected + R"(" /><pixel x="-3" y="2" z="5" /></overlay><overlay chemical="a"><overwrite /><constant value="0.5" /><everywhere /></overlay></initial_pattern_generator>)"}},
         "overlay.vti");
     const auto converted = testkit::figgen("convert " + overlay.string());
     INFO(converted.output);
@@ -214,7 +214,7 @@ TEST_CASE("plain words: describe of a pattern, any case of .vti, meshes, long id
     testkit::spill(text, "just some notes\n");
     CHECK_THAT(refused("render " + text.string()), Contains("notes.vti: "));
     CHECK_THAT(refused("render " + edited("ascii-f32.vti", {{R"(type="formula")", R"(type="inbuilt")"}}, "inbuilt.vti").string()),
-               Contains("its rule is type \"inbuilt\": figgen runs formula rules"));
+               Contains("its rule is Ready's inbuilt \"Test rule\": figgen runs Ready's inbuilt Gray-Scott and formula rules"));
     // A 5,000-character id: an unknown figure id, exit 2.
     CHECK_THAT(refused("render " + std::string(5000, 'x')), Contains("unknown figure id 'xxxx"));
     const auto long_describe = testkit::figgen("describe " + std::string(5000, 'x'));

@@ -95,7 +95,7 @@ TEST_CASE("a pattern's overlays become the description's initial, in Ready's ord
       <overlay chemical="b"><add /><white_noise low="0" high="0.25" /><rectangle><point3D x="0.1" y="0.2" z="0" /><point3D x="0.5" y="0.6" z="1" /></rectangle></overlay>
       <overlay chemical="b"><multiply /><gaussian height="2" sigma="0.1"><point3D x="0.5" y="0.5" z="0.5" /></gaussian><circle radius="0.25"><point3d x="0.5" y="0.5" z="0" /></circle></overlay>
       <overlay chemical="a"><subtract /><parameter name="D" /><pixel x="3" y="2" z="0" /></overlay>
-      <overlay chemical="a"><divide /><other_chemical chemical="b" /><pixel x="3" y="2" z="1" /></overlay>
+      <overlay chemical="a"><divide /><other_chemical chemical="b" /><pixel x="3" y="-1" z="1" /></overlay>
     </initial_pattern_generator>)";
     const fs::path file = edited("ascii-f32.vti", R"(<initial_pattern_generator apply_when_loading="false" />)",
                                  generator, "overlays.vti");
@@ -105,7 +105,7 @@ TEST_CASE("a pattern's overlays become the description's initial, in Ready's ord
     const description::Description d = ready::load_pattern(file);
     CHECK(d.where("params.initial[2].shapes") == "overlays.vti <overlay> 3 of <initial_pattern_generator>");
     const toml::array& initial = *d.params["initial"].as_array();
-    REQUIRE(initial.size() == 4);  // the last one's pixel lies off a 2-D grid: it never applies
+    REQUIRE(initial.size() == 4);  // the last one's pixel lies off the grid (y = -1): it never applies
     CHECK(initial[0].as_table()->at("fill").value_or(std::string()) == "constant");
     CHECK(initial[1].as_table()->at("operation").value_or(std::string()) == "add");
     const toml::table& rect = *initial[1].as_table()->at("shapes").as_array()->get(0)->as_table();
@@ -122,11 +122,12 @@ TEST_CASE("a pattern's overlays become the description's initial, in Ready's ord
 TEST_CASE("what figgen cannot run is refused in one line that says what", "[ready]") {
     using Catch::Contains;
     CHECK_THAT(refusal(edited("ascii-f32.vti", R"(type="formula")", R"(type="kernel")", "kernel.vti")),
-               Contains("its rule is type \"kernel\": figgen runs formula rules"));
-    CHECK_THAT(refusal(edited("ascii-f32.vti", R"(WholeExtent="0 7 0 5 0 0")", R"(WholeExtent="0 7 0 5 0 3")", "3d.vti")),
-               Contains("it is 3-D (8 x 6 x 4): figgen runs 2-D patterns"));
-    CHECK_THAT(refusal(edited("ascii-f32.vti", R"(WholeExtent="0 7 0 5 0 0")", R"(WholeExtent="0 7 0 0 0 0")", "1d.vti")),
-               Contains("it is 1-D (8 cells)"));
+               Contains("its rule is type \"kernel\": figgen runs formula rules (type=\"formula\") and Ready's "
+                        "inbuilt Gray-Scott, not full OpenCL kernels yet"));
+    CHECK_THAT(refusal(edited("ascii-f32.vti", R"(WholeExtent="0 7 0 5 0 0")", R"(WholeExtent="0 4095 0 4095 0 1")",
+                              "big3d.vti")),
+               Contains("its extent is 4096 x 4096 x 2: figgen runs grids of up to 4096 cells a side and 4096 x 4096 "
+                        "cells in all"));
     CHECK_THAT(refusal(edited("ascii-f32.vti", R"(type="ImageData")", R"(type="UnstructuredGrid")", "mesh.vti")),
                Contains("not meshes"));
     CHECK_THAT(refusal(edited("binary-f32.vti", R"(byte_order="LittleEndian")", R"(byte_order="BigEndian")", "big.vti")),
@@ -231,4 +232,85 @@ TEST_CASE("figgen convert prints the description, or writes OUT/ID.toml", "[read
     CHECK(d.panels == p.panels);
     const auto refused = testkit::figgen("convert " + (fixtures / "make_files.py").string());
     CHECK(refused.status == 2);
+}
+
+// The fixture as a 1-D or 3-D pattern whose start is drawn by its overlays:
+// a = 0.5 everywhere, b = 1 in a ball (a segment in 1-D) at the centre.
+fs::path grid_pattern(const std::string& extent, const std::string& name) {
+    std::string text = testkit::slurp(fixtures / "ascii-f32.vti");
+    for (const std::string from : {"WholeExtent=\"0 7 0 5 0 0\"", "Extent=\"0 7 0 5 0 0\""}) {
+        const std::size_t at = text.find(from);
+        REQUIRE(at != std::string::npos);
+        text.replace(at, from.size(), from.substr(0, from.find('"') + 1) + extent + "\"");
+    }
+    const std::string generator = R"(<initial_pattern_generator apply_when_loading="false" />)";
+    text.replace(text.find(generator), generator.size(), R"(<initial_pattern_generator apply_when_loading="true">
+      <overlay chemical="a"><overwrite /><constant value="0.5" /><everywhere /></overlay>
+      <overlay chemical="b"><overwrite /><constant value="1" /><circle radius="0.2"><point3D x="0.5" y="0.5" z="0.5" /></circle></overlay>
+    </initial_pattern_generator>)");
+    const fs::path dir = testkit::fresh_dir("vti-grids");
+    testkit::spill(dir / name, text);
+    return dir / name;
+}
+
+TEST_CASE("1-D and 3-D patterns run, write VTI files VTK reads, and continue from them", "[ready]") {
+    struct Case {
+        std::string extent, name, dimensions;
+    };
+    for (const Case& c : {Case{"0 15 0 0 0 0", "line.vti", "(16, 1, 1)"}, Case{"0 7 0 5 0 3", "solid.vti", "(8, 6, 4)"}}) {
+        const fs::path pattern = grid_pattern(c.extent, c.name);
+        const std::string id = fs::path(c.name).stem().string();
+        const fs::path out = testkit::fresh_dir("vti-grids-out");
+        const auto run = testkit::figgen("render " + pattern.string() + " --set steps=6 --format png,pdf,vti --scale 0.5 --out " +
+                                         out.string());
+        INFO(run.output);
+        REQUIRE(run.status == 0);
+        CHECK(fs::file_size(out / (id + ".pdf")) > 1000);
+        const auto meta = nlohmann::json::parse(testkit::slurp(out / (id + ".json")));
+        const std::string last_hash = meta["panels"].back()["state_sha256"];
+        const std::string script =
+            "import hashlib, vtkmodules.all as v\n"
+            "from vtkmodules.util.numpy_support import vtk_to_numpy\n"
+            "r = v.vtkXMLImageDataReader(); r.SetFileName('" + (out / (id + ".vti")).string() + "'); r.Update()\n"
+            "im = r.GetOutput(); d = im.GetPointData()\n"
+            "print(im.GetDimensions())\n"
+            "h = hashlib.sha256()\n"
+            "for n in 'ab': h.update(vtk_to_numpy(d.GetArray(n)).astype('<f8').tobytes())\n"
+            "print(h.hexdigest())\n";
+        testkit::spill(out / "read.py", script);
+        const auto vtk = testkit::run_command("/usr/bin/python3 " + (out / "read.py").string());
+        INFO(vtk.output);
+        REQUIRE(vtk.status == 0);
+        CHECK_THAT(vtk.output, Catch::Contains(c.dimensions));
+        CHECK_THAT(vtk.output, Catch::Contains(last_hash));
+        // 6 steps from figgen's file are 12 from the pattern's start.
+        const fs::path again = testkit::fresh_dir("vti-grids-again");
+        REQUIRE(testkit::figgen("render " + (out / (id + ".vti")).string() + " --set steps=6 --format png --scale 0.5 --set id=six --out " +
+                                again.string()).status == 0);
+        REQUIRE(testkit::figgen("render " + pattern.string() + " --set steps=12 --format png --scale 0.5 --set id=twelve --out " +
+                                again.string()).status == 0);
+        const auto m6 = nlohmann::json::parse(testkit::slurp(again / "six.json"));
+        const auto m12 = nlohmann::json::parse(testkit::slurp(again / "twelve.json"));
+        CHECK(m6["panels"].back()["state_sha256"] == m12["panels"].back()["state_sha256"]);
+    }
+}
+
+TEST_CASE("Ready's inbuilt Gray-Scott reads as the formula it computes", "[ready]") {
+    std::string text = testkit::slurp(fixtures / "ascii-f32.vti");
+    const std::size_t from = text.find("<rule"), to = text.find("</rule>") + 7;
+    text.replace(from, to - from, R"(<rule type="inbuilt" name="Gray-Scott" wrap="0">
+      <param name="timestep">1</param><param name="D_a">0.2</param><param name="D_b">0.1</param>
+      <param name="k">0.064</param><param name="F">0.035</param></rule>)");
+    const fs::path dir = testkit::fresh_dir("vti-inbuilt");
+    testkit::spill(dir / "inbuilt.vti", text);
+    const description::Description d = ready::load_pattern(dir / "inbuilt.vti");
+    CHECK(d.params["block_x"].value_or(0) == 1);
+    CHECK(d.params["ready_edges"].value_or(true) == false);
+    CHECK(d.params["wrap"].value_or(true) == false);
+    CHECK_THAT(d.params["formula"].value_or(std::string()), Catch::Contains("float dda = a_s + a_n + a_w + a_e + a_d + a_u - 6*a;"));
+    CHECK(d.where("params.formula") == "inbuilt.vti <rule type=\"inbuilt\" name=\"Gray-Scott\">");
+    const auto run = testkit::figgen("render " + (dir / "inbuilt.vti").string() + " --set steps=3 --format png --scale 0.3 --out " +
+                                     (dir / "out").string());
+    INFO(run.output);
+    CHECK(run.status == 0);
 }

@@ -1,0 +1,40 @@
+#pragma once
+// The surface where a 3-D field crosses a level, as lit facets with smooth
+// normals, for draw_tubes (render/tubes.hpp): marching tetrahedra. Each cube
+// of eight neighbouring cells is cut into six tetrahedra about its main
+// diagonal (Kuhn's triangulation: neighbouring cubes cut their shared face
+// along the same diagonal, so the surface has no cracks); a tetrahedron
+// whose corners lie on both sides of the level holds one or two triangles,
+// their corners where the field, interpolated linearly along an edge,
+// equals the level. A corner's normal is the field's gradient there
+// (central differences, one-sided at the grid's faces), interpolated the
+// same way and pointing out of the region above the level; each triangle
+// is wound so that its front faces the same way.
+
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "render/tubes.hpp"
+
+namespace render {
+
+struct IsosurfaceGrid {
+    int nx = 0, ny = 0, nz = 0;       // cells along x, y, z
+    std::span<const double> values;   // nx * ny * nz, x fastest, then y, then z
+};
+
+// The facets of the level surface in world coordinates: the cell (x, y, z)
+// at world (x, y, z) * spacing. Sampled every `stride` cells along each
+// axis (1: every cell). Throws std::invalid_argument for a grid whose
+// values do not match its size or a level that is not finite.
+std::vector<Facet> isosurface(const IsosurfaceGrid& grid, double level, const glm::vec4& colour, int stride = 1);
+
+// The least stride (1, 2, 3, ...) at which the surface has at most
+// `most_facets` facets, and those facets: a grid too fine for the budget is
+// sampled more coarsely, the same way every time.
+std::vector<Facet> isosurface_within(const IsosurfaceGrid& grid, double level, const glm::vec4& colour,
+                                     long long most_facets, int* stride_used = nullptr);
+
+}  // namespace render

@@ -1,0 +1,74 @@
+// The isosurface of a 3-D field (render/isosurface.hpp) against geometry:
+// a sphere's surface lies at its radius, its normals point out, its area is
+// 4 pi r^2, and it is closed (every edge shared by two facets).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <tuple>
+#include <vector>
+
+#include "render/isosurface.hpp"
+
+namespace {
+
+// r - |p - c| on an n^3 grid: above 0 inside a ball of radius r.
+std::vector<double> ball(int n, double r, glm::dvec3 c) {
+    std::vector<double> v(static_cast<std::size_t>(n) * n * n);
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x)
+                v[(static_cast<std::size_t>(z) * n + y) * n + x] = r - glm::length(glm::dvec3(x, y, z) - c);
+    return v;
+}
+
+}  // namespace
+
+TEST_CASE("a ball's isosurface is a closed sphere of its radius, its normals outward", "[isosurface]") {
+    const int n = 32;
+    const double r = 10;
+    const glm::dvec3 c(15.3, 16.1, 15.7);
+    const std::vector<double> v = ball(n, r, c);
+    const std::vector<render::Facet> facets = render::isosurface({n, n, n, v}, 0.0, {1, 1, 1, 1});
+    REQUIRE(facets.size() > 1000);
+    double area = 0;
+    // Each edge, by its corners' positions in order, and how many facets hold it.
+    std::map<std::tuple<float, float, float, float, float, float>, int> edges;
+    for (const render::Facet& f : facets) {
+        for (const glm::vec3* p : {&f.a, &f.b, &f.c}) REQUIRE(std::abs(glm::length(glm::dvec3(*p) - c) - r) < 0.1);
+        // Wound so that its front faces out, as its normals do.
+        const glm::vec3 across = glm::cross(f.b - f.a, f.c - f.a);
+        const glm::vec3 centre = (f.a + f.b + f.c) / 3.0f;
+        CHECK(glm::dot(across, centre - glm::vec3(c)) >= 0);
+        for (const glm::vec3* normal : {&f.na, &f.nb, &f.nc})
+            CHECK(glm::dot(glm::normalize(*normal), glm::normalize(centre - glm::vec3(c))) > 0.95);
+        area += 0.5 * glm::length(across);
+        const glm::vec3 corner[3] = {f.a, f.b, f.c};
+        for (int k = 0; k < 3; ++k) {
+            glm::vec3 p = corner[k], q = corner[(k + 1) % 3];
+            if (std::tie(q.x, q.y, q.z) < std::tie(p.x, p.y, p.z)) std::swap(p, q);
+            ++edges[{p.x, p.y, p.z, q.x, q.y, q.z}];
+        }
+    }
+    CHECK(area == Approx(4 * std::numbers::pi * r * r).epsilon(0.02));
+    int open = 0;
+    for (const auto& [edge, count] : edges) open += count != 2;
+    CHECK(open == 0);
+}
+
+TEST_CASE("a field all on one side of the level has no isosurface, a coarser one has fewer facets", "[isosurface]") {
+    const int n = 24;
+    const std::vector<double> v = ball(n, 8, {11.5, 11.5, 11.5});
+    CHECK(render::isosurface({n, n, n, v}, 100.0, {1, 1, 1, 1}).empty());
+    CHECK(render::isosurface({n, n, n, v}, -100.0, {1, 1, 1, 1}).empty());
+    const auto fine = render::isosurface({n, n, n, v}, 0.0, {1, 1, 1, 1});
+    int stride = 0;
+    const auto coarse = render::isosurface_within({n, n, n, v}, 0.0, {1, 1, 1, 1}, static_cast<long long>(fine.size() / 2), &stride);
+    CHECK(stride >= 2);
+    CHECK(coarse.size() <= fine.size() / 2);
+    CHECK(!coarse.empty());
+    CHECK_THROWS_AS(render::isosurface({n, n, n, std::span<const double>(v).first(10)}, 0.0, {1, 1, 1, 1}),
+                    std::invalid_argument);
+    CHECK_THROWS_AS(render::isosurface({n, n, n, v}, std::nan(""), {1, 1, 1, 1}), std::invalid_argument);
+}
