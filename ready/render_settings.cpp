@@ -71,6 +71,8 @@ toml::table style_of(const XMLElement* rs, int chemicals) {
         const double level = as_float(attribute(e, "value", 0.25));
         if (std::isfinite(level) && std::fabs(level) <= 1e30) s.insert("contour_level", level);
     }
+    if (const XMLElement* e = value("invert_contour_cap"))
+        if (text_attribute(e, "value", "false") == "true") s.insert("contour_inside", "below");
     return s;
 }
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -18,12 +19,14 @@ struct Sampled {
     const IsosurfaceGrid& grid;
     int stride;
     int sx, sy, sz;  // sample points along each axis
+    bool capped;     // a sample beyond each face, below the level
+    double sign;     // 1, or -1 when the region inside is below the level: the walk sees sign * value
 
     // The sample point (i, j, k): the cell at stride times it, the last
     // sample on the grid's far face.
-    int cell(int i, int samples, int n) const { return i == samples - 1 ? n - 1 : i * stride; }
+    int cell(int i, int samples, int n) const { return i >= samples - 1 ? n - 1 : i <= 0 ? 0 : i * stride; }
     double value_at(int x, int y, int z) const {
-        return grid.values[(static_cast<std::size_t>(z) * grid.ny + y) * grid.nx + x];
+        return sign * grid.values[(static_cast<std::size_t>(z) * grid.ny + y) * grid.nx + x];
     }
     // The field's gradient at a cell, as a normal pointing down it (out of the region above the level).
     glm::vec3 normal_at(int x, int y, int z) const {
@@ -42,10 +45,15 @@ struct Sampled {
 struct Corner {
     glm::vec3 position, normal;
     double value;
+    bool beyond = false;  // a sample past a face of the grid (capping): below the level, its normal facing out
 };
 
-// Walks the sampled cubes; emit(a, b, c) gets each triangle's corners
-// (position, normal), wound to face along the normals.
+// Walks the sampled cubes; emit(a, na, b, nb, c, nc) gets each triangle's
+// corners and normals, wound to face along the normals. Capped, the walk
+// goes one sample past each face: a sample there is below the level and
+// its normal faces out; an edge from a corner on the face to it is cut at
+// that corner, so the region above the level is closed by flat caps on the
+// grid's faces.
 template <class Emit>
 void march(const Sampled& s, double level, Emit&& emit) {
     struct Point {
@@ -56,47 +64,56 @@ void march(const Sampled& s, double level, Emit&& emit) {
     auto cut = [&](const Corner& p, const Corner& q) {
         const Corner& a = p.value > level ? p : q;
         const Corner& b = p.value > level ? q : p;
+        // Past a face: the cap's corner is the inside corner itself, which lies on the face.
+        if (b.beyond) return Point{a.position, b.normal};
         const double t = (level - a.value) / (b.value - a.value);
         const float f = static_cast<float>(std::clamp(t, 0.0, 1.0));
         return Point{a.position + f * (b.position - a.position), a.normal + f * (b.normal - a.normal)};
     };
     auto triangle = [&](const Point& a, const Point& b, const Point& c) {
         const glm::vec3 across = glm::cross(b.position - a.position, c.position - a.position);
-        if (glm::dot(across, a.normal + b.normal + c.normal) < 0) emit(a.position, a.normal, c.position, c.normal, b.position, b.normal);
-        else emit(a.position, a.normal, b.position, b.normal, c.position, c.normal);
+        if (glm::dot(across, a.normal + b.normal + c.normal) < 0)
+            emit(a.position, a.normal, c.position, c.normal, b.position, b.normal);
+        else
+            emit(a.position, a.normal, b.position, b.normal, c.position, c.normal);
     };
+    const int first = s.capped ? -1 : 0;
     std::array<Corner, 8> corner;
-    for (int k = 0; k + 1 < s.sz; ++k)
-        for (int j = 0; j + 1 < s.sy; ++j)
-            for (int i = 0; i + 1 < s.sx; ++i) {
+    for (int k = first; k + 1 < s.sz + (s.capped ? 1 : 0); ++k)
+        for (int j = first; j + 1 < s.sy + (s.capped ? 1 : 0); ++j)
+            for (int i = first; i + 1 < s.sx + (s.capped ? 1 : 0); ++i) {
                 int above = 0;
+                int x[8], y[8], z[8];
+                glm::vec3 out[8];
                 for (int c = 0; c < 8; ++c) {
-                    const int x = s.cell(i + (c & 1), s.sx, s.grid.nx), y = s.cell(j + (c >> 1 & 1), s.sy, s.grid.ny),
-                              z = s.cell(k + (c >> 2 & 1), s.sz, s.grid.nz);
-                    corner[c].value = s.value_at(x, y, z);
+                    const int si = i + (c & 1), sj = j + (c >> 1 & 1), sk = k + (c >> 2 & 1);
+                    x[c] = s.cell(si, s.sx, s.grid.nx), y[c] = s.cell(sj, s.sy, s.grid.ny), z[c] = s.cell(sk, s.sz, s.grid.nz);
+                    out[c] = glm::vec3(si < 0 ? -1.0f : si >= s.sx ? 1.0f : 0.0f, sj < 0 ? -1.0f : sj >= s.sy ? 1.0f : 0.0f,
+                                       sk < 0 ? -1.0f : sk >= s.sz ? 1.0f : 0.0f);
+                    corner[c].beyond = out[c] != glm::vec3(0);
+                    corner[c].value = corner[c].beyond ? -std::numeric_limits<double>::infinity()
+                                                       : s.value_at(x[c], y[c], z[c]);
                     above += corner[c].value > level;
                 }
                 if (above == 0 || above == 8) continue;
                 for (int c = 0; c < 8; ++c) {
-                    const int x = s.cell(i + (c & 1), s.sx, s.grid.nx), y = s.cell(j + (c >> 1 & 1), s.sy, s.grid.ny),
-                              z = s.cell(k + (c >> 2 & 1), s.sz, s.grid.nz);
-                    corner[c].position = glm::vec3(float(x), float(y), float(z));
-                    corner[c].normal = s.normal_at(x, y, z);
+                    corner[c].position = glm::vec3(float(x[c]), float(y[c]), float(z[c]));
+                    corner[c].normal = corner[c].beyond ? out[c] : s.normal_at(x[c], y[c], z[c]);
                 }
                 for (const auto& t : tetrahedra) {
-                    int in[4], out[4], n_in = 0, n_out = 0;
-                    for (int v : t) (corner[v].value > level ? in[n_in++] : out[n_out++]) = v;
-                    if (n_in == 0 || n_out == 0) continue;
-                    if (n_in == 1 || n_out == 1) {
+                    int in[4], below[4], n_in = 0, n_below = 0;
+                    for (int v : t) (corner[v].value > level ? in[n_in++] : below[n_below++]) = v;
+                    if (n_in == 0 || n_below == 0) continue;
+                    if (n_in == 1 || n_below == 1) {
                         // One corner apart from the other three: a triangle across its three edges.
-                        const int lone = n_in == 1 ? in[0] : out[0];
-                        const int* rest = n_in == 1 ? out : in;
+                        const int lone = n_in == 1 ? in[0] : below[0];
+                        const int* rest = n_in == 1 ? below : in;
                         triangle(cut(corner[lone], corner[rest[0]]), cut(corner[lone], corner[rest[1]]),
                                  cut(corner[lone], corner[rest[2]]));
                     } else {
                         // Two and two: a quad across four edges, as two triangles.
-                        const Point p = cut(corner[in[0]], corner[out[0]]), q = cut(corner[in[0]], corner[out[1]]),
-                                    r = cut(corner[in[1]], corner[out[1]]), u = cut(corner[in[1]], corner[out[0]]);
+                        const Point p = cut(corner[in[0]], corner[below[0]]), q = cut(corner[in[0]], corner[below[1]]),
+                                    r = cut(corner[in[1]], corner[below[1]]), u = cut(corner[in[1]], corner[below[0]]);
                         triangle(p, q, r);
                         triangle(p, r, u);
                     }
@@ -112,7 +129,8 @@ Sampled sampled(const IsosurfaceGrid& grid, double level, int stride) {
     if (!std::isfinite(level)) throw std::invalid_argument("isosurface: the level is not a finite number");
     if (stride < 1) throw std::invalid_argument("isosurface: the stride is below 1");
     auto samples = [&](int n) { return n == 1 ? 1 : (n - 1 + stride - 1) / stride + 1; };
-    return {grid, stride, samples(grid.nx), samples(grid.ny), samples(grid.nz)};
+    return {grid, stride, samples(grid.nx), samples(grid.ny), samples(grid.nz), grid.capped,
+            grid.inside_below ? -1.0 : 1.0};
 }
 
 }  // namespace
@@ -120,7 +138,7 @@ Sampled sampled(const IsosurfaceGrid& grid, double level, int stride) {
 std::vector<Facet> isosurface(const IsosurfaceGrid& grid, double level, const glm::vec4& colour, int stride) {
     const Sampled s = sampled(grid, level, stride);
     std::vector<Facet> facets;
-    march(s, level, [&](glm::vec3 a, glm::vec3 na, glm::vec3 b, glm::vec3 nb, glm::vec3 c, glm::vec3 nc) {
+    march(s, s.sign * level, [&](glm::vec3 a, glm::vec3 na, glm::vec3 b, glm::vec3 nb, glm::vec3 c, glm::vec3 nc) {
         facets.push_back({a, b, c, colour, na, nb, nc});
     });
     return facets;
@@ -130,7 +148,8 @@ std::vector<Facet> isosurface_within(const IsosurfaceGrid& grid, double level, c
                                      long long most_facets, int* stride_used) {
     for (int stride = 1;; ++stride) {
         long long count = 0;
-        march(sampled(grid, level, stride), level, [&](auto&&...) { ++count; });
+        const Sampled s = sampled(grid, level, stride);
+        march(s, s.sign * level, [&](auto&&...) { ++count; });
         if (count <= most_facets || stride >= std::max({grid.nx, grid.ny, grid.nz})) {
             if (stride_used) *stride_used = stride;
             return isosurface(grid, level, colour, stride);

@@ -9,7 +9,8 @@
 // equals the level. A corner's normal is the field's gradient there
 // (central differences, one-sided at the grid's faces), interpolated the
 // same way and pointing out of the region above the level; each triangle
-// is wound so that its front faces the same way.
+// is wound so that its front faces the same way. Capped, the region above
+// the level is closed where it meets the grid's faces.
 
 #include <span>
 #include <vector>
@@ -23,6 +24,12 @@ namespace render {
 struct IsosurfaceGrid {
     int nx = 0, ny = 0, nz = 0;       // cells along x, y, z
     std::span<const double> values;   // nx * ny * nz, x fastest, then y, then z
+    // Closed by flat caps where the region above the level meets the
+    // grid's faces (Ready's cap_contour); open there when false.
+    bool capped = true;
+    // The region the surface closes: the values above the level, or
+    // below it (Ready's invert_contour_cap); its normals point out of it.
+    bool inside_below = false;
 };
 
 // The facets of the level surface in world coordinates: the cell (x, y, z)

@@ -49,6 +49,7 @@ struct Style {
     std::vector<int> shown{0};
     bool upper = false;
     double contour_level = 0.25;  // a 3-D grid's isosurface: Ready's default level
+    bool contour_below = false;   // the isosurface closes the values below the level
     std::vector<FieldSpec> chemicals;  // each chemical's drawing, read and checked; those shown are drawn
 };
 
@@ -77,6 +78,9 @@ Schema<Style> style_schema(int chemicals) {
              "where y = 0 is drawn: lower (Ready's, y up) or upper (the book's arrays, row 0 on top)");
     s.number("contour_level", &Style::contour_level,
              "a 3-D grid's isosurface: the first chemical shown at this value (Ready's contour_level)", -1e30, 1e30);
+    s.choice("contour_inside", &Style::contour_below, {{"above", false}, {"below", true}},
+             "the region a 3-D grid's isosurface closes (capped on the grid's faces): the values above "
+             "contour_level, or below it (Ready's invert_contour_cap)");
     for (int c = 0; c < chemicals; ++c)
         s.part_at(
             field_spec_schema(), [c](auto& v) -> auto& { return v.chemicals[static_cast<std::size_t>(c)]; },
@@ -264,6 +268,7 @@ private:
         render::Axes plot;
         plot.x_range = {0.0, double(m_.width - 1)};
         plot.x_label = "x (cells)";
+        plot.y_label = shown == 1 ? formula::chemical_name(s_.shown.front()) : "value";
         plot.title = format_step("step {step}", step);
         static const glm::vec4 palette[] = {{0.12f, 0.47f, 0.71f, 1}, {1.0f, 0.5f, 0.05f, 1},
                                             {0.17f, 0.63f, 0.17f, 1}, {0.84f, 0.15f, 0.16f, 1}};
@@ -343,8 +348,9 @@ private:
         const double lo = spec.vmin.value_or(0.0), hi = spec.vmax.value_or(1.0);
         const double t = hi > lo ? (s_.contour_level - lo) / (hi - lo) : 0.5;
         const glm::vec4 colour(spec.colormap.at(std::clamp(t, 0.0, 1.0)), 1.0f);
-        std::vector<render::Facet> facets = render::isosurface_within(
-            {m_.width, m_.height, m_.depth, cells.cells()}, s_.contour_level, colour, most_facets);
+        render::IsosurfaceGrid grid{m_.width, m_.height, m_.depth, cells.cells()};
+        grid.inside_below = s_.contour_below;
+        std::vector<render::Facet> facets = render::isosurface_within(grid, s_.contour_level, colour, most_facets);
         // The grid's z up on the page: world (x, z, -y), a rotation (windings keep their sense).
         auto turn = [](glm::vec3& v) { v = glm::vec3(v.x, v.z, -v.y); };
         for (render::Facet& f : facets)
@@ -372,7 +378,13 @@ private:
                 edges.push_back({a, b, r, r, grey});
             }
         const render::Camera camera = render::frame_bounds(lo, hi, 35, 25, view.w / view.h);
-        render::draw_tubes(surface, view, edges, facets, camera, render::Light{}, 8);
+        // Lit from over the viewer's left shoulder: every face the eye sees is lit, the ones
+        // turned up and to the left the most.
+        const glm::vec3 back = glm::normalize(camera.eye - camera.target);
+        const glm::vec3 left = glm::normalize(glm::cross(back, camera.up));
+        render::Light light;
+        light.direction = 0.8f * back + 0.5f * camera.up + 0.3f * left;
+        render::draw_tubes(surface, view, edges, facets, camera, light, 8);
     }
 
     // The three slices through the centre: z = depth/2 (x across, y up),
@@ -427,7 +439,10 @@ private:
         nlohmann::json meta = {{"params", params_.used()},
                                {"style", style_.used()},
                                {"panels", panel_meta},
-                               {"isosurface", {{"level", s_.contour_level}, {"facets", facets.size()}}},
+                               {"isosurface",
+                                {{"level", s_.contour_level},
+                                 {"inside", s_.contour_below ? "below" : "above"},
+                                 {"facets", facets.size()}}},
                                {"model_operations", model.operations()}};
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         const double scale = options_.scale;

@@ -4,7 +4,7 @@ docs/ready-patterns.md's table.
 
     RDY_BUILD=build-rdy /usr/bin/python3 scripts/ready/compare.py READY/Patterns WORK > docs/ready-patterns.md
 
-(build/figgen must not be rebuilt while it runs.)
+(build/figgen must not be rebuilt while it runs; FIGGEN=path runs another copy.)
 
 Every .vti and .vtu under Patterns/ is listed with its kind: its rule
 (formula, inbuilt, kernel) and its grid (1-D, 2-D, 3-D image, or a mesh).
@@ -23,7 +23,7 @@ import vtkmodules.all as vtk
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-FIGGEN = os.path.join(HERE, '..', '..', 'build', 'figgen')
+FIGGEN = os.environ.get('FIGGEN', os.path.join(HERE, '..', '..', 'build', 'figgen'))
 
 
 def arrays(path):

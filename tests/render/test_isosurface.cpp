@@ -57,11 +57,18 @@ TEST_CASE("a ball's isosurface is a closed sphere of its radius, its normals out
     CHECK(open == 0);
 }
 
-TEST_CASE("a field all on one side of the level has no isosurface, a coarser one has fewer facets", "[isosurface]") {
+TEST_CASE("a field all below the level has no isosurface, all above it is the capped box, a coarser one has fewer facets", "[isosurface]") {
     const int n = 24;
     const std::vector<double> v = ball(n, 8, {11.5, 11.5, 11.5});
     CHECK(render::isosurface({n, n, n, v}, 100.0, {1, 1, 1, 1}).empty());
-    CHECK(render::isosurface({n, n, n, v}, -100.0, {1, 1, 1, 1}).empty());
+    render::IsosurfaceGrid open{n, n, n, v};
+    open.capped = false;
+    CHECK(render::isosurface(open, -100.0, {1, 1, 1, 1}).empty());
+    // All above the level and capped: the grid's box.
+    double box = 0;
+    for (const render::Facet& f : render::isosurface({n, n, n, v}, -100.0, {1, 1, 1, 1}))
+        box += 0.5 * glm::length(glm::cross(f.b - f.a, f.c - f.a));
+    CHECK(box == Approx(6.0 * (n - 1) * (n - 1)));
     const auto fine = render::isosurface({n, n, n, v}, 0.0, {1, 1, 1, 1});
     int stride = 0;
     const auto coarse = render::isosurface_within({n, n, n, v}, 0.0, {1, 1, 1, 1}, static_cast<long long>(fine.size() / 2), &stride);
@@ -71,4 +78,49 @@ TEST_CASE("a field all on one side of the level has no isosurface, a coarser one
     CHECK_THROWS_AS(render::isosurface({n, n, n, std::span<const double>(v).first(10)}, 0.0, {1, 1, 1, 1}),
                     std::invalid_argument);
     CHECK_THROWS_AS(render::isosurface({n, n, n, v}, std::nan(""), {1, 1, 1, 1}), std::invalid_argument);
+}
+
+TEST_CASE("where the region meets the grid's faces, caps close it", "[isosurface]") {
+    // x - 10.5 above 0: the slab 10.5 <= x <= 23 of a 24^3 grid (cells 0 .. 23).
+    const int n = 24;
+    std::vector<double> v(static_cast<std::size_t>(n) * n * n);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<double>(i % n) - 10.5;
+    auto area = [](const std::vector<render::Facet>& facets) {
+        double sum = 0;
+        for (const render::Facet& f : facets) sum += 0.5 * glm::length(glm::cross(f.b - f.a, f.c - f.a));
+        return sum;
+    };
+    render::IsosurfaceGrid grid{n, n, n, v};
+    grid.capped = false;
+    CHECK(area(render::isosurface(grid, 0.0, {1, 1, 1, 1})) == Approx(23.0 * 23.0));
+    grid.capped = true;
+    const auto closed = render::isosurface(grid, 0.0, {1, 1, 1, 1});
+    // The plane, the far face, and four sides of 12.5 x 23.
+    CHECK(area(closed) == Approx(2 * 23.0 * 23.0 + 4 * 12.5 * 23.0));
+    // Every facet faces out of the slab.
+    for (const render::Facet& f : closed) {
+        const glm::vec3 across = glm::cross(f.b - f.a, f.c - f.a);
+        if (glm::length(across) == 0) continue;
+        const glm::vec3 centre = (f.a + f.b + f.c) / 3.0f;
+        CHECK(glm::dot(across, centre - glm::vec3(16.75f, 11.5f, 11.5f)) > 0);
+    }
+}
+
+TEST_CASE("the region below the level is closed the same way, its normals out of it", "[isosurface]") {
+    // The ball as the values below the level of its negation.
+    const int n = 24;
+    std::vector<double> v(static_cast<std::size_t>(n) * n * n);
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x)
+                v[(static_cast<std::size_t>(z) * n + y) * n + x] = glm::length(glm::dvec3(x, y, z) - glm::dvec3(11.5)) - 8;
+    render::IsosurfaceGrid grid{n, n, n, v};
+    grid.inside_below = true;
+    const auto facets = render::isosurface(grid, 0.0, {1, 1, 1, 1});
+    REQUIRE(!facets.empty());
+    for (const render::Facet& f : facets) {
+        const glm::vec3 centre = (f.a + f.b + f.c) / 3.0f - glm::vec3(11.5f);
+        CHECK(glm::dot(glm::cross(f.b - f.a, f.c - f.a), centre) >= 0);
+        CHECK(glm::dot(f.na, centre) > 0);
+    }
 }

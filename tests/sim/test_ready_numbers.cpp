@@ -1,9 +1,9 @@
 // figgen's formula engine against GollyGang/Ready's own numbers: from the
 // same start (start.vti, written by figgen), 100 steps of figgen equal what
-// Ready's command-line tool rdy computed (ready100.vti) on seven cases: the
-// three Ready patterns of the catalog, the bilaplacian at high accuracy,
-// Sobel stencils, x_pos/y_pos with clamped edges at low accuracy, and a
-// rule in double. tests/sim/ready/commands.txt holds the commands that
+// Ready's command-line tool rdy computed (ready100.vti) on nine cases: the
+// five Ready patterns of the catalog (a 1-D and a 3-D one among them), the
+// bilaplacian at high accuracy, Sobel stencils, x_pos/y_pos with clamped
+// edges at low accuracy, and a rule in double. tests/sim/ready/commands.txt holds the commands that
 // made them (tests/sim/ready/make_fixtures.sh).
 #include <catch2/catch.hpp>
 
@@ -21,10 +21,17 @@ TEST_CASE("100 steps of figgen equal Ready's from the same start", "[formula][re
     // Float32 rules differ from Ready by rounding alone (pocl contracts
     // a * b + c into fused multiply-adds, figgen does not): within 1e-4 of
     // the field's own size; a double rule, within 1e-12.
-    const std::pair<const char*, double> tolerances[] = {
-        {"brusselator", 1e-4}, {"cgl-spirals", 1e-4}, {"fhn-labyrinth", 1e-4}, {"gs-map-low", 1e-4},
-        {"ks-high", 1e-4},     {"sobel-waves", 1e-4}, {"splats-double", 1e-12}};
-    for (const auto& [name, tolerance] : tolerances) {
+    struct Case {
+        const char* name;
+        double tolerance;
+        int width, height, depth;
+    };
+    const Case cases_[] = {{"brusselator", 1e-4, 64, 32, 1},  {"cgl-spirals", 1e-4, 64, 32, 1},
+                           {"fhn-labyrinth", 1e-4, 64, 32, 1}, {"gs-map-low", 1e-4, 64, 32, 1},
+                           {"ks-high", 1e-4, 64, 32, 1},       {"sobel-waves", 1e-4, 64, 32, 1},
+                           {"splats-double", 1e-12, 64, 32, 1}, {"tunnelling-1d", 1e-4, 128, 1, 1},
+                           {"glider-3d", 1e-4, 16, 16, 16}};
+    for (const auto& [name, tolerance, width, height, depth] : cases_) {
         INFO(name);
         const fs::path out = testkit::fresh_dir(std::string("ready-") + name);
         const auto run = testkit::figgen("render " + (cases / name / "start.vti").string() +
@@ -36,8 +43,9 @@ TEST_CASE("100 steps of figgen equal Ready's from the same start", "[formula][re
         REQUIRE(ours.start);
         REQUIRE(theirs.start);
         REQUIRE(ours.start->chemicals.size() == theirs.start->chemicals.size());
-        CHECK(ours.start->width == 64);
-        CHECK(ours.start->height == 32);
+        CHECK(ours.start->width == width);
+        CHECK(ours.start->height == height);
+        CHECK(ours.start->depth == depth);
         double largest = 0, worst = 0;
         for (std::size_t c = 0; c < theirs.start->chemicals.size(); ++c)
             for (std::size_t i = 0; i < theirs.start->chemicals[c].size(); ++i) {
