@@ -30,7 +30,8 @@ using tinyxml2::XMLElement;
 
 // The formula scene's own [params] keys: a Ready parameter may not take one.
 const char* const scene_keys[] = {"chemicals", "formula", "accuracy", "wrap",  "data_type", "block_x",
-                                  "ready_edges", "width", "height",   "depth", "steps", "zero_first", "initial"};
+                                  "ready_edges", "arithmetic", "width", "height", "depth", "steps", "zero_first",
+                                  "initial"};
 
 
 std::string read_file(const std::filesystem::path& file) {
@@ -297,6 +298,10 @@ Pattern read(const std::string& text, const std::filesystem::path& file, const R
     origin("params.wrap", "<rule wrap>");
     params.insert("data_type", stored.float64 ? "double" : "float");
     origin("params.data_type", "<DataArray type>");
+    // Ready's formulas run through OpenCL, whose compiler contracts a * b + c;
+    // its inbuilt rules are its own C++, built without contraction.
+    params.insert("arithmetic", rule.inbuilt ? "plain" : "opencl");
+    origin("params.arithmetic", rule.inbuilt ? "<rule type=\"inbuilt\">" : "<rule type=\"formula\">: OpenCL C");
     params.insert("block_x", rule.block_x);
     origin("params.block_x", rule.inbuilt ? "<rule type=\"inbuilt\">" : "<formula block_size_x>");
     if (!rule.ready_edges) {
@@ -444,7 +449,8 @@ std::string converted_text(const Pattern& pattern, const std::filesystem::path& 
     for (const std::string& note : pattern.notes) text << "# " << printable(note) << "\n";
     text << "\n";
     const std::vector<std::string> rule = {"chemicals", "formula", "accuracy", "wrap",  "data_type", "block_x",
-                                           "ready_edges", "width", "height",   "depth", "steps",     "timestep", "dx"};
+                                           "ready_edges", "arithmetic", "width", "height", "depth", "steps",
+                                           "timestep", "dx"};
     description::write_toml(text, pattern.description, {"id", "title", "source", "scene", "seed", "caption"},
                             {{"params", rule}, {"style", {"show"}}, {"figure", {}}, {"animation", {}}});
     return text.str();

@@ -185,6 +185,9 @@ const Schema<ModelValues> model_schema = [] {
              });
     rule.flag("ready_edges", &R::ready_edges,
               "true: edges as Ready computes them (its quirks); false: a true torus, each cell clamped");
+    rule.choice("arithmetic", &R::fused_multiply_add, {{"plain", false}, {"opencl", true}},
+                "plain: every operation rounds on its own; opencl: as Ready's OpenCL compiler (clang) does it, "
+                "a * b + c inside one expression is one fused multiply-add (Ready's patterns)");
     using M = ModelValues;
     Schema<M> s;
     s.part_at(
@@ -282,8 +285,18 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
     // The rule's parameters: each a number the formula or an overlay
     // (fill = "parameter") uses, or timestep, dx.
     std::set<std::string> words = formula_names(params, r.code);
-    for (const toml::table& t : values.initial)
-        if (auto p = t["parameter"].value<std::string>()) words.insert(*p);
+    // An overlay's parameter fill names one of [params]: checked first, so
+    // that a wrong name is said of the overlay, not of the parameter it
+    // leaves unused.
+    for (std::size_t i = 0; i < values.initial.size(); ++i) {
+        const toml::table& t = values.initial[i];
+        if (!t.contains("parameter")) continue;
+        Settings s("params.initial[" + std::to_string(i) + "]", t, overlay_schema.keys());
+        const std::string name = s.text("parameter", "");
+        if (!d.params.contains(name) || is_key(rule_keys, name) || is_key(scene_keys, name))
+            s.refuse("parameter", "the name of one of the rule's parameters");
+        words.insert(name);
+    }
     for (const auto& [key, value] : d.params) {
         const std::string name(key.str());
         if (is_key(rule_keys, name) || is_key(scene_keys, name)) continue;

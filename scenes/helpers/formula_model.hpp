@@ -1,7 +1,7 @@
 #pragma once
 // A formula model (sim/formula/rule.hpp) as a description gives it in [params]:
 // the rule (chemicals, formula, accuracy, wrap, data_type, block_x,
-// ready_edges), the grid (width, height, depth), steps, the start (initial:
+// ready_edges, arithmetic), the grid (width, height, depth), steps, the start (initial:
 // Ready's overlays, in order; or the arrays a Ready pattern file stores)
 // and, as every other key, the rule's own parameters. Shared by the
 // formula scene and the formula atlas.

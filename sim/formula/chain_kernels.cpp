@@ -33,6 +33,7 @@ struct Plain {
     static V load(const R* p) { return *p; }
     static void store(R* p, V v) { *p = v; }
     static V set1(R v) { return v; }
+    static V fma(V a, V b, V c) { return std::fma(a, b, c); }
     static M clear() { return false; }
     static M not_finite(V v) { return (v - v) != R(0); }  // inf - inf and NaN - NaN are NaN
     static M either(M a, M b) { return a || b; }
@@ -62,6 +63,7 @@ struct F {
     static V load(const float* p) { return _mm256_loadu_ps(p); }
     static void store(float* p, V v) { _mm256_storeu_ps(p, v); }
     static V set1(float v) { return _mm256_set1_ps(v); }
+    static V fma(V a, V b, V c) { return _mm256_fmadd_ps(a, b, c); }
     static M clear() { return _mm256_setzero_ps(); }
     static M not_finite(V v) { return _mm256_cmp_ps(_mm256_sub_ps(v, v), _mm256_setzero_ps(), _CMP_NEQ_UQ); }
     static M either(M a, M b) { return _mm256_or_ps(a, b); }
@@ -76,6 +78,7 @@ struct D {
     static V load(const double* p) { return _mm256_loadu_pd(p); }
     static void store(double* p, V v) { _mm256_storeu_pd(p, v); }
     static V set1(double v) { return _mm256_set1_pd(v); }
+    static V fma(V a, V b, V c) { return _mm256_fmadd_pd(a, b, c); }
     static M clear() { return _mm256_setzero_pd(); }
     static M not_finite(V v) { return _mm256_cmp_pd(_mm256_sub_pd(v, v), _mm256_setzero_pd(), _CMP_NEQ_UQ); }
     static M either(M a, M b) { return _mm256_or_pd(a, b); }
@@ -109,6 +112,7 @@ struct F {
     static V load(const float* p) { return _mm512_loadu_ps(p); }
     static void store(float* p, V v) { _mm512_storeu_ps(p, v); }
     static V set1(float v) { return _mm512_set1_ps(v); }
+    static V fma(V a, V b, V c) { return _mm512_fmadd_ps(a, b, c); }
     static M clear() { return 0; }
     static M not_finite(V v) { return _mm512_cmp_ps_mask(_mm512_sub_ps(v, v), _mm512_setzero_ps(), _CMP_NEQ_UQ); }
     static M either(M a, M b) { return static_cast<M>(a | b); }
@@ -123,6 +127,7 @@ struct D {
     static V load(const double* p) { return _mm512_loadu_pd(p); }
     static void store(double* p, V v) { _mm512_storeu_pd(p, v); }
     static V set1(double v) { return _mm512_set1_pd(v); }
+    static V fma(V a, V b, V c) { return _mm512_fmadd_pd(a, b, c); }
     static M clear() { return 0; }
     static M not_finite(V v) { return _mm512_cmp_pd_mask(_mm512_sub_pd(v, v), _mm512_setzero_pd(), _CMP_NEQ_UQ); }
     static M either(M a, M b) { return static_cast<M>(a | b); }
@@ -227,6 +232,46 @@ Plan<Real> make_plan(const Program& program, const Chain& chain) {
             // The terms left to right: a single input, or weight * (its
             // inputs left to right); then the division.
             const StencilSum& sum = program.stencils[static_cast<std::size_t>(st.stencil)];
+            if (sum.fused) {
+                // Ready's OpenCL arithmetic: a weighted term meets the
+                // addition after it in one rounding. The first two terms:
+                // (k0 * g0) + t1 is fma(k0, g0, t1), t1 rounded alone (and
+                // a lone weighted input is its group of one); after that
+                // acc + k * g is fma(k, g, acc).
+                auto group = [&](const StencilSum::Term& t) {
+                    add(Kind::g_set_row, t.inputs[0], 0);
+                    for (std::size_t k = 1; k < t.inputs.size(); ++k) add(Kind::g_add_row, t.inputs[k], 0);
+                };
+                auto weighted = [](const StencilSum::Term& t) { return t.weight != 1 || t.inputs.size() > 1; };
+                const auto& terms = sum.terms;
+                std::size_t next = 1;
+                if (terms.size() >= 2 && weighted(terms[0])) {
+                    if (weighted(terms[1])) {
+                        group(terms[1]);
+                        add(Kind::acc_set_wg, -1, terms[1].weight);
+                    } else {
+                        add(Kind::acc_set_row, terms[1].inputs[0], 0);
+                    }
+                    group(terms[0]);
+                    add(Kind::acc_fma_wg, -1, terms[0].weight);
+                    next = 2;
+                } else if (weighted(terms[0])) {
+                    group(terms[0]);
+                    add(Kind::acc_set_wg, -1, terms[0].weight);
+                } else {
+                    add(Kind::acc_set_row, terms[0].inputs[0], 0);
+                }
+                for (std::size_t i = next; i < terms.size(); ++i) {
+                    if (weighted(terms[i])) {
+                        group(terms[i]);
+                        add(Kind::acc_fma_wg, -1, terms[i].weight);
+                    } else {
+                        add(Kind::acc_add_row, terms[i].inputs[0], 0);
+                    }
+                }
+                if (sum.divide) add(Kind::acc_div_k, -1, sum.divisor);
+                break;
+            }
             bool first = true;
             for (const StencilSum::Term& t : sum.terms) {
                 if (t.inputs.size() == 1 && (t.weight == 1 || first)) {

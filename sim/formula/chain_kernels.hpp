@@ -31,6 +31,7 @@ enum class Kind : std::uint8_t {
     aux_mul_row, aux_mul_k, aux_div_k,
     g_set_row, g_add_row,   // g = row; g = g + row
     acc_set_wg, acc_add_wg, // acc = k * g; acc = acc + k * g
+    acc_fma_wg,             // acc = k * g + acc, rounded once (a stencil in Ready's OpenCL arithmetic)
     aa_add, aa_sub, aa_rsub, aa_mul,  // acc = acc op aux; rsub: aux - acc
     end,                    // store acc (and check it)
 };

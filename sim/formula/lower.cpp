@@ -36,13 +36,31 @@ namespace {
 
 // ---- values ----
 
+struct Product;
+
 struct Value {
     bool fixed = true;     // known before the run: `constant`; else register `reg`
     double constant = 0;   // rounded to an int or to the number type
     int reg = -1;
     bool integer = false;  // an int
     bool vector = false;   // a float4 of Ready's blocks (comparisons give -1 for true)
+    // A product made in the expression being lowered (and not yet used): an
+    // addition it meets may take its factors instead, as one fused
+    // multiply-add (Rule::fused_multiply_add). `negated`: it is -(x * y).
+    std::shared_ptr<const Product> product;
+    bool negated = false;
 };
+
+struct Product {
+    Value x, y;
+};
+
+// v as a variable holds it: no longer a product of its expression.
+Value stored(Value v) {
+    v.product.reset();
+    v.negated = false;
+    return v;
+}
 
 struct Variable {
     Type type = Type::real;
@@ -109,7 +127,7 @@ private:
     int emit(Instr instr) {
         // The same operation on the same registers is the same value.
         const auto key = std::make_tuple(static_cast<int>(instr.op), static_cast<int>(instr.fn), instr.a, instr.b,
-                                         instr.c, instr.truth, instr.mask);
+                                         instr.c, instr.truth, instr.mask, static_cast<int>(instr.signs));
         if (instr.op != Op::stencil) {
             auto seen = emitted_.find(key);
             if (seen != emitted_.end()) return seen->second;
@@ -161,11 +179,19 @@ private:
         return rule_.block_x == 4 && (a.vector || b.vector) ? -1.0 : 1.0;
     }
 
-    // a op b, folded when both are fixed.
+    // a op b, folded when both are fixed. With Ready's OpenCL arithmetic, a
+    // sum or difference with a product of the same expression is one fused
+    // multiply-add, as clang contracts it: the left operand's product first.
     Value arith(Op op, Value a, Value b, Pos pos) {
         const bool integer = a.integer && b.integer;
         const bool vector = a.vector || b.vector;
         if (!integer) a = as_real(a), b = as_real(b);
+        if (rule_.fused_multiply_add && !integer && (op == Op::add || op == Op::sub)) {
+            if (a.product) return fused(*a.product, a.negated, b, op == Op::sub, vector, pos);
+            // a - x * y is -(x * y) + a.
+            if (b.product) return fused(*b.product, b.negated != (op == Op::sub), a, false, vector, pos);
+        }
+        a = stored(a), b = stored(b);
         if (op == Op::int_mod && !integer) throw FormulaError(pos, "% takes ints; use fmod for numbers");
         if (integer && op == Op::div) op = Op::int_div;
         // x * 1, 1 * x, x / 1 and x - (+0) are x, bit for bit.
@@ -181,7 +207,7 @@ private:
             else found = false;
             if (found && !(a.fixed && b.fixed)) {
                 same.vector = vector;
-                return same;
+                return stored(same);
             }
         }
         if (a.fixed && b.fixed) {
@@ -197,7 +223,32 @@ private:
         in.pos = pos;
         in.truth = truth(a, b);
         in.mask = division_mask_;
-        return in_register(emit(in), integer || is_comparison(op), vector);
+        Value out = in_register(emit(in), integer || is_comparison(op), vector);
+        if (rule_.fused_multiply_add && op == Op::mul && !integer)
+            out.product = std::make_shared<const Product>(Product{a, b});
+        return out;
+    }
+
+    // (-)(p.x * p.y) (-) c, rounded once: Op::fma, folded when all are fixed.
+    Value fused(const Product& p, bool negate_product, Value c, bool negate_addend, bool vector, Pos pos) {
+        c = stored(as_real(c));
+        if (p.x.fixed && p.y.fixed && c.fixed) {
+            const double x = negate_product ? -p.x.constant : p.x.constant, z = negate_addend ? -c.constant : c.constant;
+            const double folded = rule_.double_precision
+                                      ? std::fma(x, p.y.constant, z)
+                                      : static_cast<double>(std::fma(static_cast<float>(x),
+                                                                     static_cast<float>(p.y.constant),
+                                                                     static_cast<float>(z)));
+            return constant(folded, false, vector);
+        }
+        Instr in = instruction(Op::fma);
+        in.a = materialise(p.x);
+        in.b = materialise(p.y);
+        in.c = materialise(c);
+        in.signs = static_cast<std::uint8_t>((negate_product ? Instr::negate_product : 0) |
+                                             (negate_addend ? Instr::negate_addend : 0));
+        in.pos = pos;
+        return in_register(emit(in), false, vector);
     }
     static bool is_comparison(Op op) {
         return op == Op::less || op == Op::less_equal || op == Op::equal || op == Op::not_equal ||
@@ -434,6 +485,7 @@ private:
             }
             sum.terms.push_back(std::move(term));
         }
+        sum.fused = rule_.fused_multiply_add;
         if (s.divisor != 1 || s.dx_power > 0) {
             Value divisor = constant(s.divisor, true);
             const Value dx = keyword("dx");
@@ -571,7 +623,11 @@ private:
             Instr in = instruction(Op::neg);
             in.a = v.reg;
             in.pos = e.pos;
-            return in_register(emit(in), v.integer, v.vector);
+            Value negated = in_register(emit(in), v.integer, v.vector);
+            // -(x * y) + c is still one fused multiply-add for clang.
+            negated.product = v.product;
+            negated.negated = !v.negated;
+            return negated;
         }
         case Expr::Kind::binary: {
             const Value a = expression(*e.args[0]), b = expression(*e.args[1]);
@@ -724,7 +780,7 @@ private:
             } else {
                 if (!d.init && s.is_const) throw FormulaError(d.pos, "a const needs a value");
                 // An uninitialised variable reads as zero (OpenCL leaves it undefined).
-                var.elements = {d.init ? converted(expression(*d.init), s.type, d.init->pos) : zero};
+                var.elements = {stored(d.init ? converted(expression(*d.init), s.type, d.init->pos) : zero)};
             }
             scope[d.name] = std::move(var);
         }
@@ -752,7 +808,7 @@ private:
         // Under an `if` on the cells' values, only the cells where it holds change.
         const bool whole = is_all(mask) || var->mask == mask.reg;
         if (!whole) value = select(old, value, mask, s.pos);
-        var->elements[index] = value;
+        var->elements[index] = stored(value);
     }
 
     const Rule& rule_;
@@ -763,7 +819,7 @@ private:
     std::map<std::tuple<int, int, int, int>, Value> inputs_;
     std::map<std::pair<double, bool>, int> constant_regs_;
     int division_mask_ = -1;
-    std::map<std::tuple<int, int, int, int, int, double, int>, int> emitted_;
+    std::map<std::tuple<int, int, int, int, int, double, int, int>, int> emitted_;
     int statements_run_ = 0;
     Program program_;
 };

@@ -27,6 +27,7 @@ enum class Op : std::uint8_t {
     call1, call2, call3,          // fn(a), fn(a, b), fn(a, b, c)
     stencil,                      // Program::stencils[a]: a weighted sum of inputs, in one pass
     chain,                        // Program::chains[a]: several operations in one pass (below)
+    fma,                          // (+/-)a * b (+/-) c rounded once (Instr::signs): Ready's OpenCL contracts
 };
 
 // The built-in functions (an allow-list, sim/formula/lower.cpp).
@@ -44,12 +45,17 @@ struct Instr {
     double truth = 1;  // the value of true for comparisons: 1, or -1 for Ready's float4
     int dst = 0, a = -1, b = -1, c = -1;
     int mask = -1;  // for div: checked for zero divisors only where this register is nonzero (-1: everywhere)
+    std::uint8_t signs = 0;  // for fma: negate_product and/or negate_addend
     Pos pos;        // in the formula, for errors
+    static constexpr std::uint8_t negate_product = 1, negate_addend = 2;
 };
 
 // A stencil in one operation, Ready's order of operations kept: the terms
 // added left to right, each an input (weight 1) or weight * (the sum of its
-// inputs, left to right); then, if `divide`, divided by `divisor`.
+// inputs, left to right); then, if `divide`, divided by `divisor`. With
+// `fused` (Ready's OpenCL arithmetic), a weighted term and the addition it
+// meets round once, as clang contracts them: the first term's product with
+// the second term, and every later one's with the sum so far.
 struct StencilSum {
     struct Term {
         double weight = 1;        // 1: a single input, added as it is
@@ -58,6 +64,7 @@ struct StencilSum {
     std::vector<Term> terms;
     bool divide = false;
     double divisor = 1;  // rounded to the number type
+    bool fused = false;
 };
 
 // Operations fused into one pass over the chunk (sim/formula/chain_kernels.hpp),

@@ -68,6 +68,11 @@ struct Rule {
     // Ready's edges (its quirks above), as its own patterns need; else a
     // true torus of any size, or each cell clamped to the grid.
     bool ready_edges = true;
+    // Ready's OpenCL arithmetic: pocl's clang contracts a * b + c (and
+    // a * b - c, c - a * b) inside one expression into a fused multiply-add
+    // (OpenCL C's FP_CONTRACT ON), so that it rounds once; else every
+    // operation rounds on its own.
+    bool fused_multiply_add = false;
 
     // Throws std::invalid_argument naming what is wrong, FormulaError for
     // the code, before anything runs.

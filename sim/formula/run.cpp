@@ -62,6 +62,32 @@ FIGGEN_FORMULA_CLONES void divide_d(double* d, const double* a, const double* b,
     a ? b ? divide_rows(d, a, b, n) : divide_right(d, a, k, n) : divide_left(d, k, b, n);
 }
 
+// d = (+/-)a * b (+/-) c, rounded once, in clones that have the processor's
+// fused multiply-add (x86-64-v3 and v4) and one that calls libm's fma.
+#if defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__) && !defined(__clang__)
+#define FIGGEN_FMA_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define FIGGEN_FMA_CLONES
+#endif
+template <class Real>
+void fma_rows(Real* __restrict d, const Real* __restrict a, const Real* __restrict b, const Real* __restrict c,
+              std::uint8_t signs, int n) {
+    const Real sx = (signs & Instr::negate_product) ? Real(-1) : Real(1);
+    const Real sc = (signs & Instr::negate_addend) ? Real(-1) : Real(1);
+    for (int i = 0; i < n; ++i) d[i] = std::fma(sx * a[i], b[i], sc * c[i]);  // sign changes are exact
+}
+FIGGEN_FMA_CLONES void fma_f(float* d, const float* a, const float* b, const float* c, std::uint8_t signs, int n) {
+    fma_rows(d, a, b, c, signs, n);
+}
+FIGGEN_FMA_CLONES void fma_d(double* d, const double* a, const double* b, const double* c, std::uint8_t signs, int n) {
+    fma_rows(d, a, b, c, signs, n);
+}
+template <class Real>
+void fused_multiply_add(Real* d, const Real* a, const Real* b, const Real* c, std::uint8_t signs, int n) {
+    if constexpr (sizeof(Real) == 4) fma_f(d, a, b, c, signs, n);
+    else fma_d(d, a, b, c, signs, n);
+}
+
 // Whether any of b's n values is zero where the mask (if any) is nonzero,
 // and whether any of v's is not a finite number: branch-free, vectorised.
 #define FIGGEN_FORMULA_CHECKS(REAL, SUFFIX)                                                     \
@@ -506,6 +532,7 @@ private:
             case Op::call3:
                 for (int i = 0; i < n; ++i) d[i] = scalar_call<Real>(in.fn, a[i], b[i], c[i]);
                 break;
+            case Op::fma: fused_multiply_add<Real>(d, a, b, c, in.signs, n); break;
             case Op::int_div:
             case Op::int_mod: {
                 for (int r = 0; r < rows; ++r) {
