@@ -206,8 +206,14 @@ private:
             else if ((op == Op::div && is(b, 1)) || (op == Op::sub && is(b, 0))) same = a;
             else found = false;
             if (found && !(a.fixed && b.fixed)) {
+                same = stored(same);
                 same.vector = vector;
-                return stored(same);
+                // clang keeps x * 1.0f as a multiplication (the constant is
+                // not folded into the other operand): a sum it meets is
+                // still one fused multiply-add, x + c rounded once.
+                if (rule_.fused_multiply_add && op == Op::mul)
+                    same.product = std::make_shared<const Product>(Product{a, b});
+                return same;
             }
         }
         if (a.fixed && b.fixed) {

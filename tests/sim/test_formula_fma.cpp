@@ -157,3 +157,21 @@ TEST_CASE("a stencil's weighted groups meet its sum in one rounding, in Ready's 
             CHECK(static_cast<float>(run.chemical(1)(y, x)) == want);
         }
 }
+
+TEST_CASE("a product by one is still a product that a sum fuses with, as clang keeps it", "[formula]") {
+    // With D = 1, clang emits fmul(1, a) and fuses it: (1 * a) + (c * d)
+    // is fma(1, a, c * d), a + round(c * d) rounded once; not fma(c, d, a).
+    Rule r;
+    r.chemicals = 4;
+    r.code = "delta_b = D * a + c * d;";
+    r.parameters = {{"timestep", 1.0}, {"D", 1.0}};
+    r.block_x = 1;
+    r.ready_edges = false;
+    r.fused_multiply_add = true;
+    const Cells v = cells();
+    Grid<double> a(1, 16), b(1, 16, 0.0), c(1, 16), d(1, 16);
+    for (int i = 0; i < 16; ++i) a(0, i) = v.a[i], c(0, i) = v.c[i], d(0, i) = v.d[i];
+    Run run(r, 16, 1, {a, b, c, d});
+    run.step(1, 1);
+    for (int i = 0; i < 16; ++i) CHECK(static_cast<float>(run.chemical(1)(0, i)) == v.a[i] + v.c[i] * v.d[i]);
+}
