@@ -34,6 +34,7 @@ struct Plain {
     static void store(R* p, V v) { *p = v; }
     static V set1(R v) { return v; }
     static V fma(V a, V b, V c) { return std::fma(a, b, c); }
+    static V neg(V a) { return -a; }
     static M clear() { return false; }
     static M not_finite(V v) { return (v - v) != R(0); }  // inf - inf and NaN - NaN are NaN
     static M either(M a, M b) { return a || b; }
@@ -64,6 +65,7 @@ struct F {
     static void store(float* p, V v) { _mm256_storeu_ps(p, v); }
     static V set1(float v) { return _mm256_set1_ps(v); }
     static V fma(V a, V b, V c) { return _mm256_fmadd_ps(a, b, c); }
+    static V neg(V a) { return _mm256_xor_ps(a, _mm256_set1_ps(-0.0f)); }
     static M clear() { return _mm256_setzero_ps(); }
     static M not_finite(V v) { return _mm256_cmp_ps(_mm256_sub_ps(v, v), _mm256_setzero_ps(), _CMP_NEQ_UQ); }
     static M either(M a, M b) { return _mm256_or_ps(a, b); }
@@ -79,6 +81,7 @@ struct D {
     static void store(double* p, V v) { _mm256_storeu_pd(p, v); }
     static V set1(double v) { return _mm256_set1_pd(v); }
     static V fma(V a, V b, V c) { return _mm256_fmadd_pd(a, b, c); }
+    static V neg(V a) { return _mm256_xor_pd(a, _mm256_set1_pd(-0.0)); }
     static M clear() { return _mm256_setzero_pd(); }
     static M not_finite(V v) { return _mm256_cmp_pd(_mm256_sub_pd(v, v), _mm256_setzero_pd(), _CMP_NEQ_UQ); }
     static M either(M a, M b) { return _mm256_or_pd(a, b); }
@@ -113,6 +116,7 @@ struct F {
     static void store(float* p, V v) { _mm512_storeu_ps(p, v); }
     static V set1(float v) { return _mm512_set1_ps(v); }
     static V fma(V a, V b, V c) { return _mm512_fmadd_ps(a, b, c); }
+    static V neg(V a) { return _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a), _mm512_set1_epi32(INT32_MIN))); }
     static M clear() { return 0; }
     static M not_finite(V v) { return _mm512_cmp_ps_mask(_mm512_sub_ps(v, v), _mm512_setzero_ps(), _CMP_NEQ_UQ); }
     static M either(M a, M b) { return static_cast<M>(a | b); }
@@ -128,6 +132,7 @@ struct D {
     static void store(double* p, V v) { _mm512_storeu_pd(p, v); }
     static V set1(double v) { return _mm512_set1_pd(v); }
     static V fma(V a, V b, V c) { return _mm512_fmadd_pd(a, b, c); }
+    static V neg(V a) { return _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(a), _mm512_set1_epi64(INT64_MIN))); }
     static M clear() { return 0; }
     static M not_finite(V v) { return _mm512_cmp_pd_mask(_mm512_sub_pd(v, v), _mm512_setzero_pd(), _CMP_NEQ_UQ); }
     static M either(M a, M b) { return static_cast<M>(a | b); }
@@ -285,6 +290,53 @@ Plan<Real> make_plan(const Program& program, const Chain& chain) {
                 first = false;
             }
             if (sum.divide) add(Kind::acc_div_k, -1, sum.divisor);
+            break;
+        }
+        case Chain::Kind::fma: {
+            // (+/-) p * q (+/-) r with acc as operand `slot`, aux (if any)
+            // as `aux_slot`, the rest (x, then y) rows or constants.
+            struct Operand {
+                bool acc = false, aux = false;
+                int reg = -1;
+                double k = 0;
+            };
+            Operand o[3];
+            bool first = true;
+            for (int s = 0; s < 3; ++s) {
+                if (s == st.slot) o[s].acc = true;
+                else if (s == st.aux_slot) o[s].aux = true;
+                else {
+                    o[s].reg = first ? st.x : st.y;
+                    o[s].k = first ? st.kx : st.ky;
+                    first = false;
+                }
+            }
+            const bool negate_product = st.signs & Instr::negate_product, negate_addend = st.signs & Instr::negate_addend;
+            auto load_aux = [&](const Operand& op) { add(op.reg >= 0 ? Kind::aux_set_row : Kind::aux_set_k, op.reg, op.k); };
+            if (st.slot == 2) {
+                // acc is the addend: aux holds one factor, the other is a row or a constant.
+                if (negate_addend) add(Kind::acc_neg, -1, 0);
+                const Operand* with_aux = o[0].aux ? &o[1] : o[1].aux ? &o[0] : nullptr;
+                if (!with_aux) {
+                    load_aux(o[0]);
+                    with_aux = &o[1];
+                }
+                if (negate_product) add(Kind::aux_neg, -1, 0);
+                add(with_aux->reg >= 0 ? Kind::acc_fma_aux_row : Kind::acc_fma_aux_k, with_aux->reg, with_aux->k);
+            } else {
+                // acc is a factor; q the other factor, r the addend.
+                if (negate_product) add(Kind::acc_neg, -1, 0);
+                const Operand& q = o[st.slot == 0 ? 1 : 0];
+                const Operand& r = o[2];
+                if (r.aux) {
+                    if (negate_addend) add(Kind::aux_neg, -1, 0);
+                    add(q.reg >= 0 ? Kind::acc_fma_acc_row_aux : Kind::acc_fma_acc_k_aux, q.reg, q.k);
+                } else {
+                    if (!q.aux) load_aux(q);
+                    if (r.reg >= 0) add(negate_addend ? Kind::acc_fms_acc_aux_row : Kind::acc_fma_acc_aux_row, r.reg, 0);
+                    else add(Kind::acc_fma_acc_aux_k, -1, negate_addend ? -r.k : r.k);
+                }
+            }
             break;
         }
         case Chain::Kind::binary: binary(false, st); break;

@@ -32,6 +32,13 @@ enum class Kind : std::uint8_t {
     g_set_row, g_add_row,   // g = row; g = g + row
     acc_set_wg, acc_add_wg, // acc = k * g; acc = acc + k * g
     acc_fma_wg,             // acc = k * g + acc, rounded once (a stencil in Ready's OpenCL arithmetic)
+    // Fused multiply-adds (Op::fma in a chain), each rounded once; the
+    // negations before them are exact.
+    acc_neg, aux_neg,                     // acc = -acc; aux = -aux
+    acc_fma_aux_row, acc_fma_aux_k,       // acc = aux * row + acc; aux * k + acc
+    acc_fma_acc_aux_row, acc_fms_acc_aux_row,  // acc = acc * aux + row; acc * aux - row
+    acc_fma_acc_aux_k,                    // acc = acc * aux + k
+    acc_fma_acc_row_aux, acc_fma_acc_k_aux,    // acc = acc * row + aux; acc * k + aux
     aa_add, aa_sub, aa_rsub, aa_mul,  // acc = acc op aux; rsub: aux - acc
     end,                    // store acc (and check it)
 };

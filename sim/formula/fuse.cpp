@@ -19,6 +19,7 @@ bool chainable(const Instr& in, const std::vector<char>& is_constant, const std:
     case Op::sub:
     case Op::mul: return in.a >= 0 && in.b >= 0;
     case Op::div: return in.a >= 0 && in.b >= 0 && is_constant[in.b] && value[in.b] != 0 && !is_constant[in.a];
+    case Op::fma: return in.a >= 0 && in.b >= 0 && in.c >= 0;
     default: return false;
     }
 }
@@ -50,17 +51,30 @@ std::vector<Instr> fuse_chains(Program& program, const std::vector<Instr>& code)
     // continues, or -1; length[i]: the chain's operations up to i.
     std::vector<int> through(static_cast<std::size_t>(count), -1), length(static_cast<std::size_t>(count), 1);
     std::vector<char> interior(static_cast<std::size_t>(count), 0);
+    // The operands of an instruction a chain may continue through: a and b,
+    // and an fma's c; one that appears twice never.
+    auto operands = [&](const Instr& in) {
+        std::vector<int> regs{in.a, in.b};
+        if (in.op == Op::fma) regs.push_back(in.c);
+        std::vector<int> once;
+        for (int r : regs)
+            if (std::count(regs.begin(), regs.end(), r) == 1) once.push_back(r);
+        return once;
+    };
     for (int i = 0; i < count; ++i) {
         const Instr& in = code[i];
-        if (!can[i] || in.op == Op::stencil || in.a == in.b) continue;
+        if (!can[i] || in.op == Op::stencil || (in.op != Op::fma && in.a == in.b)) continue;
         int best = -1;
-        for (int r : {in.a, in.b}) {
+        for (int r : operands(in)) {
             if (in.op == Op::div && r != in.a) continue;  // the divisor is the constant
             const int d = def[r];
             if (d < 0 || !can[d] || uses[r] != 1 || interior[d]) continue;
             if (best < 0 || length[d] > length[def[best]]) best = r;
         }
-        if (best < 0) continue;
+        if (best < 0) {
+            can[i] = in.op != Op::fma;  // an fma only continues a chain, never starts one
+            continue;
+        }
         through[i] = best;
         interior[def[best]] = 1;
         length[i] = length[def[best]] + 1;
@@ -73,23 +87,36 @@ std::vector<Instr> fuse_chains(Program& program, const std::vector<Instr>& code)
         return p;
     };
     auto other = [&](int i) { return through[i] == code[i].a ? code[i].b : code[i].a; };
+    // An fma's two operands besides the one it continues through, in order.
+    auto others = [&](int i) {
+        const Instr& in = code[i];
+        std::vector<int> rest;
+        for (int r : {in.a, in.b, in.c})
+            if (r != through[i]) rest.push_back(r);
+        return rest;
+    };
     // Short chains taken whole as one step's operand.
     constexpr int aux_most = 4;  // operations of such a chain
     std::vector<char> absorbed(static_cast<std::size_t>(count), 0), has_aux(static_cast<std::size_t>(count), 0);
-    std::vector<char> has_stencil(static_cast<std::size_t>(count), 0);
-    for (int i = 0; i < count; ++i)
+    std::vector<char> has_stencil(static_cast<std::size_t>(count), 0), has_fma(static_cast<std::size_t>(count), 0);
+    for (int i = 0; i < count; ++i) {
         has_stencil[i] = code[i].op == Op::stencil || (through[i] >= 0 && has_stencil[def[through[i]]]);
+        has_fma[i] = code[i].op == Op::fma || (through[i] >= 0 && has_fma[def[through[i]]]);
+    }
     for (int root = 0; root < count; ++root) {
         if (!can[root] || interior[root]) continue;
         for (int link : path(root)) {
             if (through[link] < 0) continue;
-            const int o = other(link);
-            const int d = def[o];
-            if (d < 0 || !can[d] || interior[d] || absorbed[d] || uses[o] != 1 || has_stencil[d] || has_aux[d] ||
-                length[d] > aux_most)
-                continue;
-            absorbed[d] = 1;
-            has_aux[root] = 1;
+            // One operand of each link at most (an fma's first that can).
+            for (int o : code[link].op == Op::fma ? others(link) : std::vector<int>{other(link)}) {
+                const int d = def[o];
+                if (d < 0 || !can[d] || interior[d] || absorbed[d] || uses[o] != 1 || has_stencil[d] || has_aux[d] ||
+                    has_fma[d] || length[d] > aux_most)
+                    continue;
+                absorbed[d] = 1;
+                has_aux[root] = 1;
+                break;
+            }
         }
     }
     auto operand = [&](int reg, int& x, double& k) {
@@ -133,9 +160,42 @@ std::vector<Instr> fuse_chains(Program& program, const std::vector<Instr>& code)
             if (kind != Chain::Kind::acc_aux) operand(other(i), st.x, st.kx);
             chain.steps.push_back(st);
         };
+        // An fma with the value so far: the operand from an absorbed chain
+        // (if any) into aux first, the rest as rows or constants.
+        auto fma_link = [&](int i) {
+            const Instr& in = code[i];
+            Chain::Step st;
+            st.kind = Chain::Kind::fma;
+            st.op = Op::fma;
+            st.signs = in.signs;
+            const int regs[3] = {in.a, in.b, in.c};
+            for (int s = 0; s < 3; ++s)
+                if (regs[s] == through[i]) st.slot = s;
+            for (int s = 0; s < 3 && st.aux_slot < 0; ++s) {
+                if (s == st.slot) continue;
+                const int d = def[regs[s]];
+                if (d < 0 || !absorbed[d]) continue;
+                const std::vector<int> side = path(d);
+                head(side.front(), true);
+                for (std::size_t q = 1; q < side.size(); ++q) link(side[q], Chain::Kind::aux_op);
+                st.aux_slot = s;
+            }
+            bool first = true;
+            for (int s = 0; s < 3; ++s) {
+                if (s == st.slot || s == st.aux_slot) continue;
+                if (first) operand(regs[s], st.x, st.kx);
+                else operand(regs[s], st.y, st.ky);
+                first = false;
+            }
+            chain.steps.push_back(st);
+        };
         head(steps.front(), false);
         for (std::size_t k = 1; k < steps.size(); ++k) {
             const int i = steps[k];
+            if (code[i].op == Op::fma) {
+                fma_link(i);
+                continue;
+            }
             const int d = def[other(i)];
             if (d >= 0 && absorbed[d]) {
                 const std::vector<int> side = path(d);

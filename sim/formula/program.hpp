@@ -81,6 +81,11 @@ struct Chain {
         aux,      // aux = x op y
         aux_op,   // aux = aux op x (t_first), or x op aux
         acc_aux,  // acc = acc op aux (t_first), or aux op acc
+        // An fma (Op::fma, its signs) with the value so far as its operand
+        // `slot` (0 a, 1 b: a factor; 2 c: the addend), the aux chain just
+        // before as operand `aux_slot` (-1: none), and the rest x, then y,
+        // in operand order.
+        fma,
     };
     struct Step {
         Kind kind = Kind::binary;
@@ -89,6 +94,8 @@ struct Chain {
         int x = -1, y = -1;     // registers; -1: the constant kx or ky
         double kx = 0, ky = 0;  // rounded to the number type
         int stencil = -1;
+        int slot = 2, aux_slot = -1;  // fma
+        std::uint8_t signs = 0;       // fma: Instr::negate_product, negate_addend
     };
     std::vector<Step> steps;
 };

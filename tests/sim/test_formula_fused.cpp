@@ -4,6 +4,7 @@
 // and Ready's Gray-Scott fuses as expected.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <set>
@@ -34,8 +35,9 @@ struct KeepIsa {
     ~KeepIsa() { fused::use_isa(saved); }
 };
 
-Rule two_chemicals(const std::string& code) {
+Rule two_chemicals(const std::string& code, bool opencl = false) {
     Rule r;
+    r.fused_multiply_add = opencl;
     r.parameters = {{"timestep", 1.0}};
     r.code = code;
     r.ready_edges = false;  // a torus at any size
@@ -73,7 +75,8 @@ std::set<fused::Kind> kinds_of(const Rule& rule) {
 // and b of a cell from a, b and a's east and west neighbours), on every
 // instruction set.
 void check_one_step(const std::string& code,
-                    const std::function<void(float a, float b, float ae, float aw, float& na, float& nb)>& reference) {
+                    const std::function<void(float a, float b, float ae, float aw, float& na, float& nb)>& reference,
+                    bool opencl = false) {
     constexpr int width = 70, height = 9;  // a row is not a whole number of vectors
     const Grid<double> a = start(width, height, 3), b = start(width, height, 4);
     Grid<double> want_a(height, width), want_b(height, width);
@@ -90,7 +93,7 @@ void check_one_step(const std::string& code,
     for (fused::Isa isa : instruction_sets()) {
         INFO("instruction set " << static_cast<int>(isa));
         fused::use_isa(isa);
-        Run run(two_chemicals(code), width, height, {a, b});
+        Run run(two_chemicals(code, opencl), width, height, {a, b});
         run.step(1, 1);
         CHECK(same_bits(run.chemical(0), want_a));
         CHECK(same_bits(run.chemical(1), want_b));
@@ -151,4 +154,52 @@ TEST_CASE("Ready's Gray-Scott fuses into three chains, the same bits on every in
     for (std::size_t i = 1; i < results.size(); ++i) CHECK(same_bits(results[i], results[0]));
     CHECK_THROWS_AS(fused::use_isa(static_cast<fused::Isa>(static_cast<int>(fused::best_isa()) + 1)),
                     std::invalid_argument);
+}
+
+TEST_CASE("fused multiply-adds in a chain round once, as clang's, on every instruction set", "[formula]") {
+    // Ready's OpenCL arithmetic: the left product of a sum first, then a
+    // product the sum so far meets; negated products and addends.
+    const std::string code = "delta_a = b*a_e + (a_w - a)*0.5f - a*b;\n"
+                             "delta_b = 2.0f*b - a_w + (a - 1.0f)*(b + a_e) - 0.5f;";
+    check_one_step(
+        code,
+        [](float a, float b, float ae, float aw, float& na, float& nb) {
+            const float da = std::fma(-a, b, std::fma(b, ae, (aw - a) * 0.5f));
+            const float db = std::fma(a - 1.0f, b + ae, std::fma(2.0f, b, -aw)) - 0.5f;
+            na = a + da;  // timestep 1: fma(1, delta, a) is a + delta
+            nb = b + db;
+        },
+        true);
+    const std::string more = "delta_a = 0.5f - (a_e + b)*(a - 0.25f);\n"
+                             "delta_b = (b*a - a_w)*3.0f + b*0.125f;";
+    check_one_step(
+        more,
+        [](float a, float b, float ae, float aw, float& na, float& nb) {
+            const float da = std::fma(-(ae + b), a - 0.25f, 0.5f);
+            const float db = std::fma(std::fma(b, a, -aw), 3.0f, b * 0.125f);
+            na = a + da;
+            nb = b + db;
+        },
+        true);
+    // The fused multiply-adds run inside chains.
+    std::set<fused::Kind> used = kinds_of(two_chemicals(code, true));
+    for (fused::Kind k : kinds_of(two_chemicals(more, true))) used.insert(k);
+    int fma_kinds = 0;
+    for (fused::Kind k : {fused::Kind::acc_fma_aux_row, fused::Kind::acc_fma_aux_k, fused::Kind::acc_fma_acc_aux_row,
+                          fused::Kind::acc_fms_acc_aux_row, fused::Kind::acc_fma_acc_aux_k,
+                          fused::Kind::acc_fma_acc_row_aux, fused::Kind::acc_fma_acc_k_aux})
+        fma_kinds += static_cast<int>(used.count(k));
+    CHECK(fma_kinds >= 3);
+}
+
+TEST_CASE("Ready's Gray-Scott in Ready's OpenCL arithmetic fuses into chains too", "[formula]") {
+    Rule rule = two_chemicals("delta_a = D_a * laplacian_a - a*b*b + F*(1.0f-a);\n"
+                              "delta_b = D_b * laplacian_b + a*b*b - (F+K)*b;",
+                              true);
+    rule.parameters = {{"timestep", 1.0}, {"D_a", 0.082}, {"D_b", 0.041}, {"K", 0.06}, {"F", 0.035}};
+    const Program program = compile(rule);
+    int loose = 0;
+    for (const Instr& in : program.code) loose += in.op == Op::fma;
+    CHECK(loose == 0);
+    CHECK(program.code.size() <= 4);
 }
