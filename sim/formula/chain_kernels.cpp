@@ -93,10 +93,10 @@ struct D {
 }  // namespace
 
 int run_f(const Plan<float>& p, const float* const* view, float* d, int n, bool check, bool& bad) {
-    return chain_vectors<F, 2>(p, view, d, n, check, bad);
+    return chain_vectors<F, 4>(p, view, d, n, check, bad);
 }
 int run_d(const Plan<double>& p, const double* const* view, double* d, int n, bool check, bool& bad) {
-    return chain_vectors<D, 2>(p, view, d, n, check, bad);
+    return chain_vectors<D, 4>(p, view, d, n, check, bad);
 }
 
 }  // namespace avx2
