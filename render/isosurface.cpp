@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -49,7 +50,8 @@ struct Corner {
 };
 
 // Walks the sampled cubes; emit(a, na, b, nb, c, nc) gets each triangle's
-// corners and normals, wound to face along the normals. Capped, the walk
+// corners and normals, wound to face along the normals, and says whether
+// to go on (false: stop the walk). Capped, the walk
 // goes one sample past each face: a sample there is below the level and
 // its normal faces out; an edge from a corner on the face to it is cut at
 // that corner, so the region above the level is closed by flat caps on the
@@ -70,18 +72,32 @@ void march(const Sampled& s, double level, Emit&& emit) {
         const float f = static_cast<float>(std::clamp(t, 0.0, 1.0));
         return Point{a.position + f * (b.position - a.position), a.normal + f * (b.normal - a.normal)};
     };
+    bool going = true;
     auto triangle = [&](const Point& a, const Point& b, const Point& c) {
         const glm::vec3 across = glm::cross(b.position - a.position, c.position - a.position);
         if (glm::dot(across, a.normal + b.normal + c.normal) < 0)
-            emit(a.position, a.normal, c.position, c.normal, b.position, b.normal);
+            going = emit(a.position, a.normal, c.position, c.normal, b.position, b.normal) && going;
         else
-            emit(a.position, a.normal, b.position, b.normal, c.position, c.normal);
+            going = emit(a.position, a.normal, b.position, b.normal, c.position, c.normal) && going;
     };
     const int first = s.capped ? -1 : 0;
+    // Which samples lie above the level (those past a face never): a cube
+    // whose eight agree is passed over at the cost of eight bytes.
+    const int px = s.sx + 2, py = s.sy + 2, pz = s.sz + 2;
+    std::vector<std::uint8_t> up(static_cast<std::size_t>(px) * py * pz, 0);
+    for (int k = 0; k < s.sz; ++k)
+        for (int j = 0; j < s.sy; ++j)
+            for (int i = 0; i < s.sx; ++i)
+                up[(static_cast<std::size_t>(k + 1) * py + (j + 1)) * px + (i + 1)] =
+                    s.value_at(s.cell(i, s.sx, s.grid.nx), s.cell(j, s.sy, s.grid.ny), s.cell(k, s.sz, s.grid.nz)) > level;
+    auto up_at = [&](int i, int j, int k) { return up[(static_cast<std::size_t>(k + 1) * py + (j + 1)) * px + (i + 1)]; };
     std::array<Corner, 8> corner;
     for (int k = first; k + 1 < s.sz + (s.capped ? 1 : 0); ++k)
         for (int j = first; j + 1 < s.sy + (s.capped ? 1 : 0); ++j)
             for (int i = first; i + 1 < s.sx + (s.capped ? 1 : 0); ++i) {
+                int quick = 0;
+                for (int c = 0; c < 8; ++c) quick += up_at(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1));
+                if (quick == 0 || quick == 8) continue;
                 int above = 0;
                 int x[8], y[8], z[8];
                 glm::vec3 out[8];
@@ -96,6 +112,7 @@ void march(const Sampled& s, double level, Emit&& emit) {
                     above += corner[c].value > level;
                 }
                 if (above == 0 || above == 8) continue;
+                if (!going) return;
                 for (int c = 0; c < 8; ++c) {
                     corner[c].position = glm::vec3(float(x[c]), float(y[c]), float(z[c]));
                     corner[c].normal = corner[c].beyond ? out[c] : s.normal_at(x[c], y[c], z[c]);
@@ -135,24 +152,36 @@ Sampled sampled(const IsosurfaceGrid& grid, double level, int stride) {
 
 }  // namespace
 
-std::vector<Facet> isosurface(const IsosurfaceGrid& grid, double level, const glm::vec4& colour, int stride) {
+namespace {
+
+// The facets at `stride`, or stopped once there are more than `most`.
+std::vector<Facet> facets_at(const IsosurfaceGrid& grid, double level, const glm::vec4& colour, int stride,
+                             long long most) {
     const Sampled s = sampled(grid, level, stride);
     std::vector<Facet> facets;
     march(s, s.sign * level, [&](glm::vec3 a, glm::vec3 na, glm::vec3 b, glm::vec3 nb, glm::vec3 c, glm::vec3 nc) {
         facets.push_back({a, b, c, colour, na, nb, nc});
+        return static_cast<long long>(facets.size()) <= most;
     });
     return facets;
 }
 
+}  // namespace
+
+std::vector<Facet> isosurface(const IsosurfaceGrid& grid, double level, const glm::vec4& colour, int stride) {
+    return facets_at(grid, level, colour, stride, std::numeric_limits<long long>::max());
+}
+
 std::vector<Facet> isosurface_within(const IsosurfaceGrid& grid, double level, const glm::vec4& colour,
                                      long long most_facets, int* stride_used) {
+    // One walk a stride, stopped as soon as it passes the budget: most
+    // surfaces are done in the first.
     for (int stride = 1;; ++stride) {
-        long long count = 0;
-        const Sampled s = sampled(grid, level, stride);
-        march(s, s.sign * level, [&](auto&&...) { ++count; });
-        if (count <= most_facets || stride >= std::max({grid.nx, grid.ny, grid.nz})) {
+        const bool last = stride >= std::max({grid.nx, grid.ny, grid.nz});
+        std::vector<Facet> facets = facets_at(grid, level, colour, stride, last ? std::numeric_limits<long long>::max() : most_facets);
+        if (static_cast<long long>(facets.size()) <= most_facets || last) {
             if (stride_used) *stride_used = stride;
-            return isosurface(grid, level, colour, stride);
+            return facets;
         }
     }
 }
