@@ -131,7 +131,7 @@ public:
         const double cell = m_.rule.double_precision ? 8 : 4, chemicals = m_.rule.chemicals;
         const double panels = static_cast<double>(d_.panels.size()) + 1;
         const double row = m_.width + 2.0 * m_.radius_x + 64 / cell;  // a row, halos and padding
-        const double threads = model_threads() > 0 ? model_threads() : std::max(1u, std::thread::hardware_concurrency());
+        const double threads = model_threads(false) > 0 ? model_threads(false) : std::max(1u, std::thread::hardware_concurrency());
         const double rows = static_cast<double>(m_.height) * m_.depth, shown = static_cast<double>(s_.shown.size());
         return {grid_need("the arrays a Ready pattern stores", rows, m_.width, 8, d_.stored_start ? chemicals : 0),
                 grid_need("the chemicals' grids", rows + 3, row, cell, 2 * chemicals),
@@ -151,15 +151,21 @@ public:
                           m_.depth > 1 ? 3 : 0)};
     }
 
-    // One thread below 256^2 cells (the frame is drawn meanwhile), every core (0) above.
-    int model_threads() const { return static_cast<long long>(m_.width) * m_.height * m_.depth < 65536 ? 1 : 0; }
+    // Every core (0), but one thread for a grid too small to share (4096
+    // cells), or below 256^2 cells while film frames are drawn beside the
+    // run. Ready's Pearson1993 at 128 x 64 without a film: 0.84 of rdy's
+    // time on one thread, 0.45 on two (farm-bench, paired).
+    int model_threads(bool filming = true) const {
+        const long long cells = static_cast<long long>(m_.width) * m_.height * m_.depth;
+        return cells < 4096 || (filming && cells < 65536) ? 1 : 0;
+    }
 
     void render(Output& out) const override {
         if (dimensions_ == 1) return render_line(out);
         if (m_.depth > 1) return render_solid(out);
         StepRunner run(d_, options_, out);
         formula::Run model(m_.rule, m_.width, m_.height, formula_start(m_, d_));
-        const int threads = model_threads();
+        const int threads = model_threads(run.filming());
         std::vector<sim::Grid<double>> now, drawn;  // every chemical where the run is, and those shown as drawn
         auto layers = [&](Cells cells) {
             std::vector<FieldLayer> l;
@@ -285,7 +291,7 @@ private:
     void render_line(Output& out) const {
         StepRunner run(d_, options_, out);
         formula::Run model(m_.rule, m_.width, m_.height, m_.depth, formula_start(m_, d_));
-        const int threads = model_threads();
+        const int threads = model_threads(run.filming());
         const int stride = space_time_stride(), last = run.last_step();
         std::vector<sim::Grid<double>> now;
         SpaceTime history;
@@ -407,7 +413,7 @@ private:
     void render_solid(Output& out) const {
         StepRunner run(d_, options_, out);
         formula::Run model(m_.rule, m_.width, m_.height, m_.depth, formula_start(m_, d_));
-        const int threads = model_threads();
+        const int threads = model_threads(run.filming());
         std::vector<sim::Grid<double>> now;
         auto look = [&] {
             now.clear();

@@ -39,6 +39,8 @@ public:
     StepRunner(const Description& d, const SceneOptions& options, Output& out);
 
     int last_step() const { return last_; }
+    // Whether this run draws film frames (the model then shares the cores with them).
+    bool filming() const { return film_ != nullptr; }
     // The film's frame size in pixels.
     int frame_width() const { return frame_width_; }
     int frame_height() const { return frame_height_; }
