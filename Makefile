@@ -120,6 +120,7 @@ bench: build
 	$(BUILD)/bench/figgen_accuracy --results bench/results --figures out
 	FIGGEN_MEMORY_TABLE=bench/results/memory.txt $(BUILD)/tests/figgen_tests "[memory-sweep]"
 	PYTHONPATH=$(BUILD)/python /usr/bin/python3 bench/python_renders.py $(BUILD)/figgen | tee bench/results/python.json
+	/usr/bin/python3 bench/ready_speed.py $(BUILD)/figgen $${RDY:-build-rdy/rdy} | tee bench/results/ready.json
 
 # Rewrites the image-checksum goldens under tests/golden/ from this machine's
 # renderer. Explicit only: CI never runs it.
