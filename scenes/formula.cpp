@@ -292,7 +292,10 @@ private:
         StepRunner run(d_, options_, out);
         formula::Run model(m_.rule, m_.width, m_.height, m_.depth, formula_start(m_, d_));
         const int threads = model_threads(run.filming());
-        const int stride = space_time_stride(), last = run.last_step();
+        // The figure's last step, whatever part of the film this run makes
+        // (a segment on another rank stops earlier): every frame's axes and
+        // rows are the same on every rank.
+        const int stride = space_time_stride(), last = std::max(d_.panels.back(), d_.animation ? d_.animation->last : 0);
         std::vector<sim::Grid<double>> now;
         SpaceTime history;
         history.rows.resize(s_.shown.size());

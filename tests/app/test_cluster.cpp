@@ -26,9 +26,16 @@ using testkit::slurp;
 
 namespace {
 
+// Whether a catalog description has a film.
+bool t_has_animation(const fs::path& source) {
+    return fs::exists(source) && toml::parse_file(source.string()).contains("animation");
+}
+
 // The figures with work items, made small: catalog descriptions with fewer
-// or shorter runs, written into `dir`, and with `film` tc7-1, whose film is
-// made in segments under mpirun. Returns their paths, space-separated.
+// or shorter runs, written into `dir`, and with `film` tc7-1 and the 1-D and
+// 3-D formula figures, whose films are made in segments under mpirun (the
+// 1-D film's frames hold the space-time diagram so far). Returns their
+// paths, space-separated.
 std::string small_descriptions(const fs::path& dir, bool film = false) {
     struct Change {
         std::string id;
@@ -43,11 +50,14 @@ std::string small_descriptions(const fs::path& dir, bool film = false) {
         {"tc7-ex1", {}, {{"n", 100}, {"gallery_steps", 15}}},
         {"tc7-1", {}, {}},
         {"pc-threshold", {{"sizes", toml::array{8, 16}}}, {{"samples", 400}, {"samples_per_item", 100}}},
+        {"fx-tunnelling", {}, {{"steps", 3000}, {"width", 128}}},
+        {"fx-glider-3d", {}, {{"steps", 300}, {"width", 16}, {"height", 16}, {"depth", 16}}},
     };
     std::string paths;
     for (const Change& c : changes) {
         const fs::path source = fs::path(FIGGEN_SOURCE_DIR) / "figures" / (c.id + ".toml");
-        if (!fs::exists(source) || (c.id == "tc7-1" && !film)) continue;  // not in this catalog, or not asked for
+        const bool filmed = c.id == "tc7-1" || (c.id.rfind("fx-", 0) == 0 && t_has_animation(source));
+        if (!fs::exists(source) || (filmed && !film)) continue;  // not in this catalog, or not asked for
         toml::table t = toml::parse_file(source.string());
         toml::table& params = *t["params"].as_table();
         for (const auto& [key, value] : c.arrays) params.insert_or_assign(key, value);
@@ -55,6 +65,12 @@ std::string small_descriptions(const fs::path& dir, bool film = false) {
         // A film of 31 frames in segments of 8, so that 2 to 4 ranks share it.
         if (c.id == "tc7-1") {
             t["animation"].as_table()->insert_or_assign("steps", toml::array{0, 30});
+            t["animation"].as_table()->insert_or_assign("segment_frames", 8);
+        } else if (filmed) {
+            const std::int64_t steps = params["steps"].value_or(std::int64_t{0});
+            t["figure"].as_table()->insert_or_assign("panels", toml::array{0, steps});
+            t["animation"].as_table()->insert_or_assign("steps", toml::array{0, steps});
+            t["animation"].as_table()->insert_or_assign("stride", steps / 20);
             t["animation"].as_table()->insert_or_assign("segment_frames", 8);
         }
         std::ofstream(dir / (c.id + ".toml")) << t << "\n";
