@@ -220,9 +220,15 @@ private:
     // The rows a 1-D run's space-time diagram keeps: every `stride`-th step
     // up to the last, at most space_time_rows of them.
     static constexpr int space_time_rows = 512;
-    int space_time_stride() const {
-        const int last = std::max(d_.panels.back(), d_.animation ? d_.animation->last : 0);
-        return std::max(1, (last + space_time_rows - 1) / space_time_rows);
+    // The last step any output shows, whatever part of the film a run makes.
+    int figure_last() const { return std::max(d_.panels.back(), d_.animation ? d_.animation->last : 0); }
+    int space_time_stride() const { return std::max(1, (figure_last() + space_time_rows - 1) / space_time_rows); }
+
+    // Every chemical where the run is.
+    std::vector<sim::Grid<double>> chemicals(const formula::Run& model) const {
+        std::vector<sim::Grid<double>> all;
+        for (int c = 0; c < m_.rule.chemicals; ++c) all.push_back(model.chemical(c));
+        return all;
     }
 
     // A 1-D run (height 1): each chemical shown as a space-time diagram,
@@ -295,14 +301,11 @@ private:
         // The figure's last step, whatever part of the film this run makes
         // (a segment on another rank stops earlier): every frame's axes and
         // rows are the same on every rank.
-        const int stride = space_time_stride(), last = std::max(d_.panels.back(), d_.animation ? d_.animation->last : 0);
+        const int stride = space_time_stride(), last = figure_last();
         std::vector<sim::Grid<double>> now;
         SpaceTime history;
         history.rows.resize(s_.shown.size());
-        auto look = [&] {
-            now.clear();
-            for (int c = 0; c < m_.rule.chemicals; ++c) now.push_back(model.chemical(c));
-        };
+        auto look = [&] { now = chemicals(model); };
         look();
         nlohmann::json panel_meta = nlohmann::json::array();
         run.run({
@@ -418,10 +421,7 @@ private:
         formula::Run model(m_.rule, m_.width, m_.height, m_.depth, formula_start(m_, d_));
         const int threads = model_threads(run.filming());
         std::vector<sim::Grid<double>> now;
-        auto look = [&] {
-            now.clear();
-            for (int c = 0; c < m_.rule.chemicals; ++c) now.push_back(model.chemical(c));
-        };
+        auto look = [&] { now = chemicals(model); };
         look();
         nlohmann::json panel_meta = nlohmann::json::array();
         run.run({
