@@ -148,7 +148,7 @@ TEST_CASE("memory estimates hold: peak RSS <= estimate <= 3 x peak, and --max-me
         {"tc7-1", "film, scale 0.5", "--scale 0.5"},
         {"tc7-1", "n 2000, PDF and SVG", "--format pdf,svg --set n=2000"},
         {"tc7-2", "n 400, panels at 10..30", "--no-video --set n=400 --set figure.panels=[10,20,30]"},
-        {"tc7-2", "film as WebM, scale 0.5", "--format webm --scale 0.5"},
+        {"tc7-2", "film as WebM, scale 0.5", "--format webm --scale 0.5 --set animation.steps=[0,2000]"},
         {"tc7-5", "n 1000", "--no-video --set n=1000"},
         {"tc7-ex2", "n 800, panels 1..3", "--no-video --set n=800 --set figure.panels=[1,2,3]"},
         {"gs-atlas", "12 x 12 tiles, 20 steps", "--no-video --scale 0.5 --set steps=20 --set tiles=[12,12]"},

@@ -165,17 +165,17 @@ TEST_CASE("two figgen processes rendering into one folder leave whole, matching 
     std::map<std::string, std::map<std::string, std::string>> alone;
     for (const std::string seed : {"1", "2"}) {
         const fs::path solo = fresh_dir("together-solo-" + seed);
-        REQUIRE(testkit::figgen("render tc7-1 tc7-5 --frames --seed " + seed + " --out " + solo.string()).status == 0);
+        REQUIRE(testkit::figgen("render tc7-1 tc7-5 --frames --scale 0.5 --seed " + seed + " --out " + solo.string()).status == 0);
         alone[seed] = snapshot(solo);
     }
 
     // Each with a TMPDIR of its own: the lock they share is in the output folder.
     fs::create_directories(out.parent_path() / "tmp-a");
     fs::create_directories(out.parent_path() / "tmp-b");
-    Child a({"render", "tc7-1", "tc7-5", "--frames", "--seed", "1", "--out", out.string()},
+    Child a({"render", "tc7-1", "tc7-5", "--frames", "--scale", "0.5", "--seed", "1", "--out", out.string()},
             out.parent_path() / "together-a.log",
             testkit::ChildOptions::with_environment({"TMPDIR=" + (out.parent_path() / "tmp-a").string()}));
-    Child b({"render", "tc7-1", "tc7-5", "--frames", "--seed", "2", "--out", out.string()},
+    Child b({"render", "tc7-1", "tc7-5", "--frames", "--scale", "0.5", "--seed", "2", "--out", out.string()},
             out.parent_path() / "together-b.log",
             testkit::ChildOptions::with_environment({"TMPDIR=" + (out.parent_path() / "tmp-b").string()}));
     a.go();
