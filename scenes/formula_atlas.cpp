@@ -6,6 +6,14 @@
 // y_range, tiles; the swept parameters get each tile's values (tile
 // centres: the first column at x_lo + half a tile), x to the right, y up.
 //
+// A tile shows what a person looks at in a run of its grid's dimension:
+// on a 2-D grid the chemical at the last step; on a 1-D grid (height and
+// depth 1) its space-time diagram, x across and the steps down (at most
+// atlas_space_time_rows rows, every stride-th step and the last); on a 3-D
+// grid the plane through the centre (z = depth / 2) at the last step, as
+// the formula figure's slices. Each tile's state_sha256 is its whole
+// chemical at the last step, as the formula figure hashes it.
+//
 // Each tile is a work item: threads, MPI ranks, shards and resume as for
 // gs-atlas. A tile whose run goes unstable (a division by zero, a chemical
 // no longer finite) is a result too: drawn grey and named in the metadata.
@@ -140,9 +148,10 @@ public:
                 params_.refuse(key, "its name is " + *clash + "; " + sim::formula::parameter_name_allowed);
             if (!words.count(name)) params_.refuse(key, parameter_allowed);
         }
-        // Each tile is a 2-D field: 1-D and 3-D grids are the formula scene's alone (for now).
-        if (m_.depth > 1) params_.refuse("depth", "1: the atlas tiles 2-D grids");
-        if (m_.height == 1) params_.refuse("height", integers_allowed(2, formula_most_side) + ": the atlas tiles 2-D grids");
+        // A grid of x and z alone has no view here: 1-D grids are a row, 3-D ones have a height.
+        if (m_.height == 1 && m_.depth > 1)
+            params_.refuse("height", integers_allowed(2, formula_most_side) +
+                                         " with depth > 1 (a 1-D grid has height 1 and depth 1)");
         require_drawable(params_, "width", "each tile", m_.height, m_.width);
         require_text_fits(
             d, options, [&](const render::Rect& area) { return tile_map().text(area, plot_); }, plot_remedy);
@@ -156,10 +165,13 @@ public:
         const double row = m_.width + 2.0 * m_.radius_x + 64 / cell;
         const double threads = std::max(1, options_.threads);
         return {grid_need("the arrays a Ready pattern stores", m_.height, m_.width, 8, d_.stored_start ? chemicals : 0),
-                grid_need("each thread's run: chemicals", m_.height + 3, row, cell, 2 * chemicals * threads),
+                grid_need("each thread's run: chemicals", static_cast<double>(m_.height) * m_.depth + 3, row, cell,
+                          2 * chemicals * threads),
                 grid_need("each thread's run: registers", threads * (m_.registers + 1), sim::formula::chunk_lanes + 64 / cell, cell, 1),
-                grid_need("the start", m_.height, m_.width, 8, chemicals),
-                grid_need("the tiles kept", m_.height, m_.width, cell + 8 + field_layer_bytes_per_cell, tile_count())};
+                grid_need("the start", static_cast<double>(m_.height) * m_.depth, m_.width, 8, chemicals),
+                grid_need("each thread's chemical read at the end", static_cast<double>(m_.height) * m_.depth,
+                          m_.width, 8, threads),
+                grid_need("the tiles kept", tile_rows(), m_.width, cell + 8 + field_layer_bytes_per_cell, tile_count())};
     }
 
     const WorkItems* work() const override { return this; }
@@ -169,7 +181,7 @@ public:
         return "tile " + std::to_string(item) + " (" + sweep_.x + " = " + description::shown(x) + ", " + sweep_.y +
                " = " + description::shown(y) + ")";
     }
-    double item_bytes() const override { return (m_.rule.double_precision ? 8.0 : 4.0) * m_.width * m_.height + 1024; }
+    double item_bytes() const override { return (m_.rule.double_precision ? 8.0 : 4.0) * m_.width * tile_rows() + 1024; }
 
     nlohmann::json run_item(int item) const override {
         const auto [x, y] = tile_values(sweep_, item);
@@ -180,13 +192,38 @@ public:
         }
         nlohmann::json r = {{"x", x}, {"y", y}};
         try {
-            formula::Run run(rule, m_.width, m_.height, start());
-            run.step(m_.steps, 1);  // one thread a tile: the tiles run side by side
-            const sim::Grid<double> g = run.chemical(s_.shown);
-            if (m_.rule.double_precision) {
-                r["values"] = binary_of<double>(g.cells());
+            formula::Run run(rule, m_.width, m_.height, m_.depth, start());
+            // One thread a tile: the tiles run side by side.
+            std::vector<double> shown;
+            if (dimensions_ == 1) {
+                // The space-time diagram: the row at step 0, every stride-th step and the last.
+                const int stride = space_time_stride();
+                for (int step = 0;; step = std::min(m_.steps, step + stride)) {
+                    if (step > run.steps()) run.step(step - static_cast<int>(run.steps()), 1);
+                    const sim::Grid<double> g = run.chemical(s_.shown);
+                    shown.insert(shown.end(), g.cells().begin(), g.cells().end());
+                    if (step == m_.steps) break;
+                }
             } else {
-                const std::vector<float> f(g.cells().begin(), g.cells().end());
+                run.step(m_.steps, 1);
+                const sim::Grid<double> g = run.chemical(s_.shown);
+                if (dimensions_ == 3) {
+                    // The centre plane, and the whole chemical's hash and mean.
+                    const std::size_t plane = static_cast<std::size_t>(m_.width) * m_.height;
+                    const auto from = g.cells().begin() + static_cast<std::ptrdiff_t>(plane * (m_.depth / 2));
+                    shown.assign(from, from + static_cast<std::ptrdiff_t>(plane));
+                    double sum = 0;
+                    for (double v : g.cells()) sum += v;
+                    r["mean"] = sum / static_cast<double>(g.cells().size());
+                    r["state_sha256"] = state_hash(g);
+                } else {
+                    shown.assign(g.cells().begin(), g.cells().end());
+                }
+            }
+            if (m_.rule.double_precision) {
+                r["values"] = binary_of<double>(std::span<const double>(shown));
+            } else {
+                const std::vector<float> f(shown.begin(), shown.end());
                 r["values"] = binary_of<float>(std::span<const float>(f));
             }
         } catch (const formula::Unstable& e) {
@@ -204,7 +241,16 @@ public:
             if (!r["unstable"].is_string()) throw std::invalid_argument("unstable is not a text");
             return;
         }
-        const std::size_t cells = static_cast<std::size_t>(m_.width) * m_.height;
+        if (dimensions_ == 3) {
+            const nlohmann::json& hash = rc::member(r, "state_sha256");
+            if (!hash.is_string() || hash.get_ref<const std::string&>().size() != 64 ||
+                hash.get_ref<const std::string&>().find_first_not_of("0123456789abcdef") != std::string::npos)
+                throw std::invalid_argument("its state_sha256 is not 64 hexadecimal digits");
+            const nlohmann::json& mean = rc::member(r, "mean");
+            if (!mean.is_number() || !std::isfinite(mean.get<double>()))
+                throw std::invalid_argument("its mean is not a finite number");
+        }
+        const std::size_t cells = static_cast<std::size_t>(m_.width) * tile_rows();
         if (m_.rule.double_precision) rc::values_in<double>(rc::member(r, "values"), "values", cells, -1e300, 1e300);
         else rc::values_in<float>(rc::member(r, "values"), "values", cells, -3.4e38, 3.4e38);
     }
@@ -224,19 +270,30 @@ public:
                 ++unstable;
                 meta["unstable"] = r["unstable"];
             } else {
-                const std::size_t cells = static_cast<std::size_t>(m_.width) * m_.height;
+                const std::size_t cells = static_cast<std::size_t>(m_.width) * tile_rows();
                 if (m_.rule.double_precision) {
                     tile.values = values_of<double>(r.at("values"), cells);
                 } else {
                     const auto f = values_of<float>(r.at("values"), cells);
                     tile.values.assign(f.begin(), f.end());
                 }
-                double sum = 0;
-                for (double v : tile.values) sum += v;
-                meta["mean"] = sum / static_cast<double>(tile.values.size());
-                meta["state_sha256"] = state_hash(tile.values);  // as the formula scene hashes a chemical
-                // Drawn with y = 0 at the bottom, as the formula scene draws.
-                for (int row = 0; row < m_.height / 2; ++row)
+                if (dimensions_ == 3) {
+                    meta["mean"] = r.at("mean");
+                    meta["state_sha256"] = r.at("state_sha256");
+                } else {
+                    // The chemical at the last step: the tile, or a 1-D diagram's last row.
+                    const std::vector<double> last(tile.values.end() - static_cast<std::ptrdiff_t>(m_.width) *
+                                                                           (dimensions_ == 1 ? 1 : m_.height),
+                                                   tile.values.end());
+                    double sum = 0;
+                    for (double v : last) sum += v;
+                    meta["mean"] = sum / static_cast<double>(last.size());
+                    meta["state_sha256"] = state_hash(last);  // as the formula scene hashes a chemical
+                }
+                // Drawn with y = 0 at the bottom, as the formula scene draws;
+                // a space-time diagram's steps run down from the top.
+                const int rows = dimensions_ == 1 ? 0 : m_.height;
+                for (int row = 0; row < rows / 2; ++row)
                     std::swap_ranges(tile.values.begin() + static_cast<std::ptrdiff_t>(row) * m_.width,
                                      tile.values.begin() + static_cast<std::ptrdiff_t>(row + 1) * m_.width,
                                      tile.values.begin() + static_cast<std::ptrdiff_t>(m_.height - 1 - row) * m_.width);
@@ -270,6 +327,9 @@ public:
         nlohmann::json meta = {
             {"params", params_.used()},   {"style", style_.used()}, {"shows", formula::chemical_name(s_.shown)},
             {"tiles_unstable", unstable}, {"tiles", tile_meta},     {"model_operations", m_.operations}};
+        if (dimensions_ == 1)
+            meta["tile_shows"] = {{"view", "space-time diagram"}, {"rows", tile_rows()}, {"stride", space_time_stride()}};
+        if (dimensions_ == 3) meta["tile_shows"] = {{"view", "plane"}, {"z", m_.depth / 2}};
         if (const auto bar = colour_bar()) meta["colour_bar"] = colour_bar_metadata(*bar);
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         out.figure({width, height, false, [this](render::Surface& s) { draw(s); }}, std::move(meta));
@@ -283,6 +343,17 @@ private:
     };
 
     int tile_count() const { return sweep_.columns * sweep_.rows; }
+
+    // A 1-D tile's space-time diagram: the row at step 0, then every
+    // stride-th step and the last, at most atlas_space_time_rows + 1 rows.
+    static constexpr int atlas_space_time_rows = 128;
+    int space_time_stride() const { return std::max(1, (m_.steps + atlas_space_time_rows - 1) / atlas_space_time_rows); }
+    // The rows a tile shows: the diagram's, or a plane's.
+    int tile_rows() const {
+        if (dimensions_ != 1) return m_.height;
+        const int stride = space_time_stride();
+        return (m_.steps + stride - 1) / stride + 1;
+    }
 
     const std::vector<sim::Grid<double>>& start() const {
         std::call_once(start_made_, [&] { start_ = formula_start(m_, d_); });
@@ -298,7 +369,7 @@ private:
                 return TileMap::Tile{1, 1, {&grey, 0, 1, 1.0f, render::Sampling::nearest}};
             }
             values = tile.values;
-            return TileMap::Tile{m_.height, m_.width, tile.style};
+            return TileMap::Tile{tile_rows(), m_.width, tile.style};
         });
     }
 
@@ -327,6 +398,7 @@ private:
 
     const Sweep sweep_;
     const FormulaModel m_;
+    const int dimensions_ = formula::dimensionality(m_.width, m_.height, m_.depth);
     const Style s_;
     const render::PlotStyle plot_;
     mutable std::once_flag start_made_;

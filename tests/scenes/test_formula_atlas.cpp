@@ -90,6 +90,46 @@ TEST_CASE("each tile of a formula atlas is the formula scene's run with its para
     CHECK(meta["tiles"][3]["mean"].get<double>() > meta["tiles"][0]["mean"].get<double>());
 }
 
+TEST_CASE("a 1-D atlas tiles space-time diagrams and a 3-D one centre planes of the formula scene's runs",
+          "[formula][scenes]") {
+    const fs::path dir = testkit::fresh_dir("formula-atlas-dimensions");
+    for (const std::string grid : {"width = 24\nheight = 1", "width = 8\nheight = 6\ndepth = 5"}) {
+        const bool line = grid.find("depth") == std::string::npos;
+        INFO(grid);
+        const auto sized = [&](std::string text) {
+            text.replace(text.find("width = 16\nheight = 12"), 22, grid);
+            return text;
+        };
+        const std::string id = line ? "line" : "cube";
+        const auto run = render(dir, sized(atlas), id, "--threads 2");
+        INFO(run.output);
+        REQUIRE(run.status == 0);
+        const auto meta = nlohmann::json::parse(testkit::slurp(dir / (id + ".json")));
+        REQUIRE(meta["tiles"].size() == 6);
+        CHECK(meta["tiles_unstable"] == 0);
+        if (line) {
+            // 40 steps, every step a row, and step 0's.
+            CHECK(meta["tile_shows"]["view"] == "space-time diagram");
+            CHECK(meta["tile_shows"]["rows"] == 41);
+            CHECK(meta["tile_shows"]["stride"] == 1);
+        } else {
+            CHECK(meta["tile_shows"]["view"] == "plane");
+            CHECK(meta["tile_shows"]["z"] == 2);
+        }
+        // Each tile's last state is the formula figure's with its parameters: two tiles, diagonal.
+        for (const int t : {0, 5}) {
+            const auto& tile = meta["tiles"][t];
+            const std::string one_id = id + "-single-" + std::to_string(t);
+            const auto one = render(dir, sized(single(tile["r"], tile["s"])), one_id);
+            INFO(one.output);
+            REQUIRE(one.status == 0);
+            const auto m = nlohmann::json::parse(testkit::slurp(dir / (one_id + ".json")));
+            CHECK(m["panels"][0]["state_sha256"] == tile["state_sha256"]);
+        }
+        CHECK(meta["tiles"][5]["mean"].get<double>() > meta["tiles"][0]["mean"].get<double>());
+    }
+}
+
 TEST_CASE("a tile that goes unstable is drawn grey and named, the others drawn", "[formula][scenes]") {
     const fs::path dir = testkit::fresh_dir("formula-atlas-unstable");
     std::string text = atlas;
