@@ -50,6 +50,9 @@ const std::vector<Key> animation_keys = {
     {"poster",
      "the step whose frame is the film's poster (the still shown before it plays): the frame at that "
      "step or the last before it; default its last frame"},
+    {"turn_frames",
+     "frames after the run's that turn the camera once around the last step (3-D formula figures); 0 = none",
+     "an integer", "an integer from 0 to 3600"},
 };
 
 // A command-line value as TOML would read it ("0.2" a float, "[1,2]" a list,
@@ -193,6 +196,7 @@ void read_animation(Description& d, const toml::table& root) {
     a.segment_frames = anim.count_in("segment_frames", a.segment_frames, 0, 100'000'000);
     std::tie(a.width, a.height) = size_pair(anim, "size", {a.width, a.height});
     a.title = anim.text("title", a.title);
+    a.turn_frames = anim.count_in("turn_frames", a.turn_frames, 0, 3600);
     if (anim.has("poster")) {
         // As ffmpeg's -ss seeks: the frame at that step, else the last before it.
         const long long poster = anim.integer("poster", a.last);

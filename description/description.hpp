@@ -51,7 +51,13 @@ struct Animation {
     // at that step or, as ffmpeg's -ss seeks, the last one before it. None:
     // the last frame.
     std::optional<int> poster = std::nullopt;
-    int frame_count() const { return (last - first) / stride + 1; }
+    // Frames after the run's that turn the camera once around the last
+    // step (a 3-D scene's; 0: none). The k-th of n looks from k + 1 n-ths
+    // of a turn on, so the last is the run's own view again.
+    int turn_frames = 0;
+    // The frames of the run: at first, first + stride, ... up to last.
+    int run_frames() const { return (last - first) / stride + 1; }
+    int frame_count() const { return run_frames() + turn_frames; }
     bool shows(int step) const { return step >= first && step <= last && (step - first) % stride == 0; }
 };
 

@@ -120,6 +120,10 @@ public:
             throw SettingError("animation.steps", std::to_string(d.animation->last),
                                "steps up to params.steps (" + std::to_string(m_.steps) + ")");
         require_drawable(params_, "width", "the grid", m_.height, m_.width);
+        if (d.animation && d.animation->turn_frames > 0 && dimensions_ != 3)
+            throw SettingError("animation.turn_frames", std::to_string(d.animation->turn_frames),
+                               "0: a " + std::to_string(dimensions_) +
+                                   "-D grid has no 3-D view to turn (depth > 1 has)");
     }
 
     // Two states of every chemical (rows with their halos and padding,
@@ -370,7 +374,9 @@ private:
         return facets;
     }
 
-    void draw_solid(render::Surface& surface, const render::Rect& view, const std::vector<render::Facet>& facets) const {
+    // `turned`: the part of a turn the camera has gone round the box (0 to 1), from the three-quarter view.
+    void draw_solid(render::Surface& surface, const render::Rect& view, const std::vector<render::Facet>& facets,
+                    double turned = 0) const {
         const glm::vec3 lo(0, 0, -float(m_.height - 1)), hi(float(m_.width - 1), float(m_.depth - 1), 0);
         // The box's twelve edges, thin and grey.
         std::vector<render::Tube> edges;
@@ -389,7 +395,15 @@ private:
                 }
                 edges.push_back({a, b, r, r, grey});
             }
-        const render::Camera camera = render::frame_bounds(lo, hi, 35, 25, view.w / view.h);
+        render::Camera camera = render::frame_bounds(lo, hi, float(35 + 360 * turned), 25, view.w / view.h);
+        if (turned > 0) {
+            // Turning, the camera keeps the distance at which the box fits from every side.
+            float distance = 0;
+            for (int a = 0; a < 360; a += 5)
+                distance = std::max(distance, glm::length(render::frame_bounds(lo, hi, float(a), 25, view.w / view.h).eye -
+                                                          camera.target));
+            camera.eye = camera.target + distance * glm::normalize(camera.eye - camera.target);
+        }
         // Lit from over the viewer's left shoulder: every face the eye sees is lit, the ones
         // turned up and to the left the most.
         const glm::vec3 back = glm::normalize(camera.eye - camera.target);
@@ -441,6 +455,17 @@ private:
                 [&](int steps) {
                     model.step(steps, threads);
                     look();
+                },
+            // The last step's surface, made once, seen from round the box.
+            .turn =
+                [&, last = std::shared_ptr<const std::vector<render::Facet>>()](int k, int n) mutable -> FrameDrawing {
+                    if (!last) last = std::make_shared<const std::vector<render::Facet>>(surface_of(now[s_.shown.front()]));
+                    const double turned = double(k + 1) / n;
+                    return {[this, facets = last, turned](render::Surface& s) {
+                                s.background({1, 1, 1, 1});
+                                draw_solid(s, {0, 0, float(s.width()), float(s.height())}, *facets, turned);
+                            },
+                            4, true};
                 },
         });
         const std::vector<render::Facet> facets = surface_of(now[s_.shown.front()]);
@@ -550,7 +575,8 @@ SceneInfo formula_scene() {
             .read = read_formula,
             .colormap_keys = formula_colormap_keys(),
             .colormap_keys_of = rule_colormap_keys,
-            .extra_files = {{.format = "vti", .disk = vti_disk}}};
+            .extra_files = {{.format = "vti", .disk = vti_disk}},
+            .turns = true};
 }
 
 }  // namespace scenes

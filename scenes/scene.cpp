@@ -51,6 +51,9 @@ std::string scenes_writing(const std::string& format) {
 
 std::unique_ptr<Scene> read_scene(const Description& d, const SceneOptions& options) {
     const SceneInfo& scene = scene_of(d);
+    if (d.animation && d.animation->turn_frames > 0 && !scene.turns)
+        throw SettingError("animation.turn_frames", std::to_string(d.animation->turn_frames),
+                           "0: the scene " + d.scene + " draws no 3-D view to turn (3-D formula figures do)");
     // A caption that cannot fit is refused before the model is read or run.
     figure_caption(d, scaled(d.width, options.scale), scaled(d.height, options.scale), options.scale);
     return scene.read(d, options);

@@ -127,6 +127,9 @@ struct SceneInfo {
     std::vector<std::string> (*colormap_keys_of)(const Description& d) = nullptr;
     // The files it can write besides the figure and film (--format).
     std::vector<ExtraFile> extra_files = {};
+    // Whether its films can turn the camera round the last step
+    // (animation.turn_frames); its reader refuses the figures that cannot.
+    bool turns = false;
 };
 
 const std::vector<SceneInfo>& all_scenes();

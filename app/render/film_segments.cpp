@@ -154,6 +154,7 @@ std::string FilmSegments::depends_on() const {
          << a.last << ' ' << a.stride << ' ' << a.fps << ' ' << a.width << 'x' << a.height << ' ' << a.title << ' '
          << a.segment_frames << "\nscale " << options_.scale << "\nvideo " << v.codec << ' ' << v.crf << ' ' << v.preset
          << ' ' << v.tune << ' ' << v.threads;
+    if (a.turn_frames > 0) text << "\nturn " << a.turn_frames;
     return text.str();
 }
 

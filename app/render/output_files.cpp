@@ -97,6 +97,7 @@ nlohmann::json FrameSink::finish() {
         {"fps", description_.animation->fps},
         {"size", {width_, height_}},
     };
+    if (description_.animation->turn_frames > 0) meta["turn_frames"] = description_.animation->turn_frames;
     // The poster: the frame of the step the description names (the last
     // frame before it where the run stopped early), else the last frame.
     if (!steps_.empty()) {

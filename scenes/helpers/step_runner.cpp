@@ -11,8 +11,9 @@ StepRunner::StepRunner(const Description& d, const SceneOptions& options, Output
     const bool animate = d.animation && options.film;
     last_ = d.last_step(animate);
     frames_ = out.film_frames();
-    // A run that makes only some of the film's frames stops after its last.
-    if (animate && !out.wants_figure() && frames_.end > 0 && frames_.end < d.animation->frame_count())
+    // A run that makes only some of the film's frames stops after its last
+    // (the frames that turn round the last step need the whole run).
+    if (animate && !out.wants_figure() && frames_.end > 0 && frames_.end < d.animation->run_frames())
         last_ = std::min(last_, d.animation->first + (frames_.end - 1) * d.animation->stride);
     if (animate) {
         frame_width_ = scaled_even(d.animation->width, options.scale);
@@ -36,6 +37,12 @@ int StepRunner::run_to_stop(const StepHooks& hooks) {
 
 int StepRunner::run_until(const StepHooks& hooks, int last) {
     const int reached = run_steps(hooks, last);
+    if (film_ && hooks.turn) {
+        // The frames after the run's, numbered after them whatever the run drew.
+        const description::Animation& a = *description_.animation;
+        for (int k = 0; k < a.turn_frames; ++k)
+            if (frames_.holds(a.run_frames() + k)) frame(hooks.turn(k, a.turn_frames), reached);
+    }
     drain_frames();  // every frame read back and in the film when the run ends
     return reached;
 }

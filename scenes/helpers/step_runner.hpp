@@ -32,6 +32,10 @@ struct StepHooks {
     // Optional: more steps a leap stops at, for check() to see (a 1-D
     // model's space-time diagram keeps a row every so many steps).
     std::function<bool(int step)> stop_at = {};
+    // Optional, for a 3-D view: the k-th of n frames that turn the camera
+    // round the state the run ended at (animation.turn_frames), after the
+    // run's own frames.
+    std::function<FrameDrawing(int k, int n)> turn = {};
 };
 
 class StepRunner {

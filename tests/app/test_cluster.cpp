@@ -34,7 +34,8 @@ bool t_has_animation(const fs::path& source) {
 // The figures with work items, made small: catalog descriptions with fewer
 // or shorter runs, written into `dir`, and with `film` tc7-1 and the 1-D and
 // 3-D formula figures, whose films are made in segments under mpirun (the
-// 1-D film's frames hold the space-time diagram so far). Returns their
+// 1-D film's frames hold the space-time diagram so far, the 3-D film ends
+// turning round its last step). Returns their
 // paths, space-separated.
 std::string small_descriptions(const fs::path& dir, bool film = false) {
     struct Change {
@@ -72,6 +73,8 @@ std::string small_descriptions(const fs::path& dir, bool film = false) {
             t["animation"].as_table()->insert_or_assign("steps", toml::array{0, steps});
             t["animation"].as_table()->insert_or_assign("stride", steps / 20);
             t["animation"].as_table()->insert_or_assign("segment_frames", 8);
+            // The 3-D film ends turning round its last step: frames 21 to 26, in the segments' last two.
+            if (c.id == "fx-glider-3d") t["animation"].as_table()->insert_or_assign("turn_frames", 6);
         }
         std::ofstream(dir / (c.id + ".toml")) << t << "\n";
         paths += ' ';  // appended apart: GCC 12 warns (-Wrestrict) on " " + string, wrongly
