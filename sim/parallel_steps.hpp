@@ -59,32 +59,20 @@ public:
             generation_.notify_all();
             return;
         }
-        // Spin for as long as spinning has lately been enough: a wait that
-        // ends in sleep halves the spin, one that ends spinning doubles it.
-        // On a busy machine the partner is often not running, and a long
-        // spin only keeps it off the CPU (fx-fhn-labyrinth beside a CPU hog
-        // on 2 CPUs: 6.1 s on 2 threads with a fixed spin, 2.4 s on one).
-        const int spin = spin_.load(std::memory_order_relaxed);
-        for (int i = 0; i < spin; ++i) {
-            if (generation_.load(std::memory_order_acquire) != gen) {
-                if (spin < kSpin) spin_.store(std::min(kSpin, 2 * spin), std::memory_order_relaxed);
-                return;
-            }
+        for (int i = 0; i < kSpin; ++i) {
+            if (generation_.load(std::memory_order_acquire) != gen) return;
 #if defined(__x86_64__) || defined(__i386__)
             __builtin_ia32_pause();
 #endif
         }
-        spin_.store(std::max(kLeastSpin, spin / 2), std::memory_order_relaxed);
         while (generation_.load(std::memory_order_acquire) == gen) generation_.wait(gen, std::memory_order_acquire);
     }
 
 private:
     static constexpr int kSpin = 4096;  // a few tens of microseconds, about one step at n = 256
-    static constexpr int kLeastSpin = 32;
     alignas(64) std::atomic<int> arrived_{0};
     alignas(64) std::atomic<unsigned> generation_{0};
     std::atomic<int> size_{1};
-    std::atomic<int> spin_{kSpin};  // a heuristic: it changes when a thread waits, never what is computed
 };
 
 // Calls update_rows(s, begin, end) for s = 0 .. steps - 1 on `threads`
