@@ -66,7 +66,10 @@ def test_the_stages_a_callback_sees():
     assert seen == [(done, 16, "tc7-1") for done in range(17)]
 
 
-@pytest.mark.parametrize("at", range(17),
+# The stages: start, the first advances, one in the middle, the last advance
+# and finish (every advance is the same call of the step loop; the race at
+# exit is the test after next's, 20 runs).
+@pytest.mark.parametrize("at", [0, 1, 2, 8, 15, 16],
                          ids=lambda at: "start" if at == 0 else "finish" if at == 16 else f"advance {at}")
 def test_a_callback_raising_at_each_stage_raises_as_itself_and_the_process_exits_cleanly(at, tmp_path):
     status, printed, stderr = raise_at(at, tmp_path / "out")
