@@ -226,7 +226,7 @@ private:
     static constexpr int space_time_rows = 512;
     // The last step any output shows, whatever part of the film a run makes.
     int figure_last() const { return std::max(d_.panels.back(), d_.animation ? d_.animation->last : 0); }
-    int space_time_stride() const { return std::max(1, (figure_last() + space_time_rows - 1) / space_time_rows); }
+    int space_time_stride() const { return scenes::space_time_stride(figure_last(), space_time_rows); }
 
     // Every chemical where the run is.
     std::vector<sim::Grid<double>> chemicals(const formula::Run& model) const {

@@ -347,7 +347,7 @@ private:
     // A 1-D tile's space-time diagram: the row at step 0, then every
     // stride-th step and the last, at most atlas_space_time_rows + 1 rows.
     static constexpr int atlas_space_time_rows = 128;
-    int space_time_stride() const { return std::max(1, (m_.steps + atlas_space_time_rows - 1) / atlas_space_time_rows); }
+    int space_time_stride() const { return scenes::space_time_stride(m_.steps, atlas_space_time_rows); }
     // The rows a tile shows: the diagram's, or a plane's.
     int tile_rows() const {
         if (dimensions_ != 1) return m_.height;

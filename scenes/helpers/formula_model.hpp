@@ -6,6 +6,7 @@
 // and, as every other key, the rule's own parameters. Shared by the
 // formula scene and the formula atlas.
 
+#include <algorithm>
 #include <set>
 #include <string>
 #include <utility>
@@ -63,5 +64,9 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
 // The start: the stored arrays of a Ready pattern, and the overlays drawn
 // with the description's seed.
 std::vector<sim::Grid<double>> formula_start(const FormulaModel& m, const Description& d);
+
+// A 1-D run's space-time diagram keeps the row of every stride-th step up
+// to `last` (and the last): the least stride that keeps at most `rows`.
+inline int space_time_stride(int last, int rows) { return std::max(1, (last + rows - 1) / rows); }
 
 }  // namespace scenes
