@@ -44,15 +44,15 @@ std::string small_descriptions(const fs::path& dir, bool film = false) {
         std::vector<std::pair<std::string, std::int64_t>> integers;
     };
     const std::vector<Change> changes = {
-        {"gs-atlas", {{"tiles", toml::array{5, 4}}}, {{"steps", 1000}}},
+        {"gs-atlas", {{"tiles", toml::array{5, 4}}}, {{"steps", 300}}},
         {"fx-pearson-map", {{"tiles", toml::array{3, 2}}}, {{"steps", 300}, {"width", 32}, {"height", 32}}},
         {"bd-roughness", {{"widths", toml::array{100, 200}}}, {{"seeds", 2}}},
         {"tc7-phase", {{"qs", toml::array{0.55, 0.65, 0.02}}}, {{"trials", 20}, {"walk_iterations", 30}}},
         {"tc7-ex1", {}, {{"n", 100}, {"gallery_steps", 15}}},
         {"tc7-1", {}, {}},
         {"pc-threshold", {{"sizes", toml::array{8, 16}}}, {{"samples", 400}, {"samples_per_item", 100}}},
-        {"fx-tunnelling", {}, {{"steps", 3000}, {"width", 128}}},
-        {"fx-glider-3d", {}, {{"steps", 300}, {"width", 16}, {"height", 16}, {"depth", 16}}},
+        {"fx-tunnelling", {}, {{"steps", 1500}, {"width", 128}}},
+        {"fx-glider-3d", {}, {{"steps", 150}, {"width", 16}, {"height", 16}, {"depth", 16}}},
     };
     std::string paths;
     for (const Change& c : changes) {
@@ -71,10 +71,11 @@ std::string small_descriptions(const fs::path& dir, bool film = false) {
             const std::int64_t steps = params["steps"].value_or(std::int64_t{0});
             t["figure"].as_table()->insert_or_assign("panels", toml::array{0, steps});
             t["animation"].as_table()->insert_or_assign("steps", toml::array{0, steps});
-            t["animation"].as_table()->insert_or_assign("stride", steps / 20);
-            t["animation"].as_table()->insert_or_assign("segment_frames", 8);
-            // The 3-D film ends turning round its last step: frames 21 to 26, in the segments' last two.
-            if (c.id == "fx-glider-3d") t["animation"].as_table()->insert_or_assign("turn_frames", 6);
+            // 11 frames in segments of 4: three segments, a fourth with the turn.
+            t["animation"].as_table()->insert_or_assign("stride", steps / 10);
+            t["animation"].as_table()->insert_or_assign("segment_frames", 4);
+            // The 3-D film ends turning round its last step: frames 11 to 14, in the segments' last two.
+            if (c.id == "fx-glider-3d") t["animation"].as_table()->insert_or_assign("turn_frames", 4);
         }
         std::ofstream(dir / (c.id + ".toml")) << t << "\n";
         paths += ' ';  // appended apart: GCC 12 warns (-Wrestrict) on " " + string, wrongly

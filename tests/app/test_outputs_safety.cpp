@@ -229,9 +229,9 @@ TEST_CASE("memory running out is reported as memory, with the figure's estimate"
 #endif
 
 TEST_CASE("a film is the same bytes on any number of threads, beside a CPU hog too", "[video][segments][cli]") {
-    // 51 frames in segments of 8: seven segments, encoded one after another
+    // 26 frames in segments of 4: seven segments, encoded one after another
     // (--threads 1) or side by side.
-    const std::string film = "render tc7-2 --scale 0.5 --set 'animation.steps=[0,1000]' --set animation.segment_frames=8";
+    const std::string film = "render tc7-2 --scale 0.5 --set 'animation.steps=[0,500]' --set animation.segment_frames=4";
     const auto run = [&](const std::string& threads, const std::string& name) {
         const fs::path out = testkit::fresh_dir("film-threads-" + name);
         const testkit::Run r = testkit::figgen(film + " --threads " + threads + " --out " + out.string());
