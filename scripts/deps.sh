@@ -24,6 +24,7 @@ packages=(
   # fallback fonts through fontconfig, and the documents' own scripts (Noto Sans CJK)
   libraqm-dev libharfbuzz-dev libfribidi-dev libunibreak-dev libfontconfig-dev fonts-noto-cjk
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  libxbyak-dev  # formula chains as machine code (x86-64)
   libtinyxml2-dev libglib2.0-dev  # Ready's pattern files: XML, and base64 (GLib); zlib as above
   python3-vtk9 python3-numpy  # the tests read figgen's VTI files back with VTK (its numpy_support)
   libopenmpi-dev openmpi-bin  # MPI: its headers and mpirun; figgen opens libmpi only under mpirun

@@ -175,6 +175,9 @@ template <class Real>
 bool run_any(const Plan<Real>& p, const Real* const* view, Real* d, int n, bool check) {
     bool bad = false;
     int done = 0;
+    if (p.machine && jit_in_use()) {
+        done = p.machine->run(reinterpret_cast<const void* const*>(view), d, 0, n, check, bad);
+    } else {
 #if defined(FIGGEN_FUSED_X86)
     switch (current().load(std::memory_order_relaxed)) {
     case Isa::avx512:
@@ -188,6 +191,7 @@ bool run_any(const Plan<Real>& p, const Real* const* view, Real* d, int n, bool 
     case Isa::plain: break;
     }
 #endif
+    }
     if (done < n) {
         // The lanes after the last whole vector, one at a time.
         bool rest = false;
@@ -360,10 +364,14 @@ Plan<Real> make_plan(const Program& program, const Chain& chain) {
 }  // namespace
 
 Plan<float> plan_float(const Program& program, const Chain& chain) {
-    return make_plan<float>(program, chain);
+    Plan<float> plan = make_plan<float>(program, chain);
+    plan.machine = compile_chain(plan);
+    return plan;
 }
 Plan<double> plan_double(const Program& program, const Chain& chain) {
-    return make_plan<double>(program, chain);
+    Plan<double> plan = make_plan<double>(program, chain);
+    plan.machine = compile_chain(plan);
+    return plan;
 }
 
 bool run(const Plan<float>& plan, const float* const* view, float* d, int n, bool check) {

@@ -12,8 +12,10 @@
 
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "sim/formula/chain_jit.hpp"
 #include "sim/formula/program.hpp"
 
 namespace sim::formula::fused {
@@ -54,9 +56,13 @@ struct Micro {
 template <class Real>
 struct Plan {
     std::vector<Micro<Real>> code;  // ends with Kind::end
+    // The same operations as machine code (sim/formula/chain_jit.hpp),
+    // where this processor and build make it; run() takes it while
+    // jit_in_use(), else the vector code of isa().
+    std::shared_ptr<const ChainCode> machine;
 };
 
-// The chain for the number type.
+// The chain for the number type, with its machine code.
 Plan<float> plan_float(const Program& program, const Chain& chain);
 Plan<double> plan_double(const Program& program, const Chain& chain);
 
@@ -66,7 +72,8 @@ Plan<double> plan_double(const Program& program, const Chain& chain);
 bool run(const Plan<float>& plan, const float* const* view, float* d, int n, bool check);
 bool run(const Plan<double>& plan, const double* const* view, double* d, int n, bool check);
 
-// The vector code in use, and a way to choose another (the tests compare them).
+// The vector code in use, and a way to choose another (the tests compare
+// them, and the machine code, sim/formula/chain_jit.hpp, with them).
 enum class Isa { plain, avx2, avx512 };
 Isa isa();
 Isa best_isa();

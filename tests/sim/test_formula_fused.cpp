@@ -21,18 +21,36 @@ using namespace sim::formula;
 
 namespace {
 
-// The instruction sets this processor runs, plain C++ first.
-std::vector<fused::Isa> instruction_sets() {
-    std::vector<fused::Isa> all{fused::Isa::plain};
-    if (fused::best_isa() >= fused::Isa::avx2) all.push_back(fused::Isa::avx2);
-    if (fused::best_isa() >= fused::Isa::avx512) all.push_back(fused::Isa::avx512);
+// What runs a chain: the vector code of an instruction set, or the
+// chain's machine code (sim/formula/chain_jit.hpp).
+struct Engine {
+    fused::Isa isa;
+    bool jit;
+};
+
+// The instruction sets this processor runs, plain C++ first, then the
+// machine code where this build and processor make it.
+std::vector<Engine> instruction_sets() {
+    std::vector<Engine> all{{fused::Isa::plain, false}};
+    if (fused::best_isa() >= fused::Isa::avx2) all.push_back({fused::Isa::avx2, false});
+    if (fused::best_isa() >= fused::Isa::avx512) all.push_back({fused::Isa::avx512, false});
+    if (fused::jit_available()) all.push_back({fused::best_isa(), true});
     return all;
 }
 
-// Puts back the instruction set in use when it goes.
+void use(const Engine& e) {
+    fused::use_isa(e.isa);
+    fused::use_jit(e.jit);
+}
+
+// Puts back the instruction set and machine code in use when it goes.
 struct KeepIsa {
     fused::Isa saved = fused::isa();
-    ~KeepIsa() { fused::use_isa(saved); }
+    bool jit = fused::jit_in_use();
+    ~KeepIsa() {
+        fused::use_isa(saved);
+        fused::use_jit(jit);
+    }
 };
 
 Rule two_chemicals(const std::string& code, bool opencl = false) {
@@ -90,9 +108,9 @@ void check_one_step(const std::string& code,
             want_b(y, x) = nb;
         }
     KeepIsa keep;
-    for (fused::Isa isa : instruction_sets()) {
-        INFO("instruction set " << static_cast<int>(isa));
-        fused::use_isa(isa);
+    for (const Engine& e : instruction_sets()) {
+        INFO("instruction set " << static_cast<int>(e.isa) << (e.jit ? ", machine code" : ""));
+        use(e);
         Run run(two_chemicals(code, opencl), width, height, {a, b});
         run.step(1, 1);
         CHECK(same_bits(run.chemical(0), want_a));
@@ -145,8 +163,8 @@ TEST_CASE("Ready's Gray-Scott fuses into three chains, the same bits on every in
     const Grid<double> a = start(64, 48, 5, 0.4, 1.0), b = start(64, 48, 6, 0.0, 0.4);
     KeepIsa keep;
     std::vector<Grid<double>> results;
-    for (fused::Isa isa : instruction_sets()) {
-        fused::use_isa(isa);
+    for (const Engine& e : instruction_sets()) {
+        use(e);
         Run run(rule, 64, 48, {a, b});
         run.step(50, 2);
         results.push_back(run.chemical(1));
@@ -202,4 +220,68 @@ TEST_CASE("Ready's Gray-Scott in Ready's OpenCL arithmetic fuses into chains too
     for (const Instr& in : program.code) loose += in.op == Op::fma;
     CHECK(loose == 0);
     CHECK(program.code.size() <= 4);
+}
+
+namespace {
+
+// Random plans over every kind of operation, run on rows of `n` lanes by
+// `e` and by plain C++ one lane at a time; returns whether they agree to
+// the bit (and on the lanes found not finite).
+template <class Real>
+bool plans_agree(const Engine& e, int n, std::uint64_t seed, int plans) {
+    sim::Random rng(seed);
+    constexpr int rows = 6;
+    std::vector<std::vector<Real>> data(rows, std::vector<Real>(static_cast<std::size_t>(n)));
+    std::vector<const Real*> view(rows);
+    bool all = true;
+    for (int p = 0; p < plans; ++p) {
+        for (int r = 0; r < rows; ++r) {
+            for (Real& v : data[static_cast<std::size_t>(r)]) v = static_cast<Real>(rng.uniform(-1.6, 1.6));
+            view[static_cast<std::size_t>(r)] = data[static_cast<std::size_t>(r)].data();
+        }
+        if (p % 7 == 3) data[2][static_cast<std::size_t>(p) % static_cast<std::size_t>(n)] = Real(1) / Real(0);
+        fused::Plan<Real> plan;
+        // acc, aux and g set first, as a compiled chain sets each before
+        // reading it; then every kind once at least, in order in the
+        // first plan, then at random.
+        for (fused::Kind set : {fused::Kind::acc_set_row, fused::Kind::aux_set_row, fused::Kind::g_set_row})
+            plan.code.push_back({set, static_cast<int>(rng.uniform(0, rows - 1e-9)), Real(0)});
+        for (int i = 0; i < 40; ++i) {
+            const int kind = p == 0 ? i % (fused::kinds - 1) : static_cast<int>(rng.uniform(0, fused::kinds - 1 - 1e-9));
+            Real k = static_cast<Real>(rng.uniform(0.25, 2.0));
+            if (rng.uniform(0, 1) < 0.5) k = -k;
+            plan.code.push_back({static_cast<fused::Kind>(kind), static_cast<int>(rng.uniform(0, rows - 1e-9)), k});
+        }
+        plan.code.push_back({fused::Kind::end, -1, 0});
+        plan.machine = fused::compile_chain(plan);
+        std::vector<Real> want(static_cast<std::size_t>(n)), got(static_cast<std::size_t>(n));
+        KeepIsa keep;
+        use({fused::Isa::plain, false});
+        const bool want_bad = fused::run(plan, view.data(), want.data(), n, true);
+        use(e);
+        const bool got_bad = fused::run(plan, view.data(), got.data(), n, true);
+        // The same bits, or both NaN (which NaN an operation on two of them
+        // keeps is the instruction's choice of operand order).
+        for (std::size_t i = 0; i < want.size(); ++i)
+            all = all && (std::memcmp(&want[i], &got[i], sizeof(Real)) == 0 || (std::isnan(want[i]) && std::isnan(got[i])));
+        all = all && want_bad == got_bad;
+    }
+    return all;
+}
+
+}  // namespace
+
+TEST_CASE("every kind of chain operation gives the plain code's bits on every instruction set", "[formula]") {
+    // Rows of 77 lanes: blocks of four vectors, single vectors, then lanes
+    // one at a time; a row with an infinity in some plans.
+    for (const Engine& e : instruction_sets()) {
+        INFO("instruction set " << static_cast<int>(e.isa) << (e.jit ? ", machine code" : ""));
+        CHECK(plans_agree<float>(e, 77, 11, 60));
+        CHECK(plans_agree<double>(e, 77, 12, 60));
+    }
+    // The machine code is what runs by default where it can.
+    CHECK(fused::jit_in_use() == fused::jit_available());
+#if defined(__x86_64__) && !defined(__clang__)
+    CHECK(fused::jit_available() == (fused::best_isa() >= fused::Isa::avx2));
+#endif
 }
