@@ -1,5 +1,5 @@
 #pragma once
-// SHA-256 (libavutil's implementation), as lowercase hex: the hash of a
+// SHA-256 (OpenSSL's libcrypto), as lowercase hex: the hash of a
 // model's state in the metadata and of decoded pixels in the image tests.
 
 #include <cstddef>

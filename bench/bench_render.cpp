@@ -121,8 +121,10 @@ BENCHMARK(draw_hex_crystal)->Unit(benchmark::kMillisecond);
 // gyroid, sin x cos y + sin y cos z + sin z cos x with four periods a side,
 // at level 0.25, capped on the grid's faces: about a million facets, more
 // than Ready's 3-D patterns make. Issue 48's target: under 0.3 s.
-static void isosurface_128(benchmark::State& state) {
-    const int n = 128;
+namespace {
+constexpr int gyroid_n = 128;
+std::vector<double> gyroid() {
+    const int n = gyroid_n;
     std::vector<double> values(static_cast<std::size_t>(n) * n * n);
     const double k = 2 * M_PI * 4 / n;
     for (int z = 0; z < n; ++z)
@@ -131,21 +133,45 @@ static void isosurface_128(benchmark::State& state) {
                 values[(static_cast<std::size_t>(z) * n + y) * n + x] = std::sin(k * x) * std::cos(k * y) +
                                                                         std::sin(k * y) * std::cos(k * z) +
                                                                         std::sin(k * z) * std::cos(k * x);
-    const render::IsosurfaceGrid grid{n, n, n, values};
+    return values;
+}
+std::vector<render::Facet> gyroid_surface(const std::vector<double>& values) {
+    const render::IsosurfaceGrid grid{gyroid_n, gyroid_n, gyroid_n, values};
+    return render::isosurface_within(grid, 0.25, {0.4f, 0.7f, 0.4f, 1.0f}, 1'000'000);
+}
+render::Image draw_gyroid(const std::vector<render::Facet>& surface, int samples) {
+    const float far = float(gyroid_n - 1);
+    const render::Camera camera = render::frame_bounds({0, 0, 0}, {far, far, far}, 35, 25, 1.0f);
+    const scenes::FrameDrawing frame{[&](render::Surface& s) {
+                                         s.background({1, 1, 1, 1});
+                                         render::draw_tubes(s, {0, 0, 480, 480}, {}, surface, camera);
+                                     },
+                                     samples, true};
+    return app::drawn_image(frame, 480, 480);
+}
+}  // namespace
+
+static void isosurface_128(benchmark::State& state) {
+    const std::vector<double> values = gyroid();
     std::size_t facets = 0;
     for (auto _ : state) {
-        const std::vector<render::Facet> surface =
-            render::isosurface_within(grid, 0.25, {0.4f, 0.7f, 0.4f, 1.0f}, 1'000'000);
+        const std::vector<render::Facet> surface = gyroid_surface(values);
         facets = surface.size();
-        const render::Camera camera =
-            render::frame_bounds({0, 0, 0}, {float(n - 1), float(n - 1), float(n - 1)}, 35, 25, 1.0f);
-        const scenes::FrameDrawing frame{[&](render::Surface& s) {
-                                             s.background({1, 1, 1, 1});
-                                             render::draw_tubes(s, {0, 0, 480, 480}, {}, surface, camera);
-                                         },
-                                         4, true};
-        benchmark::DoNotOptimize(app::drawn_image(frame, 480, 480));
+        benchmark::DoNotOptimize(draw_gyroid(surface, 4));
     }
     state.counters["facets"] = static_cast<double>(facets);
 }
 BENCHMARK(isosurface_128)->Unit(benchmark::kMillisecond);
+
+// Its parts: the extraction alone, and the drawing alone with 4 samples
+// (as films draw) and with 1.
+static void isosurface_128_extract(benchmark::State& state) {
+    const std::vector<double> values = gyroid();
+    for (auto _ : state) benchmark::DoNotOptimize(gyroid_surface(values));
+}
+BENCHMARK(isosurface_128_extract)->Unit(benchmark::kMillisecond);
+static void isosurface_128_draw(benchmark::State& state) {
+    const std::vector<render::Facet> surface = gyroid_surface(gyroid());
+    for (auto _ : state) benchmark::DoNotOptimize(draw_gyroid(surface, static_cast<int>(state.range(0))));
+}
+BENCHMARK(isosurface_128_draw)->Arg(4)->Arg(1)->Unit(benchmark::kMillisecond);

@@ -7,8 +7,8 @@
 RDY is Ready's command-line tool (scripts/ready/CMakeLists.txt builds it;
 default: $RDY, else build-rdy/rdy). Each start is a VTI file figgen writes
 at step 0 (Pearson's Gray-Scott, F = 0.037, k = 0.06, as Ready's
-GrayScott1984/Pearson1993.vti, from a square of noise): 256 x 256, 128 x 64
-and 128^3 cells. Both tools run N steps from it, as a whole process: figgen
+GrayScott1984/Pearson1993.vti, from a square of noise): 64 x 64, 128 x 64, 256 x 256,
+1024 x 1024 and 128^3 cells. Both tools run N steps from it, as a whole process: figgen
 `render START.vti --set steps=N --format vti` (it writes its figure and the
 last step too), rdy `-i START.vti -n N -o OUT.vti`. The median of three
 runs of each, taken in turn; the ratio is figgen's time over rdy's.
@@ -71,7 +71,8 @@ def main():
         print(f'ready_speed: no rdy at {rdy} (scripts/ready/CMakeLists.txt builds it): skipped', file=sys.stderr)
         print(json.dumps({'skipped': 'no rdy'}))
         return
-    cases = [('256 x 256', 256, 256, 1, 20000), ('128 x 64', 128, 64, 1, 60000), ('128^3', 128, 128, 128, 300)]
+    cases = [('64 x 64', 64, 64, 1, 100000), ('128 x 64', 128, 64, 1, 60000), ('256 x 256', 256, 256, 1, 20000),
+             ('1024 x 1024', 1024, 1024, 1, 1500), ('128^3', 128, 128, 128, 300)]
     results = []
     with tempfile.TemporaryDirectory() as work:
         for name, w, h, d, steps in cases:

@@ -16,6 +16,7 @@ packages=(
   # (--gl): EGL (libglvnd's libEGL, Mesa's EGL and its llvmpipe driver) or OSMesa
   libosmesa6-dev libegl-dev libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri
   libpng-dev zlib1g-dev
+  libssl-dev  # SHA-256 of states (libcrypto)
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libwebp-dev  # films' animated previews
   libcairo2-dev poppler-utils librsvg2-bin  # PDF and SVG through cairo; the tests rasterise them back
