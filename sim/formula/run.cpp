@@ -251,21 +251,27 @@ public:
                 for (int x = 0; x < w; ++x) row[x] = static_cast<Real>(start[c](y, x));
                 fill_halo(row);
             }
-        // The row of each neighbour at (dy, dz), z as y is: wrapped or clamped.
+        // The row of each neighbour at (dy, dz), z as y is: wrapped or clamped;
+        // a row's neighbours side by side (a chunk reads them all: 27 in 3-D).
+        tables_ = (2 * program_.radius_z + 1) * (2 * program_.radius_y + 1);
+        row_at_.assign(static_cast<std::size_t>(rows_) * static_cast<std::size_t>(tables_), 0);
         for (int dz = -program_.radius_z; dz <= program_.radius_z; ++dz)
             for (int dy = -program_.radius_y; dy <= program_.radius_y; ++dy) {
-                std::vector<int> rows(static_cast<std::size_t>(rows_));
+                const int table = (dz + program_.radius_z) * (2 * program_.radius_y + 1) + dy + program_.radius_y;
                 for (int z = 0; z < d; ++z)
                     for (int y = 0; y < h; ++y)
-                        rows[z * h + y] = source_row(z + dz, d, rule.wrap, rule.ready_edges) * h +
-                                          source_row(y + dy, h, rule.wrap, rule.ready_edges);
-                row_at_.push_back(std::move(rows));
+                        row_at_[static_cast<std::size_t>(z * h + y) * static_cast<std::size_t>(tables_) +
+                                static_cast<std::size_t>(table)] =
+                            source_row(z + dz, d, rule.wrap, rule.ready_edges) * h +
+                            source_row(y + dy, h, rule.wrap, rule.ready_edges);
             }
         // Row r follows row r - 1 in memory for every neighbour row: they can share a chunk.
         follows_.assign(static_cast<std::size_t>(rows_), 0);
         for (int r = 1; r < rows_; ++r) {
             bool follows = true;
-            for (const std::vector<int>& rows : row_at_) follows &= rows[r] == rows[r - 1] + 1;
+            const int* now = neighbour_rows(r);
+            const int* before = neighbour_rows(r - 1);
+            for (int t = 0; t < tables_; ++t) follows &= now[t] == before[t] + 1;
             follows_[r] = follows;
         }
         // x_pos as Ready computes it, for every lane of a chunk of rows (0 outside the grid).
@@ -462,9 +468,10 @@ private:
         const int first_cell = padded ? -x0 : 0, cells = padded ? width : n;
         auto cell_x = [&](int lane) { return (padded ? lane % static_cast<int>(stride_) - halo_ : x0 + lane); };
         auto cell_y = [&](int lane) { return y0 + (padded ? lane / static_cast<int>(stride_) : 0); };
+        const int* neighbours = neighbour_rows(y0);
         for (const Program::Input& in : p.inputs) {
             const int table = (in.dz + p.radius_z) * (2 * p.radius_y + 1) + in.dy + p.radius_y;
-            sc.view[in.reg] = from[in.chemical].row(row_at_[table][y0]) + x0 + in.dx;
+            sc.view[in.reg] = from[in.chemical].row(neighbours[table]) + x0 + in.dx;
         }
         if (p.x_pos >= 0) sc.view[p.x_pos] = x_pos_.data() + (padded ? 0 : x0);
         // y_pos and z_pos as Ready computes them: index / size.
@@ -593,7 +600,12 @@ private:
     int rows_ = 0;  // height * depth
     std::vector<Rows<Real>> state_[2];
     int current_ = 0;
-    std::vector<std::vector<int>> row_at_;  // [(dz + radius_z) * (2 radius_y + 1) + dy + radius_y][row]
+    // [row * tables_ + (dz + radius_z) * (2 radius_y + 1) + dy + radius_y]: the row of each neighbour
+    std::vector<int> row_at_;
+    int tables_ = 1;
+    const int* neighbour_rows(int row) const {
+        return row_at_.data() + static_cast<std::ptrdiff_t>(row) * tables_;
+    }
     std::vector<char> follows_;             // row r follows row r - 1 for every (dy, dz)
     std::vector<int> halo_source_;          // the halo's source columns: left, then right
     std::vector<Real> x_pos_;
