@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -56,8 +57,29 @@ struct Corner {
 // its normal faces out; an edge from a corner on the face to it is cut at
 // that corner, so the region above the level is closed by flat caps on the
 // grid's faces.
+// Which samples lie above the level (those past a face never): a cube
+// whose eight agree is passed over at the cost of eight bytes. Indexed
+// from -1 on each axis.
+std::vector<std::uint8_t> above_level(const Sampled& s, double level) {
+    const int px = s.sx + 2, py = s.sy + 2, pz = s.sz + 2;
+    std::vector<std::uint8_t> up(static_cast<std::size_t>(px) * py * pz, 0);
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < s.sz; ++k)
+        for (int j = 0; j < s.sy; ++j)
+            for (int i = 0; i < s.sx; ++i)
+                up[(static_cast<std::size_t>(k + 1) * py + (j + 1)) * px + (i + 1)] =
+                    s.value_at(s.cell(i, s.sx, s.grid.nx), s.cell(j, s.sy, s.grid.ny), s.cell(k, s.sz, s.grid.nz)) > level;
+    return up;
+}
+
+// The layers of cubes the walk goes through: k from first_layer to
+// last_layer - 1 (one more on each side, capped).
+int first_layer(const Sampled& s) { return s.capped ? -1 : 0; }
+int last_layer(const Sampled& s) { return s.sz - 1 + (s.capped ? 1 : 0); }
+
+// Walks the cubes of layers k_from .. k_to - 1, in order.
 template <class Emit>
-void march(const Sampled& s, double level, Emit&& emit) {
+void march(const Sampled& s, double level, const std::vector<std::uint8_t>& up, int k_from, int k_to, Emit&& emit) {
     struct Point {
         glm::vec3 position, normal;
     };
@@ -80,19 +102,11 @@ void march(const Sampled& s, double level, Emit&& emit) {
         else
             going = emit(a.position, a.normal, b.position, b.normal, c.position, c.normal) && going;
     };
-    const int first = s.capped ? -1 : 0;
-    // Which samples lie above the level (those past a face never): a cube
-    // whose eight agree is passed over at the cost of eight bytes.
-    const int px = s.sx + 2, py = s.sy + 2, pz = s.sz + 2;
-    std::vector<std::uint8_t> up(static_cast<std::size_t>(px) * py * pz, 0);
-    for (int k = 0; k < s.sz; ++k)
-        for (int j = 0; j < s.sy; ++j)
-            for (int i = 0; i < s.sx; ++i)
-                up[(static_cast<std::size_t>(k + 1) * py + (j + 1)) * px + (i + 1)] =
-                    s.value_at(s.cell(i, s.sx, s.grid.nx), s.cell(j, s.sy, s.grid.ny), s.cell(k, s.sz, s.grid.nz)) > level;
+    const int first = first_layer(s);
+    const int px = s.sx + 2, py = s.sy + 2;
     auto up_at = [&](int i, int j, int k) { return up[(static_cast<std::size_t>(k + 1) * py + (j + 1)) * px + (i + 1)]; };
     std::array<Corner, 8> corner;
-    for (int k = first; k + 1 < s.sz + (s.capped ? 1 : 0); ++k)
+    for (int k = k_from; k < k_to; ++k)
         for (int j = first; j + 1 < s.sy + (s.capped ? 1 : 0); ++j)
             for (int i = first; i + 1 < s.sx + (s.capped ? 1 : 0); ++i) {
                 int quick = 0;
@@ -155,14 +169,41 @@ Sampled sampled(const IsosurfaceGrid& grid, double level, int stride) {
 namespace {
 
 // The facets at `stride`, or stopped once there are more than `most`.
+// The layers of cubes are walked side by side on the run's threads, each
+// into facets of its own, laid end to end in the order of the layers: the
+// facets of one walk in the same order. Past the budget every layer stops
+// (the facets then number more than `most`).
 std::vector<Facet> facets_at(const IsosurfaceGrid& grid, double level, const glm::vec4& colour, int stride,
                              long long most) {
     const Sampled s = sampled(grid, level, stride);
+    const double at = s.sign * level;
+    const std::vector<std::uint8_t> up = above_level(s, at);
+    const int first = first_layer(s), layers = std::max(0, last_layer(s) - first);
+    std::vector<std::vector<Facet>> parts(static_cast<std::size_t>(layers));
+    // The facets made so far, counted in batches (a layer passes the
+    // budget by at most a batch before it stops).
+    constexpr long long batch = 64;
+    std::atomic<long long> made{0};
+#pragma omp parallel for schedule(dynamic)
+    for (int t = 0; t < layers; ++t) {
+        if (made.load(std::memory_order_relaxed) > most) continue;
+        std::vector<Facet>& facets = parts[static_cast<std::size_t>(t)];
+        march(s, at, up, first + t, first + t + 1,
+              [&](glm::vec3 a, glm::vec3 na, glm::vec3 b, glm::vec3 nb, glm::vec3 c, glm::vec3 nc) {
+                  facets.push_back({a, b, c, colour, na, nb, nc});
+                  if (static_cast<long long>(facets.size()) % batch) return true;
+                  return made.fetch_add(batch, std::memory_order_relaxed) + batch <= most;
+              });
+        made.fetch_add(static_cast<long long>(facets.size()) % batch, std::memory_order_relaxed);
+    }
+    std::size_t total = 0;
+    for (const auto& part : parts) total += part.size();
     std::vector<Facet> facets;
-    march(s, s.sign * level, [&](glm::vec3 a, glm::vec3 na, glm::vec3 b, glm::vec3 nb, glm::vec3 c, glm::vec3 nc) {
-        facets.push_back({a, b, c, colour, na, nb, nc});
-        return static_cast<long long>(facets.size()) <= most;
-    });
+    facets.reserve(total);
+    for (auto& part : parts) {
+        facets.insert(facets.end(), part.begin(), part.end());
+        std::vector<Facet>().swap(part);  // each layer's memory given back as it is copied
+    }
     return facets;
 }
 

@@ -3,11 +3,16 @@
 // 4 pi r^2, and it is closed (every edge shared by two facets).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
 #include <tuple>
+#include <string>
 #include <vector>
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 #include "render/isosurface.hpp"
 
@@ -123,4 +128,37 @@ TEST_CASE("the region below the level is closed the same way, its normals out of
         CHECK(glm::dot(glm::cross(f.b - f.a, f.c - f.a), centre) >= 0);
         CHECK(glm::dot(f.na, centre) > 0);
     }
+}
+
+TEST_CASE("the layers walked side by side give the facets of one walk, in its order", "[isosurface]") {
+    // Two balls and the capped faces: facets in many layers. One thread
+    // walks the layers in turn; several take them side by side.
+    const int n = 40;
+    std::vector<double> v = ball(n, 9, {12.5, 14.5, 13.5});
+    const std::vector<double> other = ball(n, 7, {27.5, 25.5, 28.5});
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::max(v[i], other[i]);
+    auto bits = [](const std::vector<render::Facet>& facets) {
+        return std::string(reinterpret_cast<const char*>(facets.data()), facets.size() * sizeof(render::Facet));
+    };
+#if defined(_OPENMP)
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const auto one = render::isosurface({n, n, n, v}, 0.0, {1, 1, 1, 1});
+    omp_set_num_threads(4);
+    const auto four = render::isosurface({n, n, n, v}, 0.0, {1, 1, 1, 1});
+    omp_set_num_threads(threads);
+#else
+    const auto one = render::isosurface({n, n, n, v}, 0.0, {1, 1, 1, 1});
+    const auto four = render::isosurface({n, n, n, v}, 0.0, {1, 1, 1, 1});
+#endif
+    REQUIRE(one.size() > 1000);
+    CHECK(bits(one) == bits(four));
+    // The budget holds as it did: at most `most` facets, else a coarser walk.
+    int stride = 0;
+    const auto within = render::isosurface_within({n, n, n, v}, 0.0, {1, 1, 1, 1}, static_cast<long long>(one.size()), &stride);
+    CHECK(stride == 1);
+    CHECK(bits(within) == bits(one));
+    const auto fewer = render::isosurface_within({n, n, n, v}, 0.0, {1, 1, 1, 1}, static_cast<long long>(one.size()) - 1, &stride);
+    CHECK(stride == 2);
+    CHECK(fewer.size() < one.size());
 }
