@@ -118,31 +118,29 @@ private:
             break;
         default: break;
         }
+        // The kinds on aux are those on acc, from aux_set_row on (chain_kernels.hpp).
+        const int first_aux = static_cast<int>(Kind::aux_set_row), kind = static_cast<int>(m.kind);
+        const bool on_aux = kind >= first_aux && kind <= static_cast<int>(Kind::aux_div_k);
+        const Kind base = on_aux ? static_cast<Kind>(kind - first_aux + static_cast<int>(Kind::acc_set_row)) : m.kind;
         for (int u = 0; u < U; ++u) {
             const Ymm a = acc(u), x = aux(u), gu = g(u);
-            switch (m.kind) {
-            case Kind::acc_set_row: move(a, at(u)); break;
-            case Kind::acc_set_k: move(a, k()); break;
-            case Kind::acc_add_row: op_add(a, a, at(u)); break;
-            case Kind::acc_add_k: op_add(a, a, k()); break;
-            case Kind::acc_sub_row: op_sub(a, a, at(u)); break;
-            case Kind::acc_sub_k: op_sub(a, a, k()); break;
-            case Kind::acc_rsub_row: move(row(), at(u)); op_sub(a, row(), a); break;
-            case Kind::acc_rsub_k: op_sub(a, k(), a); break;
-            case Kind::acc_mul_row: op_mul(a, a, at(u)); break;
-            case Kind::acc_mul_k: op_mul(a, a, k()); break;
-            case Kind::acc_div_k: op_div(a, a, k()); break;
-            case Kind::aux_set_row: move(x, at(u)); break;
-            case Kind::aux_set_k: move(x, k()); break;
-            case Kind::aux_add_row: op_add(x, x, at(u)); break;
-            case Kind::aux_add_k: op_add(x, x, k()); break;
-            case Kind::aux_sub_row: op_sub(x, x, at(u)); break;
-            case Kind::aux_sub_k: op_sub(x, x, k()); break;
-            case Kind::aux_rsub_row: move(row(), at(u)); op_sub(x, row(), x); break;
-            case Kind::aux_rsub_k: op_sub(x, k(), x); break;
-            case Kind::aux_mul_row: op_mul(x, x, at(u)); break;
-            case Kind::aux_mul_k: op_mul(x, x, k()); break;
-            case Kind::aux_div_k: op_div(x, x, k()); break;
+            const Ymm t = on_aux ? x : a;  // the register an acc or aux kind works on
+            switch (base) {
+            case Kind::acc_set_row: move(t, at(u)); break;
+            case Kind::acc_set_k: move(t, k()); break;
+            case Kind::acc_add_row: op_add(t, t, at(u)); break;
+            case Kind::acc_add_k: op_add(t, t, k()); break;
+            case Kind::acc_sub_row: op_sub(t, t, at(u)); break;
+            case Kind::acc_sub_k: op_sub(t, t, k()); break;
+            case Kind::acc_rsub_row: move(row(), at(u)); op_sub(t, row(), t); break;
+            case Kind::acc_rsub_k: op_sub(t, k(), t); break;
+            case Kind::acc_mul_row: op_mul(t, t, at(u)); break;
+            case Kind::acc_mul_k: op_mul(t, t, k()); break;
+            case Kind::acc_div_k: op_div(t, t, k()); break;
+            case Kind::aux_set_row: case Kind::aux_set_k: case Kind::aux_add_row: case Kind::aux_add_k:
+            case Kind::aux_sub_row: case Kind::aux_sub_k: case Kind::aux_rsub_row: case Kind::aux_rsub_k:
+            case Kind::aux_mul_row: case Kind::aux_mul_k: case Kind::aux_div_k:
+                break;  // never here: `base` is their acc kind
             case Kind::g_set_row: move(gu, at(u)); break;
             case Kind::g_add_row: op_add(gu, gu, at(u)); break;
             case Kind::acc_set_wg: op_mul(a, k(), gu); break;                       // k * g
