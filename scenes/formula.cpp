@@ -141,6 +141,7 @@ public:
                 grid_need("the chemicals' grids", rows + 3, row, cell, 2 * chemicals),
                 grid_need("the formula's registers", threads * (m_.registers + 1),
                           sim::formula::chunk_lanes + 64 / cell, cell, 1),
+                grid_need("the formula's machine code", 1, m_.machine_code, 1, 1),
                 grid_need("the start and the grids read", rows, m_.width, 8, 2 * chemicals),
                 grid_need("panels' copies", m_.height, m_.width, 8 + field_layer_bytes_per_cell, panels * shown),
                 // A 1-D run's space-time diagram: its rows, and a copy drawn with its texture.

@@ -168,6 +168,7 @@ public:
                 grid_need("each thread's run: chemicals", static_cast<double>(m_.height) * m_.depth + 3, row, cell,
                           2 * chemicals * threads),
                 grid_need("each thread's run: registers", threads * (m_.registers + 1), sim::formula::chunk_lanes + 64 / cell, cell, 1),
+                grid_need("each thread's run: machine code", threads, m_.machine_code, 1, 1),
                 grid_need("the start", static_cast<double>(m_.height) * m_.depth, m_.width, 8, chemicals),
                 grid_need("each thread's chemical read at the end", static_cast<double>(m_.height) * m_.depth,
                           m_.width, 8, threads),

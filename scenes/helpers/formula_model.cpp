@@ -8,6 +8,7 @@
 #include <set>
 
 #include "description/stored_start.hpp"
+#include "sim/formula/chain_kernels.hpp"
 #include "sim/formula/names.hpp"
 #include "sim/formula/program.hpp"
 #include "sim/random.hpp"
@@ -319,6 +320,7 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
         m.registers = program.registers;
         m.radius_x = program.radius_x;
         m.operations = program.operations;
+        m.machine_code = formula::fused::machine_code_bytes(program);
     } catch (const formula::FormulaError& e) {
         params.refuse("formula", "...", "line " + std::to_string(e.pos().line) + ", column " +
                                             std::to_string(e.pos().column) + " of the formula: " + e.message());

@@ -31,6 +31,7 @@ struct FormulaModel {
     sim::formula::Pattern pattern;
     int registers = 0, radius_x = 0;  // of the compiled formula, for the memory estimate
     int operations = 0;               // row operations a cell of one step takes (Run::operations)
+    double machine_code = 0;          // bytes of its chains' machine code (sim/formula/chain_kernels.hpp)
 };
 
 // [params]'s keys: the rule's, the scene's own (`scene_keys`), and every

@@ -42,7 +42,7 @@ template <class Real>
 class Code final : public ChainCode, private Xbyak::CodeGenerator {
 public:
     explicit Code(const Plan<Real>& plan)
-        : Xbyak::CodeGenerator(4096 + plan.code.size() * 320, Xbyak::DontSetProtectRWE) {
+        : Xbyak::CodeGenerator(code_bytes(plan.code.size()), Xbyak::DontSetProtectRWE) {
         constants_.push_back(Real(-0.0));  // the sign bit
         for (const Micro<Real>& m : plan.code) {
             slot_.push_back(static_cast<int>(constants_.size()));
@@ -227,11 +227,7 @@ std::atomic<bool>& enabled() {
 
 bool jit_available() {
 #if defined(FIGGEN_CHAIN_JIT)
-    static const bool available = [] {
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    }();
-    return available;
+    return best_isa() >= Isa::avx2;  // AVX2 with FMA, as the vector code finds them
 #else
     return false;
 #endif

@@ -11,6 +11,7 @@
 // no text of the formula reaches it, and it reads only the rows the Plan
 // names, at the lanes the caller gives.
 
+#include <cstddef>
 #include <memory>
 
 namespace sim::formula::fused {
@@ -32,6 +33,12 @@ public:
 bool jit_available();
 bool jit_in_use();
 void use_jit(bool on);  // on: only where jit_available()
+
+// The bytes of machine code a plan of `operations` operations is given:
+// an operation on four vectors and again on one is at most about 200.
+constexpr std::size_t code_bytes(std::size_t operations) {
+    return 4096 + operations * 320;
+}
 
 // The machine code of a plan; null where there is none (not available, or
 // Xbyak refused).

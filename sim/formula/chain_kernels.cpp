@@ -374,6 +374,14 @@ Plan<double> plan_double(const Program& program, const Chain& chain) {
     return plan;
 }
 
+double machine_code_bytes(const Program& program) {
+    if (!jit_available()) return 0;
+    double bytes = 0;
+    for (const Chain& chain : program.chains)
+        bytes += static_cast<double>(code_bytes(make_plan<float>(program, chain).code.size()));
+    return bytes;
+}
+
 bool run(const Plan<float>& plan, const float* const* view, float* d, int n, bool check) {
     return run_any(plan, view, d, n, check);
 }

@@ -62,6 +62,10 @@ struct Plan {
     std::shared_ptr<const ChainCode> machine;
 };
 
+// The bytes of machine code the program's chains are given (code_bytes,
+// sim/formula/chain_jit.hpp), for memory estimates; 0 where none is made.
+double machine_code_bytes(const Program& program);
+
 // The chain for the number type, with its machine code.
 Plan<float> plan_float(const Program& program, const Chain& chain);
 Plan<double> plan_double(const Program& program, const Chain& chain);
