@@ -1,17 +1,18 @@
 #pragma once
 // The surface where a 3-D field crosses a level, as lit facets with smooth
-// normals, for draw_tubes (render/tubes.hpp): marching tetrahedra. Each cube
-// of eight neighbouring cells is cut into six tetrahedra about its main
-// diagonal (Kuhn's triangulation: neighbouring cubes cut their shared face
-// along the same diagonal, so the surface has no cracks); a tetrahedron
-// whose corners lie on both sides of the level holds one or two triangles,
-// their corners where the field, interpolated linearly along an edge,
-// equals the level. A corner's normal is the field's gradient there
-// (central differences, one-sided at the grid's faces), interpolated the
-// same way and pointing out of the region above the level; each triangle
-// is wound so that its front faces the same way. Capped, the region above
-// the level is closed where it meets the grid's faces.
+// normals, for draw_tubes (render/tubes.hpp): marching cubes. A cube of
+// eight neighbouring samples whose corners lie on both sides of the level
+// holds up to twelve triangles, their corners where the field, interpolated
+// linearly along the cube's edges, equals the level. The triangles of each
+// of the 256 cases are made from the cube's faces, each face cut the same
+// way from both cubes that share it (its corners above the level kept
+// apart), so the surface has no cracks. A corner's normal is the field's
+// gradient there (central differences, one-sided at the grid's faces),
+// interpolated the same way and pointing out of the region above the level;
+// each triangle is wound so that its front faces the same way. Capped, the
+// region above the level is closed where it meets the grid's faces.
 
+#include <algorithm>
 #include <span>
 #include <vector>
 
@@ -32,6 +33,11 @@ struct IsosurfaceGrid {
     bool inside_below = false;
 };
 
+// How many facets a surface drawn into `pixels` pixels needs at most: two
+// a pixel (and never fewer than 20,000). A finer one shows nothing more,
+// and llvmpipe's time grows with the facets it draws.
+constexpr long long facets_for_pixels(long long pixels) { return std::max(2 * pixels, 20'000LL); }
+
 // The facets of the level surface in world coordinates: the cell (x, y, z)
 // at world (x, y, z) * spacing. Sampled every `stride` cells along each
 // axis (1: every cell). Throws std::invalid_argument for a grid whose
@@ -40,7 +46,8 @@ std::vector<Facet> isosurface(const IsosurfaceGrid& grid, double level, const gl
 
 // The least stride (1, 2, 3, ...) at which the surface has at most
 // `most_facets` facets, and those facets: a grid too fine for the budget is
-// sampled more coarsely, the same way every time.
+// sampled more coarsely, the same way every time. The facets of a stride are
+// counted before any is made.
 std::vector<Facet> isosurface_within(const IsosurfaceGrid& grid, double level, const glm::vec4& colour,
                                      long long most_facets, int* stride_used = nullptr);
 

@@ -149,7 +149,7 @@ public:
                           16 + field_layer_bytes_per_cell, shown),
                 // A 3-D run's isosurface (the figure's and a frame's) with its corners as GL takes
                 // them, the queue llvmpipe keeps, and the slices' copies.
-                grid_need("the isosurface", 1, static_cast<double>(most_facets),
+                grid_need("the isosurface", 1, static_cast<double>(most_facets()),
                           sizeof(render::Facet) + 3 * 40.0, m_.depth > 1 ? 2 : 0),
                 grid_need("the isosurface's draw queue", 1, render::queued_triangles_bytes, 1, m_.depth > 1 ? 1 : 0),
                 grid_need("the slices", m_.depth, std::max(m_.width, m_.height), 8 + field_layer_bytes_per_cell,
@@ -358,7 +358,17 @@ private:
     // at contour_level, lit, from a three-quarter view, inside the grid's
     // box; beside it three slices through the centre in its colours. The
     // film shows the isosurface.
-    static constexpr long long most_facets = 1'000'000;  // a finer surface is sampled more coarsely
+    // A finer surface is sampled more coarsely: at most two facets a pixel
+    // of the largest square it is drawn into (the figure's left half, a
+    // film's frame).
+    long long most_facets() const {
+        const long long width = figure_width(d_, options_), height = figure_height(d_, options_);
+        long long pixels = std::min(height, width / 2) * std::min(height, width / 2);
+        if (d_.animation)
+            pixels = std::max(pixels, static_cast<long long>(scaled_even(d_.animation->width, options_.scale)) *
+                                          scaled_even(d_.animation->height, options_.scale));
+        return render::facets_for_pixels(pixels);
+    }
 
     std::vector<render::Facet> surface_of(const sim::Grid<double>& cells) const {
         const FieldSpec& spec = specs_.front();
@@ -367,7 +377,7 @@ private:
         const glm::vec4 colour(spec.colormap.at(std::clamp(t, 0.0, 1.0)), 1.0f);
         render::IsosurfaceGrid grid{m_.width, m_.height, m_.depth, cells.cells()};
         grid.inside_below = s_.contour_below;
-        std::vector<render::Facet> facets = render::isosurface_within(grid, s_.contour_level, colour, most_facets);
+        std::vector<render::Facet> facets = render::isosurface_within(grid, s_.contour_level, colour, most_facets());
         // The grid's z up on the page: world (x, z, -y), a rotation (windings keep their sense).
         auto turn = [](glm::vec3& v) { v = glm::vec3(v.x, v.z, -v.y); };
         for (render::Facet& f : facets)

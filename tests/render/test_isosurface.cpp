@@ -1,6 +1,8 @@
 // The isosurface of a 3-D field (render/isosurface.hpp) against geometry:
 // a sphere's surface lies at its radius, its normals point out, its area is
-// 4 pi r^2, and it is closed (every edge shared by two facets).
+// 4 pi r^2, it is closed (every edge shared by two facets), and it has as
+// many facets as Euler's formula gives a sphere with a corner on each
+// crossed edge of the grid.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -60,6 +62,18 @@ TEST_CASE("a ball's isosurface is a closed sphere of its radius, its normals out
     int open = 0;
     for (const auto& [edge, count] : edges) open += count != 2;
     CHECK(open == 0);
+    // One corner a crossed edge of the grid, and a closed surface of a
+    // sphere's topology: V - E + F = 2 with E = 3F / 2, so F = 2V - 4.
+    long long crossed = 0;
+    auto above = [&](int x, int y, int z) { return v[(static_cast<std::size_t>(z) * n + y) * n + x] > 0; };
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                if (x + 1 < n) crossed += above(x, y, z) != above(x + 1, y, z);
+                if (y + 1 < n) crossed += above(x, y, z) != above(x, y + 1, z);
+                if (z + 1 < n) crossed += above(x, y, z) != above(x, y, z + 1);
+            }
+    CHECK(static_cast<long long>(facets.size()) == 2 * crossed - 4);
 }
 
 TEST_CASE("a field all below the level has no isosurface, all above it is the capped box, a coarser one has fewer facets", "[isosurface]") {
