@@ -527,16 +527,14 @@ private:
 
     nlohmann::json metadata(const std::vector<sim::Grid<double>>& chemicals, int step) const {
         nlohmann::json stats = nlohmann::json::object();
-        std::vector<double> state;
+        std::vector<base::Bytes> state;  // the chemicals one after another
         for (int c = 0; c < m_.rule.chemicals; ++c) {
             auto s = field_statistics(chemicals[c]);
             s.erase("sum");
             stats[formula::chemical_name(c)] = s;
-            state.insert(state.end(), chemicals[c].cells().begin(), chemicals[c].cells().end());
+            state.push_back({chemicals[c].data(), chemicals[c].size() * sizeof(double)});
         }
-        return {{"step", step},
-                {"statistics", stats},
-                {"state_sha256", base::sha256_hex(state.data(), state.size() * sizeof(double))}};
+        return {{"step", step}, {"statistics", stats}, {"state_sha256", base::sha256_hex(state)}};
     }
 
     const FormulaModel m_;

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <string_view>
 
 #include "ready/vtk_arrays.hpp"
 
@@ -68,12 +71,29 @@ std::string ready_vti(const ReadyState& s) {
             a->SetAttribute("RangeMin", *lo);
             a->SetAttribute("RangeMax", *hi);
         }
-        a->SetText(vtk::encode_zlib_base64(v, s.float64).c_str());
     }
     piece->InsertNewChildElement("CellData");
     tinyxml2::XMLPrinter printer;
     doc.Print(&printer);
-    return std::string(printer.CStr(), static_cast<std::size_t>(printer.CStrSize() - 1));
+    const std::string_view printed(printer.CStr(), static_cast<std::size_t>(printer.CStrSize() - 1));
+    // Each array's text (base64: nothing in it to escape) goes into its
+    // element after the document is printed, so that the printer neither
+    // copies nor scans megabytes of it. The elements are the printed text's
+    // "<DataArray " in order: no text of the pattern's can hold one, as the
+    // printer writes its '<' as "&lt;".
+    std::string out;
+    std::size_t at = 0;
+    for (const auto& v : s.chemicals) {
+        const std::size_t open = printed.find("<DataArray ", at), close = printed.find("/>", open);
+        if (open == std::string_view::npos || close == std::string_view::npos)
+            throw std::logic_error("ready_vti: an array's element is not where it was put");
+        const std::string text = vtk::encode_zlib_base64(v, s.float64);
+        out.reserve(printed.size() + text.size() + 16 * s.chemicals.size());
+        out.append(printed.substr(at, close - at)).append(">").append(text).append("</DataArray>");
+        at = close + 2;
+    }
+    out.append(printed.substr(at));
+    return out;
 }
 
 }  // namespace ready

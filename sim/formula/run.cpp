@@ -238,6 +238,9 @@ public:
                 break;
             }
         lanes_ = stride_ <= max_lanes ? static_cast<int>(group_most_ * stride_) : max_lanes;
+        // A chunk of whole padded rows (one, where only one fits) starts on
+        // a cache line: its stores are aligned, none split between lines.
+        padded_ = stride_ <= max_lanes;
         for (int k = 0; k < 2; ++k)
             for (int c = 0; c < rule.chemicals; ++c) state_[k].push_back(make_rows());
         halo_source_.resize(static_cast<std::size_t>(2 * halo_));
@@ -285,7 +288,7 @@ public:
                                 static_cast<Real>(w / 4);
                     else
                         value = static_cast<Real>(x) / static_cast<Real>(w);
-                    if (group_most_ > 1) x_pos_[static_cast<std::size_t>(r * stride_ + halo_ + x)] = value;
+                    if (padded_) x_pos_[static_cast<std::size_t>(r * stride_ + halo_ + x)] = value;
                     else x_pos_[static_cast<std::size_t>(x)] = value;
                 }
         }
@@ -445,7 +448,7 @@ private:
     // than a chunk goes in pieces.
     bool chunk_rows(int s, int y0, int rows, const std::vector<Rows<Real>>& from, std::vector<Rows<Real>>& to,
                     Scratch& sc, Failure& failure) {
-        if (group_most_ > 1) {
+        if (padded_) {
             if (!chunk(s, y0, rows, -halo_, static_cast<int>(rows * stride_), from, to, sc, failure)) return false;
         } else {
             for (int x0 = 0; x0 < width; x0 += static_cast<int>(lanes_))
@@ -464,7 +467,7 @@ private:
                std::vector<Rows<Real>>& to, Scratch& sc, Failure& failure) {
         const Program& p = program_;
         const long long step = steps + s;
-        const bool padded = group_most_ > 1;  // whole padded rows, from the first's halo
+        const bool padded = padded_;  // whole padded rows, from the first's halo
         const int first_cell = padded ? -x0 : 0, cells = padded ? width : n;
         auto cell_x = [&](int lane) { return (padded ? lane % static_cast<int>(stride_) - halo_ : x0 + lane); };
         auto cell_y = [&](int lane) { return y0 + (padded ? lane / static_cast<int>(stride_) : 0); };
@@ -597,6 +600,7 @@ private:
     int halo_ = 0;
     std::ptrdiff_t stride_ = 0, lanes_ = 0;
     int group_most_ = 1;
+    bool padded_ = false;  // a chunk is whole rows with their halos and padding
     int rows_ = 0;  // height * depth
     std::vector<Rows<Real>> state_[2];
     int current_ = 0;
