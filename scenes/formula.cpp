@@ -126,8 +126,8 @@ public:
                                    "-D grid has no 3-D view to turn (depth > 1 has)");
     }
 
-    // Two states of every chemical (rows with their halos and padding,
-    // sim/formula/run.cpp), each thread's registers (a chunk of at most
+    // Two states of every chemical, three on a 2-D grid (rows with their
+    // halos and padding, sim/formula/run.cpp), each thread's registers (a chunk of at most
     // sim::formula::chunk_lanes cells each, a line apart), the start and the grids read at a
     // stop, and a copy per panel and frame of the chemicals shown, with
     // their textures.
@@ -138,7 +138,8 @@ public:
         const double threads = model_threads(false) > 0 ? model_threads(false) : std::max(1u, std::thread::hardware_concurrency());
         const double rows = static_cast<double>(m_.height) * m_.depth, shown = static_cast<double>(s_.shown.size());
         return {grid_need("the arrays a Ready pattern stores", rows, m_.width, 8, d_.stored_start ? chemicals : 0),
-                grid_need("the chemicals' grids", rows + 3, row, cell, 2 * chemicals),
+                grid_need("the chemicals' grids", rows + 3, row, cell,
+                          sim::formula::state_copies(m_.height, m_.depth) * chemicals),
                 grid_need("the formula's registers", threads * (m_.registers + 1),
                           sim::formula::chunk_lanes + 64 / cell, cell, 1),
                 grid_need("the formula's machine code", 1, m_.machine_code, 1, 1),

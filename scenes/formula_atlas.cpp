@@ -157,7 +157,8 @@ public:
             d, options, [&](const render::Rect& area) { return tile_map().text(area, plot_); }, plot_remedy);
     }
 
-    // Per thread a run's chemicals (two states, rows with halos) and its
+    // Per thread a run's chemicals (two states, three on a 2-D grid; rows
+    // with halos) and its
     // registers; the start; every tile's chemical kept (float or double)
     // and, while drawn, as doubles with a texture.
     std::vector<MemoryNeed> memory() const override {
@@ -166,7 +167,7 @@ public:
         const double threads = std::max(1, options_.threads);
         return {grid_need("the arrays a Ready pattern stores", m_.height, m_.width, 8, d_.stored_start ? chemicals : 0),
                 grid_need("each thread's run: chemicals", static_cast<double>(m_.height) * m_.depth + 3, row, cell,
-                          2 * chemicals * threads),
+                          sim::formula::state_copies(m_.height, m_.depth) * chemicals * threads),
                 grid_need("each thread's run: registers", threads * (m_.registers + 1), sim::formula::chunk_lanes + 64 / cell, cell, 1),
                 grid_need("each thread's run: machine code", threads, m_.machine_code, 1, 1),
                 grid_need("the start", static_cast<double>(m_.height) * m_.depth, m_.width, 8, chemicals),

@@ -15,6 +15,16 @@ namespace sim::formula {
 // registers of this many cells, and a cache line more.
 constexpr int chunk_lanes = 2048;
 
+// The copies of each chemical's rows a run keeps at most: three on a 2-D
+// grid (its steps go in blocks, sim/formula/run.cpp), else two.
+constexpr int state_copies(int height, int depth) {
+    return depth == 1 && height > 1 ? 3 : 2;
+}
+
+// Whether a 2-D run may take its steps in blocks (on unless the tests
+// compare it with one step at a time; the same bits either way).
+void use_temporal_blocking(bool on);
+
 // A run of a rule on a width x height x depth grid. A chemical's cells are
 // a Grid of height * depth rows: the row of (y, z) is z * height + y, its
 // column x.
@@ -42,6 +52,8 @@ public:
     int depth() const;
     // Row operations a cell of one step takes: the compiled formula's size.
     int operations() const;
+    // The steps a block of its steps takes (1: one at a time).
+    int block_steps() const;
 
     struct Impl;  // the engine of the rule's number type (sim/formula/run.cpp)
 
