@@ -139,7 +139,7 @@ public:
         const double rows = static_cast<double>(m_.height) * m_.depth, shown = static_cast<double>(s_.shown.size());
         return {grid_need("the arrays a Ready pattern stores", rows, m_.width, 8, d_.stored_start ? chemicals : 0),
                 grid_need("the chemicals' grids", rows + 3, row, cell,
-                          sim::formula::state_copies(m_.height, m_.depth) * chemicals),
+                          sim::formula::state_copies(m_.height, m_.depth, m_.rule.integrator) * chemicals),
                 grid_need("the formula's registers", threads * (m_.registers + 1),
                           sim::formula::chunk_lanes + 64 / cell, cell, 1),
                 grid_need("the formula's machine code", 1, m_.machine_code, 1, 1),

@@ -189,6 +189,13 @@ const Schema<ModelValues> model_schema = [] {
     rule.choice("arithmetic", &R::fused_multiply_add, {{"plain", false}, {"opencl", true}},
                 "plain: every operation rounds on its own; opencl: as Ready's OpenCL compiler (clang) does it, "
                 "a * b + c inside one expression is one fused multiply-add (Ready's patterns)");
+    rule.choice("integrator", &R::integrator,
+                {{"euler", formula::Integrator::euler},
+                 {"heun", formula::Integrator::heun},
+                 {"rk4", formula::Integrator::rk4}},
+                "how a step advances: euler (Ready's forward Euler, first order), heun (Heun's method, second "
+                "order, two stages), rk4 (classical Runge-Kutta, fourth order, four stages); each stage "
+                "evaluates the whole formula");
     using M = ModelValues;
     Schema<M> s;
     s.part_at(

@@ -80,11 +80,17 @@ public:
     Program compile(const Formula& formula) {
         scopes_.emplace_back();
         for (const StmtPtr& s : formula.statements) statement(*s, all_cells());
-        // The forward Euler step of every chemical.
+        // The forward Euler step of every chemical; for the other
+        // integrators the deltas, which the run combines stage by stage.
         const Value timestep = lookup_value("timestep", {1, 1});
+        program_.outputs_are_deltas = rule_.integrator != Integrator::euler;
         for (int i = 0; i < rule_.chemicals; ++i) {
             const std::string chem = chemical_name(i);
             const Value x = lookup_value(chem, {1, 1}), delta = lookup_value("delta_" + chem, {1, 1});
+            if (program_.outputs_are_deltas) {
+                program_.outputs.push_back(materialise(delta));
+                continue;
+            }
             Value next = arith(Op::add, x, arith(Op::mul, timestep, delta, {}), {});
             program_.outputs.push_back(materialise(next));
         }

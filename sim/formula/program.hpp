@@ -120,7 +120,11 @@ struct Program {
     std::vector<StencilSum> stencils;
     std::vector<Chain> chains;
     int operations = 0;  // the operations before any were fused into chains
-    std::vector<int> outputs;  // per chemical: the register of its new value
+    // Per chemical: the register of its new value, X + timestep * delta_X
+    // (Integrator::euler), or of delta_X itself (the other integrators,
+    // whose stages the run combines).
+    std::vector<int> outputs;
+    bool outputs_are_deltas = false;
     int radius_x = 0, radius_y = 0, radius_z = 0;  // the farthest neighbour read
 };
 

@@ -25,6 +25,15 @@ int dimensionality(int width, int height, int depth) {
     return n == 0 ? 1 : n;
 }
 
+int stages(Integrator integrator) {
+    switch (integrator) {
+    case Integrator::euler: return 1;
+    case Integrator::heun: return 2;
+    case Integrator::rk4: return 4;
+    }
+    return 1;
+}
+
 void Rule::validate(int width, int height, int depth) const {
     if (chemicals < 1 || chemicals > max_chemicals)
         throw std::invalid_argument("number_of_chemicals is " + std::to_string(chemicals) + ", not from 1 to " +

@@ -1,7 +1,7 @@
 #pragma once
 // Formula models, as GollyGang/Ready writes them: a rule of `chemicals`
 // chemicals (a, b, c, ...) on a grid of 1, 2 or 3 dimensions, each updated
-// by forward Euler,
+// by forward Euler (or, as an option, Heun's method or RK4: Integrator),
 //     X_new = X + timestep * delta_X,
 // where delta_X is what the formula, a small part of OpenCL C, assigns from
 // the cell's chemicals, its neighbours (a_n, a_se, a_e2, ...), Ready's
@@ -52,6 +52,15 @@ public:
 
 enum class Accuracy { low, medium, high };
 
+// How a step advances the chemicals from the formula's deltas f(X):
+// euler, Ready's forward Euler, X + timestep f(X) (first order); heun,
+// X + timestep/2 (k1 + k2) with k1 = f(X), k2 = f(X + timestep k1) (second
+// order); rk4, the classical Runge-Kutta method of fourth order. Each stage
+// evaluates the whole formula, stencils and all, on the grid.
+enum class Integrator { euler, heun, rk4 };
+// The stages a step of each evaluates the formula: 1, 2, 4.
+int stages(Integrator integrator);
+
 // Chemical i's name: a, b, ..., z.
 std::string chemical_name(int i);
 constexpr int max_chemicals = 26;
@@ -73,6 +82,7 @@ struct Rule {
     // (OpenCL C's FP_CONTRACT ON), so that it rounds once; else every
     // operation rounds on its own.
     bool fused_multiply_add = false;
+    Integrator integrator = Integrator::euler;
 
     // Throws std::invalid_argument naming what is wrong, FormulaError for
     // the code, before anything runs.

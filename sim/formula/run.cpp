@@ -211,7 +211,7 @@ public:
         // is the register's last writer and nothing reads the register
         // after it, nor another chemical's output shares it.
         writes_output_.assign(program_.code.size(), -1);
-        for (int chem = 0; chem < rule.chemicals; ++chem) {
+        for (int chem = 0; chem < rule.chemicals && !program_.outputs_are_deltas; ++chem) {
             const int reg = program_.outputs[static_cast<std::size_t>(chem)];
             int last = -1;
             for (std::size_t i = 0; i < program_.code.size(); ++i)
@@ -281,7 +281,16 @@ public:
                             source_row(z + dz, d, rule.wrap, rule.ready_edges) * h +
                             source_row(y + dy, h, rule.wrap, rule.ready_edges);
             }
-        plan_blocks();
+        if (program_.outputs_are_deltas) {
+            // A step of several stages: each stage's state (two in turn for RK4).
+            stages_ = stages(rule.integrator);
+            for (const auto& [name, value] : rule.parameters)
+                if (name == "timestep") timestep_ = value;
+            for (int k = 0; k < (stages_ > 2 ? 2 : 1); ++k)
+                for (int c = 0; c < rule.chemicals; ++c) stage_[k].push_back(make_rows());
+        } else {
+            plan_blocks();
+        }
         if (bands_ > 0)
             for (int c = 0; c < rule.chemicals; ++c) state_[2].push_back(make_rows());
         // Row r follows row r - 1 in memory for every neighbour row: they can share a chunk.
@@ -312,6 +321,7 @@ public:
 
     void step(int steps_wanted, int threads) override {
         if (steps_wanted <= 0) return;
+        if (stages_ > 1) return staged_steps(steps_wanted, threads);
         if (bands_ > 0 && temporal_blocking() && steps_wanted > 1) blocked_steps(steps_wanted, threads);
         else plain_steps(steps_wanted, threads);
     }
@@ -338,6 +348,49 @@ public:
         if (failure.failed.load()) {
             // The state stays the failed step's input.
             const long long done = failure.step - failure.base;  // steps of this call that completed
+            steps = failure.step;
+            current_ = buffer(static_cast<int>(done));
+            throw Unstable(failure.message);
+        }
+        steps += steps_wanted;
+        current_ = buffer(steps_wanted);
+    }
+
+    // Heun's method and RK4: each step in stages_ stages, a barrier after
+    // each (a stage reads its neighbours' values of the stage before). The
+    // program gives the deltas k of a stage's state; the chunk combines
+    // them (chunk's Stage) into the next stage's state, and into the sum
+    // that becomes the new state, kept in the buffer the step writes:
+    //   heun: S = X + h k1,  X' = (X + h/2 k1) + h/2 k2 (k2 from S);
+    //   rk4:  S1 = X + h/2 k1, S2 = X + h/2 k2, S3 = X + h k3,
+    //         X' = X + h/6 k1 + h/3 k2 + h/3 k3 + h/6 k4,
+    // added in that order, each operation rounded to the number type. The
+    // state X is only read until the step ends: a stage that fails leaves
+    // it as the failed step's input.
+    void staged_steps(int steps_wanted, int threads) {
+        Failure failure;
+        failure.base = steps;
+        const int first = current_, second = current_ ^ 1;
+        auto buffer = [&](int s) { return (s & 1) ? second : first; };  // the state after s steps of this call
+        std::atomic<long long> failed_phase{std::numeric_limits<long long>::max()};
+        parallel_steps(rows_, steps_wanted * stages_, threads, [&](int phase, int begin, int end) {
+            if (failed_phase.load(std::memory_order_relaxed) < phase) return;
+            std::optional<SubnormalsFlushed> flushed;
+            if constexpr (sizeof(Real) == 4) flushed.emplace();
+            Scratch& scratch = this->scratch();
+            const int s = phase / stages_, q = phase % stages_;
+            const bool last = q == stages_ - 1;
+            Stage stage{q, &state_[buffer(s)], &state_[buffer(s + 1)]};
+            const std::vector<Rows<Real>>& from = q == 0 ? state_[buffer(s)] : stage_[(q - 1) & 1];
+            std::vector<Rows<Real>>& to = last ? state_[buffer(s + 1)] : stage_[q & 1];
+            if (!rows_of_step(s, begin, end, from, to, scratch, failure, &stage)) {
+                long long was = failed_phase.load();
+                while (phase < was && !failed_phase.compare_exchange_weak(was, phase)) {
+                }
+            }
+        });
+        if (failure.failed.load()) {
+            const long long done = failure.step - failure.base;
             steps = failure.step;
             current_ = buffer(static_cast<int>(done));
             throw Unstable(failure.message);
@@ -594,15 +647,56 @@ private:
                            " of the formula");
     }
 
+    // A stage of staged_steps: its number, the step's state X, and the
+    // buffer of the step's new state, which holds the sum so far.
+    struct Stage {
+        int q;
+        const std::vector<Rows<Real>>* state;
+        std::vector<Rows<Real>>* sum;
+    };
+
+    const char* integrator_name() const { return stages_ == 2 ? "Heun" : "RK4"; }
+
+    // Stage q's deltas k of `cells` cells into the next stage's state `out`
+    // and the sum (staged_steps); at the last stage `out` is the sum.
+    // False where a value written is not finite.
+    bool combine(const Stage& st, const Real* k, const Real* x, Real* sum, Real* out, int cells) const {
+        const double h = timestep_;
+        const bool rk4 = stages_ == 4;
+        // The weight of k in the sum, and in the next stage's state.
+        const Real w = static_cast<Real>(rk4 ? ((st.q == 0 || st.q == 3) ? h / 6 : h / 3) : h / 2);
+        const Real v = static_cast<Real>(rk4 ? (st.q == 2 ? h : h / 2) : h);
+        bool finite = true;
+        if (st.q == 0) {
+            for (int i = 0; i < cells; ++i) {
+                sum[i] = x[i] + w * k[i];
+                out[i] = x[i] + v * k[i];
+                finite &= std::isfinite(out[i]) && std::isfinite(sum[i]);
+            }
+        } else if (st.q == stages_ - 1) {
+            for (int i = 0; i < cells; ++i) {
+                sum[i] = sum[i] + w * k[i];
+                finite &= std::isfinite(sum[i]);
+            }
+        } else {
+            for (int i = 0; i < cells; ++i) {
+                sum[i] = sum[i] + w * k[i];
+                out[i] = x[i] + v * k[i];
+                finite &= std::isfinite(out[i]) && std::isfinite(sum[i]);
+            }
+        }
+        return finite;
+    }
+
     // Rows begin .. end - 1 of step s (of this call) from `from` into `to`,
     // several to a chunk where they follow in memory; false after a failure.
     bool rows_of_step(int s, int begin, int end, const std::vector<Rows<Real>>& from, std::vector<Rows<Real>>& to,
-                      Scratch& scratch, Failure& failure) {
+                      Scratch& scratch, Failure& failure, const Stage* stage = nullptr) {
         for (int y = begin; y < end;) {
             int rows = 1;
             if (group_most_ > 1)
                 while (rows < group_most_ && y + rows < end && follows_[y + rows]) ++rows;
-            if (!chunk_rows(s, y, rows, from, to, scratch, failure)) return false;
+            if (!chunk_rows(s, y, rows, from, to, scratch, failure, stage)) return false;
             y += rows;
         }
         return true;
@@ -613,12 +707,13 @@ private:
     // go as one chunk of lanes (halos and padding included); a row longer
     // than a chunk goes in pieces.
     bool chunk_rows(int s, int y0, int rows, const std::vector<Rows<Real>>& from, std::vector<Rows<Real>>& to,
-                    Scratch& sc, Failure& failure) {
+                    Scratch& sc, Failure& failure, const Stage* stage) {
         if (padded_) {
-            if (!chunk(s, y0, rows, -halo_, static_cast<int>(rows * stride_), from, to, sc, failure)) return false;
+            if (!chunk(s, y0, rows, -halo_, static_cast<int>(rows * stride_), from, to, sc, failure, stage))
+                return false;
         } else {
             for (int x0 = 0; x0 < width; x0 += static_cast<int>(lanes_))
-                if (!chunk(s, y0, 1, x0, std::min(static_cast<int>(lanes_), width - x0), from, to, sc, failure))
+                if (!chunk(s, y0, 1, x0, std::min(static_cast<int>(lanes_), width - x0), from, to, sc, failure, stage))
                     return false;
         }
         for (int r = 0; r < rows; ++r)
@@ -630,7 +725,7 @@ private:
     // padded rows from the first's halo). The grid's cells of it are, for
     // each of its rows r, lanes r * stride + (-x0) .. + width (or all n).
     bool chunk(int s, int y0, int rows, int x0, int n, const std::vector<Rows<Real>>& from,
-               std::vector<Rows<Real>>& to, Scratch& sc, Failure& failure) {
+               std::vector<Rows<Real>>& to, Scratch& sc, Failure& failure, const Stage* stage) {
         const Program& p = program_;
         const long long step = steps + s;
         const bool padded = padded_;  // whole padded rows, from the first's halo
@@ -731,6 +826,32 @@ private:
             }
             sc.view[in.dst] = d;
         }
+        // A stage's deltas combined into the next stage's state (`to`) and
+        // the step's sum, each checked.
+        if (stage) {
+            for (int r = 0; r < rows; ++r) {
+                const int begin = r * static_cast<int>(padded ? stride_ : 0) + first_cell;
+                for (int chem = 0; chem < rule_.chemicals; ++chem) {
+                    const std::ptrdiff_t at = padded ? 0 : x0;
+                    Real* out = to[chem].row(y0 + r) + at;
+                    if (!combine(*stage, sc.view[p.outputs[chem]] + begin, (*stage->state)[chem].row(y0 + r) + at,
+                                 (*stage->sum)[chem].row(y0 + r) + at, out, cells)) {
+                        const Real* sum = (*stage->sum)[chem].row(y0 + r) + at;
+                        int bad = 0;
+                        while (bad + 1 < cells && std::isfinite(out[bad]) && std::isfinite(sum[bad])) ++bad;
+                        const Real value = std::isfinite(out[bad]) ? sum[bad] : out[bad];
+                        failure.record(step, y0 + r, static_cast<int>(at) + bad,
+                                       "step " + std::to_string(step + 1) + ": chemical " + chemical_name(chem) +
+                                           " became " + (std::isnan(value) ? "NaN" : "infinite") + " at cell " +
+                                           cell_name(static_cast<int>(at) + bad, y0 + r) + " (" +
+                                           integrator_name() + " stage " + std::to_string(stage->q + 1) +
+                                           "): the model is unstable here; try a smaller timestep");
+                        return false;
+                    }
+                }
+            }
+            return true;
+        }
         // The new values of the grid's cells, each checked.
         for (int r = 0; r < rows; ++r) {
             const int begin = r * static_cast<int>(padded ? stride_ : 0) + first_cell;
@@ -769,6 +890,10 @@ private:
     bool padded_ = false;  // a chunk is whole rows with their halos and padding
     int rows_ = 0;  // height * depth
     std::vector<Rows<Real>> state_[3];  // the third only for temporal blocking
+    // Heun and RK4 (staged_steps): the stages, their states and the timestep.
+    int stages_ = 1;
+    double timestep_ = 0;
+    std::vector<Rows<Real>> stage_[2];
     int current_ = 0;
     // Temporal blocking (blocked_steps): bands_ > 0 when it runs.
     int bands_ = 0, block_steps_ = 1, reach_ = 0;

@@ -15,9 +15,12 @@ namespace sim::formula {
 // registers of this many cells, and a cache line more.
 constexpr int chunk_lanes = 2048;
 
-// The copies of each chemical's rows a run keeps at most: three on a 2-D
-// grid (its steps go in blocks, sim/formula/run.cpp), else two.
-constexpr int state_copies(int height, int depth) {
+// The copies of each chemical's rows a run keeps at most: forward Euler
+// three on a 2-D grid (its steps go in blocks, sim/formula/run.cpp), else
+// two; Heun three, RK4 four (the state, the new state, the stages').
+constexpr int state_copies(int height, int depth, Integrator integrator = Integrator::euler) {
+    if (integrator == Integrator::rk4) return 4;
+    if (integrator == Integrator::heun) return 3;
     return depth == 1 && height > 1 ? 3 : 2;
 }
 
