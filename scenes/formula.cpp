@@ -12,8 +12,12 @@
 // steps down) beside the last step as a line plot; a 3-D grid as the
 // active chemical's lit isosurface beside three slices through the centre.
 #include "sim/formula/run.hpp"
+#include "sim/formula/stability.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
 #include <thread>
 
 #include "base/digest.hpp"
@@ -170,7 +174,9 @@ public:
         if (dimensions_ == 1) return render_line(out);
         if (m_.depth > 1) return render_solid(out);
         StepRunner run(d_, options_, out);
-        formula::Run model(m_.rule, m_.width, m_.height, formula_start(m_, d_));
+        const std::vector<sim::Grid<double>> start = formula_start(m_, d_);
+        const nlohmann::json stability = stability_said(start);
+        formula::Run model(m_.rule, m_.width, m_.height, start);
         const int threads = model_threads(run.filming());
         std::vector<sim::Grid<double>> now, drawn;  // every chemical where the run is, and those shown as drawn
         auto layers = [&](Cells cells) {
@@ -206,6 +212,7 @@ public:
                 },
         });
         nlohmann::json meta = {{"params", params_.used()},
+                               {"stability", stability},
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"model_operations", model.operations()}};
@@ -302,7 +309,9 @@ private:
 
     void render_line(Output& out) const {
         StepRunner run(d_, options_, out);
-        formula::Run model(m_.rule, m_.width, m_.height, m_.depth, formula_start(m_, d_));
+        const std::vector<sim::Grid<double>> start = formula_start(m_, d_);
+        const nlohmann::json stability = stability_said(start);
+        formula::Run model(m_.rule, m_.width, m_.height, m_.depth, start);
         const int threads = model_threads(run.filming());
         // The figure's last step, whatever part of the film this run makes
         // (a segment on another rank stops earlier): every frame's axes and
@@ -341,6 +350,7 @@ private:
             .stop_at = [stride](int step) { return step % stride == 0; },
         });
         nlohmann::json meta = {{"params", params_.used()},
+                               {"stability", stability},
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"space_time", {{"rows", history.steps.size()}, {"stride", stride}}},
@@ -444,7 +454,9 @@ private:
 
     void render_solid(Output& out) const {
         StepRunner run(d_, options_, out);
-        formula::Run model(m_.rule, m_.width, m_.height, m_.depth, formula_start(m_, d_));
+        const std::vector<sim::Grid<double>> start = formula_start(m_, d_);
+        const nlohmann::json stability = stability_said(start);
+        formula::Run model(m_.rule, m_.width, m_.height, m_.depth, start);
         const int threads = model_threads(run.filming());
         std::vector<sim::Grid<double>> now;
         auto look = [&] { now = chemicals(model); };
@@ -483,6 +495,7 @@ private:
         const std::vector<render::Facet> facets = surface_of(now[s_.shown.front()]);
         const std::vector<FieldPanel> panels = slices(now[s_.shown.front()]);
         nlohmann::json meta = {{"params", params_.used()},
+                               {"stability", stability},
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"isosurface",
@@ -502,6 +515,59 @@ private:
                              },
                              [&] { return ready_state(now); }};
         run.write_figure(figure, meta);
+    }
+
+    // The explicit stability bound on the timestep for the rule's
+    // integrator (sim/formula/stability.hpp), linearised about the start's
+    // mean: said on stderr before the run when the timestep is past it, and
+    // in the metadata. The run still stops at the first value that is not
+    // finite.
+    static std::string format_number(double v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.4g", v);
+        return text;
+    }
+
+    nlohmann::json stability_said(const std::vector<sim::Grid<double>>& start) const {
+        std::vector<double> mean;
+        for (const auto& g : start) {
+            double sum = 0;
+            for (double v : g.cells()) sum += v;
+            mean.push_back(g.size() ? sum / static_cast<double>(g.size()) : 0.0);
+        }
+        const formula::StabilityBound b = formula::stability_bound(m_.rule, dimensions_, mean);
+        double timestep = 0;
+        for (const auto& [name, value] : m_.rule.parameters)
+            if (name == "timestep") timestep = value;
+        static const char* names[] = {"euler", "heun", "rk4"};
+        const char* integrator = names[static_cast<int>(m_.rule.integrator)];
+        nlohmann::json said = {{"integrator", integrator}, {"timestep", timestep}};
+        if (std::isinf(b.timestep)) {
+            said["bound"] = nullptr;
+            said["within"] = true;
+            said["why"] = "the deltas read no neighbour: no bound from the stencils";
+            return said;
+        }
+        said["bound"] = b.timestep;
+        said["within"] = timestep <= b.timestep;
+        said["chemical"] = b.chemical;
+        said["mode"] = b.theta;
+        said["rate"] = {b.rate_real, b.rate_imaginary};
+        if (b.coupled) said["coupled"] = "three chemicals or more whose stencil terms reach into each other: the bound is from each one's own";
+        if (timestep > b.timestep) {
+            std::string theta;
+            for (double t : b.theta) theta += (theta.empty() ? "" : ", ") + format_number(t / M_PI) + " pi";
+            std::cerr << "figgen: warning: " << d_.id << ": timestep " << format_number(timestep);
+            if (b.timestep > 0)
+                std::cerr << " is past the explicit stability bound " << format_number(b.timestep) << " of "
+                          << integrator;
+            else
+                std::cerr << ": no timestep is stable under " << integrator
+                          << " (the modes' rates are imaginary: try integrator = \"rk4\")";
+            std::cerr << " here (chemical " << b.chemical << "'s stencil terms, the mode theta = (" << theta
+                      << ")); the run may blow up\n";
+        }
+        return said;
     }
 
     // The chemicals and the rule, for Ready's own files (--format vti).

@@ -141,7 +141,11 @@ TEST_CASE("mpirun with 1 to 4 ranks gives the bytes of one process", "[cluster][
     const Run plain = figgen("render" + files + small + " --out " + (dir / "plain").string());
     INFO(plain.output);
     REQUIRE(plain.status == 0);
-    CHECK(plain.output.empty());  // a plain run says nothing about ranks or parts
+    // A plain run says nothing about ranks or parts: at most fx-tunnelling's
+    // stability warning (forward Euler on Schroedinger's imaginary rates).
+    std::istringstream said(plain.output);
+    for (std::string line; std::getline(said, line);)
+        CHECK(line.rfind("figgen: warning: fx-tunnelling: timestep", 0) == 0);
     // Dynamic schedules on 1..4 ranks, and the static one on 3.
     for (const std::string variant : {"1", "2", "3", "4", "3 static"}) {
         const int ranks = variant[0] - '0';
