@@ -530,17 +530,10 @@ private:
 
     nlohmann::json stability_said(const std::vector<sim::Grid<double>>& start) const {
         std::vector<double> mean;
-        for (const auto& g : start) {
-            double sum = 0;
-            for (double v : g.cells()) sum += v;
-            mean.push_back(g.size() ? sum / static_cast<double>(g.size()) : 0.0);
-        }
+        for (const auto& g : start) mean.push_back(field_statistics(g)["mean"].get<double>());
         const formula::StabilityBound b = formula::stability_bound(m_.rule, dimensions_, mean);
-        double timestep = 0;
-        for (const auto& [name, value] : m_.rule.parameters)
-            if (name == "timestep") timestep = value;
-        static const char* names[] = {"euler", "heun", "rk4"};
-        const char* integrator = names[static_cast<int>(m_.rule.integrator)];
+        const double timestep = m_.rule.parameter("timestep");
+        const char* integrator = formula::integrator_name(m_.rule.integrator);
         nlohmann::json said = {{"integrator", integrator}, {"timestep", timestep}};
         if (std::isinf(b.timestep)) {
             said["bound"] = nullptr;

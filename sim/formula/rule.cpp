@@ -34,6 +34,22 @@ int stages(Integrator integrator) {
     return 1;
 }
 
+const char* integrator_name(Integrator integrator) {
+    switch (integrator) {
+    case Integrator::euler: return "euler";
+    case Integrator::heun: return "heun";
+    case Integrator::rk4: return "rk4";
+    }
+    return "euler";
+}
+
+double Rule::parameter(const std::string& name, double fallback) const {
+    double value = fallback;
+    for (const auto& [key, v] : parameters)
+        if (key == name) value = v;
+    return value;
+}
+
 void Rule::validate(int width, int height, int depth) const {
     if (chemicals < 1 || chemicals > max_chemicals)
         throw std::invalid_argument("number_of_chemicals is " + std::to_string(chemicals) + ", not from 1 to " +

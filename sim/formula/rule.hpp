@@ -60,6 +60,8 @@ enum class Accuracy { low, medium, high };
 enum class Integrator { euler, heun, rk4 };
 // The stages a step of each evaluates the formula: 1, 2, 4.
 int stages(Integrator integrator);
+// Its name as a description gives it: "euler", "heun", "rk4".
+const char* integrator_name(Integrator integrator);
 
 // Chemical i's name: a, b, ..., z.
 std::string chemical_name(int i);
@@ -87,6 +89,8 @@ struct Rule {
     // Throws std::invalid_argument naming what is wrong, FormulaError for
     // the code, before anything runs.
     void validate(int width, int height, int depth = 1) const;
+    // The value of parameter `name` (its last), or `fallback` where there is none.
+    double parameter(const std::string& name, double fallback = 0) const;
 };
 
 // The most cells a grid holds, in any number of dimensions (16384^2).

@@ -284,8 +284,7 @@ public:
         if (program_.outputs_are_deltas) {
             // A step of several stages: each stage's state (two in turn for RK4).
             stages_ = stages(rule.integrator);
-            for (const auto& [name, value] : rule.parameters)
-                if (name == "timestep") timestep_ = value;
+            timestep_ = rule.parameter("timestep");
             for (int k = 0; k < (stages_ > 2 ? 2 : 1); ++k)
                 for (int c = 0; c < rule.chemicals; ++c) stage_[k].push_back(make_rows());
         } else {
@@ -655,8 +654,6 @@ private:
         std::vector<Rows<Real>>* sum;
     };
 
-    const char* integrator_name() const { return stages_ == 2 ? "Heun" : "RK4"; }
-
     // Stage q's deltas k of `cells` cells into the next stage's state `out`
     // and the sum (staged_steps); at the last stage `out` is the sum.
     // False where a value written is not finite.
@@ -844,7 +841,7 @@ private:
                                        "step " + std::to_string(step + 1) + ": chemical " + chemical_name(chem) +
                                            " became " + (std::isnan(value) ? "NaN" : "infinite") + " at cell " +
                                            cell_name(static_cast<int>(at) + bad, y0 + r) + " (" +
-                                           integrator_name() + " stage " + std::to_string(stage->q + 1) +
+                                           integrator_name(rule_.integrator) + " stage " + std::to_string(stage->q + 1) +
                                            "): the model is unstable here; try a smaller timestep");
                         return false;
                     }

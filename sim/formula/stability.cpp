@@ -60,9 +60,7 @@ StabilityBound stability_bound(const Rule& rule, int dimensions, const std::vect
     if (static_cast<int>(base.size()) != rule.chemicals)
         throw std::invalid_argument("stability_bound: one base value a chemical");
     StabilityBound bound;
-    double timestep = 0;
-    for (const auto& [name, value] : rule.parameters)
-        if (name == "timestep") timestep = value;
+    const double timestep = rule.parameter("timestep");
     if (!(timestep > 0) || !std::isfinite(timestep)) return bound;
     // The probe: the rule in double on a periodic grid of 8 a side, stepped once by Euler.
     Rule probe = rule;

@@ -140,7 +140,7 @@ TEST_CASE("a stage that fails stops the run, naming the step, cell and stage", "
     } catch (const Unstable& e) {
         what = e.what();
     }
-    CHECK_THAT(what, Catch::Contains("chemical a became infinite at cell (x 3, y 5) (RK4 stage"));
+    CHECK_THAT(what, Catch::Contains("chemical a became infinite at cell (x 3, y 5) (rk4 stage"));
     // The state is the failed step's input: finite, and a grown from 3.
     const Grid<double> kept = run.chemical(0);
     CHECK(std::isfinite(kept(5, 3)));
