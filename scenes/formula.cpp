@@ -170,6 +170,23 @@ public:
         return cells < 4096 || (filming && cells < 65536) ? 1 : 0;
     }
 
+    // --strict: a timestep past the explicit stability bound is refused
+    // before anything runs (else render() says it on stderr).
+    void check_run() const override {
+        if (!options_.strict) return;
+        const Bound b = bound(formula_start(m_, d_));
+        const double timestep = m_.rule.parameter("timestep");
+        if (timestep <= b.bound.timestep) return;
+        const std::string integrator = formula::integrator_name(m_.rule.integrator);
+        throw SettingError("params.timestep", format_number(timestep),
+                           (b.bound.timestep > 0 ? "at most " + format_number(b.bound.timestep) +
+                                                       ", the explicit stability bound of " + integrator
+                                                 : "none under " + integrator + ": the modes' rates are imaginary") +
+                               " here (" + b.why + "); a smaller timestep" +
+                               (m_.rule.integrator == formula::Integrator::rk4 ? "" : ", or integrator = \"rk4\"") +
+                               ", or without --strict");
+    }
+
     void render(Output& out) const override {
         if (dimensions_ == 1) return render_line(out);
         if (m_.depth > 1) return render_solid(out);
@@ -213,6 +230,7 @@ public:
         });
         nlohmann::json meta = {{"params", params_.used()},
                                {"stability", stability},
+                               {"edges", edges_said()},
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"model_operations", model.operations()}};
@@ -351,6 +369,7 @@ private:
         });
         nlohmann::json meta = {{"params", params_.used()},
                                {"stability", stability},
+                               {"edges", edges_said()},
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"space_time", {{"rows", history.steps.size()}, {"stride", stride}}},
@@ -496,6 +515,7 @@ private:
         const std::vector<FieldPanel> panels = slices(now[s_.shown.front()]);
         nlohmann::json meta = {{"params", params_.used()},
                                {"stability", stability},
+                               {"edges", edges_said()},
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"isosurface",
@@ -528,10 +548,43 @@ private:
         return text;
     }
 
-    nlohmann::json stability_said(const std::vector<sim::Grid<double>>& start) const {
+    // The bound about the start's mean, and where it comes from: "chemical
+    // a's stencil terms, the mode theta = (1 pi, 1 pi)".
+    struct Bound {
+        formula::StabilityBound bound;
+        std::string why;
+    };
+    Bound bound(const std::vector<sim::Grid<double>>& start) const {
         std::vector<double> mean;
         for (const auto& g : start) mean.push_back(field_statistics(g)["mean"].get<double>());
-        const formula::StabilityBound b = formula::stability_bound(m_.rule, dimensions_, mean);
+        Bound b{formula::stability_bound(m_.rule, dimensions_, mean), ""};
+        std::string theta;
+        for (double t : b.bound.theta) theta += (theta.empty() ? "" : ", ") + format_number(t / M_PI) + " pi";
+        b.why = "chemical " + b.bound.chemical + "'s stencil terms, the mode theta = (" + theta + ")";
+        return b;
+    }
+
+    // The edges the run computes: Ready's (with its wrap), or figgen's own
+    // side by side, for the sides of the grid's axes.
+    nlohmann::json edges_said() const {
+        const formula::Rule& r = m_.rule;
+        if (r.ready_edges && !r.edges) return {{"ready", true}, {"wrap", r.wrap}};
+        const formula::Edges e = r.own_edges();
+        const int sizes[3] = {m_.width, m_.height, m_.depth};
+        nlohmann::json said = nlohmann::json::object();
+        for (int side = 0; side < 6; ++side) {
+            if (sizes[side / 2] == 1) continue;
+            const formula::Edges::Of& of = e.side[static_cast<std::size_t>(side)];
+            said[formula::side_name(side)] = of.edge == formula::Edge::dirichlet
+                                                 ? nlohmann::json{{"edge", "dirichlet"}, {"value", of.value}}
+                                                 : nlohmann::json{{"edge", formula::edge_name(of.edge)}};
+        }
+        return said;
+    }
+
+    nlohmann::json stability_said(const std::vector<sim::Grid<double>>& start) const {
+        const Bound said_bound = bound(start);
+        const formula::StabilityBound& b = said_bound.bound;
         const double timestep = m_.rule.parameter("timestep");
         const char* integrator = formula::integrator_name(m_.rule.integrator);
         nlohmann::json said = {{"integrator", integrator}, {"timestep", timestep}};
@@ -548,8 +601,6 @@ private:
         said["rate"] = {b.rate_real, b.rate_imaginary};
         if (b.coupled) said["coupled"] = "three chemicals or more whose stencil terms reach into each other: the bound is from each one's own";
         if (timestep > b.timestep) {
-            std::string theta;
-            for (double t : b.theta) theta += (theta.empty() ? "" : ", ") + format_number(t / M_PI) + " pi";
             std::cerr << "figgen: warning: " << d_.id << ": timestep " << format_number(timestep);
             if (b.timestep > 0)
                 std::cerr << " is past the explicit stability bound " << format_number(b.timestep) << " of "
@@ -557,8 +608,7 @@ private:
             else
                 std::cerr << ": no timestep is stable under " << integrator
                           << " (the modes' rates are imaginary: try integrator = \"rk4\")";
-            std::cerr << " here (chemical " << b.chemical << "'s stencil terms, the mode theta = (" << theta
-                      << ")); the run may blow up\n";
+            std::cerr << " here (" << said_bound.why << "); the run may blow up\n";
         }
         return said;
     }
@@ -571,7 +621,8 @@ private:
         s.formula = m_.rule.code;
         static const char* accuracy[] = {"low", "medium", "high"};
         s.accuracy = accuracy[static_cast<int>(m_.rule.accuracy)];
-        s.wrap = m_.rule.wrap;
+        // Ready has wrapped or clamped edges alone: figgen's own edges go as wrapped where x's are periodic.
+        s.wrap = m_.rule.edges ? m_.rule.edges->side[formula::left].edge == formula::Edge::periodic : m_.rule.wrap;
         s.block_x = m_.rule.block_x;
         s.parameters = m_.rule.parameters;
         s.active_chemical = formula::chemical_name(s_.shown.front());

@@ -25,6 +25,7 @@ struct SceneOptions {
     double scale = 1.0;  // multiplies every size in pixels
     bool film = true;    // the animation is wanted (MP4 or PNG sequence)
     int threads = 1;     // work items that may run at once (for memory estimates: each holds its own buffers)
+    bool strict = false;  // a model's timestep past its stability bound is refused (check_run), not said
 };
 
 // One big allocation of a model, for the command's memory estimate.
@@ -45,6 +46,10 @@ public:
     // (scenes/work_items.hpp); render() then gets their results from
     // Output::results. Null for a scene that runs as one piece.
     virtual const WorkItems* work() const { return nullptr; }
+    // The end of phase 1, once the description's stored arrays (a Ready
+    // pattern's start) are decoded: the checks that need the model's start.
+    // Throws a SettingError; nothing has run.
+    virtual void check_run() const {}
     // Phases 2 and 3: runs the model and writes every output into `out`.
     virtual void render(Output& out) const = 0;
 };

@@ -212,6 +212,8 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
         ->check(format_in());
     app->add_flag("--transparent", transparent,
                   "Leave the figure's background out of the PNG, PDF and SVG: only the ink is opaque");
+    app->add_flag("--strict", strict,
+                  "Refuse a formula model whose timestep is past its explicit stability bound (else a warning)");
 }
 
 namespace {

@@ -30,6 +30,7 @@ struct OutputOptions {
     bool vti = false;                   // write <id>.vti, a formula model's last step as Ready's file (--format vti)
     bool formats_given = false;         // --format was given: a description's figure.formats is not used
     bool transparent = false;           // no background in the PNG, PDF and SVG
+    bool strict = false;                // refuse a formula model's timestep past its stability bound (--strict)
     media::VideoOptions video_options;
     // Limits on what one figure may need (--max-memory, --max-disk); a figure
     // whose estimate exceeds them is refused before anything is allocated.
@@ -45,7 +46,8 @@ struct OutputOptions {
     // the same for every run on this machine that uses no more threads than
     // cores, whatever its --threads or rank count.
     scenes::SceneOptions scene_options() const {
-        return {scale, animates(), std::max(work.threads, static_cast<int>(std::thread::hardware_concurrency()))};
+        return {scale, animates(), std::max(work.threads, static_cast<int>(std::thread::hardware_concurrency())),
+                strict};
     }
 };
 

@@ -129,6 +129,7 @@ OutputOptions output_options(const RenderSettings& c) {
         format->choose(options);
     }
     options.transparent = c.transparent;
+    options.strict = c.strict;
     options.max_memory = parse_size("--max-memory", c.max_memory);
     options.max_disk = parse_size("--max-disk", c.max_disk);
     if (c.threads && (*c.threads < 1 || *c.threads > 1024))
@@ -217,6 +218,7 @@ CheckedFigure check_target(const std::string& target, const std::optional<std::s
     // A pattern's stored arrays, decoded once its figure and its memory
     // estimate (which counts them) have passed; the scene holds `*d`.
     if (!text && ready::file_kind(target) == ready::FileKind::image) ready::decode_stored_start(*d);
+    scene->check_run();
     return {std::move(d), std::move(scene)};
 }
 

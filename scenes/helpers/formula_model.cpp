@@ -156,6 +156,75 @@ const Schema<OverlayValues> overlay_schema = [] {
     return s;
 }();
 
+// figgen's own edges (formula::Edges): `edges`, one word for every side or
+// a table of sides, and `edge_value`, the dirichlet sides' values.
+const std::vector<std::pair<std::string, formula::Edge>> edge_words = {
+    {"periodic", formula::Edge::periodic}, {"neumann", formula::Edge::neumann}, {"dirichlet", formula::Edge::dirichlet}};
+const std::string edges_allowed = "\"periodic\", \"neumann\" or \"dirichlet\"";
+
+std::vector<Key> side_keys(const std::string& meaning, const std::string& type, const std::string& allowed) {
+    std::vector<Key> keys;
+    for (int side = 0; side < 6; ++side) keys.push_back({formula::side_name(side), meaning, type, allowed});
+    return keys;
+}
+
+formula::Edge edge_word(Settings& s, const std::string& key) {
+    const std::string given = s.text(key, "periodic");
+    for (const auto& [word, edge] : edge_words)
+        if (word == given) return edge;
+    s.refuse(key, edges_allowed);
+}
+
+void read_edges(Settings& s, const std::string& key, formula::Rule& r) {
+    const toml::node* node = s.node(key);
+    if (!node) return;
+    if (const toml::table* table = node->as_table()) {
+        Settings sides(s.section() + "." + key, *table,
+                       side_keys("this side's edge; a side not given is periodic", "text", edges_allowed));
+        formula::Edges edges;
+        for (int side = 0; side < 6; ++side)
+            edges.side[static_cast<std::size_t>(side)].edge = edge_word(sides, formula::side_name(side));
+        r.edges = edges;
+    } else {
+        r.edges = formula::Edges::all(edge_word(s, key));
+    }
+}
+
+// One value for every chemical, or one a chemical.
+std::vector<double> chemical_values(Settings& s, const std::string& key, int chemicals) {
+    const toml::node* node = s.node(key);
+    const std::string allowed = "a number, or a list of one number a chemical (" + std::to_string(chemicals) +
+                                "), each from -1e30 to 1e30";
+    if (node && node->is_array()) {
+        const std::vector<double> v = s.numbers(key, {});
+        if (static_cast<int>(v.size()) != chemicals) s.refuse(key, allowed);
+        for (double x : v)
+            if (!std::isfinite(x) || std::fabs(x) > 1e30) s.refuse(key, allowed);
+        return v;
+    }
+    return std::vector<double>(static_cast<std::size_t>(chemicals), s.number_in(key, 0, -1e30, 1e30));
+}
+
+void read_edge_value(Settings& s, const std::string& key, formula::Rule& r) {
+    if (!r.edges && !s.has(key)) return;  // Ready's edges: no value to say
+    std::array<std::vector<double>, 6> values;
+    const toml::node* node = s.node(key);
+    if (const toml::table* table = node ? node->as_table() : nullptr) {
+        Settings sides(s.section() + "." + key, *table,
+                       side_keys("this side's value (a dirichlet side): one number, or one a chemical",
+                                 "a number or a list of numbers", "from -1e30 to 1e30"));
+        for (int side = 0; side < 6; ++side)
+            values[static_cast<std::size_t>(side)] = chemical_values(sides, formula::side_name(side), r.chemicals);
+    } else {
+        values.fill(chemical_values(s, key, r.chemicals));
+    }
+    if (!r.edges) return;
+    for (int side = 0; side < 6; ++side) {
+        formula::Edges::Of& of = r.edges->side[static_cast<std::size_t>(side)];
+        if (of.edge == formula::Edge::dirichlet) of.value = values[static_cast<std::size_t>(side)];
+    }
+}
+
 // What [params] gives of a formula model, besides the rule's own parameters.
 struct ModelValues {
     FormulaModel model;
@@ -176,7 +245,21 @@ const Schema<ModelValues> model_schema = [] {
         "accuracy", &R::accuracy,
         {{"low", formula::Accuracy::low}, {"medium", formula::Accuracy::medium}, {"high", formula::Accuracy::high}},
         "the stencils' accuracy (Ready's)");
-    rule.flag("wrap", &R::wrap, "true: the edges wrap around (a torus); false: they are clamped");
+    rule.key({"edges",
+              "figgen's own edges, in place of wrap and ready_edges: periodic (a torus of any size), neumann "
+              "(zero flux) or dirichlet (edge_value on the side), for every side or as a table of sides {left, "
+              "right, bottom, top, back, front} (docs/formulas.md)",
+              "text or a table", edges_allowed + ", or a table of them by side"},
+             read_edges);
+    rule.key({"edge_value", "the value on a dirichlet side: one number, one a chemical, or a table of them by side",
+              "a number, a list of numbers or a table", "numbers from -1e30 to 1e30", 0.0},
+             read_edge_value);
+    // Where `edges` is given, wrap and ready_edges are not read: it replaces them.
+    rule.key({"wrap", "true: the edges wrap around (a torus); false: they are clamped (unless edges is given)",
+              "true or false", "", true},
+             [](Settings& s, const std::string& key, R& r) {
+                 if (!r.edges) r.wrap = s.flag(key, r.wrap);
+             });
     rule.choice("data_type", &R::double_precision, {{"float", false}, {"double", true}},
                 "the numbers: float (Ready's Float32) or double (Float64)");
     rule.key({"block_x", "Ready's block_size_x; see docs/formulas.md", "an integer", "4 (Ready's default) or 1", 4},
@@ -184,8 +267,13 @@ const Schema<ModelValues> model_schema = [] {
                  r.block_x = s.count_in(key, r.block_x, 1, 4);
                  if (r.block_x != 1 && r.block_x != 4) s.refuse(key, "4 (Ready's default) or 1");
              });
-    rule.flag("ready_edges", &R::ready_edges,
-              "true: edges as Ready computes them (its quirks); false: a true torus, each cell clamped");
+    rule.key({"ready_edges",
+              "true: edges as Ready computes them (its quirks); false: a true torus, each cell clamped (unless "
+              "edges is given)",
+              "true or false", "", true},
+             [](Settings& s, const std::string& key, R& r) {
+                 if (!r.edges) r.ready_edges = s.flag(key, r.ready_edges);
+             });
     rule.choice("arithmetic", &R::fused_multiply_add, {{"plain", false}, {"opencl", true}},
                 "plain: every operation rounds on its own; opencl: as Ready's OpenCL compiler (clang) does it, "
                 "a * b + c inside one expression is one fused multiply-add (Ready's patterns)");

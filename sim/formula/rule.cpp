@@ -43,6 +43,35 @@ const char* integrator_name(Integrator integrator) {
     return "euler";
 }
 
+const char* edge_name(Edge edge) {
+    switch (edge) {
+    case Edge::periodic: return "periodic";
+    case Edge::clamped: return "clamped";
+    case Edge::neumann: return "neumann";
+    case Edge::dirichlet: return "dirichlet";
+    }
+    return "periodic";
+}
+
+const char* side_name(int side) {
+    static const char* const names[6] = {"left", "right", "bottom", "top", "back", "front"};
+    return side >= 0 && side < 6 ? names[side] : "?";
+}
+
+Edges Edges::all(Edge edge, const std::vector<double>& value) {
+    Edges e;
+    for (Of& of : e.side) {
+        of.edge = edge;
+        if (edge == Edge::dirichlet) of.value = value;
+    }
+    return e;
+}
+
+Edges Rule::own_edges() const {
+    if (edges) return *edges;
+    return Edges::all(wrap ? Edge::periodic : Edge::clamped);
+}
+
 double Rule::parameter(const std::string& name, double fallback) const {
     double value = fallback;
     for (const auto& [key, v] : parameters)
@@ -75,6 +104,24 @@ void Rule::validate(int width, int height, int depth) const {
             if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'))
                 throw std::invalid_argument("parameter name \"" + name + "\" is not a name (letters, digits and _)");
     }
+    if (edges)
+        for (int side = 0; side < 6; ++side) {
+            const Edges::Of& of = edges->side[static_cast<std::size_t>(side)];
+            const Edges::Of& other = edges->side[static_cast<std::size_t>(side ^ 1)];
+            if ((of.edge == Edge::periodic) != (other.edge == Edge::periodic))
+                throw std::invalid_argument(std::string("edges: the ") + side_name(side) + " side is " +
+                                            edge_name(of.edge) + " and the " + side_name(side ^ 1) + " side " +
+                                            edge_name(other.edge) + ": periodic goes on both sides of an axis");
+            if (of.edge != Edge::dirichlet) continue;
+            if (static_cast<int>(of.value.size()) != chemicals)
+                throw std::invalid_argument(std::string("edge_value of the ") + side_name(side) + " side has " +
+                                            std::to_string(of.value.size()) + " values, not one a chemical (" +
+                                            std::to_string(chemicals) + ")");
+            for (double v : of.value)
+                if (!std::isfinite(v) || std::abs(v) > 1e30)
+                    throw std::invalid_argument(std::string("edge_value of the ") + side_name(side) + " side is " +
+                                                std::to_string(v) + ", not a finite number from -1e30 to 1e30");
+        }
     for (std::size_t i = 0; i < parameters.size(); ++i)
         for (std::size_t j = 0; j < i; ++j)
             if (parameters[i].first == parameters[j].first)

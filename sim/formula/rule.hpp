@@ -21,6 +21,8 @@
 // edges index with `& (size - 1)`, a torus only for sizes (in blocks) that
 // are powers of two.
 
+#include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -63,6 +65,36 @@ int stages(Integrator integrator);
 // Its name as a description gives it: "euler", "heun", "rk4".
 const char* integrator_name(Integrator integrator);
 
+// What a stencil reads past a side of the grid, where figgen's own edges
+// are asked for (Rule::sides) instead of Ready's. The grid's cells are
+// centred on their squares, the side half a cell past the last:
+// periodic, the grid's other end (a torus of any size; both sides of an
+// axis); clamped, the side's own last cell (Ready's inbuilt rules);
+// neumann, zero flux, the cells mirrored about the side (the cell t past it
+// reads the cell t - 1 inside), which holds the flux of every symmetric
+// stencil through the side at zero and the chemicals' sum constant;
+// dirichlet, the value `value` on the side, the cells mirrored about it
+// (2 value - the mirrored cell), which every second-order stencil meets.
+enum class Edge { periodic, clamped, neumann, dirichlet };
+// Its name as a description gives it.
+const char* edge_name(Edge edge);
+
+// The grid's sides, each axis's low end then its high end: left (x = 0),
+// right (x = width - 1), bottom (y = 0), top (y = height - 1, Ready's
+// north), back (z = 0), front (z = depth - 1, Ready's up).
+enum Side { left, right, bottom, top, back, front };
+const char* side_name(int side);
+
+struct Edges {
+    struct Of {
+        Edge edge = Edge::periodic;
+        std::vector<double> value;  // dirichlet: one a chemical
+    };
+    std::array<Of, 6> side;
+    // The same edge on every side (dirichlet with `value` for each chemical).
+    static Edges all(Edge edge, const std::vector<double>& value = {});
+};
+
 // Chemical i's name: a, b, ..., z.
 std::string chemical_name(int i);
 constexpr int max_chemicals = 26;
@@ -79,6 +111,13 @@ struct Rule {
     // Ready's edges (its quirks above), as its own patterns need; else a
     // true torus of any size, or each cell clamped to the grid.
     bool ready_edges = true;
+    // figgen's own edges, side by side (Edges); given, they replace `wrap`
+    // and `ready_edges`. The sides of an axis the grid does not have (one
+    // cell along it) read the cell itself, whatever they say.
+    std::optional<Edges> edges;
+    // The edges figgen computes where ready_edges is false: `edges`, or
+    // else every side periodic (wrap) or clamped.
+    Edges own_edges() const;
     // Ready's OpenCL arithmetic: pocl's clang contracts a * b + c (and
     // a * b - c, c - a * b) inside one expression into a fused multiply-add
     // (OpenCL C's FP_CONTRACT ON), so that it rounds once; else every

@@ -159,13 +159,37 @@ struct Rows {
 // Where Ready reads the cell at t (a column, -halo .. width + halo - 1) of a
 // row: its blocks of `block` cells clamped or wrapped with `& (blocks - 1)`,
 // the place in the block kept.
-int source_column(int t, int width, int block, bool wrap, bool ready) {
-    if (!ready) return wrap ? ((t % width) + width) % width : std::min(width - 1, std::max(0, t));
+int ready_column(int t, int width, int block, bool wrap) {
     const int blocks = width / block;
     const int b = (t >= 0 ? t / block : -((-t + block - 1) / block));
     const int lane = t - b * block;
     const int source_block = wrap ? ((b + blocks) & (blocks - 1)) : std::min(blocks - 1, std::max(0, b));
     return source_block * block + lane;
+}
+
+int ready_row(int y, int height, bool wrap) {
+    return wrap ? ((y + height) & (height - 1)) : std::min(height - 1, std::max(0, y));
+}
+
+// What the cell at t of an axis of n cells (0: x, 1: y, 2: z) reads with
+// figgen's own edges (Edges): the cell `source` inside, its value times
+// `sign`, plus twice the value of the dirichlet side `side` (-1: none).
+struct Past {
+    int source, sign, side;
+};
+Past own_source(int t, int n, const Edges& edges, int axis) {
+    if ((t >= 0 && t < n) || n == 1) return {n == 1 ? 0 : t, 1, -1};
+    const int side = 2 * axis + (t < 0 ? 0 : 1);
+    const Edge edge = edges.side[static_cast<std::size_t>(side)].edge;
+    if (edge == Edge::periodic) return {((t % n) + n) % n, 1, -1};
+    if (edge == Edge::clamped) return {t < 0 ? 0 : n - 1, 1, -1};
+    const int mirrored = t < 0 ? -1 - t : 2 * n - 1 - t;
+    if (mirrored < 0 || mirrored >= n)
+        throw std::invalid_argument(std::string("the grid is ") + std::to_string(n) + " cells along " +
+                                    "xyz"[axis] + ", fewer than its stencils reach past its " + edge_name(edge) +
+                                    " " + side_name(side) + " side (" + std::to_string(t < 0 ? -t : t - n + 1) +
+                                    " cells)");
+    return {mirrored, edge == Edge::dirichlet ? -1 : 1, edge == Edge::dirichlet ? side : -1};
 }
 
 // Whether blocked_steps may run (the tests compare it with plain_steps).
@@ -175,11 +199,6 @@ std::atomic<bool>& blocking_switch() {
 }
 bool temporal_blocking() {
     return blocking_switch().load(std::memory_order_relaxed);
-}
-
-int source_row(int y, int height, bool wrap, bool ready) {
-    if (!ready) return wrap ? ((y % height) + height) % height : std::min(height - 1, std::max(0, y));
-    return wrap ? ((y + height) & (height - 1)) : std::min(height - 1, std::max(0, y));
 }
 
 }  // namespace
@@ -254,33 +273,88 @@ public:
         // A chunk of whole padded rows (one, where only one fits) starts on
         // a cache line: its stores are aligned, none split between lines.
         padded_ = stride_ <= max_lanes;
-        for (int k = 0; k < 2; ++k)
-            for (int c = 0; c < rule.chemicals; ++c) state_[k].push_back(make_rows());
+        const bool ready = rule.ready_edges && !rule.edges;
+        const Edges edges = rule.own_edges();
+        // The value of a dirichlet side for chemical c, twice (a mirrored cell is 2 value - the cell).
+        auto twice = [&](int side, int c) {
+            return side < 0 ? 0.0 : 2 * edges.side[static_cast<std::size_t>(side)].value[static_cast<std::size_t>(c)];
+        };
         halo_source_.resize(static_cast<std::size_t>(2 * halo_));
-        for (int i = 0; i < halo_; ++i) {
-            halo_source_[i] = source_column(-halo_ + i, w, rule.block_x, rule.wrap, rule.ready_edges);
-            halo_source_[halo_ + i] = source_column(w + i, w, rule.block_x, rule.wrap, rule.ready_edges);
-        }
-        for (int c = 0; c < rule.chemicals; ++c)
-            for (int y = 0; y < rows_; ++y) {
-                Real* row = state_[0][c].row(y);
-                for (int x = 0; x < w; ++x) row[x] = static_cast<Real>(start[c](y, x));
-                fill_halo(row);
+        halo_sign_.assign(static_cast<std::size_t>(2 * halo_), Real(1));
+        halo_offset_.assign(static_cast<std::size_t>(2 * halo_ * rule.chemicals), Real(0));
+        for (int i = 0; i < 2 * halo_; ++i) {
+            const int t = i < halo_ ? -halo_ + i : w + i - halo_;
+            if (ready) {
+                halo_source_[static_cast<std::size_t>(i)] = ready_column(t, w, rule.block_x, rule.wrap);
+                continue;
             }
-        // The row of each neighbour at (dy, dz), z as y is: wrapped or clamped;
-        // a row's neighbours side by side (a chunk reads them all: 27 in 3-D).
+            const Past past = own_source(t, w, edges, 0);
+            halo_source_[static_cast<std::size_t>(i)] = past.source;
+            halo_sign_[static_cast<std::size_t>(i)] = static_cast<Real>(past.sign);
+            for (int c = 0; c < rule.chemicals; ++c)
+                halo_offset_[static_cast<std::size_t>(c * 2 * halo_ + i)] = static_cast<Real>(twice(past.side, c));
+        }
+        // The row of each neighbour at (dy, dz), z as y is: wrapped or clamped,
+        // or mirrored; a row's neighbours side by side (a chunk reads them
+        // all: 27 in 3-D). Past a dirichlet side the row read is a ghost (a
+        // row after the grid's), rewritten from the row it mirrors each time
+        // that row is written (write_ghosts).
         tables_ = (2 * program_.radius_z + 1) * (2 * program_.radius_y + 1);
         row_at_.assign(static_cast<std::size_t>(rows_) * static_cast<std::size_t>(tables_), 0);
+        std::vector<std::tuple<int, int, int>> ghost_keys;  // (source row, y side, z side)
         for (int dz = -program_.radius_z; dz <= program_.radius_z; ++dz)
             for (int dy = -program_.radius_y; dy <= program_.radius_y; ++dy) {
                 const int table = (dz + program_.radius_z) * (2 * program_.radius_y + 1) + dy + program_.radius_y;
                 for (int z = 0; z < d; ++z)
-                    for (int y = 0; y < h; ++y)
+                    for (int y = 0; y < h; ++y) {
+                        int row = 0;
+                        if (ready) {
+                            row = ready_row(z + dz, d, rule.wrap) * h + ready_row(y + dy, h, rule.wrap);
+                        } else {
+                            const Past py = own_source(y + dy, h, edges, 1), pz = own_source(z + dz, d, edges, 2);
+                            row = pz.source * h + py.source;
+                            // The value sz (sy u + oy) + oz, y's mirror first.
+                            Ghost ghost{row, static_cast<Real>(py.sign * pz.sign), {}, true};
+                            for (int c = 0; c < rule.chemicals; ++c) {
+                                const double offset = pz.sign * twice(py.side, c) + twice(pz.side, c);
+                                ghost.offset.push_back(static_cast<Real>(offset));
+                                ghost.plain = ghost.plain && offset == 0;
+                            }
+                            ghost.plain = ghost.plain && ghost.sign == Real(1);
+                            if (!ghost.plain) {
+                                const std::tuple<int, int, int> key{row, py.side, pz.side};
+                                const auto at = std::find(ghost_keys.begin(), ghost_keys.end(), key);
+                                row = rows_ + static_cast<int>(at - ghost_keys.begin());
+                                if (at == ghost_keys.end()) {
+                                    ghost_keys.push_back(key);
+                                    ghosts_.push_back(std::move(ghost));
+                                }
+                            }
+                        }
                         row_at_[static_cast<std::size_t>(z * h + y) * static_cast<std::size_t>(tables_) +
-                                static_cast<std::size_t>(table)] =
-                            source_row(z + dz, d, rule.wrap, rule.ready_edges) * h +
-                            source_row(y + dy, h, rule.wrap, rule.ready_edges);
+                                static_cast<std::size_t>(table)] = row;
+                    }
             }
+        // Each row's ghosts, together (ghost_begin_[r] .. ghost_begin_[r + 1] of ghost_order_).
+        if (!ghosts_.empty()) {
+            ghost_begin_.assign(static_cast<std::size_t>(rows_) + 1, 0);
+            for (const Ghost& g : ghosts_) ++ghost_begin_[static_cast<std::size_t>(g.source) + 1];
+            for (int r = 0; r < rows_; ++r) ghost_begin_[r + 1] += ghost_begin_[r];
+            ghost_order_.resize(ghosts_.size());
+            std::vector<int> next(ghost_begin_.begin(), ghost_begin_.end() - 1);
+            for (int g = 0; g < static_cast<int>(ghosts_.size()); ++g)
+                ghost_order_[static_cast<std::size_t>(next[static_cast<std::size_t>(ghosts_[g].source)]++)] = g;
+        }
+        for (int k = 0; k < 2; ++k)
+            for (int c = 0; c < rule.chemicals; ++c) state_[k].push_back(make_rows());
+        for (int y = 0; y < rows_; ++y) {
+            for (int c = 0; c < rule.chemicals; ++c) {
+                Real* row = state_[0][c].row(y);
+                for (int x = 0; x < w; ++x) row[x] = static_cast<Real>(start[c](y, x));
+                fill_halo(row, c);
+            }
+            write_ghosts(state_[0], y);
+        }
         if (program_.outputs_are_deltas) {
             // A step of several stages: each stage's state (two in turn for RK4).
             stages_ = stages(rule.integrator);
@@ -497,7 +571,7 @@ public:
         bool wraps = false;
         for (int r = 0; r < rows_; ++r)
             for (int t = 0; t < tables_; ++t) {
-                int d = neighbour_rows(r)[t] - r;
+                int d = real_row(neighbour_rows(r)[t]) - r;
                 if (std::abs(d) > most_reach) {
                     d = d > 0 ? d - rows_ : d + rows_;  // across the wrap
                     if (std::abs(d) > most_reach) return;
@@ -618,16 +692,38 @@ private:
         r.stride = stride_;
         const std::ptrdiff_t line = 64 / static_cast<std::ptrdiff_t>(sizeof(Real));
         const std::ptrdiff_t pad = (stride_ + 2 * halo_ + 64 + line - 1) / line * line;
-        r.cells.reset(new Real[static_cast<std::size_t>(stride_ * rows_ + 2 * pad + line)]());
+        const std::ptrdiff_t rows = rows_ + static_cast<std::ptrdiff_t>(ghosts_.size());
+        r.cells.reset(new Real[static_cast<std::size_t>(stride_ * rows + 2 * pad + line)]());
         const std::uintptr_t misaligned = reinterpret_cast<std::uintptr_t>(r.cells.get()) % 64;
         r.offset = pad + (misaligned ? (64 - static_cast<std::ptrdiff_t>(misaligned)) / static_cast<std::ptrdiff_t>(sizeof(Real)) : 0);
         return r;
     }
 
-    void fill_halo(Real* row) const {
-        for (int i = 0; i < halo_; ++i) {
-            row[-halo_ + i] = row[halo_source_[i]];
-            row[width + i] = row[halo_source_[halo_ + i]];
+    // Chemical c's row's halo: its cells past the left and right sides.
+    void fill_halo(Real* row, int c) const {
+        const Real* offset = halo_offset_.data() + static_cast<std::ptrdiff_t>(c) * 2 * halo_;
+        for (int i = 0; i < 2 * halo_; ++i) {
+            Real* to = row + (i < halo_ ? -halo_ + i : width + i - halo_);
+            const Real from = row[halo_source_[static_cast<std::size_t>(i)]];
+            // A plain copy keeps a negative zero (Ready's bits), which -0 + 0 would not.
+            *to = halo_sign_[static_cast<std::size_t>(i)] == Real(1) && offset[i] == Real(0)
+                      ? from
+                      : halo_sign_[static_cast<std::size_t>(i)] * from + offset[i];
+        }
+    }
+
+    // The ghost rows that mirror row r past a dirichlet side, from its cells and halo.
+    void write_ghosts(std::vector<Rows<Real>>& rows, int r) const {
+        if (ghosts_.empty()) return;
+        for (int i = ghost_begin_[static_cast<std::size_t>(r)]; i < ghost_begin_[static_cast<std::size_t>(r) + 1]; ++i) {
+            const int g = ghost_order_[static_cast<std::size_t>(i)];
+            const Ghost& ghost = ghosts_[static_cast<std::size_t>(g)];
+            for (int c = 0; c < rule_.chemicals; ++c) {
+                const Real* from = rows[c].row(r) - halo_;
+                Real* to = rows[c].row(rows_ + g) - halo_;
+                const Real sign = ghost.sign, offset = ghost.offset[static_cast<std::size_t>(c)];
+                for (int x = 0; x < width + 2 * halo_; ++x) to[x] = sign * from[x] + offset;
+            }
         }
     }
 
@@ -713,8 +809,10 @@ private:
                 if (!chunk(s, y0, 1, x0, std::min(static_cast<int>(lanes_), width - x0), from, to, sc, failure, stage))
                     return false;
         }
-        for (int r = 0; r < rows; ++r)
-            for (int chem = 0; chem < rule_.chemicals; ++chem) fill_halo(to[chem].row(y0 + r));
+        for (int r = 0; r < rows; ++r) {
+            for (int chem = 0; chem < rule_.chemicals; ++chem) fill_halo(to[chem].row(y0 + r), chem);
+            write_ghosts(to, y0 + r);
+        }
         return true;
     }
 
@@ -903,6 +1001,22 @@ private:
     }
     std::vector<char> follows_;             // row r follows row r - 1 for every (dy, dz)
     std::vector<int> halo_source_;          // the halo's source columns: left, then right
+    std::vector<Real> halo_sign_;           // and each halo cell's value: sign * source + offset
+    std::vector<Real> halo_offset_;         // [chemical * 2 halo + i]
+    // Rows past a dirichlet side (and past two sides, one of them dirichlet):
+    // ghost g is row rows_ + g of every state, sign * row `source` + offset.
+    struct Ghost {
+        int source;
+        Real sign;
+        std::vector<Real> offset;  // per chemical
+        bool plain;
+    };
+    std::vector<Ghost> ghosts_;
+    std::vector<int> ghost_begin_, ghost_order_;  // each row's ghosts
+    // The grid's row a neighbour row is, or mirrors (a ghost).
+    int real_row(int row) const {
+        return row < rows_ ? row : ghosts_[static_cast<std::size_t>(row - rows_)].source;
+    }
     std::vector<Real> x_pos_;
     std::vector<int> writes_output_;  // per instruction: the chemical whose next rows it writes, or -1
     std::vector<fused::Plan<Real>> plans_;  // per chain

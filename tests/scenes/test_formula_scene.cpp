@@ -130,3 +130,55 @@ TEST_CASE("a formula description's mistakes are refused, naming the key and the 
     CHECK_THAT(refusal(with("initial", "[{shapes = []}]")), Catch::StartsWith("initial[0].shapes = [] is not allowed"));
     CHECK(refusal(rule) == "accepted");
 }
+
+TEST_CASE("a formula description's edges: read, refused where they cannot be, and said in the metadata", "[formula][scenes]") {
+    CHECK_THAT(refusal(with("edges", "\"sideways\"")),
+               Catch::StartsWith("edges = 'sideways' is not allowed: \"periodic\", \"neumann\" or \"dirichlet\""));
+    CHECK_THAT(refusal(with("edges", "{left = \"dirichlet\", right = \"periodic\"}")),
+               Catch::Contains("the left side is dirichlet and the right side periodic: periodic goes on both sides"));
+    CHECK_THAT(refusal(with("edges", "{middle = \"neumann\"}")), Catch::Contains("middle"));
+    CHECK_THAT(refusal(with("edges", "\"dirichlet\"\nedge_value = [1, 2, 3]")),
+               Catch::StartsWith("edge_value = [ 1, 2, 3 ] is not allowed: a number, or a list of one number a chemical (2)"));
+    CHECK_THAT(refusal(with("edges", "\"dirichlet\"\nedge_value = nan")), Catch::StartsWith("edge_value = nan is not allowed"));
+    CHECK(refusal(with("edges", "{left = \"dirichlet\", right = \"neumann\", top = \"neumann\", bottom = \"neumann\"}")) ==
+          "accepted");
+
+    // Given, the edges replace wrap and ready_edges, which are not read (nor said).
+    const auto meta = render_small(description::parse_description(
+        with("edges", "{left = \"dirichlet\", right = \"dirichlet\", bottom = \"neumann\", top = \"neumann\"}\n"
+                      "edge_value = {left = [1.0, 0.0]}\nwrap = false"),
+        "fx-test.toml"));
+    CHECK(meta["edges"]["left"]["edge"] == "dirichlet");
+    CHECK(meta["edges"]["left"]["value"] == nlohmann::json({1.0, 0.0}));
+    CHECK(meta["edges"]["right"]["value"] == nlohmann::json({0.0, 0.0}));
+    CHECK(meta["edges"]["top"]["edge"] == "neumann");
+    CHECK(!meta["edges"].contains("front"));  // a 2-D grid has no front
+    CHECK(!meta["params"].contains("wrap"));
+    // Ready's edges where none are given.
+    const auto plain = render_small(description::parse_description(rule, "fx-test.toml"));
+    CHECK(plain["edges"] == nlohmann::json({{"ready", true}, {"wrap", true}}));
+}
+
+TEST_CASE("--strict refuses a timestep past the stability bound before the run", "[formula][scenes]") {
+    // Gray-Scott's a, D_a = 0.2, medium accuracy in 2-D: 0.375 / 0.2 = 1.875 under Euler.
+    auto strict_refusal = [](const std::string& text) -> std::string {
+        const auto d = description::parse_description(text, "fx-test.toml");
+        scenes::SceneOptions options;
+        options.strict = true;
+        const auto scene = scenes::read_scene(d, options);
+        try {
+            scene->check_run();
+        } catch (const description::UsageError& e) {
+            return e.what();
+        }
+        return "accepted";
+    };
+    CHECK_THAT(strict_refusal(with("timestep", "2.0")),
+               Catch::StartsWith("timestep = 2 is not allowed: at most 1.875, the explicit stability bound of euler") &&
+                   Catch::Contains("integrator = \"rk4\""));
+    CHECK(strict_refusal(with("timestep", "1.8")) == "accepted");
+    // RK4 reaches 2.785 / (0.2 x 16/3) = 2.61: 2.0 is within it.
+    CHECK(strict_refusal(with("timestep", "2.0\nintegrator = \"rk4\"")) == "accepted");
+    // Without --strict the same description is read and runs (a warning on stderr).
+    CHECK(refusal(with("timestep", "2.0")) == "accepted");
+}
