@@ -31,7 +31,7 @@ using tinyxml2::XMLElement;
 // The formula scene's own [params] keys: a Ready parameter may not take one.
 const char* const scene_keys[] = {"chemicals", "formula", "accuracy", "wrap",  "data_type", "block_x",
                                   "ready_edges", "arithmetic", "width", "height", "depth", "steps", "zero_first",
-                                  "initial", "integrator", "edges", "edge_value"};
+                                  "initial", "integrator", "edges", "edge_value", "error"};
 
 
 std::string read_file(const std::filesystem::path& file) {

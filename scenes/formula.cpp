@@ -141,13 +141,23 @@ public:
         const double row = m_.width + 2.0 * m_.radius_x + 64 / cell;  // a row, halos and padding
         const double threads = model_threads(false) > 0 ? model_threads(false) : std::max(1u, std::thread::hardware_concurrency());
         const double rows = static_cast<double>(m_.height) * m_.depth, shown = static_cast<double>(s_.shown.size());
+        // The ghost rows past dirichlet sides (sim/formula/run.cpp): at most
+        // each plane's rows past its two y sides, each z row's past the
+        // two z sides, and the corners.
+        const double ghosts = m_.rule.edges ? 2.0 * (m_.radius_y * m_.depth + m_.radius_z * m_.height) +
+                                                  4.0 * m_.radius_y * m_.radius_z
+                                            : 0;
         return {grid_need("the arrays a Ready pattern stores", rows, m_.width, 8, d_.stored_start ? chemicals : 0),
-                grid_need("the chemicals' grids", rows + 3, row, cell,
+                grid_need("the chemicals' grids", rows + ghosts + 3, row, cell,
                           sim::formula::state_copies(m_.height, m_.depth, m_.rule.integrator) * chemicals),
                 grid_need("the formula's registers", threads * (m_.registers + 1),
                           sim::formula::chunk_lanes + 64 / cell, cell, 1),
                 grid_need("the formula's machine code", 1, m_.machine_code, 1, 1),
                 grid_need("the start and the grids read", rows, m_.width, 8, 2 * chemicals),
+                // --error: a run at a smaller timestep beside the figure's, and the three runs' last grids.
+                grid_need("--error's run", rows + ghosts + 3, row, cell,
+                          measures_error() ? sim::formula::state_copies(m_.height, m_.depth, m_.rule.integrator) * chemicals : 0),
+                grid_need("--error's grids", rows, m_.width, 8, measures_error() ? 3 * chemicals : 0),
                 grid_need("panels' copies", m_.height, m_.width, 8 + field_layer_bytes_per_cell, panels * shown),
                 // A 1-D run's space-time diagram: its rows, and a copy drawn with its texture.
                 grid_need("the space-time diagram", dimensions_ == 1 ? space_time_rows + 1 : 0, m_.width,
@@ -196,6 +206,7 @@ public:
         formula::Run model(m_.rule, m_.width, m_.height, start);
         const int threads = model_threads(run.filming());
         std::vector<sim::Grid<double>> now, drawn;  // every chemical where the run is, and those shown as drawn
+        std::vector<sim::Grid<double>> figure_state;  // at the figure's last panel, for error_said
         auto layers = [&](Cells cells) {
             std::vector<FieldLayer> l;
             for (std::size_t i = 0; i < s_.shown.size(); ++i) l.push_back(field_layer(drawn[i], specs_[i], cells));
@@ -216,6 +227,7 @@ public:
                 [&](int step) {
                     panels.push_back({format_step(d_.panel_title, step), layers(Cells::copied)});
                     panel_meta.push_back(metadata(now, step));
+                    if (measures_error() && step == d_.panels.back()) figure_state = now;
                 },
             .frame =
                 [&](int step) -> FrameDrawing {
@@ -234,6 +246,7 @@ public:
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"model_operations", model.operations()}};
+        if (measures_error() && !run.film_only()) meta["error"] = error_said(start, figure_state, threads);
         run.write_field_figure(panels, meta, [&] { return ready_state(now); });
     }
 
@@ -335,7 +348,7 @@ private:
         // (a segment on another rank stops earlier): every frame's axes and
         // rows are the same on every rank.
         const int stride = space_time_stride(), last = figure_last();
-        std::vector<sim::Grid<double>> now;
+        std::vector<sim::Grid<double>> now, figure_state;
         SpaceTime history;
         history.rows.resize(s_.shown.size());
         auto look = [&] { now = chemicals(model); };
@@ -351,7 +364,11 @@ private:
                                                now[s_.shown[i]].cells().end());
                     history.steps.push_back(step);
                 },
-            .panel = [&](int step) { panel_meta.push_back(metadata(now, step)); },
+            .panel =
+                [&](int step) {
+                    panel_meta.push_back(metadata(now, step));
+                    if (measures_error() && step == d_.panels.back()) figure_state = now;
+                },
             .frame =
                 [&](int step) -> FrameDrawing {
                     return {[this, &history, &now, step, last](render::Surface& s) {
@@ -374,6 +391,7 @@ private:
                                {"panels", panel_meta},
                                {"space_time", {{"rows", history.steps.size()}, {"stride", stride}}},
                                {"model_operations", model.operations()}};
+        if (measures_error() && !run.film_only()) meta["error"] = error_said(start, figure_state, threads);
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         const int shown_last = history.steps.empty() ? 0 : history.steps.back();
         FigureDrawing figure{width, height, false,
@@ -477,13 +495,17 @@ private:
         const nlohmann::json stability = stability_said(start);
         formula::Run model(m_.rule, m_.width, m_.height, m_.depth, start);
         const int threads = model_threads(run.filming());
-        std::vector<sim::Grid<double>> now;
+        std::vector<sim::Grid<double>> now, figure_state;
         auto look = [&] { now = chemicals(model); };
         look();
         nlohmann::json panel_meta = nlohmann::json::array();
         run.run({
             .check = {},
-            .panel = [&](int step) { panel_meta.push_back(metadata(now, step)); },
+            .panel =
+                [&](int step) {
+                    panel_meta.push_back(metadata(now, step));
+                    if (measures_error() && step == d_.panels.back()) figure_state = now;
+                },
             .frame =
                 [&](int) -> FrameDrawing {
                     auto facets = std::make_shared<const std::vector<render::Facet>>(surface_of(now[s_.shown.front()]));
@@ -523,6 +545,7 @@ private:
                                  {"inside", s_.contour_below ? "below" : "above"},
                                  {"facets", facets.size()}}},
                                {"model_operations", model.operations()}};
+        if (measures_error() && !run.film_only()) meta["error"] = error_said(start, figure_state, threads);
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         const double scale = options_.scale;
         FigureDrawing figure{width, height, true,
@@ -580,6 +603,74 @@ private:
                                                  : nlohmann::json{{"edge", formula::edge_name(of.edge)}};
         }
         return said;
+    }
+
+    bool measures_error() const { return m_.error || options_.error; }
+
+    // --error (or [params] error): the figure's error in time, measured. The
+    // run again from the same start at half and a quarter of the timestep
+    // to the time of the figure's last panel; for each chemical the largest
+    // and the RMS difference over the cells between the timesteps h and
+    // h/2 (d1) and h/2 and h/4 (d2), the observed order log2(d1 / d2), and
+    // Richardson's estimate of the figure's own error, d1 2^q / (2^q - 1)
+    // with q the integrator's order (u_h - u = C h^q + ...). Where d2 is
+    // within rounding of the values the order is not said.
+    nlohmann::json error_said(const std::vector<sim::Grid<double>>& start,
+                              const std::vector<sim::Grid<double>>& figure, int threads) const {
+        const int step = d_.panels.back();
+        const double h = m_.rule.parameter("timestep");
+        const int q = formula::order(m_.rule.integrator);
+        std::vector<std::vector<sim::Grid<double>>> runs{figure};
+        for (int k : {2, 4}) {
+            formula::Rule rule = m_.rule;
+            rule.set_parameter("timestep", h / k);
+            formula::Run run(rule, m_.width, m_.height, m_.depth, start);
+            try {
+                run.step(step * k, threads);
+            } catch (const formula::Unstable& e) {
+                throw formula::Unstable(std::string("--error's run at timestep ") + format_number(h / k) + ": " +
+                                        e.what());
+            }
+            runs.push_back(chemicals(run));
+        }
+        const double epsilon = m_.rule.double_precision ? 0x1p-52 : 0x1p-23;
+        nlohmann::json chemicals_said = nlohmann::json::array();
+        for (int c = 0; c < m_.rule.chemicals; ++c) {
+            double most[2] = {0, 0}, squares[2] = {0, 0}, largest = 0;
+            const std::size_t cells = runs[0][static_cast<std::size_t>(c)].cells().size();
+            for (int k = 0; k < 2; ++k) {
+                const auto& a = runs[static_cast<std::size_t>(k)][static_cast<std::size_t>(c)].cells();
+                const auto& b = runs[static_cast<std::size_t>(k) + 1][static_cast<std::size_t>(c)].cells();
+                for (std::size_t i = 0; i < cells; ++i) {
+                    const double d = a[i] - b[i];
+                    most[k] = std::max(most[k], std::abs(d));
+                    squares[k] += d * d;
+                    largest = std::max(largest, std::abs(a[i]));
+                }
+            }
+            const double rms[2] = {std::sqrt(squares[0] / static_cast<double>(cells)),
+                                   std::sqrt(squares[1] / static_cast<double>(cells))};
+            // Steps' rounding: each of the finest run's steps may round a value by epsilon.
+            const double rounding = epsilon * std::max(1.0, largest) * std::sqrt(4.0 * std::max(step, 1));
+            const double factor = std::ldexp(1.0, q) / (std::ldexp(1.0, q) - 1);
+            nlohmann::json said = {{"chemical", formula::chemical_name(c)},
+                                   {"largest", {most[0], most[1]}},
+                                   {"rms", {rms[0], rms[1]}},
+                                   {"estimate", {{"largest", factor * most[0]}, {"rms", factor * rms[0]}}}};
+            const bool measurable = most[1] > 10 * rounding && most[0] > 0;
+            said["order"] = measurable ? nlohmann::json(std::log2(most[0] / most[1])) : nlohmann::json(nullptr);
+            said["order_rms"] =
+                measurable && rms[1] > 0 ? nlohmann::json(std::log2(rms[0] / rms[1])) : nlohmann::json(nullptr);
+            if (!measurable) said["rounding"] = "the differences are within the number type's rounding: no order";
+            chemicals_said.push_back(said);
+        }
+        return {{"method", "the run again at timestep / 2 and / 4 to the figure's last panel, cell by cell"},
+                {"step", step},
+                {"time", step * h},
+                {"timesteps", {h, h / 2, h / 4}},
+                {"integrator", formula::integrator_name(m_.rule.integrator)},
+                {"order", q},
+                {"chemicals", chemicals_said}};
     }
 
     nlohmann::json stability_said(const std::vector<sim::Grid<double>>& start) const {
@@ -694,6 +785,11 @@ SceneInfo formula_scene() {
     return {.name = "formula",
             .read = read_formula,
             .colormap_keys = formula_colormap_keys(),
+            // With --error, the card says the figure's measured error in time.
+            .key_numbers = {{"/error/chemicals/*/estimate/largest", "error in time of {chemical}, largest (Richardson)",
+                             "number", "", {}, "", "", 2},
+                            {"/error/chemicals/*/order", "observed order in time of {chemical}", "number", "", {}, "",
+                             "", 3}},
             .colormap_keys_of = rule_colormap_keys,
             .extra_files = {{.format = "vti", .disk = vti_disk}},
             .turns = true};

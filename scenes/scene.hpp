@@ -26,6 +26,7 @@ struct SceneOptions {
     bool film = true;    // the animation is wanted (MP4 or PNG sequence)
     int threads = 1;     // work items that may run at once (for memory estimates: each holds its own buffers)
     bool strict = false;  // a model's timestep past its stability bound is refused (check_run), not said
+    bool error = false;   // a formula model's error in time is measured (--error)
 };
 
 // One big allocation of a model, for the command's memory estimate.

@@ -214,6 +214,9 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
                   "Leave the figure's background out of the PNG, PDF and SVG: only the ink is opaque");
     app->add_flag("--strict", strict,
                   "Refuse a formula model whose timestep is past its explicit stability bound (else a warning)");
+    app->add_flag("--error", error,
+                  "Measure a formula model's error in time: run it again at half and a quarter of its timestep "
+                  "(the metadata's and the gallery card's error)");
 }
 
 namespace {

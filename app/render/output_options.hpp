@@ -31,6 +31,7 @@ struct OutputOptions {
     bool formats_given = false;         // --format was given: a description's figure.formats is not used
     bool transparent = false;           // no background in the PNG, PDF and SVG
     bool strict = false;                // refuse a formula model's timestep past its stability bound (--strict)
+    bool error = false;                 // measure a formula model's error in time (--error)
     media::VideoOptions video_options;
     // Limits on what one figure may need (--max-memory, --max-disk); a figure
     // whose estimate exceeds them is refused before anything is allocated.
@@ -47,7 +48,7 @@ struct OutputOptions {
     // cores, whatever its --threads or rank count.
     scenes::SceneOptions scene_options() const {
         return {scale, animates(), std::max(work.threads, static_cast<int>(std::thread::hardware_concurrency())),
-                strict};
+                strict, error};
     }
 };
 

@@ -130,6 +130,7 @@ OutputOptions output_options(const RenderSettings& c) {
     }
     options.transparent = c.transparent;
     options.strict = c.strict;
+    options.error = c.error;
     options.max_memory = parse_size("--max-memory", c.max_memory);
     options.max_disk = parse_size("--max-disk", c.max_disk);
     if (c.threads && (*c.threads < 1 || *c.threads > 1024))

@@ -39,7 +39,7 @@ struct RenderSettings {
     std::optional<std::uint64_t> seed;
     std::optional<int> fps;
     double scale = 1.0;
-    bool no_video = false, frames = false, transparent = false, strict = false;
+    bool no_video = false, frames = false, transparent = false, strict = false, error = false;
     std::string max_memory = "4G", max_disk = "4G";  // sizes, read by parse_size
 };
 

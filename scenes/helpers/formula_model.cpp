@@ -315,6 +315,13 @@ const Schema<ModelValues> model_schema = [] {
           [](Settings& section, const std::string& key, M& v) {
               v.model.steps = section.count_in(key, v.model.steps, 0, 10'000'000);
           });
+    s.key({"error",
+           "measure the figure's error in time: the run again at half and a quarter of the timestep, to the "
+           "figure's last panel (as --error)",
+           "true or false", "", false},
+          [](Settings& section, const std::string& key, M& v) {
+              if (section.has(key)) v.model.error = section.flag(key, false);
+          });
     s.key(
         {"zero_first", "the start is all zero before the overlays", "true or false", "", true},
         [](Settings& section, const std::string& key, M& v) { v.model.pattern.zero_first = section.flag(key, true); });
@@ -414,6 +421,8 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
         const formula::Program program = formula::compile(r, formula::dimensionality(m.width, m.height, m.depth));
         m.registers = program.registers;
         m.radius_x = program.radius_x;
+        m.radius_y = program.radius_y;
+        m.radius_z = program.radius_z;
         m.operations = program.operations;
         m.machine_code = formula::fused::machine_code_bytes(program);
     } catch (const formula::FormulaError& e) {

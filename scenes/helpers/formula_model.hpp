@@ -28,8 +28,10 @@ struct FormulaModel {
     sim::formula::Rule rule;
     // The grid: height 1 is 1-D, depth above 1 is 3-D (the row of (y, z) is z * height + y).
     int width = 128, height = 128, depth = 1, steps = 1000;
+    bool error = false;  // its error in time measured (scenes/formula.cpp's error_said)
     sim::formula::Pattern pattern;
     int registers = 0, radius_x = 0;  // of the compiled formula, for the memory estimate
+    int radius_y = 0, radius_z = 0;
     int operations = 0;               // row operations a cell of one step takes (Run::operations)
     double machine_code = 0;          // bytes of its chains' machine code (sim/formula/chain_kernels.hpp)
 };

@@ -34,6 +34,15 @@ int stages(Integrator integrator) {
     return 1;
 }
 
+int order(Integrator integrator) {
+    switch (integrator) {
+    case Integrator::euler: return 1;
+    case Integrator::heun: return 2;
+    case Integrator::rk4: return 4;
+    }
+    return 1;
+}
+
 const char* integrator_name(Integrator integrator) {
     switch (integrator) {
     case Integrator::euler: return "euler";
@@ -70,6 +79,15 @@ Edges Edges::all(Edge edge, const std::vector<double>& value) {
 Edges Rule::own_edges() const {
     if (edges) return *edges;
     return Edges::all(wrap ? Edge::periodic : Edge::clamped);
+}
+
+void Rule::set_parameter(const std::string& name, double value) {
+    for (auto it = parameters.rbegin(); it != parameters.rend(); ++it)
+        if (it->first == name) {
+            it->second = value;
+            return;
+        }
+    parameters.emplace_back(name, value);
 }
 
 double Rule::parameter(const std::string& name, double fallback) const {

@@ -62,6 +62,8 @@ enum class Accuracy { low, medium, high };
 enum class Integrator { euler, heun, rk4 };
 // The stages a step of each evaluates the formula: 1, 2, 4.
 int stages(Integrator integrator);
+// Its order in time: 1, 2, 4.
+int order(Integrator integrator);
 // Its name as a description gives it: "euler", "heun", "rk4".
 const char* integrator_name(Integrator integrator);
 
@@ -130,6 +132,8 @@ struct Rule {
     void validate(int width, int height, int depth = 1) const;
     // The value of parameter `name` (its last), or `fallback` where there is none.
     double parameter(const std::string& name, double fallback = 0) const;
+    // Sets parameter `name` (its last, or a new one) to `value`.
+    void set_parameter(const std::string& name, double value);
 };
 
 // The most cells a grid holds, in any number of dimensions (16384^2).

@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -21,8 +22,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-nlohmann::json render_small(const description::Description& d) {
+nlohmann::json render_small(const description::Description& d, bool error = false) {
     app::OutputOptions options;
+    options.error = error;
     options.dir = fs::path(FIGGEN_TEST_ARTIFACT_DIR) / ("formula-scene-" + std::to_string(::getpid()));
     options.scale = 0.25;
     options.video = false;
@@ -181,4 +183,57 @@ TEST_CASE("--strict refuses a timestep past the stability bound before the run",
     CHECK(strict_refusal(with("timestep", "2.0\nintegrator = \"rk4\"")) == "accepted");
     // Without --strict the same description is read and runs (a warning on stderr).
     CHECK(refusal(with("timestep", "2.0")) == "accepted");
+}
+
+TEST_CASE("--error measures each integrator's error in time and its order", "[formula][scenes]") {
+    // The heat equation from a Gaussian, in double, to t = 8: its error in
+    // time falls as the integrator's order says.
+    const std::string heat = R"(
+id = "fx-heat"
+title = "heat"
+scene = "formula"
+[params]
+chemicals = 1
+data_type = "double"
+width = 32
+height = 32
+steps = 40
+formula = "delta_a = laplacian_a;"
+timestep = 0.2
+edges = "neumann"
+initial = [{chemical = "a", fill = "gaussian", height = 1.0, sigma = 0.1, centre = [0.5, 0.5], shapes = [{shape = "everywhere"}]}]
+[figure]
+panels = [0, 40]
+size = [400, 200]
+)";
+    struct Case {
+        const char* integrator;
+        int order;
+    };
+    for (const Case& c : {Case{"euler", 1}, Case{"heun", 2}, Case{"rk4", 4}}) {
+        const auto meta = render_small(
+            description::parse_description(heat + "", "fx-heat.toml",
+                                           {std::string("params.integrator=\"") + c.integrator + "\""}),
+            true);
+        const auto& e = meta["error"];
+        INFO(c.integrator << ": " << e.dump());
+        CHECK(e["order"] == c.order);
+        CHECK(e["step"] == 40);
+        CHECK(e["timesteps"] == nlohmann::json({0.2, 0.1, 0.05}));
+        const auto& a = e["chemicals"][0];
+        CHECK(a["order"].get<double>() == Approx(c.order).margin(0.1));
+        // Richardson: the figure's error is d1 2^q / (2^q - 1).
+        const double d1 = a["largest"][0].get<double>(), q = c.order;
+        CHECK(a["estimate"]["largest"].get<double>() == Approx(d1 * std::pow(2, q) / (std::pow(2, q) - 1)));
+        CHECK(d1 > a["largest"][1].get<double>());
+    }
+    // Without --error, or error = true in [params], no error is measured.
+    CHECK(!render_small(description::parse_description(heat, "fx-heat.toml"))["error"].is_object());
+    CHECK(render_small(description::parse_description(heat, "fx-heat.toml", {"params.error=true"}))["error"].is_object());
+    // In float, RK4's differences are rounding: no order is said.
+    const auto rounded = render_small(
+        description::parse_description(heat, "fx-heat.toml", {"params.data_type=\"float\"", "params.integrator=\"rk4\""}),
+        true);
+    CHECK(rounded["error"]["chemicals"][0]["order"].is_null());
+    CHECK(rounded["error"]["chemicals"][0].contains("rounding"));
 }
