@@ -31,6 +31,9 @@ struct Curve {
 struct Curves {
     std::vector<Curve> numerics;    // a model's arithmetic against an exact solution
     std::vector<Curve> estimators;  // a statistical estimate against a known constant
+    // A formula model's integrators (out/bench-integrators.png): against a
+    // known answer, and against a fine reference run.
+    std::vector<Curve> integrators_known, integrators_reference;
 };
 
 // Where the pipeline study finds the project.
@@ -47,6 +50,11 @@ nlohmann::json diffusion_vs_exact(Curves& curves);
 nlohmann::json percolation_threshold(Curves& curves);
 nlohmann::json fractal_dimensions(Curves& curves);
 nlohmann::json gray_scott_long_run(long long steps);
+// A formula model's integrators, each over a range of timesteps
+// (accuracy_formula.cpp): the heat equation's Fourier mode against its
+// exact decay, Gray-Scott against a fine RK4 run; and the cheapest
+// integrator for several errors.
+nlohmann::json formula_integrators(Curves& curves);
 
 // The book's route against ours (runs bench/book_peer.py; {"skipped": why}
 // without Debian's python3, numpy, scipy or matplotlib), and whole-pipeline

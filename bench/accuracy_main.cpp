@@ -53,6 +53,21 @@ void write_pareto(const std::filesystem::path& file, const bench::Curves& curves
     media::write_png(file, image, {{"Title", "figgen: run time against error"}});
 }
 
+// A formula model's integrators: the same axes, one curve per integrator.
+void write_integrators(const std::filesystem::path& file, const bench::Curves& curves) {
+    render::PlotStyle style;
+    style.wspace = 0.3f;
+    render::Canvas canvas(1600, 700, render::canvas_samples);
+    canvas.background({1, 1, 1, 1});
+    scenes::draw_plot_row(canvas, {0, 0, 1600, 700},
+                          {pareto_axes(curves.integrators_known, "Heat equation's Fourier mode against its exact decay",
+                                       {1e-16, 1.0}, render::Legend::upper_right),
+                           pareto_axes(curves.integrators_reference, "Gray-Scott against RK4 at a timestep of 1/128",
+                                       {1e-10, 1.0}, render::Legend::upper_right)},
+                          style);
+    media::write_png(file, canvas.read(), {{"Title", "figgen: a formula model's integrators, run time against error"}});
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -60,13 +75,15 @@ int main(int argc, char** argv) {
     bench::Paths paths{FIGGEN_SOURCE_DIR, FIGGEN_BINARY_DIR, FIGGEN_EXE, "bench/results"};
     std::filesystem::path figure_dir = "out";
     long long long_run = 1'000'000;
-    bool skip_pipeline = false, skip_encoder = false, encoder_only = false;
+    bool skip_pipeline = false, skip_encoder = false, encoder_only = false, integrators_only = false;
     app.add_option("--results", paths.results, "folder for latest.json and the book's route's peer.json");
     app.add_option("--figures", figure_dir, "folder for bench-pareto.png");
     app.add_option("--long-run", long_run, "steps of the Gray-Scott stability run at n = 64")->check(CLI::Range(0LL, 100'000'000LL));
     app.add_flag("--no-pipeline", skip_pipeline, "skip the book's route and the whole-pipeline times");
     app.add_flag("--no-encoder", skip_encoder, "skip the x264 presets and tunes (bench/results/encoder.md)");
     app.add_flag("--encoder-only", encoder_only, "only the x264 presets and tunes: encoder.json and encoder.md");
+    app.add_flag("--integrators-only", integrators_only,
+                 "only a formula model's integrators: integrators.json and bench-integrators.png");
     CLI11_PARSE(app, argc, argv);
     try {
         std::filesystem::create_directories(paths.results);
@@ -76,6 +93,15 @@ int main(int argc, char** argv) {
             return 0;
         }
         bench::Curves curves;
+        if (integrators_only) {
+            const nlohmann::json integrators = bench::formula_integrators(curves);
+            std::filesystem::create_directories(figure_dir);
+            base::write_file_atomically(paths.results / "integrators.json", integrators.dump(2) + "\n");
+            write_integrators(figure_dir / "bench-integrators.png", curves);
+            std::printf("wrote %s and %s\n", (paths.results / "integrators.json").c_str(),
+                        (figure_dir / "bench-integrators.png").c_str());
+            return 0;
+        }
         nlohmann::json out;
         std::fprintf(stderr, "figgen_accuracy: arithmetic and estimators\n");
         out["gray_scott_float_vs_double"] = bench::gray_scott_float_vs_double(curves);
@@ -84,6 +110,8 @@ int main(int argc, char** argv) {
         out["fractal_dimensions"] = bench::fractal_dimensions(curves);
         std::fprintf(stderr, "figgen_accuracy: Gray-Scott stability, %lld steps at n = 64\n", long_run);
         out["gray_scott_long_run"] = bench::gray_scott_long_run(long_run);
+        std::fprintf(stderr, "figgen_accuracy: a formula model's integrators\n");
+        out["formula_integrators"] = bench::formula_integrators(curves);
         if (!skip_encoder) out["encoder"] = bench::encoder_settings(paths);
         if (!skip_pipeline) {
             out["book_route"] = bench::peer_comparison(paths);
@@ -97,7 +125,9 @@ int main(int argc, char** argv) {
         std::filesystem::create_directories(figure_dir);
         base::write_file_atomically(paths.results / "latest.json", out.dump(2) + "\n");
         write_pareto(figure_dir / "bench-pareto.png", curves);
-        std::printf("wrote %s and %s\n", (paths.results / "latest.json").c_str(), (figure_dir / "bench-pareto.png").c_str());
+        write_integrators(figure_dir / "bench-integrators.png", curves);
+        std::printf("wrote %s, %s and %s\n", (paths.results / "latest.json").c_str(),
+                    (figure_dir / "bench-pareto.png").c_str(), (figure_dir / "bench-integrators.png").c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "figgen_accuracy: error: %s\n", e.what());
         return 1;
