@@ -112,6 +112,64 @@ void fused_multiply_add(Real* d, const Real* a, const Real* b, const Real* c, st
     }
 FIGGEN_FORMULA_CHECKS(float, _f)
 FIGGEN_FORMULA_CHECKS(double, _d)
+
+// A stage's deltas k into the sum that becomes the new state and the next
+// stage's state (Engine::combine): sum = (x or sum) + w k, out = x + v k,
+// each operation rounded (no contraction: -ffp-contract=off); whether a
+// value written is not finite. Branch-free, vectorised: the mask as wide as
+// a number, so that no lane's comparison needs packing.
+#define FIGGEN_FORMULA_STAGES(REAL, MASK, SUFFIX)                                                              \
+    FIGGEN_FORMULA_CLONES int stage_first##SUFFIX(REAL* __restrict sum, REAL* __restrict out,           \
+                                                  const REAL* __restrict x, const REAL* __restrict k,     \
+                                                  REAL w, REAL v, int n) {                                \
+        MASK bad = 0;                                                                                    \
+        for (int i = 0; i < n; ++i) {                                                                    \
+            const REAL s = x[i] + w * k[i], o = x[i] + v * k[i];                                         \
+            sum[i] = s;                                                                                  \
+            out[i] = o;                                                                                  \
+            bad |= ((s - s) != REAL(0)) | ((o - o) != REAL(0));                                          \
+        }                                                                                                \
+        return bad != 0;                                                                                  \
+    }                                                                                                    \
+    FIGGEN_FORMULA_CLONES int stage_middle##SUFFIX(REAL* __restrict sum, REAL* __restrict out,          \
+                                                   const REAL* __restrict x, const REAL* __restrict k,    \
+                                                   REAL w, REAL v, int n) {                               \
+        MASK bad = 0;                                                                                    \
+        for (int i = 0; i < n; ++i) {                                                                    \
+            const REAL s = sum[i] + w * k[i], o = x[i] + v * k[i];                                       \
+            sum[i] = s;                                                                                  \
+            out[i] = o;                                                                                  \
+            bad |= ((s - s) != REAL(0)) | ((o - o) != REAL(0));                                          \
+        }                                                                                                \
+        return bad != 0;                                                                                  \
+    }                                                                                                    \
+    FIGGEN_FORMULA_CLONES int stage_last##SUFFIX(REAL* __restrict sum, const REAL* __restrict k, REAL w, int n) { \
+        MASK bad = 0;                                                                                    \
+        for (int i = 0; i < n; ++i) {                                                                    \
+            const REAL s = sum[i] + w * k[i];                                                            \
+            sum[i] = s;                                                                                  \
+            bad |= (s - s) != REAL(0);                                                                   \
+        }                                                                                                \
+        return bad != 0;                                                                                  \
+    }
+FIGGEN_FORMULA_STAGES(float, std::int32_t, _f)
+FIGGEN_FORMULA_STAGES(double, std::int64_t, _d)
+
+template <class Real>
+int stage_first(Real* sum, Real* out, const Real* x, const Real* k, Real w, Real v, int n) {
+    if constexpr (sizeof(Real) == 4) return stage_first_f(sum, out, x, k, w, v, n);
+    else return stage_first_d(sum, out, x, k, w, v, n);
+}
+template <class Real>
+int stage_middle(Real* sum, Real* out, const Real* x, const Real* k, Real w, Real v, int n) {
+    if constexpr (sizeof(Real) == 4) return stage_middle_f(sum, out, x, k, w, v, n);
+    else return stage_middle_d(sum, out, x, k, w, v, n);
+}
+template <class Real>
+int stage_last(Real* sum, const Real* k, Real w, int n) {
+    if constexpr (sizeof(Real) == 4) return stage_last_f(sum, k, w, n);
+    else return stage_last_d(sum, k, w, n);
+}
 FIGGEN_FORMULA_CLONES int not_finite_f(const float* __restrict v, int n) {
     int bad = 0;
     for (int i = 0; i < n; ++i) bad |= (v[i] - v[i]) != 0.0f;
@@ -759,26 +817,9 @@ private:
         // The weight of k in the sum, and in the next stage's state.
         const Real w = static_cast<Real>(rk4 ? ((st.q == 0 || st.q == 3) ? h / 6 : h / 3) : h / 2);
         const Real v = static_cast<Real>(rk4 ? (st.q == 2 ? h : h / 2) : h);
-        bool finite = true;
-        if (st.q == 0) {
-            for (int i = 0; i < cells; ++i) {
-                sum[i] = x[i] + w * k[i];
-                out[i] = x[i] + v * k[i];
-                finite &= std::isfinite(out[i]) && std::isfinite(sum[i]);
-            }
-        } else if (st.q == stages_ - 1) {
-            for (int i = 0; i < cells; ++i) {
-                sum[i] = sum[i] + w * k[i];
-                finite &= std::isfinite(sum[i]);
-            }
-        } else {
-            for (int i = 0; i < cells; ++i) {
-                sum[i] = sum[i] + w * k[i];
-                out[i] = x[i] + v * k[i];
-                finite &= std::isfinite(out[i]) && std::isfinite(sum[i]);
-            }
-        }
-        return finite;
+        if (st.q == 0) return !stage_first(sum, out, x, k, w, v, cells);
+        if (st.q == stages_ - 1) return !stage_last(sum, k, w, cells);
+        return !stage_middle(sum, out, x, k, w, v, cells);
     }
 
     // Rows begin .. end - 1 of step s (of this call) from `from` into `to`,
