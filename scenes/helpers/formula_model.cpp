@@ -225,6 +225,9 @@ void read_edge_value(Settings& s, const std::string& key, formula::Rule& r) {
     }
 }
 
+void refuse_unrefinable(Settings& params, const FormulaModel& m, const Description& d,
+                        const std::set<std::string>& words);
+
 // What [params] gives of a formula model, besides the rule's own parameters.
 struct ModelValues {
     FormulaModel model;
@@ -316,11 +319,17 @@ const Schema<ModelValues> model_schema = [] {
               v.model.steps = section.count_in(key, v.model.steps, 0, 10'000'000);
           });
     s.key({"error",
-           "measure the figure's error in time: the run again at half and a quarter of the timestep, to the "
-           "figure's last panel (as --error)",
-           "true or false", "", false},
+           "measure the figure's error: time, the run again at half and a quarter of the timestep to the "
+           "figure's last panel (as --error); space, that and a run at twice the resolution (dx / 2, "
+           "timestep / 4); none",
+           "text", "\"none\", \"time\" or \"space\""},
           [](Settings& section, const std::string& key, M& v) {
-              if (section.has(key)) v.model.error = section.flag(key, false);
+              if (!section.has(key)) return;
+              const std::string word = section.text(key, "none");
+              if (word == "none") v.model.error = FormulaModel::Error::none;
+              else if (word == "time") v.model.error = FormulaModel::Error::time;
+              else if (word == "space") v.model.error = FormulaModel::Error::space;
+              else section.refuse(key, "\"none\", \"time\" or \"space\"");
           });
     s.key(
         {"zero_first", "the start is all zero before the overlays", "true or false", "", true},
@@ -449,10 +458,55 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
         if (stored->depth != m.depth)
             params.refuse("depth", "the pattern's " + std::to_string(stored->depth) + ", its stored arrays'");
     }
+    if (m.error == FormulaModel::Error::space) refuse_unrefinable(params, m, d, words);
     return m;
 }
 
-std::vector<sim::Grid<double>> formula_start(const FormulaModel& m, const Description& d) {
+namespace {
+
+// error = "space" runs the model again at twice the resolution: refused
+// where that run would not be the same model finer (a start that is cells,
+// not shapes and smooth fills of fractions; a formula that reads
+// neighbours by name, a cell away whatever dx is) or would not fit.
+void refuse_unrefinable(Settings& params, const FormulaModel& m, const Description& d,
+                        const std::set<std::string>& words) {
+    const std::string why = "\"time\": \"space\" runs the model at twice the resolution, and ";
+    if (d.stored_start) params.refuse("error", "\"space\"", why + "a Ready pattern's stored cells have no finer start");
+    for (std::size_t i = 0; i < m.pattern.overlays.size(); ++i) {
+        const formula::Overlay& o = m.pattern.overlays[i];
+        const auto kind = o.fill.kind;
+        if (kind == formula::Fill::Kind::white_noise || kind == formula::Fill::Kind::perlin_noise)
+            params.refuse("error", "\"space\"",
+                          why + "initial[" + std::to_string(i) + "]'s noise is drawn cell by cell: no finer start");
+        for (const formula::Shape& shape : o.shapes)
+            if (shape.kind == formula::Shape::Kind::pixel)
+                params.refuse("error", "\"space\"",
+                              why + "initial[" + std::to_string(i) + "] sets a pixel: no finer start");
+    }
+    for (const char* position : {"x_pos", "y_pos", "z_pos"})
+        if (words.count(position))
+            params.refuse("error", "\"space\"",
+                          why + "the formula reads " + position + ", which Ready puts at a cell's corner, a place "
+                                "that moves with the resolution");
+    for (const std::string& name : words)
+        if (name.size() > 2 && name[1] == '_' && name[0] >= 'a' && name[0] < 'a' + m.rule.chemicals &&
+            name.find_first_not_of("nsewud0123456789", 2) == std::string::npos)
+            params.refuse("error", "\"space\"",
+                          why + "the formula reads " + name + ", a neighbour a cell away whatever dx is; its "
+                                "stencils (laplacian_a, ...) scale with dx");
+    const long long finer = static_cast<long long>(m.width) * 2 * (m.height > 1 ? 2 : 1) * m.height *
+                            (m.depth > 1 ? 2 : 1) * m.depth;
+    if (m.width * 2 > formula_most_side || m.height * 2 > formula_most_side || m.depth * 2 > formula_most_side ||
+        finer > formula_most_cells)
+        params.refuse("error", "\"space\"",
+                      why + "the grid at twice the resolution would pass " + std::to_string(formula_most_side) +
+                          " cells a side or " + std::to_string(formula_most_cells) + " cells");
+}
+
+}  // namespace
+
+std::vector<sim::Grid<double>> formula_start(const FormulaModel& m, const Description& d,
+                                             std::array<double, 3> offset) {
     std::vector<sim::Grid<double>> start(static_cast<std::size_t>(m.rule.chemicals),
                                          sim::Grid<double>(m.height * m.depth, m.width, 0.0));
     // The arrays a Ready pattern stores, when it starts from them; the
@@ -464,7 +518,7 @@ std::vector<sim::Grid<double>> formula_start(const FormulaModel& m, const Descri
     }
     if (!d.stored_start || !m.pattern.overlays.empty()) {
         sim::Random rng(d.seed);
-        formula::apply_pattern(m.pattern, start, m.depth, m.rule.parameters, m.rule.double_precision, rng);
+        formula::apply_pattern(m.pattern, start, m.depth, m.rule.parameters, m.rule.double_precision, rng, offset);
     }
     return start;
 }

@@ -28,7 +28,10 @@ struct FormulaModel {
     sim::formula::Rule rule;
     // The grid: height 1 is 1-D, depth above 1 is 3-D (the row of (y, z) is z * height + y).
     int width = 128, height = 128, depth = 1, steps = 1000;
-    bool error = false;  // its error in time measured (scenes/formula.cpp's error_said)
+    // Its error measured (scenes/formula.cpp's error_said): none; in time;
+    // in time and in space (a run at twice the resolution too).
+    enum class Error { none, time, space };
+    Error error = Error::none;
     sim::formula::Pattern pattern;
     int registers = 0, radius_x = 0;  // of the compiled formula, for the memory estimate
     int radius_y = 0, radius_z = 0;
@@ -65,8 +68,10 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
                                 const std::vector<std::pair<std::string, double>>& swept = {});
 
 // The start: the stored arrays of a Ready pattern, and the overlays drawn
-// with the description's seed.
-std::vector<sim::Grid<double>> formula_start(const FormulaModel& m, const Description& d);
+// with the description's seed (each cell moved by `offset` cells: see
+// sim::formula::apply_pattern).
+std::vector<sim::Grid<double>> formula_start(const FormulaModel& m, const Description& d,
+                                             std::array<double, 3> offset = {0, 0, 0});
 
 // A 1-D run's space-time diagram keeps the row of every stride-th step up
 // to `last` (and the last): the least stride that keeps at most `rows`.

@@ -92,7 +92,8 @@ std::vector<std::pair<std::string, Shape::Kind>> shape_names() {
 }
 
 void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals, int depth,
-                   const std::vector<std::pair<std::string, double>>& parameters, bool double_precision, Random& rng) {
+                   const std::vector<std::pair<std::string, double>>& parameters, bool double_precision, Random& rng,
+                   std::array<double, 3> offset) {
     if (chemicals.empty()) return;
     if (depth < 1 || chemicals.front().rows() % depth != 0)
         throw std::invalid_argument("a grid of " + std::to_string(chemicals.front().rows()) + " rows is not " +
@@ -131,7 +132,7 @@ void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals,
                 const int row = z * height + y;
                 for (int c = 0; c < n; ++c) values[c] = chemicals[c](row, x);
                 double& target = values[o.chemical];
-                const double fx = x, fy = y, fz = z;
+                const double fx = x + offset[0], fy = y + offset[1], fz = z + offset[2];
                 for (const Shape& s : o.shapes) {
                     bool inside = false;
                     switch (s.kind) {

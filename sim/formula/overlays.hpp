@@ -65,8 +65,12 @@ std::vector<std::pair<std::string, Shape::Kind>> shape_names();
 // rows / depth rows, the row of (y, z) z * height + y, changed in place),
 // with the rule's `parameters` (for `parameter` fills), rounding each value
 // to float unless `double_precision`. Throws std::invalid_argument for an
-// overlay naming a chemical or parameter the rule does not have.
+// overlay naming a chemical or parameter the rule does not have. Each cell
+// is where Ready puts it, its index along each axis; `offset` (cells, x y z)
+// moves them: -1/2 along an axis makes a grid of twice the resolution
+// sample the places whose means are the coarser grid's cells.
 void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals, int depth,
-                   const std::vector<std::pair<std::string, double>>& parameters, bool double_precision, Random& rng);
+                   const std::vector<std::pair<std::string, double>>& parameters, bool double_precision, Random& rng,
+                   std::array<double, 3> offset = {0, 0, 0});
 
 }  // namespace sim::formula

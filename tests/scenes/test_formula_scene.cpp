@@ -229,11 +229,58 @@ size = [400, 200]
     }
     // Without --error, or error = true in [params], no error is measured.
     CHECK(!render_small(description::parse_description(heat, "fx-heat.toml"))["error"].is_object());
-    CHECK(render_small(description::parse_description(heat, "fx-heat.toml", {"params.error=true"}))["error"].is_object());
+    CHECK(render_small(description::parse_description(heat, "fx-heat.toml", {"params.error=\"time\""}))["error"].is_object());
     // In float, RK4's differences are rounding: no order is said.
     const auto rounded = render_small(
         description::parse_description(heat, "fx-heat.toml", {"params.data_type=\"float\"", "params.integrator=\"rk4\""}),
         true);
     CHECK(rounded["error"]["chemicals"][0]["order"].is_null());
     CHECK(rounded["error"]["chemicals"][0].contains("rounding"));
+}
+
+TEST_CASE("error = space compares the run with one at twice the resolution: second order", "[formula][scenes]") {
+    // 1-D heat from a Gaussian between neumann edges, to t = 10: at 64 and
+    // 128 cells (dx 1 and 1/2, the timestep with dx^2) the difference from
+    // the run at twice the resolution falls by 4.
+    const std::string heat = R"(
+id = "fx-heat1d"
+title = "heat"
+scene = "formula"
+[params]
+chemicals = 1
+data_type = "double"
+width = 64
+height = 1
+steps = 40
+formula = "delta_a = laplacian_a;"
+timestep = 0.25
+dx = 1.0
+edges = "neumann"
+error = "space"
+initial = [{chemical = "a", fill = "gaussian", height = 1.0, sigma = 0.1, centre = [0.5, 0.5], shapes = [{shape = "everywhere"}]}]
+[figure]
+panels = [0, 40]
+size = [400, 200]
+)";
+    const auto coarse = render_small(description::parse_description(heat, "fx-heat1d.toml"));
+    const auto fine = render_small(description::parse_description(
+        heat, "fx-heat1d.toml",
+        {"params.width=128", "params.dx=0.5", "params.timestep=0.0625", "params.steps=160", "figure.panels=[0,160]"}));
+    const auto& space = coarse["error"]["space"];
+    CHECK(space["grid"] == nlohmann::json({128, 1, 1}));
+    CHECK(space["dx"] == nlohmann::json({1.0, 0.5}));
+    const double d64 = space["chemicals"][0]["largest"].get<double>();
+    const double d128 = fine["error"]["space"]["chemicals"][0]["largest"].get<double>();
+    INFO("differences " << d64 << " and " << d128);
+    CHECK(std::log2(d64 / d128) == Approx(2).margin(0.1));
+    CHECK(space["chemicals"][0]["estimate"]["largest"].get<double>() == Approx(d64 * 4 / 3));
+    // Where the finer run would not be the same model, it is refused before anything runs.
+    CHECK_THAT(refusal(with("initial", "[{chemical = \"b\", fill = \"white_noise\", shapes = [{shape = "
+                                       "\"everywhere\"}]}]\nerror = \"space\"")),
+               Catch::StartsWith("error = \"space\" is not allowed: \"time\": \"space\" runs the model at twice the "
+                                 "resolution, and initial[0]'s noise is drawn cell by cell"));
+    CHECK_THAT(refusal(with("formula", "\"delta_a = a_n - a + D_a * F * K;\\ndelta_b = D_b * b;\"\nerror = \"space\"")),
+               Catch::Contains("the formula reads a_n, a neighbour a cell away whatever dx is"));
+    CHECK_THAT(refusal(with("error", "\"roughly\"")),
+               Catch::StartsWith("error = 'roughly' is not allowed: \"none\", \"time\" or \"space\""));
 }
