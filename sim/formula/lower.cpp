@@ -393,11 +393,8 @@ private:
         }
         for (const auto& [parameter, value] : rule_.parameters)
             if (name == parameter) {
-                // Ready holds parameters as float and writes them into its
-                // kernel with 8 decimals: in a double rule 1.1 is 1.10000002.
-                char text[64];
-                std::snprintf(text, sizeof text, "%.8f", static_cast<double>(static_cast<float>(value)));
-                return &(predefined_[name] = constant_variable(constant(std::strtod(text, nullptr), false),
+                // As Ready: in a double rule 1.1 is 1.10000002 (formula_value).
+                return &(predefined_[name] = constant_variable(constant(formula_value(value), false),
                                                                 "a parameter of the rule"));
             }
         if (name == "dx") return &(predefined_[name] = constant_variable(constant(1, false), "the grid spacing"));

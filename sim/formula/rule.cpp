@@ -4,6 +4,8 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -79,6 +81,12 @@ Edges Edges::all(Edge edge, const std::vector<double>& value) {
 Edges Rule::own_edges() const {
     if (edges) return *edges;
     return Edges::all(wrap ? Edge::periodic : Edge::clamped);
+}
+
+double formula_value(double parameter) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.8f", static_cast<double>(static_cast<float>(parameter)));
+    return std::strtod(text, nullptr);
 }
 
 void Rule::set_parameter(const std::string& name, double value) {

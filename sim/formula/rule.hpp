@@ -136,6 +136,11 @@ struct Rule {
     void set_parameter(const std::string& name, double value);
 };
 
+// A parameter's value as the formula reads it: Ready holds parameters as
+// float and writes them into its kernel with 8 decimals, so that in a
+// double rule 1.1 is 1.10000002 and a timestep of 0.3 is 0.30000001.
+double formula_value(double parameter);
+
 // The most cells a grid holds, in any number of dimensions (16384^2).
 constexpr long long max_cells = 16384LL * 16384LL;
 

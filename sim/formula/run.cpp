@@ -416,7 +416,7 @@ public:
         if (program_.outputs_are_deltas) {
             // A step of several stages: each stage's state (two in turn for RK4).
             stages_ = stages(rule.integrator);
-            timestep_ = rule.parameter("timestep");
+            timestep_ = formula_value(rule.parameter("timestep"));  // as Euler's formula reads it
             for (int k = 0; k < (stages_ > 2 ? 2 : 1); ++k)
                 for (int c = 0; c < rule.chemicals; ++c) stage_[k].push_back(make_rows());
         } else {

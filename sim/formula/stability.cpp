@@ -60,8 +60,10 @@ StabilityBound stability_bound(const Rule& rule, int dimensions, const std::vect
     if (static_cast<int>(base.size()) != rule.chemicals)
         throw std::invalid_argument("stability_bound: one base value a chemical");
     StabilityBound bound;
-    const double timestep = rule.parameter("timestep");
-    if (!(timestep > 0) || !std::isfinite(timestep)) return bound;
+    const double given = rule.parameter("timestep");
+    if (!(given > 0) || !std::isfinite(given)) return bound;
+    // The timestep the probe's step takes, as its formula reads it (0.3 is 0.30000001).
+    const double timestep = formula_value(given);
     // The probe: the rule in double on a periodic grid of 8 a side, stepped once by Euler.
     Rule probe = rule;
     probe.double_precision = true;

@@ -161,7 +161,7 @@ TEST_CASE("a formula description's edges: read, refused where they cannot be, an
     CHECK(plain["edges"] == nlohmann::json({{"ready", true}, {"wrap", true}}));
 }
 
-TEST_CASE("--strict refuses a timestep past the stability bound before the run", "[formula][scenes]") {
+TEST_CASE("strict refuses a timestep past the stability bound before the run", "[formula][scenes]") {
     // Gray-Scott's a, D_a = 0.2, medium accuracy in 2-D: 0.375 / 0.2 = 1.875 under Euler.
     auto strict_refusal = [](const std::string& text) -> std::string {
         const auto d = description::parse_description(text, "fx-test.toml");
@@ -185,7 +185,7 @@ TEST_CASE("--strict refuses a timestep past the stability bound before the run",
     CHECK(refusal(with("timestep", "2.0")) == "accepted");
 }
 
-TEST_CASE("--error measures each integrator's error in time and its order", "[formula][scenes]") {
+TEST_CASE("error in time measures each integrator's error in time and its order", "[formula][scenes]") {
     // The heat equation from a Gaussian, in double, to t = 8: its error in
     // time falls as the integrator's order says.
     const std::string heat = R"(

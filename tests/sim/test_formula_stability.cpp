@@ -42,6 +42,12 @@ TEST_CASE("the stability bound is 2 over the stencil's largest rate, for each in
     CHECK(bound(diffusion(heat, 1, Accuracy::medium, Integrator::rk4), 2) == Approx(rk4_reach * 6 / 32).epsilon(1e-9));
     // 2-D low (5 points): -8; 1-D (1, -2, 1): -4; 1-D high (-1, 16, -30, 16, -1) / 12: -16/3 at pi.
     CHECK(bound(diffusion(heat, 1, Accuracy::low, Integrator::euler), 2) == Approx(0.25).epsilon(1e-9));
+    // A timestep that float cannot hold (the formula reads 0.3 as 0.30000001): the bound is still the stencil's.
+    {
+        Rule r = diffusion(heat, 1, Accuracy::medium, Integrator::euler);
+        r.set_parameter("timestep", 0.3);
+        CHECK(bound(r, 2, 0.5) == Approx(0.375).epsilon(1e-11));
+    }
     CHECK(bound(diffusion(heat, 1, Accuracy::medium, Integrator::euler), 1) == Approx(0.5).epsilon(1e-9));
     CHECK(bound(diffusion(heat, 1, Accuracy::high, Integrator::euler), 1) == Approx(2 * 12.0 / 64).epsilon(1e-9));
     // 3-D (27 points (1, 3, 14, -128) / 30): -184/30 at (pi, pi, pi).
