@@ -141,12 +141,7 @@ public:
         const double row = m_.width + 2.0 * m_.radius_x + 64 / cell;  // a row, halos and padding
         const double threads = model_threads(false) > 0 ? model_threads(false) : std::max(1u, std::thread::hardware_concurrency());
         const double rows = static_cast<double>(m_.height) * m_.depth, shown = static_cast<double>(s_.shown.size());
-        // The ghost rows past dirichlet sides (sim/formula/run.cpp): at most
-        // each plane's rows past its two y sides, each z row's past the
-        // two z sides, and the corners.
-        const double ghosts = m_.rule.edges ? 2.0 * (m_.radius_y * m_.depth + m_.radius_z * m_.height) +
-                                                  4.0 * m_.radius_y * m_.radius_z
-                                            : 0;
+        const double ghosts = formula_ghost_rows(m_);
         return {grid_need("the arrays a Ready pattern stores", rows, m_.width, 8, d_.stored_start ? chemicals : 0),
                 grid_need("the chemicals' grids", rows + ghosts + 3, row, cell,
                           sim::formula::state_copies(m_.height, m_.depth, m_.rule.integrator) * chemicals),

@@ -166,7 +166,8 @@ public:
         const double row = m_.width + 2.0 * m_.radius_x + 64 / cell;
         const double threads = std::max(1, options_.threads);
         return {grid_need("the arrays a Ready pattern stores", m_.height, m_.width, 8, d_.stored_start ? chemicals : 0),
-                grid_need("each thread's run: chemicals", static_cast<double>(m_.height) * m_.depth + 3, row, cell,
+                grid_need("each thread's run: chemicals",
+                          static_cast<double>(m_.height) * m_.depth + formula_ghost_rows(m_) + 3, row, cell,
                           sim::formula::state_copies(m_.height, m_.depth, m_.rule.integrator) * chemicals * threads),
                 grid_need("each thread's run: registers", threads * (m_.registers + 1), sim::formula::chunk_lanes + 64 / cell, cell, 1),
                 grid_need("each thread's run: machine code", threads, m_.machine_code, 1, 1),

@@ -67,6 +67,13 @@ void refuse_clash(Settings& params, const std::string& name, int chemicals);
 FormulaModel read_formula_model(Settings& params, const Description& d, const std::vector<Key>& scene_keys = {},
                                 const std::vector<std::pair<std::string, double>>& swept = {});
 
+// The most ghost rows a run keeps past dirichlet sides (sim/formula/run.cpp),
+// for the memory estimates: each plane's rows past its two y sides, each z
+// row's past the two z sides, and the corners.
+inline double formula_ghost_rows(const FormulaModel& m) {
+    return m.rule.edges ? 2.0 * (m.radius_y * m.depth + m.radius_z * m.height) + 4.0 * m.radius_y * m.radius_z : 0;
+}
+
 // The start: the stored arrays of a Ready pattern, and the overlays drawn
 // with the description's seed (each cell moved by `offset` cells: see
 // sim::formula::apply_pattern).
