@@ -72,7 +72,7 @@ TEST_CASE("a Fourier mode's decay shows each integrator's order in time", "[form
         CHECK(std::log2(coarse / fine) == Approx(e.order).margin(0.15));
         CHECK(std::log2(fine / finer) == Approx(e.order).margin(0.1));
     }
-    // 2-D at each accuracy: Ready's 3 x 3 stencils and its 5 x 5 one, RK4.
+    // 2-D at each accuracy: Ready's 3 x 3 stencils and its 5 x 5 one, each integrator.
     const double kx = 2 * std::numbers::pi * 3 / 16, ky = 2 * std::numbers::pi * 5 / 16;
     const double cx = std::cos(kx), cy = std::cos(ky), cx2 = std::cos(2 * kx), cy2 = std::cos(2 * ky);
     struct Stencil {
@@ -86,13 +86,18 @@ TEST_CASE("a Fourier mode's decay shows each integrator's order in time", "[form
         {Accuracy::high, (-2 * 4 * (std::cos(2 * kx) * cy + cx * std::cos(2 * ky)) - 2 * (cx2 + cy2) +
                           16 * 4 * cx * cy + 52 * 2 * (cx + cy) - 252) / 60},
     };
-    for (const Stencil& st : stencils) {
-        const double l2 = D * st.eigenvalue;
-        const double coarse = mode_error(heat(Integrator::rk4, st.accuracy), 16, 16, kx, ky, l2, 16);
-        const double fine = mode_error(heat(Integrator::rk4, st.accuracy), 16, 16, kx, ky, l2, 32);
-        INFO("accuracy " << static_cast<int>(st.accuracy) << ": errors " << coarse << ", " << fine);
-        CHECK(std::log2(coarse / fine) == Approx(4).margin(0.15));
-    }
+    for (const Stencil& st : stencils)
+        for (const Expect& e : {Expect{Integrator::euler, 1}, Expect{Integrator::heun, 2}, Expect{Integrator::rk4, 4}}) {
+            const double l2 = D * st.eigenvalue;
+            const double coarse = mode_error(heat(e.integrator, st.accuracy), 16, 16, kx, ky, l2, 16);
+            const double fine = mode_error(heat(e.integrator, st.accuracy), 16, 16, kx, ky, l2, 32);
+            const double finer = mode_error(heat(e.integrator, st.accuracy), 16, 16, kx, ky, l2, 64);
+            INFO(integrator_name(e.integrator) << " at accuracy " << static_cast<int>(st.accuracy) << ": errors "
+                                               << coarse << ", " << fine << ", " << finer << ": orders "
+                                               << std::log2(coarse / fine) << ", " << std::log2(fine / finer));
+            CHECK(std::log2(coarse / fine) == Approx(e.order).margin(0.15));
+            CHECK(std::log2(fine / finer) == Approx(e.order).margin(0.1));
+        }
 }
 
 TEST_CASE("Heun and RK4 give the same bits on any number of threads", "[formula][integrators]") {
