@@ -487,7 +487,7 @@ PYBIND11_MODULE(_figgen, m) {
     m.def("render", [](const std::string& target, std::optional<std::string> text, std::vector<std::string> overrides,
                        std::optional<std::string> seed, std::vector<std::string> formats, std::string size,
                        double scale, std::string gl, std::optional<std::string> threads, std::string out,
-                       py::object report) {
+                       bool strict, bool error, py::object report) {
         app::RenderRequest request;
         request.target = target;
         request.text = std::move(text);
@@ -497,6 +497,8 @@ PYBIND11_MODULE(_figgen, m) {
         request.settings.scale = scale;
         request.settings.gl = std::move(gl);
         request.settings.out_dir = std::move(out);
+        request.settings.strict = strict;
+        request.settings.error = error;
         PythonProgress progress(std::move(report));
         const app::RenderResult result = without_gil(
             [&] {

@@ -237,7 +237,7 @@ def _progress_callback(progress):
 
 
 def render(figure, *, out=None, set=None, seed=None, formats=("png",), size=None, scale=1.0, gl="auto",
-           threads=None, progress=None):
+           threads=None, progress=None, strict=False, error=False):
     """Renders a figure in this process and returns its Figure.
 
     figure: a catalog id ("tc7-1"), a path to a description or a Ready
@@ -246,7 +246,9 @@ def render(figure, *, out=None, set=None, seed=None, formats=("png",), size=None
     formats: --format's names ("png", "pdf", "svg", "mp4", "webm", "frames",
     "vti"); size: (width, height) or "WxH"; out: the folder the files go
     into (None: a temporary folder the Figure owns, removed with it).
-    progress: a callable(done, total, label) or a tqdm bar.
+    progress: a callable(done, total, label) or a tqdm bar. strict: refuse a
+    formula model's timestep past its stability bound (--strict); error:
+    measure a formula model's error in time (--error).
 
     Every argument is checked before anything runs: TypeError for one of
     the wrong kind, SettingError for a value figgen does not allow (in the
@@ -263,6 +265,9 @@ def render(figure, *, out=None, set=None, seed=None, formats=("png",), size=None
     if not isinstance(gl, str):
         raise _kind("gl", gl, '"auto", "osmesa", "egl" or "egl-device"')
     count = _integer("threads", threads, "an integer or None")
+    for name, flag in (("strict", strict), ("error", error)):
+        if not isinstance(flag, bool):
+            raise _kind(name, flag, "True or False")
     if out is not None and not isinstance(out, (str, bytes, os.PathLike)):
         raise _kind("out", out, "a folder's path or None")
     report = _progress_callback(progress)
@@ -271,7 +276,7 @@ def render(figure, *, out=None, set=None, seed=None, formats=("png",), size=None
     try:
         try:
             done = _figgen.render(target, text, *arguments, _text(gl), count,
-                                  folder if isinstance(folder, bytes) else _text(folder), report)
+                                  folder if isinstance(folder, bytes) else _text(folder), strict, error, report)
         except _OptionError as e:
             raise _argument_error(e, given) from None
         except SettingError as e:

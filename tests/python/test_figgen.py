@@ -493,3 +493,18 @@ def test_describe_reads_a_pattern_file():
     params = {k["key"]: k["value"] for k in d["settings"]["params"]}
     assert params["D"] == 0.5
     assert params["data_type"] == "double"
+
+
+def test_a_formula_model_strict_and_its_error_measured(tmp_path):
+    # fx-tc7-2's Gray-Scott (its own 9-point kernel, ra = 0.5): a timestep of 5 is past its explicit bound.
+    short = {"steps": 100, "figure.panels": [100], "animation.steps": [0, 100]}
+    with pytest.raises(figgen.SettingError) as refused:
+        figgen.render("fx-tc7-2", out=tmp_path, set={**short, "timestep": 5.0}, strict=True)
+    assert refused.value.key == "params.timestep" and "explicit stability bound" in str(refused.value)
+    assert list(tmp_path.iterdir()) == []
+    # In double, 100 steps: Euler's error in time halves with the timestep.
+    fig = figgen.render("fx-tc7-2", out=tmp_path, formats="png", error=True, set=short)
+    orders = [c["order"] for c in fig.metadata["error"]["chemicals"]]
+    assert orders == [pytest.approx(1, abs=0.1), pytest.approx(1, abs=0.1)]
+    with pytest.raises(TypeError):
+        figgen.render("fx-tc7-2", out=tmp_path, error="yes")
