@@ -114,56 +114,40 @@ FIGGEN_FORMULA_CHECKS(float, _f)
 FIGGEN_FORMULA_CHECKS(double, _d)
 
 // A stage's deltas k into the sum that becomes the new state and the next
-// stage's state (Engine::combine): sum = (x or sum) + w k, out = x + v k,
-// each operation rounded (no contraction: -ffp-contract=off); whether a
-// value written is not finite. Branch-free, vectorised: the mask as wide as
-// a number, so that no lane's comparison needs packing.
-#define FIGGEN_FORMULA_STAGES(REAL, MASK, SUFFIX)                                                              \
-    FIGGEN_FORMULA_CLONES int stage_first##SUFFIX(REAL* __restrict sum, REAL* __restrict out,           \
-                                                  const REAL* __restrict x, const REAL* __restrict k,     \
-                                                  REAL w, REAL v, int n) {                                \
-        MASK bad = 0;                                                                                    \
-        for (int i = 0; i < n; ++i) {                                                                    \
-            const REAL s = x[i] + w * k[i], o = x[i] + v * k[i];                                         \
-            sum[i] = s;                                                                                  \
-            out[i] = o;                                                                                  \
-            bad |= ((s - s) != REAL(0)) | ((o - o) != REAL(0));                                          \
-        }                                                                                                \
-        return bad != 0;                                                                                  \
-    }                                                                                                    \
-    FIGGEN_FORMULA_CLONES int stage_middle##SUFFIX(REAL* __restrict sum, REAL* __restrict out,          \
-                                                   const REAL* __restrict x, const REAL* __restrict k,    \
-                                                   REAL w, REAL v, int n) {                               \
-        MASK bad = 0;                                                                                    \
-        for (int i = 0; i < n; ++i) {                                                                    \
-            const REAL s = sum[i] + w * k[i], o = x[i] + v * k[i];                                       \
-            sum[i] = s;                                                                                  \
-            out[i] = o;                                                                                  \
-            bad |= ((s - s) != REAL(0)) | ((o - o) != REAL(0));                                          \
-        }                                                                                                \
-        return bad != 0;                                                                                  \
-    }                                                                                                    \
+// stage's state (Engine::combine): sum = from + w k (from: the state x at
+// the first stage, else the sum itself), out = x + v k; at the last stage
+// the sum alone. Each operation rounded (no contraction: -ffp-contract=off);
+// whether a value written is not finite. Branch-free, vectorised: the mask
+// as wide as a number, so that no lane's comparison needs packing.
+#define FIGGEN_FORMULA_STAGES(REAL, MASK, SUFFIX)                                                          \
+    FIGGEN_FORMULA_CLONES int stage_next##SUFFIX(REAL* sum, REAL* __restrict out, const REAL* from,         \
+                                                 const REAL* __restrict x, const REAL* __restrict k, REAL w, \
+                                                 REAL v, int n) {                                          \
+        MASK bad = 0;                                                                                      \
+        for (int i = 0; i < n; ++i) {                                                                      \
+            const REAL s = from[i] + w * k[i], o = x[i] + v * k[i];                                        \
+            sum[i] = s;                                                                                    \
+            out[i] = o;                                                                                    \
+            bad |= ((s - s) != REAL(0)) | ((o - o) != REAL(0));                                            \
+        }                                                                                                  \
+        return bad != 0;                                                                                   \
+    }                                                                                                      \
     FIGGEN_FORMULA_CLONES int stage_last##SUFFIX(REAL* __restrict sum, const REAL* __restrict k, REAL w, int n) { \
-        MASK bad = 0;                                                                                    \
-        for (int i = 0; i < n; ++i) {                                                                    \
-            const REAL s = sum[i] + w * k[i];                                                            \
-            sum[i] = s;                                                                                  \
-            bad |= (s - s) != REAL(0);                                                                   \
-        }                                                                                                \
-        return bad != 0;                                                                                  \
+        MASK bad = 0;                                                                                      \
+        for (int i = 0; i < n; ++i) {                                                                      \
+            const REAL s = sum[i] + w * k[i];                                                              \
+            sum[i] = s;                                                                                    \
+            bad |= (s - s) != REAL(0);                                                                     \
+        }                                                                                                  \
+        return bad != 0;                                                                                   \
     }
 FIGGEN_FORMULA_STAGES(float, std::int32_t, _f)
 FIGGEN_FORMULA_STAGES(double, std::int64_t, _d)
 
 template <class Real>
-int stage_first(Real* sum, Real* out, const Real* x, const Real* k, Real w, Real v, int n) {
-    if constexpr (sizeof(Real) == 4) return stage_first_f(sum, out, x, k, w, v, n);
-    else return stage_first_d(sum, out, x, k, w, v, n);
-}
-template <class Real>
-int stage_middle(Real* sum, Real* out, const Real* x, const Real* k, Real w, Real v, int n) {
-    if constexpr (sizeof(Real) == 4) return stage_middle_f(sum, out, x, k, w, v, n);
-    else return stage_middle_d(sum, out, x, k, w, v, n);
+int stage_next(Real* sum, Real* out, const Real* from, const Real* x, const Real* k, Real w, Real v, int n) {
+    if constexpr (sizeof(Real) == 4) return stage_next_f(sum, out, from, x, k, w, v, n);
+    else return stage_next_d(sum, out, from, x, k, w, v, n);
 }
 template <class Real>
 int stage_last(Real* sum, const Real* k, Real w, int n) {
@@ -817,9 +801,8 @@ private:
         // The weight of k in the sum, and in the next stage's state.
         const Real w = static_cast<Real>(rk4 ? ((st.q == 0 || st.q == 3) ? h / 6 : h / 3) : h / 2);
         const Real v = static_cast<Real>(rk4 ? (st.q == 2 ? h : h / 2) : h);
-        if (st.q == 0) return !stage_first(sum, out, x, k, w, v, cells);
         if (st.q == stages_ - 1) return !stage_last(sum, k, w, cells);
-        return !stage_middle(sum, out, x, k, w, v, cells);
+        return !stage_next(sum, out, st.q == 0 ? x : sum, x, k, w, v, cells);
     }
 
     // Rows begin .. end - 1 of step s (of this call) from `from` into `to`,

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "grid_bits.hpp"
 #include "sim/formula/run.hpp"
 #include "sim/random.hpp"
 
@@ -28,10 +29,6 @@ std::vector<Grid<double>> after(const Rule& rule, int width, int height, const s
     std::vector<Grid<double>> out;
     for (int c = 0; c < rule.chemicals; ++c) out.push_back(run.chemical(c));
     return out;
-}
-
-bool same_bits(const Grid<double>& a, const Grid<double>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
 std::vector<Grid<double>> noise(int width, int height, int chemicals) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "grid_bits.hpp"
 #include "sim/formula/run.hpp"
 #include "sim/random.hpp"
 
@@ -46,14 +47,6 @@ double sum(const Grid<double>& g) {
     for (int y = 0; y < g.rows(); ++y)
         for (int x = 0; x < g.cols(); ++x) s += g(y, x);
     return s;
-}
-
-bool same_bits(const Grid<double>& a, const Grid<double>& b) {
-    if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
-    for (int y = 0; y < a.rows(); ++y)
-        for (int x = 0; x < a.cols(); ++x)
-            if (std::memcmp(&a(y, x), &b(y, x), sizeof(double)) != 0) return false;
-    return true;
 }
 
 const char* accuracy_name(Accuracy a) {

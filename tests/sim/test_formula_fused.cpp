@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "grid_bits.hpp"
 #include "sim/formula/run.hpp"
 #include "sim/formula/chain_kernels.hpp"
 #include "sim/formula/program.hpp"
@@ -70,14 +71,6 @@ Grid<double> start(int width, int height, std::uint64_t seed, double low = 0.1, 
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) g(y, x) = static_cast<float>(rng.uniform(low, high));
     return g;
-}
-
-bool same_bits(const Grid<double>& a, const Grid<double>& b) {
-    if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
-    for (int y = 0; y < a.rows(); ++y)
-        for (int x = 0; x < a.cols(); ++x)
-            if (std::memcmp(&a(y, x), &b(y, x), sizeof(double)) != 0) return false;
-    return true;
 }
 
 // The kinds of operation the formula's chains use.
