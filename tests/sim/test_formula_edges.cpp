@@ -212,3 +212,40 @@ TEST_CASE("edges that cannot be are refused before the run", "[formula][edges]")
     CHECK_THROWS_WITH(Run(wide, 2, 8, 1, {Grid<double>(8, 2, 0.0)}),
                       Catch::Contains("fewer than its stencils reach past its neumann left side"));
 }
+
+TEST_CASE("every stencil keyword reads the mirrored cells: a line through dirichlet sides is exact to the edge", "[formula][edges]") {
+    // u = (x + 1/2) / w, the line through 0 on the left side and 1 on the
+    // right, neumann at top and bottom: each stencil's value is the line's
+    // own, in every cell, those at the sides included (their neighbours
+    // past the side are ghosts). One Euler step of timestep 1 gives it.
+    const int w = 12, h = 10;
+    struct Keyword {
+        const char* name;
+        double value;
+    };
+    const Keyword keywords[] = {{"x_gradient_a", 1.0 / w}, {"y_gradient_a", 0},   {"x_deriv2_a", 0},
+                                {"x_deriv3_a", 0},         {"y_deriv2_a", 0},     {"laplacian_a", 0},
+                                {"bilaplacian_a", 0},      {"trilaplacian_a", 0}, {"sobelE_a", 8.0 / w},
+                                {"sobelW_a", -8.0 / w},    {"sobelN_a", 0}};
+    Grid<double> line(h, w);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) line(y, x) = (x + 0.5) / w;
+    Edges e = Edges::all(Edge::neumann);
+    e.side[left] = {Edge::dirichlet, {0.0}};
+    e.side[right] = {Edge::dirichlet, {1.0}};
+    for (Accuracy accuracy : {Accuracy::medium, Accuracy::high})
+        for (const Keyword& k : keywords) {
+            Run run(heat(std::string("delta_a = ") + k.name + ";", accuracy, e, 1.0), w, h, 1, {line});
+            run.step(1, 1);
+            const Grid<double> end = run.chemical(0);
+            double most = 0;
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) most = std::max(most, std::abs(end(y, x) - line(y, x) - k.value));
+            INFO(k.name << " at " << accuracy_name(accuracy) << ": largest difference " << most);
+            CHECK(most < 1e-13);
+        }
+    // The same line with neumann sides is not the line's: the mirrored cells bend it at the edge.
+    Run bent(heat("delta_a = x_gradient_a;", Accuracy::medium, Edges::all(Edge::neumann), 1.0), w, h, 1, {line});
+    bent.step(1, 1);
+    CHECK(bent.chemical(0)(0, 0) - line(0, 0) == Approx(0.5 / w));  // (u(1) - u(0)) / 2: the mirror of 0 is 0
+}
