@@ -38,34 +38,33 @@ render::Axes pareto_axes(const std::vector<bench::Curve>& curves, const std::str
     return axes;
 }
 
-void write_pareto(const std::filesystem::path& file, const bench::Curves& curves) {
+// Two plots side by side, 1600 x 700, into a PNG titled `title`.
+void write_plot_pair(const std::filesystem::path& file, render::Axes left, render::Axes right, const char* title) {
     render::PlotStyle style;
     style.wspace = 0.3f;
     render::Canvas canvas(1600, 700, render::canvas_samples);
     canvas.background({1, 1, 1, 1});
-    scenes::draw_plot_row(canvas, {0, 0, 1600, 700},
-                          {pareto_axes(curves.numerics, "Arithmetic against exact solutions", {1e-17, 1.0},
-                                       render::Legend::upper_left),
-                           pareto_axes(curves.estimators, "Estimates against known constants", {1e-6, 1.0},
-                                       render::Legend::lower_left)},
-                          style);
-    const render::Image image = canvas.read();
-    media::write_png(file, image, {{"Title", "figgen: run time against error"}});
+    scenes::draw_plot_row(canvas, {0, 0, 1600, 700}, {std::move(left), std::move(right)}, style);
+    media::write_png(file, canvas.read(), {{"Title", title}});
+}
+
+void write_pareto(const std::filesystem::path& file, const bench::Curves& curves) {
+    write_plot_pair(file,
+                    pareto_axes(curves.numerics, "Arithmetic against exact solutions", {1e-17, 1.0},
+                                render::Legend::upper_left),
+                    pareto_axes(curves.estimators, "Estimates against known constants", {1e-6, 1.0},
+                                render::Legend::lower_left),
+                    "figgen: run time against error");
 }
 
 // A formula model's integrators: the same axes, one curve per integrator.
 void write_integrators(const std::filesystem::path& file, const bench::Curves& curves) {
-    render::PlotStyle style;
-    style.wspace = 0.3f;
-    render::Canvas canvas(1600, 700, render::canvas_samples);
-    canvas.background({1, 1, 1, 1});
-    scenes::draw_plot_row(canvas, {0, 0, 1600, 700},
-                          {pareto_axes(curves.integrators_known, "Heat equation's Fourier mode against its exact decay",
-                                       {1e-16, 1.0}, render::Legend::upper_right),
-                           pareto_axes(curves.integrators_reference, "Gray-Scott against RK4 at a timestep of 1/128",
-                                       {1e-10, 1.0}, render::Legend::upper_right)},
-                          style);
-    media::write_png(file, canvas.read(), {{"Title", "figgen: a formula model's integrators, run time against error"}});
+    write_plot_pair(file,
+                    pareto_axes(curves.integrators_known, "Heat equation's Fourier mode against its exact decay",
+                                {1e-16, 1.0}, render::Legend::upper_right),
+                    pareto_axes(curves.integrators_reference, "Gray-Scott against RK4 at a timestep of 1/128",
+                                {1e-10, 1.0}, render::Legend::upper_right),
+                    "figgen: a formula model's integrators, run time against error");
 }
 
 }  // namespace
