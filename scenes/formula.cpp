@@ -202,7 +202,8 @@ public:
         if (m_.depth > 1) return render_solid(out);
         StepRunner run(d_, options_, out);
         const std::vector<sim::Grid<double>> start = formula_start(m_, d_);
-        const nlohmann::json stability = stability_said(start);
+        // A process that makes only film segments (another rank draws the figure) says nothing.
+        const nlohmann::json stability = stability_said(start, !run.film_only());
         formula::Run model(m_.rule, m_.width, m_.height, start);
         const int threads = model_threads(run.filming());
         std::vector<sim::Grid<double>> now, drawn;  // every chemical where the run is, and those shown as drawn
@@ -341,7 +342,8 @@ private:
     void render_line(Output& out) const {
         StepRunner run(d_, options_, out);
         const std::vector<sim::Grid<double>> start = formula_start(m_, d_);
-        const nlohmann::json stability = stability_said(start);
+        // A process that makes only film segments (another rank draws the figure) says nothing.
+        const nlohmann::json stability = stability_said(start, !run.film_only());
         formula::Run model(m_.rule, m_.width, m_.height, m_.depth, start);
         const int threads = model_threads(run.filming());
         // The figure's last step, whatever part of the film this run makes
@@ -492,7 +494,8 @@ private:
     void render_solid(Output& out) const {
         StepRunner run(d_, options_, out);
         const std::vector<sim::Grid<double>> start = formula_start(m_, d_);
-        const nlohmann::json stability = stability_said(start);
+        // A process that makes only film segments (another rank draws the figure) says nothing.
+        const nlohmann::json stability = stability_said(start, !run.film_only());
         formula::Run model(m_.rule, m_.width, m_.height, m_.depth, start);
         const int threads = model_threads(run.filming());
         std::vector<sim::Grid<double>> now, figure_state;
@@ -735,7 +738,7 @@ private:
         return said;
     }
 
-    nlohmann::json stability_said(const std::vector<sim::Grid<double>>& start) const {
+    nlohmann::json stability_said(const std::vector<sim::Grid<double>>& start, bool say = true) const {
         const Bound said_bound = bound(start);
         const formula::StabilityBound& b = said_bound.bound;
         const double timestep = m_.rule.parameter("timestep");
@@ -753,7 +756,7 @@ private:
         said["mode"] = b.theta;
         said["rate"] = {b.rate_real, b.rate_imaginary};
         if (b.coupled) said["coupled"] = "three chemicals or more whose stencil terms reach into each other: the bound is from each one's own";
-        if (timestep > b.timestep) {
+        if (say && timestep > b.timestep) {
             std::cerr << "figgen: warning: " << d_.id << ": timestep " << format_number(timestep);
             if (b.timestep > 0)
                 std::cerr << " is past the explicit stability bound " << format_number(b.timestep) << " of "
