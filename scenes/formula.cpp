@@ -247,7 +247,7 @@ public:
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"model_operations", model.operations()}};
-        if (measures_error() && !run.film_only()) meta["error"] = error_said(start, figure_state, threads);
+        if (measures_error() && !run.film_only() && !figure_state.empty()) meta["error"] = error_said(start, figure_state, threads);
         run.write_field_figure(panels, meta, [&] { return ready_state(now); });
     }
 
@@ -393,7 +393,7 @@ private:
                                {"panels", panel_meta},
                                {"space_time", {{"rows", history.steps.size()}, {"stride", stride}}},
                                {"model_operations", model.operations()}};
-        if (measures_error() && !run.film_only()) meta["error"] = error_said(start, figure_state, threads);
+        if (measures_error() && !run.film_only() && !figure_state.empty()) meta["error"] = error_said(start, figure_state, threads);
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         const int shown_last = history.steps.empty() ? 0 : history.steps.back();
         FigureDrawing figure{width, height, false,
@@ -548,7 +548,7 @@ private:
                                  {"inside", s_.contour_below ? "below" : "above"},
                                  {"facets", facets.size()}}},
                                {"model_operations", model.operations()}};
-        if (measures_error() && !run.film_only()) meta["error"] = error_said(start, figure_state, threads);
+        if (measures_error() && !run.film_only() && !figure_state.empty()) meta["error"] = error_said(start, figure_state, threads);
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         const double scale = options_.scale;
         FigureDrawing figure{width, height, true,
