@@ -149,7 +149,8 @@ public:
                           sim::formula::chunk_lanes + 64 / cell, cell, 1),
                 grid_need("the formula's machine code", 1, m_.machine_code, 1, 1),
                 grid_need("the start and the grids read", rows, m_.width, 8, 2 * chemicals),
-                // --error: a run at a smaller timestep beside the figure's, and the three runs' last grids.
+                // --error: a run at a smaller timestep beside the figure's, and the three runs' last grids
+                // (the figure's kept at its last panel, the two refined runs').
                 grid_need("--error's run", rows + ghosts + 3, row, cell,
                           measures_error() ? sim::formula::state_copies(m_.height, m_.depth, m_.rule.integrator) * chemicals : 0),
                 grid_need("--error's grids", rows, m_.width, 8, measures_error() ? 3 * chemicals : 0),
@@ -228,7 +229,7 @@ public:
                 [&](int step) {
                     panels.push_back({format_step(d_.panel_title, step), layers(Cells::copied)});
                     panel_meta.push_back(metadata(now, step));
-                    if (measures_error() && step == d_.panels.back()) figure_state = now;
+                    keep_for_error(step, now, figure_state);
                 },
             .frame =
                 [&](int step) -> FrameDrawing {
@@ -242,12 +243,10 @@ public:
                 },
         });
         nlohmann::json meta = {{"params", params_.used()},
-                               {"stability", stability},
-                               {"edges", edges_said()},
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"model_operations", model.operations()}};
-        if (measures_error() && !run.film_only() && !figure_state.empty()) meta["error"] = error_said(start, figure_state, threads);
+        say_run(meta, stability, run, start, figure_state, threads);
         run.write_field_figure(panels, meta, [&] { return ready_state(now); });
     }
 
@@ -369,7 +368,7 @@ private:
             .panel =
                 [&](int step) {
                     panel_meta.push_back(metadata(now, step));
-                    if (measures_error() && step == d_.panels.back()) figure_state = now;
+                    keep_for_error(step, now, figure_state);
                 },
             .frame =
                 [&](int step) -> FrameDrawing {
@@ -387,13 +386,11 @@ private:
             .stop_at = [stride](int step) { return step % stride == 0; },
         });
         nlohmann::json meta = {{"params", params_.used()},
-                               {"stability", stability},
-                               {"edges", edges_said()},
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"space_time", {{"rows", history.steps.size()}, {"stride", stride}}},
                                {"model_operations", model.operations()}};
-        if (measures_error() && !run.film_only() && !figure_state.empty()) meta["error"] = error_said(start, figure_state, threads);
+        say_run(meta, stability, run, start, figure_state, threads);
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         const int shown_last = history.steps.empty() ? 0 : history.steps.back();
         FigureDrawing figure{width, height, false,
@@ -507,7 +504,7 @@ private:
             .panel =
                 [&](int step) {
                     panel_meta.push_back(metadata(now, step));
-                    if (measures_error() && step == d_.panels.back()) figure_state = now;
+                    keep_for_error(step, now, figure_state);
                 },
             .frame =
                 [&](int) -> FrameDrawing {
@@ -539,8 +536,6 @@ private:
         const std::vector<render::Facet> facets = surface_of(now[s_.shown.front()]);
         const std::vector<FieldPanel> panels = slices(now[s_.shown.front()]);
         nlohmann::json meta = {{"params", params_.used()},
-                               {"stability", stability},
-                               {"edges", edges_said()},
                                {"style", style_.used()},
                                {"panels", panel_meta},
                                {"isosurface",
@@ -548,7 +543,7 @@ private:
                                  {"inside", s_.contour_below ? "below" : "above"},
                                  {"facets", facets.size()}}},
                                {"model_operations", model.operations()}};
-        if (measures_error() && !run.film_only() && !figure_state.empty()) meta["error"] = error_said(start, figure_state, threads);
+        say_run(meta, stability, run, start, figure_state, threads);
         const int width = figure_width(d_, options_), height = figure_height(d_, options_);
         const double scale = options_.scale;
         FigureDrawing figure{width, height, true,
@@ -609,6 +604,24 @@ private:
     }
 
     bool measures_error() const { return m_.error != FormulaModel::Error::none || options_.error; }
+
+    // The chemicals at the figure's last panel, kept where the error is measured.
+    void keep_for_error(int step, const std::vector<sim::Grid<double>>& now,
+                        std::vector<sim::Grid<double>>& kept) const {
+        if (measures_error() && step == d_.panels.back()) kept = now;
+    }
+
+    // What each formula figure's metadata says of its run besides its
+    // panels: the stability bound, the edges, and (--error) the error
+    // measured, by the process that draws the figure.
+    void say_run(nlohmann::json& meta, const nlohmann::json& stability, const StepRunner& run,
+                 const std::vector<sim::Grid<double>>& start, const std::vector<sim::Grid<double>>& figure_state,
+                 int threads) const {
+        meta["stability"] = stability;
+        meta["edges"] = edges_said();
+        if (measures_error() && !run.film_only() && !figure_state.empty())
+            meta["error"] = error_said(start, figure_state, threads);
+    }
     bool measures_space_error() const { return m_.error == FormulaModel::Error::space; }
     // The cells of the grid at twice the resolution, over the grid's.
     double finer_cells() const { return (m_.height > 1 ? 4.0 : 2.0) * (m_.depth > 1 ? 2.0 : 1.0); }
@@ -683,7 +696,9 @@ private:
         const int step = d_.panels.back();
         const double h = m_.rule.parameter("timestep");
         const int q = formula::order(m_.rule.integrator);
-        std::vector<std::vector<sim::Grid<double>>> runs{figure};
+        // The runs at h (the figure's), h / 2 and h / 4.
+        std::vector<sim::Grid<double>> refined[2];
+        auto runs = [&](int k) -> const std::vector<sim::Grid<double>>& { return k == 0 ? figure : refined[k - 1]; };
         for (int k : {2, 4}) {
             formula::Rule rule = m_.rule;
             rule.set_parameter("timestep", h / k);
@@ -694,16 +709,16 @@ private:
                 throw formula::Unstable(std::string("--error's run at timestep ") + format_number(h / k) + ": " +
                                         e.what());
             }
-            runs.push_back(chemicals(run));
+            refined[k / 4] = chemicals(run);
         }
         const double epsilon = m_.rule.double_precision ? 0x1p-52 : 0x1p-23;
         nlohmann::json chemicals_said = nlohmann::json::array();
         for (int c = 0; c < m_.rule.chemicals; ++c) {
             double most[2] = {0, 0}, squares[2] = {0, 0}, largest = 0;
-            const std::size_t cells = runs[0][static_cast<std::size_t>(c)].cells().size();
+            const std::size_t cells = figure[static_cast<std::size_t>(c)].cells().size();
             for (int k = 0; k < 2; ++k) {
-                const auto& a = runs[static_cast<std::size_t>(k)][static_cast<std::size_t>(c)].cells();
-                const auto& b = runs[static_cast<std::size_t>(k) + 1][static_cast<std::size_t>(c)].cells();
+                const auto& a = runs(k)[static_cast<std::size_t>(c)].cells();
+                const auto& b = runs(k + 1)[static_cast<std::size_t>(c)].cells();
                 for (std::size_t i = 0; i < cells; ++i) {
                     const double d = a[i] - b[i];
                     most[k] = std::max(most[k], std::abs(d));
