@@ -242,16 +242,10 @@ std::vector<double> numbers_of(const std::vector<std::uint8_t>& bytes, bool floa
     return out;
 }
 
-std::string encode_zlib_base64(const std::vector<double>& values, bool float64) {
-    std::vector<std::uint8_t> bytes(values.size() * (float64 ? 8 : 4));
-    for (std::size_t i = 0; i < values.size(); ++i) {
-        if (float64) {
-            std::memcpy(bytes.data() + 8 * i, &values[i], 8);
-        } else {
-            const float f = static_cast<float>(values[i]);
-            std::memcpy(bytes.data() + 4 * i, &f, 4);
-        }
-    }
+namespace {
+
+// `bytes` in zlib blocks of 32 KiB with UInt64 headers, base64.
+std::string zlib_base64(const std::vector<std::uint8_t>& bytes) {
     const std::uint64_t block = 32768;
     const std::uint64_t count = (bytes.size() + block - 1) / block;
     // VTK's header: the blocks, their size, the last one's when it is shorter (else 0), each compressed size.
@@ -286,6 +280,99 @@ std::string encode_zlib_base64(const std::vector<double>& values, bool float64) 
         return s;
     };
     return encode(header.data(), header.size() * 8) + encode(data.data(), data.size());
+}
+
+}  // namespace
+
+std::string encode_zlib_base64(const std::vector<double>& values, bool float64) {
+    std::vector<std::uint8_t> bytes(values.size() * (float64 ? 8 : 4));
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (float64) {
+            std::memcpy(bytes.data() + 8 * i, &values[i], 8);
+        } else {
+            const float f = static_cast<float>(values[i]);
+            std::memcpy(bytes.data() + 4 * i, &f, 4);
+        }
+    }
+    return zlib_base64(bytes);
+}
+
+// --- integer arrays ----------------------------------------------------------
+
+namespace {
+
+// The least and most values of `type`, as int64 (UInt64's most: int64's, all figgen keeps).
+std::int64_t least(IntegerType t) {
+    return t.is_signed ? -(std::int64_t{1} << (8 * t.bytes - 1)) : 0;
+}
+std::int64_t most(IntegerType t) {
+    if (t.bytes == 8) return std::numeric_limits<std::int64_t>::max();
+    return t.is_signed ? (std::int64_t{1} << (8 * t.bytes - 1)) - 1 : (std::int64_t{1} << (8 * t.bytes)) - 1;
+}
+
+}  // namespace
+
+std::optional<IntegerType> integer_type(std::string_view name) {
+    static const std::pair<std::string_view, IntegerType> types[] = {
+        {"Int8", {1, true}},   {"UInt8", {1, false}},  {"Int16", {2, true}}, {"UInt16", {2, false}},
+        {"Int32", {4, true}},  {"UInt32", {4, false}}, {"Int64", {8, true}}, {"UInt64", {8, false}}};
+    for (const auto& [n, t] : types)
+        if (n == name) return t;
+    return std::nullopt;
+}
+
+std::vector<std::int64_t> integers_of(const std::vector<std::uint8_t>& bytes, IntegerType t) {
+    const auto size = static_cast<std::size_t>(t.bytes);
+    std::vector<std::int64_t> out(bytes.size() / size);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        std::uint64_t u = 0;
+        std::memcpy(&u, bytes.data() + size * i, size);  // little-endian: the low bytes
+        if (t.is_signed && size < 8 && (u >> (8 * size - 1)) != 0) u |= ~std::uint64_t{0} << (8 * size);  // the sign, extended
+        if (!t.is_signed && size == 8 && u > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+            throw DataError("a UInt64 array holds a value past 2^63 - 1");
+        out[i] = static_cast<std::int64_t>(u);
+    }
+    return out;
+}
+
+std::vector<std::int64_t> decode_ascii_integers(std::string_view text, std::uint64_t count, IntegerType t) {
+    check_expected(times(count, 8));
+    std::vector<std::int64_t> values;
+    values.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(count, text.size() / 2 + 1)));
+    const char* at = text.data();
+    const char* const end = text.data() + text.size();
+    const auto skip_space = [&] {
+        while (at < end && std::isspace(static_cast<unsigned char>(*at))) ++at;
+    };
+    for (skip_space(); at < end; skip_space()) {
+        if (values.size() == count) throw DataError("an ascii array holds more than " + std::to_string(count) + " numbers");
+        std::int64_t v = 0;
+        const char* from = at + (*at == '+' ? 1 : 0);  // from_chars takes no '+'
+        const auto [next, ec] = std::from_chars(from, end, v);
+        if (ec == std::errc::result_out_of_range || (ec == std::errc() && (v < least(t) || v > most(t))))
+            throw DataError("an ascii array holds a number outside its type (" + std::to_string(least(t)) + " to " +
+                            std::to_string(most(t)) + ")");
+        if (ec != std::errc() || (next < end && !std::isspace(static_cast<unsigned char>(*next))))
+            throw DataError("an ascii array holds something other than integers");
+        values.push_back(v);
+        at = next;
+    }
+    if (values.size() != count)
+        throw DataError("an ascii array holds " + std::to_string(values.size()) + " numbers, not " + std::to_string(count));
+    return values;
+}
+
+std::string encode_zlib_base64_integers(const std::vector<std::int64_t>& values, IntegerType t) {
+    const auto size = static_cast<std::size_t>(t.bytes);
+    std::vector<std::uint8_t> bytes(values.size() * size);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (values[i] < least(t) || values[i] > most(t))
+            throw std::invalid_argument("encode_zlib_base64_integers: " + std::to_string(values[i]) +
+                                        " is outside the array's type");
+        const auto u = static_cast<std::uint64_t>(values[i]);
+        std::memcpy(bytes.data() + size * i, &u, size);  // little-endian: the low bytes
+    }
+    return zlib_base64(bytes);
 }
 
 }  // namespace ready::vtk

@@ -11,6 +11,7 @@
 // buffer it holds. base64 by GLib, zlib by zlib.
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -51,5 +52,28 @@ std::vector<double> numbers_of(const std::vector<std::uint8_t>& bytes, bool floa
 // `values` as Float32 (or Float64) in zlib blocks of 32 KiB with UInt64
 // headers, base64: the text of a binary DataArray as VTK 9 writes it.
 std::string encode_zlib_base64(const std::vector<double>& values, bool float64);
+
+// --- integer arrays (a mesh's cells: connectivity, offsets, types, faces) ---
+
+// One of VTK's integer types (<DataArray type>: Int8 to UInt64).
+struct IntegerType {
+    int bytes = 8;
+    bool is_signed = true;
+};
+
+// The integer type `name` names; none for any other name.
+std::optional<IntegerType> integer_type(std::string_view name);
+
+// Little-endian integers of `type` as int64. Throws DataError for a UInt64
+// past int64's range.
+std::vector<std::int64_t> integers_of(const std::vector<std::uint8_t>& bytes, IntegerType type);
+
+// `count` integers of `type` written out as text (format="ascii"). Throws
+// DataError for anything else there, or a number outside the type.
+std::vector<std::int64_t> decode_ascii_integers(std::string_view text, std::uint64_t count, IntegerType type);
+
+// `values` as `type`, in zlib blocks as encode_zlib_base64 makes them.
+// Throws std::invalid_argument for a value the type cannot hold.
+std::string encode_zlib_base64_integers(const std::vector<std::int64_t>& values, IntegerType type);
 
 }  // namespace ready::vtk
