@@ -115,6 +115,7 @@ struct Rule {
     bool wrap = true;
     bool ready_edges = true;  // false: a true torus, or each cell clamped
     bool inbuilt = false;     // Ready's inbuilt rule, written as the formula it computes
+    bool kernel = false;      // a whole OpenCL kernel (code), run by figgen's own grammar
 };
 
 // Ready's inbuilt Gray-Scott rule (its GrayScottImageRD.cpp) as the formula
@@ -145,10 +146,27 @@ Rule rule_of(const XMLElement* rule) {
         r.inbuilt = true;
         return r;
     }
+    if (kind == "kernel") {
+        // Ready's FullKernelOpenCLImageRD: the kernel's text, its chemicals and blocks
+        const XMLElement* kernel = required(rule, "kernel");
+        Rule r;
+        r.kernel = true;
+        if (!kernel->Attribute("number_of_chemicals")) throw Refused("<kernel> has no number_of_chemicals");
+        r.chemicals = static_cast<int>(integer(kernel, "number_of_chemicals", 1, 1, sim::formula::max_chemicals));
+        const long long block_x = integer(kernel, "block_size_x", 1, 1, 4);
+        if (block_x != 1 && block_x != 4)
+            throw Refused("<kernel block_size_x> is " + std::to_string(block_x) + ": figgen runs 1 or 4");
+        r.block_x = static_cast<int>(block_x);
+        if (integer(kernel, "block_size_y", 1, 1, 64) != 1 || integer(kernel, "block_size_z", 1, 1, 64) != 1)
+            throw Refused("<kernel block_size_y> and block_size_z are not 1: figgen runs blocks in x alone");
+        r.code = dedented(trimmed(kernel->GetText() ? kernel->GetText() : ""));
+        if (r.code.empty()) throw Refused("<kernel> is empty");
+        if (!description::is_text(r.code)) throw Refused("<kernel> is not " + std::string(description::text_allowed));
+        return r;
+    }
     if (kind != "formula")
         throw Refused("its rule is type \"" + printable_short(kind) +
-                      "\": figgen runs formula rules (type=\"formula\") and Ready's inbuilt Gray-Scott, not full "
-                      "OpenCL kernels yet");
+                      "\": figgen runs formula, kernel and Ready's inbuilt Gray-Scott rules");
     const XMLElement* formula = required(rule, "formula");
     Rule r;
     if (!formula->Attribute("number_of_chemicals")) throw Refused("<formula> has no number_of_chemicals");
@@ -289,21 +307,31 @@ Pattern read(const std::string& text, const std::filesystem::path& file, const R
 
     toml::table params;
     params.insert("chemicals", rule.chemicals);
-    origin("params.chemicals", rule.inbuilt ? "<rule type=\"inbuilt\">" : "<formula number_of_chemicals>");
-    params.insert("formula", rule.code + "\n");
+    const char* element = rule.kernel ? "<kernel" : "<formula";
+    origin("params.chemicals", rule.inbuilt ? "<rule type=\"inbuilt\">" : element + std::string(" number_of_chemicals>"));
+    if (rule.kernel) {
+        params.insert("kernel", rule.code + "\n");
+        origin("params.kernel", "<kernel>");
+    } else {
+        params.insert("formula", rule.code + "\n");
+    }
     origin("params.formula", rule.inbuilt ? "<rule type=\"inbuilt\" name=\"Gray-Scott\">" : "<formula>");
-    params.insert("accuracy", rule.accuracy);
-    origin("params.accuracy", rule.inbuilt ? "<rule type=\"inbuilt\">" : "<formula accuracy>");
-    params.insert("wrap", rule.wrap);
-    origin("params.wrap", "<rule wrap>");
+    if (!rule.kernel) {
+        params.insert("accuracy", rule.accuracy);
+        origin("params.accuracy", rule.inbuilt ? "<rule type=\"inbuilt\">" : "<formula accuracy>");
+        params.insert("wrap", rule.wrap);
+        origin("params.wrap", "<rule wrap>");
+    }
     params.insert("data_type", stored.float64 ? "double" : "float");
     origin("params.data_type", "<DataArray type>");
-    // Ready's formulas run through OpenCL, whose compiler contracts a * b + c;
-    // its inbuilt rules are its own C++, built without contraction.
-    params.insert("arithmetic", rule.inbuilt ? "plain" : "opencl");
-    origin("params.arithmetic", rule.inbuilt ? "<rule type=\"inbuilt\">" : "<rule type=\"formula\">: OpenCL C");
+    if (!rule.kernel) {
+        // Ready's formulas run through OpenCL, whose compiler contracts a * b + c;
+        // its inbuilt rules are its own C++, built without contraction.
+        params.insert("arithmetic", rule.inbuilt ? "plain" : "opencl");
+        origin("params.arithmetic", rule.inbuilt ? "<rule type=\"inbuilt\">" : "<rule type=\"formula\">: OpenCL C");
+    }
     params.insert("block_x", rule.block_x);
-    origin("params.block_x", rule.inbuilt ? "<rule type=\"inbuilt\">" : "<formula block_size_x>");
+    origin("params.block_x", rule.inbuilt ? "<rule type=\"inbuilt\">" : element + std::string(" block_size_x>"));
     if (!rule.ready_edges) {
         params.insert("ready_edges", false);
         origin("params.ready_edges", "<rule type=\"inbuilt\">");
@@ -318,7 +346,9 @@ Pattern read(const std::string& text, const std::filesystem::path& file, const R
     }
     params.insert("steps", steps);
 
-    std::optional<std::set<std::string>> used = names_read(rule.code);
+    // a kernel reads no parameters: its numbers are in its text
+    std::optional<std::set<std::string>> used =
+        rule.kernel ? std::optional<std::set<std::string>>(std::set<std::string>{}) : names_read(rule.code);
     if (used) used->insert({"timestep", "dx"});
     if (apply) {
         params.insert("zero_first", zero_first);

@@ -60,7 +60,7 @@ struct ReadOptions {
 
 // Reads `file`. Panels at 0, steps/2 and steps. Throws FileError, naming
 // the file, for a pattern that cannot be read or that figgen cannot run
-// (3-D or 1-D, a mesh, a kernel or inbuilt rule, an unknown encoding), in
+// (a mesh, an inbuilt rule other than Gray-Scott, an unknown encoding), in
 // one line that says what is not supported.
 Pattern read_pattern(const std::filesystem::path& file, const ReadOptions& options = {});
 

@@ -15,6 +15,7 @@ struct ReadyState {
     std::string rule_name;    // <rule name=...>
     std::string description;  // <description>
     std::string formula;
+    std::string kernel;  // a kernel rule's whole kernel, in place of the formula
     std::string accuracy = "medium";
     bool wrap = true;
     int block_x = 4;

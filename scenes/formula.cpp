@@ -142,6 +142,7 @@ public:
         const double threads = model_threads(false) > 0 ? model_threads(false) : std::max(1u, std::thread::hardware_concurrency());
         const double rows = static_cast<double>(m_.height) * m_.depth, shown = static_cast<double>(s_.shown.size());
         const double ghosts = formula_ghost_rows(m_);
+        if (m_.kernel) return kernel_memory(threads, panels, shown);
         return {grid_need("the arrays a Ready pattern stores", rows, m_.width, 8, d_.stored_start ? chemicals : 0),
                 grid_need("the chemicals' grids", rows + ghosts + 3, row, cell,
                           sim::formula::state_copies(m_.height, m_.depth, m_.rule.integrator) * chemicals),
@@ -172,6 +173,26 @@ public:
                           m_.depth > 1 ? 3 : 0)};
     }
 
+    // A kernel rule's run (sim/kernel/run.hpp): two buffers a chemical
+    // and the writes' stamps, each thread's registers; the start, the
+    // grids read, and what is drawn, as a formula's.
+    std::vector<MemoryNeed> kernel_memory(double threads, double panels, double shown) const {
+        const double rows = static_cast<double>(m_.height) * m_.depth, chemicals = m_.rule.chemicals;
+        const long long cells = static_cast<long long>(m_.width) * m_.height * m_.depth;
+        return {grid_need("the arrays a Ready pattern stores", rows, m_.width, 8, d_.stored_start ? chemicals : 0),
+                grid_need("the kernel's buffers", 1, static_cast<double>(sim::kernel::run_bytes(*m_.kernel, cells)), 1, 1),
+                grid_need("the kernel's registers", threads, static_cast<double>(m_.kernel_thread_bytes), 1, 1),
+                grid_need("the start and the grids read", rows, m_.width, 8, 2 * chemicals),
+                grid_need("panels' copies", m_.height, m_.width, 8 + field_layer_bytes_per_cell, panels * shown),
+                grid_need("the space-time diagram", dimensions_ == 1 ? space_time_rows + 1 : 0, m_.width,
+                          16 + field_layer_bytes_per_cell, shown),
+                grid_need("the isosurface", 1, static_cast<double>(most_facets()),
+                          sizeof(render::Facet) + 3 * 40.0, m_.depth > 1 ? 2 : 0),
+                grid_need("the isosurface's draw queue", 1, render::queued_triangles_bytes, 1, m_.depth > 1 ? 1 : 0),
+                grid_need("the slices", m_.depth, std::max(m_.width, m_.height), 8 + field_layer_bytes_per_cell,
+                          m_.depth > 1 ? 3 : 0)};
+    }
+
     // Every core (0), but one thread for a grid too small to share (4096
     // cells), or below 256^2 cells while film frames are drawn beside the
     // run. Ready's Pearson1993 at 128 x 64 without a film: 0.84 of rdy's
@@ -184,7 +205,10 @@ public:
     // --strict: a timestep past the explicit stability bound is refused
     // before anything runs (else render() says it on stderr).
     void check_run() const override {
-        if (!options_.strict) return;
+        if (m_.kernel && options_.error)
+            throw SettingError("--error", "", "none for a kernel rule: its kernel computes its own steps, so figgen "
+                                              "cannot halve its timestep or its cells");
+        if (!options_.strict || m_.kernel) return;
         const Bound b = bound(formula_start(m_, d_));
         const double timestep = m_.rule.parameter("timestep");
         if (timestep <= b.bound.timestep) return;
@@ -205,7 +229,7 @@ public:
         const std::vector<sim::Grid<double>> start = formula_start(m_, d_);
         // A process that makes only film segments (another rank draws the figure) says nothing.
         const nlohmann::json stability = stability_said(start, !run.film_only());
-        formula::Run model(m_.rule, m_.width, m_.height, start);
+        RuleRun model(m_, start);
         const int threads = model_threads(run.filming());
         std::vector<sim::Grid<double>> now, drawn;  // every chemical where the run is, and those shown as drawn
         std::vector<sim::Grid<double>> figure_state;  // at the figure's last panel, for error_said
@@ -269,7 +293,7 @@ private:
     int space_time_stride() const { return scenes::space_time_stride(figure_last(), space_time_rows); }
 
     // Every chemical where the run is.
-    std::vector<sim::Grid<double>> chemicals(const formula::Run& model) const {
+    std::vector<sim::Grid<double>> chemicals(const RuleRun& model) const {
         std::vector<sim::Grid<double>> all;
         for (int c = 0; c < m_.rule.chemicals; ++c) all.push_back(model.chemical(c));
         return all;
@@ -343,7 +367,7 @@ private:
         const std::vector<sim::Grid<double>> start = formula_start(m_, d_);
         // A process that makes only film segments (another rank draws the figure) says nothing.
         const nlohmann::json stability = stability_said(start, !run.film_only());
-        formula::Run model(m_.rule, m_.width, m_.height, m_.depth, start);
+        RuleRun model(m_, start);
         const int threads = model_threads(run.filming());
         // The figure's last step, whatever part of the film this run makes
         // (a segment on another rank stops earlier): every frame's axes and
@@ -493,7 +517,7 @@ private:
         const std::vector<sim::Grid<double>> start = formula_start(m_, d_);
         // A process that makes only film segments (another rank draws the figure) says nothing.
         const nlohmann::json stability = stability_said(start, !run.film_only());
-        formula::Run model(m_.rule, m_.width, m_.height, m_.depth, start);
+        RuleRun model(m_, start);
         const int threads = model_threads(run.filming());
         std::vector<sim::Grid<double>> now, figure_state;
         auto look = [&] { now = chemicals(model); };
@@ -588,6 +612,7 @@ private:
     // The edges the run computes: Ready's (with its wrap), or figgen's own
     // side by side, for the sides of the grid's axes.
     nlohmann::json edges_said() const {
+        if (m_.kernel) return {{"kernel", "the kernel's own: it indexes its neighbours itself"}};
         const formula::Rule& r = m_.rule;
         if (r.ready_edges && !r.edges) return {{"ready", true}, {"wrap", r.wrap}};
         const formula::Edges e = r.own_edges();
@@ -700,9 +725,9 @@ private:
         std::vector<sim::Grid<double>> refined[2];
         auto runs = [&](int k) -> const std::vector<sim::Grid<double>>& { return k == 0 ? figure : refined[k - 1]; };
         for (int k : {2, 4}) {
-            formula::Rule rule = m_.rule;
-            rule.set_parameter("timestep", h / k);
-            formula::Run run(rule, m_.width, m_.height, m_.depth, start);
+            FormulaModel finer = m_;
+            finer.rule.set_parameter("timestep", h / k);
+            RuleRun run(finer, start);
             try {
                 run.step(step * k, threads);
             } catch (const formula::Unstable& e) {
@@ -754,6 +779,10 @@ private:
     }
 
     nlohmann::json stability_said(const std::vector<sim::Grid<double>>& start, bool say = true) const {
+        if (m_.kernel)
+            return {{"bound", nullptr},
+                    {"why", "a kernel rule computes its own steps: figgen bounds none, and stops the run at the "
+                            "first number that is not finite"}};
         const Bound said_bound = bound(start);
         const formula::StabilityBound& b = said_bound.bound;
         const double timestep = m_.rule.parameter("timestep");
@@ -790,6 +819,7 @@ private:
         s.rule_name = d_.title;
         s.description = d_.caption;
         s.formula = m_.rule.code;
+        if (m_.kernel) s.kernel = m_.kernel->text;
         static const char* accuracy[] = {"low", "medium", "high"};
         s.accuracy = accuracy[static_cast<int>(m_.rule.accuracy)];
         // Ready has wrapped or clamped edges alone: figgen's own edges go as wrapped where x's are periodic.

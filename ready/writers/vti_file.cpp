@@ -29,7 +29,7 @@ std::string ready_vti(const ReadyState& s) {
     rd->InsertNewChildElement("description")->SetText(s.description.c_str());
     XMLElement* rule = rd->InsertNewChildElement("rule");
     rule->SetAttribute("name", s.rule_name.c_str());
-    rule->SetAttribute("type", "formula");
+    rule->SetAttribute("type", s.kernel.empty() ? "formula" : "kernel");
     rule->SetAttribute("wrap", s.wrap ? 1 : 0);
     rule->SetAttribute("neighborhood_type", "vertex");
     for (const auto& [name, value] : s.parameters) {
@@ -39,13 +39,14 @@ std::string ready_vti(const ReadyState& s) {
         std::snprintf(text, sizeof text, "%.9g", value);
         p->SetText(text);
     }
-    XMLElement* f = rule->InsertNewChildElement("formula");
+    // a kernel rule: Ready's <kernel>, the whole kernel
+    XMLElement* f = rule->InsertNewChildElement(s.kernel.empty() ? "formula" : "kernel");
     f->SetAttribute("number_of_chemicals", static_cast<int>(s.chemicals.size()));
     f->SetAttribute("block_size_x", s.block_x);
     f->SetAttribute("block_size_y", 1);
     f->SetAttribute("block_size_z", 1);
-    f->SetAttribute("accuracy", s.accuracy.c_str());
-    f->SetText(s.formula.c_str());
+    if (s.kernel.empty()) f->SetAttribute("accuracy", s.accuracy.c_str());
+    f->SetText((s.kernel.empty() ? s.formula : s.kernel).c_str());
     rd->InsertNewChildElement("initial_pattern_generator")->SetAttribute("apply_when_loading", "false");
     XMLElement* rs = rd->InsertNewChildElement("render_settings");
     rs->InsertNewChildElement("active_chemical")->SetAttribute("value", s.active_chemical.c_str());

@@ -134,6 +134,8 @@ const Schema<OverlayValues> overlay_schema = [] {
     s.key({"parameter", "parameter: the rule's parameter copied", "text", "the name of one of the rule's parameters",
            "timestep"},
           [](Settings& section, const std::string& key, O& v) {
+              // checked where it is read: a kernel rule has no parameters, not even timestep
+              if (!section.has(key) && v.overlay.fill.kind != formula::Fill::Kind::parameter) return;
               v.overlay.fill.parameter = section.text(key, "timestep");
               bool found = false;
               for (const auto& [name, value] : v.rule->parameters) found |= name == v.overlay.fill.parameter;
@@ -241,6 +243,7 @@ const Schema<ModelValues> model_schema = [] {
     rule.key({"formula", "the rule: Ready's formula language, a part of OpenCL C (docs/formulas.md)", "text",
               "the rule's formula, e.g. \"delta_a = laplacian_a;\"", ""},
              [](Settings& s, const std::string& key, R& r) {
+                 if (s.has("kernel")) return;  // the kernel's reader refuses both
                  r.code = s.text(key, r.code);
                  if (r.code.empty()) s.refuse(key, "\"\"", "the rule's formula, e.g. \"delta_a = laplacian_a;\"");
              });
@@ -291,6 +294,18 @@ const Schema<ModelValues> model_schema = [] {
     Schema<M> s;
     s.part_at(
         rule, [](auto& v) -> auto& { return v.model.rule; });
+    s.key({"kernel",
+           "the rule as a whole OpenCL C kernel, in place of formula: Ready's kernel rules (docs/kernels.md); its "
+           "parameters a_in, b_in, ... then a_out, b_out, ..., one work item a block of block_x cells",
+           "text", "a __kernel void rd_compute(...) in the OpenCL C figgen reads (docs/kernels.md)"},
+          [](Settings& section, const std::string& key, M& v) {
+              if (!section.has(key)) return;
+              if (section.has("formula")) section.refuse(key, "no kernel where params.formula is given: a rule is one or the other");
+              sim::kernel::ImageRule k;
+              k.text = section.text(key, "");
+              if (k.text.empty()) section.refuse(key, "\"\"", "a __kernel void rd_compute(...)");
+              v.model.kernel = k;
+          });
     s.key({"width", "grid width in cells", "an integer",
            "an integer from 1 to " + std::to_string(formula_most_side) + ", a multiple of block_x", 128},
           [](Settings& section, const std::string& key, M& v) {
@@ -388,12 +403,88 @@ void refuse_clash(Settings& params, const std::string& name, int chemicals) {
         params.refuse(name, "its name is " + *clash + "; " + formula::parameter_name_allowed);
 }
 
+namespace {
+
+// The overlays of params.initial, read once the rule is (its chemicals and
+// parameters bound them), and the stored arrays' shape against the model's.
+void read_start(Settings& params, const Description& d, ModelValues& values) {
+    FormulaModel& m = values.model;
+    for (std::size_t i = 0; i < values.initial.size(); ++i) {
+        OverlayValues overlay;
+        overlay.where = "params.initial[" + std::to_string(i) + "]";
+        overlay.rule = &m.rule;
+        Settings s(overlay.where, values.initial[i], overlay_schema.keys());
+        m.pattern.overlays.push_back(overlay_schema.read(s, overlay).overlay);
+    }
+    if (const auto& stored = d.stored_start) {
+        const int chemicals = stored->chemical_count;
+        if (chemicals != m.rule.chemicals)
+            params.refuse("chemicals", "the pattern's " + std::to_string(chemicals) + ", the arrays its file stores");
+        if (stored->width != m.width) params.refuse("width", "the pattern's " + std::to_string(stored->width) + ", its stored arrays'");
+        if (stored->height != m.height)
+            params.refuse("height", "the pattern's " + std::to_string(stored->height) + ", its stored arrays'");
+        if (stored->depth != m.depth)
+            params.refuse("depth", "the pattern's " + std::to_string(stored->depth) + ", its stored arrays'");
+    }
+}
+
+// A kernel rule: its kernel compiled for the grid (refusals name the
+// kernel's line); none of the formula's keys that it has no use for.
+FormulaModel read_kernel_model(Settings& params, const Description& d, ModelValues& values,
+                               const std::vector<Key>& rule_keys, const std::vector<Key>& scene_keys,
+                               const std::vector<std::pair<std::string, double>>& swept) {
+    FormulaModel& m = values.model;
+    const std::string why = "a kernel rule computes its own steps and edges from its text";
+    for (const char* key : {"accuracy", "edges", "edge_value", "wrap", "ready_edges", "arithmetic", "integrator"})
+        if (params.has(key)) params.refuse(key, "nothing: " + why);
+    if (m.error != FormulaModel::Error::none)
+        params.refuse("error", "\"none\": " + why + ", so figgen cannot halve its timestep or its cells");
+    if (!swept.empty()) params.refuse(swept.front().first, "no sweep: a kernel rule takes no parameters");
+    for (const auto& [key, value] : d.params) {
+        const std::string name(key.str());
+        if (is_key(rule_keys, name) || is_key(scene_keys, name)) continue;
+        params.refuse(name, "no parameter: a kernel rule's numbers are in its kernel; is it a misspelt key?");
+    }
+    sim::kernel::ImageRule& k = *m.kernel;
+    k.chemicals = m.rule.chemicals;
+    k.float64 = m.rule.double_precision;
+    k.block[0] = m.rule.block_x;
+    try {
+        m.kernel_thread_bytes = sim::kernel::thread_bytes(k, m.width, m.height, m.depth);
+    } catch (const sim::kernel::KernelError& e) {
+        params.refuse("kernel", "...", e.what());
+    }
+    read_start(params, d, values);
+    return m;
+}
+
+}  // namespace
+
+RuleRun::RuleRun(const FormulaModel& m, const std::vector<sim::Grid<double>>& start) {
+    if (m.kernel) kernel_.emplace(*m.kernel, m.width, m.height, m.depth, start);
+    else formula_.emplace(m.rule, m.width, m.height, m.depth, start);
+}
+
+void RuleRun::step(int steps, int threads) {
+    if (formula_) return formula_->step(steps, threads);
+    try {
+        kernel_->step(steps, threads);
+    } catch (const sim::kernel::KernelError& e) {
+        throw formula::Unstable(e.what());
+    }
+}
+
+sim::Grid<double> RuleRun::chemical(int i) const { return formula_ ? formula_->chemical(i) : kernel_->chemical(i); }
+long long RuleRun::steps() const { return formula_ ? formula_->steps() : kernel_->steps(); }
+int RuleRun::operations() const { return formula_ ? formula_->operations() : kernel_->operations(); }
+
 FormulaModel read_formula_model(Settings& params, const Description& d, const std::vector<Key>& scene_keys,
                                 const std::vector<std::pair<std::string, double>>& swept) {
     ModelValues values = model_schema.read(params);
     FormulaModel& m = values.model;
     formula::Rule& r = m.rule;
     const std::vector<Key> rule_keys = model_schema.keys();
+    if (m.kernel) return read_kernel_model(params, d, values, rule_keys, scene_keys, swept);
     // The rule's parameters: each a number the formula or an overlay
     // (fill = "parameter") uses, or timestep, dx.
     std::set<std::string> words = formula_names(params, r.code);
@@ -441,23 +532,7 @@ FormulaModel read_formula_model(Settings& params, const Description& d, const st
         params.refuse("formula", "...", e.what());
     }
     // Read once the rule is: its chemicals and parameters bound the overlays'.
-    for (std::size_t i = 0; i < values.initial.size(); ++i) {
-        OverlayValues overlay;
-        overlay.where = "params.initial[" + std::to_string(i) + "]";
-        overlay.rule = &r;
-        Settings s(overlay.where, values.initial[i], overlay_schema.keys());
-        m.pattern.overlays.push_back(overlay_schema.read(s, overlay).overlay);
-    }
-    if (const auto& stored = d.stored_start) {
-        const int chemicals = stored->chemical_count;
-        if (chemicals != r.chemicals)
-            params.refuse("chemicals", "the pattern's " + std::to_string(chemicals) + ", the arrays its file stores");
-        if (stored->width != m.width) params.refuse("width", "the pattern's " + std::to_string(stored->width) + ", its stored arrays'");
-        if (stored->height != m.height)
-            params.refuse("height", "the pattern's " + std::to_string(stored->height) + ", its stored arrays'");
-        if (stored->depth != m.depth)
-            params.refuse("depth", "the pattern's " + std::to_string(stored->depth) + ", its stored arrays'");
-    }
+    read_start(params, d, values);
     if (m.error == FormulaModel::Error::space) refuse_unrefinable(params, m, d, words);
     return m;
 }

@@ -1,5 +1,7 @@
 #pragma once
-// A formula model (sim/formula/rule.hpp) as a description gives it in [params]:
+// A formula model (sim/formula/rule.hpp), or a kernel rule
+// (sim/kernel/run.hpp: params.kernel in place of params.formula), as a
+// description gives it in [params]:
 // the rule (chemicals, formula, accuracy, wrap, data_type, block_x,
 // ready_edges, arithmetic), the grid (width, height, depth), steps, the start (initial:
 // Ready's overlays, in order; or the arrays a Ready pattern file stores)
@@ -7,6 +9,7 @@
 // formula scene and the formula atlas.
 
 #include <algorithm>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -16,6 +19,7 @@
 #include "sim/formula/overlays.hpp"
 #include "sim/formula/run.hpp"
 #include "sim/grid.hpp"
+#include "sim/kernel/run.hpp"
 
 namespace scenes {
 
@@ -37,6 +41,27 @@ struct FormulaModel {
     int radius_y = 0, radius_z = 0;
     int operations = 0;               // row operations a cell of one step takes (Run::operations)
     double machine_code = 0;          // bytes of its chains' machine code (sim/formula/chain_kernels.hpp)
+    // A kernel rule: the whole OpenCL kernel the rule is, in place of the
+    // formula (rule.chemicals, rule.double_precision and rule.block_x say
+    // its chemicals, numbers and blocks); the registers a thread keeps for it.
+    std::optional<sim::kernel::ImageRule> kernel;
+    long long kernel_thread_bytes = 0;
+};
+
+// A run of the model's rule: its formula (sim/formula/run.hpp) or its
+// kernel (sim/kernel/run.hpp). A kernel's failure is formula::Unstable,
+// as a formula's.
+class RuleRun {
+public:
+    RuleRun(const FormulaModel& m, const std::vector<sim::Grid<double>>& start);
+    void step(int steps, int threads = 0);
+    sim::Grid<double> chemical(int i) const;
+    long long steps() const;
+    int operations() const;
+
+private:
+    std::optional<sim::formula::Run> formula_;
+    std::optional<sim::kernel::ImageRun> kernel_;
 };
 
 // [params]'s keys: the rule's, the scene's own (`scene_keys`), and every

@@ -122,8 +122,9 @@ TEST_CASE("a pattern's overlays become the description's initial, in Ready's ord
 TEST_CASE("what figgen cannot run is refused in one line that says what", "[ready]") {
     using Catch::Contains;
     CHECK_THAT(refusal(edited("ascii-f32.vti", R"(type="formula")", R"(type="kernel")", "kernel.vti")),
-               Contains("its rule is type \"kernel\": figgen runs formula rules (type=\"formula\") and Ready's "
-                        "inbuilt Gray-Scott, not full OpenCL kernels yet"));
+               Contains("no <kernel> in <rule>"));
+    CHECK_THAT(refusal(edited("ascii-f32.vti", R"(type="formula")", R"(type="neural")", "neural.vti")),
+               Contains("its rule is type \"neural\": figgen runs formula, kernel and Ready's inbuilt Gray-Scott rules"));
     CHECK_THAT(refusal(edited("ascii-f32.vti", R"(WholeExtent="0 7 0 5 0 0")", R"(WholeExtent="0 4095 0 4095 0 1")",
                               "big3d.vti")),
                Contains("its extent is 4096 x 4096 x 2: figgen runs grids of up to 4096 cells a side and 4096 x 4096 "
