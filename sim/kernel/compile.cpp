@@ -49,6 +49,11 @@ Scalar mask_scalar(Scalar s) { return bytes_of(s) == 8 ? Scalar::i64 : Scalar::i
 struct Value {
     Type type{Scalar::i32, 0};
     std::vector<int> regs;  // one a component
+    // A float product just computed, a * b, each component's a and b:
+    // added or subtracted in the same expression, it becomes one fused
+    // multiply-add, as OpenCL C's FP_CONTRACT ON lets pocl's clang make it
+    // (a * b + c, c + a * b, a * b - c, c - a * b); stored first, it stays two roundings.
+    std::vector<std::pair<int, int>> factors;
 };
 
 struct Symbol {
@@ -448,8 +453,28 @@ private:
         Value a = convert(x, t), c = convert(y, Type{t.scalar, y.type.width == 1 ? 1 : t.width});
         c = convert(c, t);
         Value out{t, {}};
-        for (int k = 0; k < t.width; ++k)
-            out.regs.push_back(one_op(ops::binary(b, t.scalar), a.regs[static_cast<std::size_t>(k)], c.regs[static_cast<std::size_t>(k)]));
+        const bool contract = is_float(t.scalar) && (b == Binary::add || b == Binary::sub);
+        for (int k = 0; k < t.width; ++k) {
+            const auto K = static_cast<std::size_t>(k);
+            if (contract && (!a.factors.empty() || !c.factors.empty())) {
+                // (a0 * a1) + c = fma(a0, a1, c); (a0 * a1) - c = fma(a0, a1, -c);
+                // a + (c0 * c1) = fma(c0, c1, a); a - (c0 * c1) = fma(-c0, c1, a)
+                const OpFn neg = ops::unary(ops::Unary::neg, t.scalar, t.scalar);
+                int p, q, r;
+                if (!a.factors.empty()) {
+                    p = a.factors[K].first, q = a.factors[K].second;
+                    r = b == Binary::sub ? one_op(neg, c.regs[K]) : c.regs[K];
+                } else {
+                    p = b == Binary::sub ? one_op(neg, c.factors[K].first) : c.factors[K].first;
+                    q = c.factors[K].second;
+                    r = a.regs[K];
+                }
+                out.regs.push_back(one_op(ops::math3(Math3::fma, t.scalar), p, q, r));
+                continue;
+            }
+            out.regs.push_back(one_op(ops::binary(b, t.scalar), a.regs[K], c.regs[K]));
+            if (is_float(t.scalar) && b == Binary::mul) out.factors.emplace_back(a.regs[K], c.regs[K]);
+        }
         return out;
     }
 

@@ -724,8 +724,18 @@ void op_switch(Ctx& c, const Op& op) {
         if (c.stop) return;
         copy_mask(c, s.fall, c.cur);
     }
+    // after it: the lanes that broke out, fell off its end, or matched no
+    // label (without a default, a switch passes those by)
     const std::uint8_t* br = mreg(c, s.broken);
-    for (int l = 0; l < c.n; ++l) fall[l] |= br[l];
+    bool has_default = false;
+    for (const SwitchNode::Segment& seg : s.segments) has_default = has_default || seg.is_default;
+    for (int l = 0; l < c.n; ++l) {
+        bool hit = has_default;
+        const std::int64_t v = sel[u ? 0 : l];
+        for (const SwitchNode::Segment& seg : s.segments)
+            for (std::int64_t label : seg.labels) hit = hit || label == v;
+        fall[l] |= br[l] | (entry[l] & !hit);
+    }
     set_mask(c, s.fall);
 }
 

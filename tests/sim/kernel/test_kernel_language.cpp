@@ -139,6 +139,10 @@ __kernel void rd_compute(__global float *a_in, __global float *a_out)
         case 3: { v = -v; break; }
         default: v *= 2.0f;
     }
+    switch (x % 7 - 3) {              // -3 .. 3: lanes that match no case pass it by
+        case 2: v += 0.25f; break;
+        case -1: v -= 0.25f; break;
+    }
     int k = 0;
     while (k * k < x) k++;
     if (y == 2) { a_out[i] = 7.0f; return; }
@@ -172,6 +176,8 @@ __kernel void rd_compute(__global float *a_in, __global float *a_out)
             case 3: v = -v; break;
             default: v *= 2.0f;
             }
+            if (x % 7 - 3 == 2) v += 0.25f;
+            if (x % 7 - 3 == -1) v -= 0.25f;
             int k = 0;
             while (k * k < x) k++;
             float want;
@@ -333,4 +339,33 @@ TEST_CASE("A kernel's text that figgen does not run is one line naming its line"
     refused("__kernel void other(__global float *a_in, __global float *a_out) {}", "no __kernel function \"rd_compute\"");
     refused(head + "    float k[2][3];\n    a_out[0] = k[1];\n}", "takes 2 indices, not 1");
     refused(head + "    a_out[0] = (float)(1 % 2.0f);\n}", "\"%\" on a float");
+}
+
+TEST_CASE("A kernel's a * b + c is one fused multiply-add, as pocl's clang contracts it", "[kernel]") {
+    // OpenCL C's FP_CONTRACT ON: within one expression a * b + c rounds once;
+    // through a variable it rounds twice. The numbers are chosen so that the two differ.
+    const char* text = R"(
+__kernel void rd_compute(__global float *a_in, __global float *b_in, __global float *a_out, __global float *b_out)
+{
+    const int x = get_global_id(0);
+    const float a = a_in[x], b = b_in[x];
+    float p = a * b;
+    a_out[x] = a * b - p;         // fma(a, b, -p): the product's rounding error
+    b_out[x] = p - a * b;         // fma(-a, b, p)
+}
+)";
+    Grid<double> a(1, 4), b(1, 4);
+    const float as[4] = {1.0f + 0x1p-12f, 3.0f + 0x1p-20f, 0.1f, 1.0f};
+    const float bs[4] = {1.0f - 0x1p-12f, 7.0f + 0x1p-21f, 0.3f, 2.0f};
+    for (int i = 0; i < 4; ++i) a(0, i) = as[i], b(0, i) = bs[i];
+    ImageRun r(rule_of(text, 2), 4, 1, 1, {a, b});
+    r.step(1, 1);
+    for (int i = 0; i < 4; ++i) {
+        const float p = as[i] * bs[i];
+        const float err = std::fma(as[i], bs[i], -p);
+        INFO("i " << i);
+        CHECK(r.chemical(0)(0, i) == static_cast<double>(err));
+        CHECK(r.chemical(1)(0, i) == static_cast<double>(std::fma(-as[i], bs[i], p)));
+    }
+    CHECK(r.chemical(0)(0, 2) != 0.0);  // 0.1f * 0.3f is not a float: its rounding error is not 0
 }
