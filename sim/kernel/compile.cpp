@@ -1424,6 +1424,7 @@ private:
             fail(f.line, "the kernel " + quoted(f.name) + " takes " + std::to_string(f.parameters.size()) +
                              " parameters; Ready passes it " + std::to_string(iface_.parameters.size()));
         block_ = 1;
+        temps_.emplace_back();  // the values bound to parameters live through the kernel
         std::map<std::string, Symbol> params;
         for (std::size_t k = 0; k < f.parameters.size(); ++k) {
             const Declaration& d = f.parameters[k].declaration;
@@ -1465,7 +1466,6 @@ private:
         frame.returned = mask();
         frames_.push_back(frame);
         scopes_.push_back(std::move(params));
-        temps_.emplace_back();
         for (const StmtPtr& s : f.body->body) statement(*s);
         release_temps();
         pop_scope();
