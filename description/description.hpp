@@ -30,6 +30,7 @@
 namespace description {
 
 struct StoredStart;  // description/stored_start.hpp
+struct StoredMesh;   // description/stored_mesh.hpp
 
 struct Animation {
     int first = 0;                      // first step shown
@@ -87,6 +88,8 @@ struct Description {
     // them (figgen render PATTERN.vti); null for a description file, which
     // cannot name a file to read.
     std::shared_ptr<const StoredStart> stored_start;
+    // The mesh of a Ready .vtu pattern (description/stored_mesh.hpp).
+    std::shared_ptr<const StoredMesh> stored_mesh;
 
     // Where `key` ("params.n", "params.plants[1].axiom") was given: its file
     // and line, the --set that gave it, or else just the file.

@@ -1,5 +1,8 @@
 #include "ready/pattern.hpp"
 
+#include "description/stored_mesh.hpp"
+#include "ready/vtu.hpp"
+
 #include <tinyxml2.h>
 
 #include <algorithm>
@@ -253,15 +256,140 @@ void layout(toml::table& root, int steps, const Grid& grid) {
     }
 }
 
+// A mesh (.vtu): Ready's MeshRD. Its cells and their chemicals are read
+// whole (ready/vtu.hpp checks every count and index); the rule becomes
+// the description of the mesh scene that runs it.
+Pattern read_mesh(const std::string& text, const std::filesystem::path& file, const ReadOptions& options,
+                  const XMLElement* vtk) {
+    const XMLElement* rd = required(vtk, "RD");
+    const XMLElement* rule_element = required(rd, "rule");
+    const std::string kind = text_attribute(rule_element, "type", "");
+    if (kind != "formula" && kind != "kernel")
+        throw Refused("its rule is type \"" + printable_short(kind) +
+                      "\": figgen runs formula and kernel rules on meshes");
+    const XMLElement* code_element = required(rule_element, kind == "kernel" ? "kernel" : "formula");
+    if (!code_element->Attribute("number_of_chemicals"))
+        throw Refused("<" + kind + "> has no number_of_chemicals");
+    const int chemicals =
+        static_cast<int>(integer(code_element, "number_of_chemicals", 1, 1, sim::formula::max_chemicals));
+    const std::string code = dedented(trimmed(code_element->GetText() ? code_element->GetText() : ""));
+    if (code.empty()) throw Refused("<" + kind + "> is empty");
+    if (!description::is_text(code)) throw Refused("<" + kind + "> is not " + std::string(description::text_allowed));
+    const std::string neighbourhood = text_attribute(rule_element, "neighborhood_type", "vertex");
+    if (neighbourhood != "vertex" && neighbourhood != "edge" && neighbourhood != "face")
+        throw Refused("<rule neighborhood_type> is \"" + printable_short(neighbourhood) + "\": Ready's are vertex, edge and face");
+
+    vtu::UnstructuredGrid grid;
+    try {
+        grid = vtu::read_vtu(text);
+    } catch (const vtu::DataError& e) {
+        throw Refused(e.what());
+    }
+    auto stored = std::make_shared<description::StoredMesh>();
+    stored->chemical_count = chemicals;
+    for (int c = 0; c < chemicals; ++c) {
+        const std::string name = sim::formula::chemical_name(c);
+        const vtu::CellArray* found = nullptr;
+        for (const vtu::CellArray& a : grid.cell_data)
+            if (a.name == name && a.components == 1) found = &a;
+        if (!found)
+            throw Refused("its <CellData> has no array \"" + name + "\" of one component: the rule has " +
+                          std::to_string(chemicals) + " chemicals");
+        stored->float64 = found->float64;
+        stored->chemicals.push_back(found->values);
+    }
+    if (grid.mesh.cell_count() == 0) throw Refused("its mesh has no cells");
+    stored->points = std::move(grid.mesh.points);
+    stored->offsets = std::move(grid.mesh.offsets);
+    stored->point_ids = std::move(grid.mesh.point_ids);
+    stored->types = std::move(grid.mesh.types);
+    stored->faces = std::move(grid.mesh.faces);
+    stored->face_offsets = std::move(grid.mesh.face_offsets);
+
+    Pattern out;
+    out.id = plain_id(file.stem().string());
+    const std::string name = file.filename().string();
+    const auto origin = [&](const std::string& key, const std::string& where) {
+        out.origins[key] = printable_short(name, 120) + (where.empty() ? "" : " " + where);
+    };
+    const int steps = options.steps.value_or(1000);
+    toml::table root;
+    root.insert("id", out.id);
+    const std::string rule_name = text_attribute(rule_element, "name", "");
+    root.insert("title", rule_name.empty() ? out.id : as_text(rule_name, 120));
+    origin("description.title", "<rule name>");
+    root.insert("source", "Ready's pattern " + printable_short(name, 120) + " (GollyGang/Ready)");
+    root.insert("scene", "mesh");
+    root.insert("seed", 1);
+    const std::string caption = plain_text(child(rd, "description") ? child(rd, "description")->GetText() : "");
+    if (!caption.empty()) root.insert("caption", as_text(caption, 64 * 1024));
+    origin("description.caption", "<description>");
+    toml::table params;
+    params.insert("chemicals", chemicals);
+    origin("params.chemicals", "<" + kind + " number_of_chemicals>");
+    params.insert(kind, code + "\n");
+    origin("params." + kind, "<" + kind + ">");
+    params.insert("data_type", stored->float64 ? "double" : "float");
+    origin("params.data_type", "<DataArray type>");
+    params.insert("neighborhood", neighbourhood);
+    origin("params.neighborhood", "<rule neighborhood_type>");
+    params.insert("steps", steps);
+    // Ready regenerates a mesh's start from its overlays only where the file
+    // says apply_when_loading="true" (RD_XMLUnstructuredGridReader)
+    const XMLElement* generator = child(rd, "initial_pattern_generator");
+    if (generator && text_attribute(generator, "apply_when_loading", "false") == "true") {
+        params.insert("zero_first", text_attribute(generator, "zero_first", "true") != "false");
+        origin("params.zero_first", "<initial_pattern_generator zero_first>");
+        toml::array initial;
+        std::set<std::string> from_overlays;
+        int n = 0;
+        for (const XMLElement* o = generator->FirstChildElement("overlay"); o; o = o->NextSiblingElement("overlay")) {
+            ++n;
+            if (auto t = overlay(o, chemicals, from_overlays)) {
+                origin("params.initial[" + std::to_string(initial.size()) + "]",
+                       "<overlay> " + std::to_string(n) + " of <initial_pattern_generator>");
+                initial.push_back(std::move(*t));
+            }
+        }
+        if (!initial.empty()) params.insert("initial", std::move(initial));
+    }
+    for (const XMLElement* e = rule_element->FirstChildElement("param"); e; e = e->NextSiblingElement("param")) {
+        const std::string param = text_attribute(e, "name", "");
+        const std::string where = "<param name=\"" + printable_short(param, 40) + "\">";
+        if (kind == "kernel") throw Refused(where + ": a kernel rule's numbers are in its kernel");
+        if (const auto clash = sim::formula::parameter_name_clash(param, chemicals))
+            throw Refused(where + ": its name is " + *clash + "; " + sim::formula::parameter_name_allowed);
+        if (params.contains(param)) throw Refused(where + " is given twice");
+        params.insert(param, as_float(number(e->GetText(), where)));  // Ready holds a parameter as a float
+        origin("params." + param, where);
+    }
+    root.insert("params", std::move(params));
+    root.insert("style", style_of(child(rd, "render_settings"), chemicals));
+    origin("style", "<render_settings>");
+    std::vector<int> panels = {0, steps / 2, steps};
+    panels.erase(std::unique(panels.begin(), panels.end()), panels.end());
+    toml::array panel_list;
+    for (int k : panels) panel_list.push_back(k);
+    root.insert("figure", toml::table{{"panels", std::move(panel_list)},
+                                      {"size", toml::array{330 * static_cast<int>(panels.size()) + 90, 400}}});
+    if (steps > 0)
+        root.insert("animation", toml::table{{"steps", toml::array{0, steps}},
+                                             {"stride", std::max(1, steps / 100)},
+                                             {"fps", 25},
+                                             {"size", toml::array{560, 480}}});
+    out.description = std::move(root);
+    out.mesh = std::move(stored);
+    (void)options;
+    return out;
+}
+
 Pattern read(const std::string& text, const std::filesystem::path& file, const ReadOptions& options) {
     Parsed p;
     parse(text, p);
     const XMLElement* vtk = p.xml.FirstChildElement("VTKFile");
     if (!vtk) throw Refused("no <VTKFile>: not a VTK XML file");
     const std::string type = text_attribute(vtk, "type", "");
-    if (type == "UnstructuredGrid")
-        throw Refused("it is a mesh (<VTKFile type=\"UnstructuredGrid\">): figgen runs Ready's images (ImageData), "
-                      "not meshes yet");
+    if (type == "UnstructuredGrid") return read_mesh(text, file, options, vtk);
     if (type != "ImageData")
         throw Refused("<VTKFile type> is \"" + printable_short(type) + "\": figgen runs Ready's images (ImageData)");
     const XMLElement* rd = required(vtk, "RD");
@@ -460,6 +588,7 @@ description::Description load_pattern(const std::filesystem::path& file, const s
     description::Description d =
         description::description_from_table(std::move(pattern.description), file, std::move(pattern.origins), overrides, seed);
     d.stored_start = pattern.start;
+    d.stored_mesh = pattern.mesh;
     return d;
 }
 

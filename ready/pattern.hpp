@@ -26,6 +26,7 @@
 
 #include "description/description.hpp"
 #include "description/stored_start.hpp"
+#include "description/stored_mesh.hpp"
 
 namespace ready {
 
@@ -45,6 +46,8 @@ struct Pattern {
     // start from them (the description's overlays make the start).
     std::shared_ptr<const description::StoredStart> start;
     bool starts_from_arrays = false;  // whether Ready starts from the stored arrays
+    // A mesh pattern's mesh and the chemicals its cells hold (read whole).
+    std::shared_ptr<const description::StoredMesh> mesh;
 };
 
 // The largest pattern file read; a larger one is refused before it is parsed.

@@ -29,6 +29,7 @@
 #include "scenes/helpers/field_stats.hpp"
 #include "scenes/helpers/figure_caption.hpp"
 #include "scenes/helpers/formula_model.hpp"
+#include "scenes/helpers/formula_style.hpp"
 #include "scenes/helpers/plot_page.hpp"
 #include "scenes/helpers/step_runner.hpp"
 #include "scenes/scene.hpp"
@@ -38,65 +39,6 @@ namespace {
 
 namespace formula = sim::formula;
 
-// How chemical c is drawn unless [style] says otherwise: one chemical shown
-// through viridis, or several stacked in Reds, Blues, Greens, Purples.
-FieldSpec default_spec(const std::vector<int>& shown, int c) {
-    static const char* stacked[] = {"Reds", "Blues", "Greens", "Purples"};
-    const auto at = std::find(shown.begin(), shown.end(), c);
-    const std::size_t place = at == shown.end() ? 0 : static_cast<std::size_t>(at - shown.begin());
-    return shown.size() == 1 ? FieldSpec{render::colormap("viridis"), {}, {}, 1.0f, render::Sampling::smooth}
-                             : FieldSpec{render::colormap(stacked[place]), {}, {}, 0.7f, render::Sampling::smooth};
-}
-
-struct Style {
-    std::vector<std::string> show{"a"};
-    std::vector<int> shown{0};
-    bool upper = false;
-    double contour_level = 0.25;  // a 3-D grid's isosurface: Ready's default level
-    bool contour_below = false;   // the isosurface closes the values below the level
-    std::vector<FieldSpec> chemicals;  // each chemical's drawing, read and checked; those shown are drawn
-};
-
-Style style_defaults(int chemicals) {
-    Style s;
-    for (int c = 0; c < chemicals; ++c) s.chemicals.push_back(default_spec(s.shown, c));
-    return s;
-}
-
-// The rule's chemicals as the description gives them: a drawing for each.
-Schema<Style> style_schema(int chemicals) {
-    Schema<Style> s;
-    s.key(
-        {"show", "the chemicals each panel shows, stacked in this order, e.g. [\"a\", \"b\"]", "a list of strings",
-         "one to four chemicals of the rule"},
-        [chemicals](Settings& style, const std::string& key, Style& v) {
-            v.show = style.texts(key, v.show);
-            v.shown.clear();
-            for (const std::string& name : v.show) v.shown.push_back(chemical_index(style, key, name, chemicals, true));
-            if (v.shown.empty() || v.shown.size() > 4) style.refuse(key, "one to four chemicals, e.g. [\"a\"]");
-            // The drawings' defaults follow what is shown.
-            for (int c = 0; c < chemicals; ++c) v.chemicals[static_cast<std::size_t>(c)] = default_spec(v.shown, c);
-        },
-        [](const Style& d) { return nlohmann::json(d.show); });
-    s.choice("origin", &Style::upper, {{"lower", false}, {"upper", true}},
-             "where y = 0 is drawn: lower (Ready's, y up) or upper (the book's arrays, row 0 on top)");
-    s.number("contour_level", &Style::contour_level,
-             "a 3-D grid's isosurface: the first chemical shown at this value (Ready's contour_level)", -1e30, 1e30);
-    s.choice("contour_inside", &Style::contour_below, {{"above", false}, {"below", true}},
-             "the region a 3-D grid's isosurface closes (capped on the grid's faces): the values above "
-             "contour_level, or below it (Ready's invert_contour_cap)");
-    for (int c = 0; c < chemicals; ++c)
-        s.part_at(
-            field_spec_schema(), [c](auto& v) -> auto& { return v.chemicals[static_cast<std::size_t>(c)]; },
-            formula::chemical_name(c) + "_");
-    return s;
-}
-
-std::vector<FieldSpec> shown_specs(const Style& s) {
-    std::vector<FieldSpec> specs;
-    for (int c : s.shown) specs.push_back(s.chemicals[static_cast<std::size_t>(c)]);
-    return specs;
-}
 
 // The grid as drawn with y = 0 at the bottom (Ready's y runs up the
 // screen; a panel's row 0 is its top).
@@ -112,9 +54,9 @@ class FormulaScene : public SceneBase {
 public:
     FormulaScene(const Description& d, const SceneOptions& options)
         : SceneBase(d, options, formula_param_keys(d),
-                    style_schema(formula_chemicals(d)).keys(style_defaults(formula_chemicals(d)))),
+                    formula_style_schema(formula_chemicals(d)).keys(formula_style_defaults(formula_chemicals(d)))),
           m_(read_formula_model(params_, d)),
-          s_(style_schema(m_.rule.chemicals).read(style_, style_defaults(m_.rule.chemicals))),
+          s_(formula_style_schema(m_.rule.chemicals).read(style_, formula_style_defaults(m_.rule.chemicals))),
           specs_(shown_specs(s_)) {
         if (d.panels.empty()) throw SettingError("figure.panels", "[]", "the steps to show, e.g. [0, 500, 1000]");
         if (d.panels.back() > m_.steps)
@@ -850,7 +792,7 @@ private:
     }
 
     const FormulaModel m_;
-    const Style s_;
+    const FormulaStyle s_;
     const std::vector<FieldSpec> specs_;  // of the chemicals shown
     const int dimensions_ = formula::dimensionality(m_.width, m_.height, m_.depth);
 };

@@ -9,11 +9,8 @@ namespace app {
 description::Description load_target(const std::string& target, const std::vector<std::string>& overrides,
                                      std::optional<std::uint64_t> seed, bool with_arrays) {
     switch (ready::file_kind(target)) {
-    case ready::FileKind::image: return ready::load_pattern(target, overrides, seed, with_arrays);
-    case ready::FileKind::mesh:
-        throw description::FileError(description::printable(target) +
-                                      ": a Ready mesh pattern (.vtu); figgen runs Ready's image patterns (.vti), "
-                                      "not meshes yet");
+    case ready::FileKind::image:
+    case ready::FileKind::mesh: return ready::load_pattern(target, overrides, seed, with_arrays);
     case ready::FileKind::none: break;
     }
     return description::load_description(description::resolve_figure(target), overrides, seed);

@@ -243,7 +243,10 @@ const Schema<ModelValues> model_schema = [] {
     rule.key({"formula", "the rule: Ready's formula language, a part of OpenCL C (docs/formulas.md)", "text",
               "the rule's formula, e.g. \"delta_a = laplacian_a;\"", ""},
              [](Settings& s, const std::string& key, R& r) {
-                 if (s.has("kernel")) return;  // the kernel's reader refuses both
+                 if (s.has("kernel")) {
+                     if (s.has(key)) (void)s.text(key, "");  // text, or refused naming it
+                     return;  // the kernel's reader refuses both
+                 }
                  r.code = s.text(key, r.code);
                  if (r.code.empty()) s.refuse(key, "\"\"", "the rule's formula, e.g. \"delta_a = laplacian_a;\"");
              });
@@ -300,9 +303,9 @@ const Schema<ModelValues> model_schema = [] {
            "text", "a __kernel void rd_compute(...) in the OpenCL C figgen reads (docs/kernels.md)"},
           [](Settings& section, const std::string& key, M& v) {
               if (!section.has(key)) return;
-              if (section.has("formula")) section.refuse(key, "no kernel where params.formula is given: a rule is one or the other");
               sim::kernel::ImageRule k;
-              k.text = section.text(key, "");
+              k.text = section.text(key, "");  // text, or refused naming it
+              if (section.has("formula")) section.refuse(key, "no kernel where params.formula is given: a rule is one or the other");
               if (k.text.empty()) section.refuse(key, "\"\"", "a __kernel void rd_compute(...)");
               v.model.kernel = k;
           });
@@ -427,6 +430,22 @@ void read_start(Settings& params, const Description& d, ModelValues& values) {
             params.refuse("depth", "the pattern's " + std::to_string(stored->depth) + ", its stored arrays'");
     }
 }
+
+}  // namespace
+
+std::vector<formula::Overlay> read_overlays(const std::vector<toml::table>& initial, const formula::Rule& rule) {
+    std::vector<formula::Overlay> out;
+    for (std::size_t i = 0; i < initial.size(); ++i) {
+        OverlayValues overlay;
+        overlay.where = "params.initial[" + std::to_string(i) + "]";
+        overlay.rule = &rule;
+        Settings s(overlay.where, initial[i], overlay_schema.keys());
+        out.push_back(overlay_schema.read(s, overlay).overlay);
+    }
+    return out;
+}
+
+namespace {
 
 // A kernel rule: its kernel compiled for the grid (refusals name the
 // kernel's line); none of the formula's keys that it has no use for.

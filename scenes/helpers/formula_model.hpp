@@ -105,6 +105,10 @@ inline double formula_ghost_rows(const FormulaModel& m) {
 std::vector<sim::Grid<double>> formula_start(const FormulaModel& m, const Description& d,
                                              std::array<double, 3> offset = {0, 0, 0});
 
+// The overlays of params.initial (a list of tables), read for `rule`'s
+// chemicals and parameters: the mesh scene's start, as a formula model's.
+std::vector<sim::formula::Overlay> read_overlays(const std::vector<toml::table>& initial, const sim::formula::Rule& rule);
+
 // A 1-D run's space-time diagram keeps the row of every stride-th step up
 // to `last` (and the last): the least stride that keeps at most `rows`.
 inline int space_time_stride(int last, int rows) { return std::max(1, (last + rows - 1) / rows); }

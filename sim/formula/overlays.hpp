@@ -73,4 +73,13 @@ void apply_pattern(const Pattern& pattern, std::vector<Grid<double>>& chemicals,
                    const std::vector<std::pair<std::string, double>>& parameters, bool double_precision, Random& rng,
                    std::array<double, 3> offset = {0, 0, 0});
 
+// The same on a mesh's cells (Ready's MeshRD): each cell sampled at its
+// centre, the mean of its points, from the mesh's least corner; the arena
+// is the mesh's bounds, `extent` along each axis, and an axis of no extent
+// is not tested. A pixel shape holds no cell of a mesh.
+void apply_pattern_to_cells(const Pattern& pattern, std::vector<std::vector<double>>& chemicals,
+                            const std::vector<std::array<double, 3>>& centres, std::array<double, 3> extent,
+                            const std::vector<std::pair<std::string, double>>& parameters, bool double_precision,
+                            Random& rng);
+
 }  // namespace sim::formula

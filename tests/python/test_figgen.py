@@ -482,7 +482,7 @@ def test_a_damaged_pattern_is_a_file_error_with_the_commands_words(tmp_path):
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
     mesh = tmp_path / "bunny.vtu"
     mesh.write_text("<VTKFile type='UnstructuredGrid'/>")
-    with pytest.raises(figgen.FileError, match="not meshes yet"):
+    with pytest.raises(figgen.FileError, match="no <RD> in <VTKFile>"):
         figgen.describe(mesh)
 
 

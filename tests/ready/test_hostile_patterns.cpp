@@ -206,10 +206,10 @@ TEST_CASE("plain words: describe of a pattern, any case of .vti, meshes, long id
     // A mesh, a file that is not a pattern, a kind not run yet: said so.
     const fs::path mesh = testkit::fresh_dir("hostile-mesh") / "bunny.vtu";
     testkit::spill(mesh, "<VTKFile type=\"UnstructuredGrid\"></VTKFile>");
-    CHECK_THAT(refused("render " + mesh.string()), Contains("bunny.vtu: a Ready mesh pattern (.vtu); figgen runs Ready's image patterns"));
+    CHECK_THAT(refused("render " + mesh.string()), Contains("bunny.vtu: no <RD> in <VTKFile>"));
     const auto mesh_described = testkit::figgen("describe " + mesh.string());
     CHECK(mesh_described.status == 2);
-    CHECK_THAT(mesh_described.output, Contains("not meshes yet"));
+    CHECK_THAT(mesh_described.output, Contains("no <RD> in <VTKFile>"));
     const fs::path text = testkit::fresh_dir("hostile-text") / "notes.vti";
     testkit::spill(text, "just some notes\n");
     CHECK_THAT(refused("render " + text.string()), Contains("notes.vti: "));

@@ -130,7 +130,7 @@ TEST_CASE("what figgen cannot run is refused in one line that says what", "[read
                Contains("its extent is 4096 x 4096 x 2: figgen runs grids of up to 4096 cells a side and 4096 x 4096 "
                         "cells in all"));
     CHECK_THAT(refusal(edited("ascii-f32.vti", R"(type="ImageData")", R"(type="UnstructuredGrid")", "mesh.vti")),
-               Contains("not meshes"));
+               Contains("no <UnstructuredGrid> in <VTKFile>"));
     CHECK_THAT(refusal(edited("binary-f32.vti", R"(byte_order="LittleEndian")", R"(byte_order="BigEndian")", "big.vti")),
                Contains("figgen reads LittleEndian"));
     CHECK_THAT(refusal(edited("ascii-f32.vti", R"(Name="b")", R"(Name="q")", "missing.vti")),
