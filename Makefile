@@ -84,7 +84,7 @@ test-sanitize: deps
 # under it to ready_pattern's seeds.
 FUZZ_BUILD     ?= build-fuzz
 FUZZ_SECONDS   ?= 600
-FUZZ_TARGETS   ?= description set snowflake_rule lsystem output_name parts caption_text vtk_arrays ready_pattern
+FUZZ_TARGETS   ?= description set snowflake_rule lsystem output_name parts caption_text vtk_arrays ready_pattern kernel mesh
 READY_PATTERNS ?=
 fuzz:
 	@scripts/deps.sh fuzz

@@ -1,6 +1,7 @@
 #include "fuzz/fuzz_entries.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -18,6 +19,9 @@
 #include "scenes/helpers/figure_caption.hpp"
 #include "scenes/scene.hpp"
 #include "sim/formula/run.hpp"
+#include "sim/kernel/run.hpp"
+#include "sim/mesh/mesh.hpp"
+#include "ready/vtu.hpp"
 #include "sim/lsystem.hpp"
 #include "sim/snowflake.hpp"
 #include "sim/turtle.hpp"
@@ -332,6 +336,86 @@ Outcome caption_text(const std::uint8_t* data, std::size_t size) {
     }
 }
 
+Outcome kernel(const std::uint8_t* data, std::size_t size) {
+    // The first byte picks the run: bit 0 two chemicals, bit 1 doubles,
+    // bit 2 blocks of 4, bits 3-4 the grid (16, 8 x 8, 4 x 4 x 4, a mesh
+    // of 6 triangles round a point); the rest is the kernel.
+    const std::uint8_t pick = size > 0 ? data[0] : 0;
+    const std::string text(text_of(data + (size > 0), size > 0 ? size - 1 : 0));
+    const int chemicals = 1 + (pick & 1);
+    const bool float64 = (pick & 2) != 0;
+    const int shape = (pick >> 3) & 3;
+    try {
+        if (shape == 3) {
+            // six triangles round the origin, each a neighbour of the two beside it
+            sim::mesh::Mesh m;
+            m.points = {0, 0, 0};
+            for (int k = 0; k < 6; ++k) {
+                m.points.push_back(std::cos(k * M_PI / 3));
+                m.points.push_back(std::sin(k * M_PI / 3));
+                m.points.push_back(0);
+            }
+            for (int k = 0; k < 6; ++k) {
+                m.point_ids.insert(m.point_ids.end(), {0, 1 + k, 1 + (k + 1) % 6});
+                m.offsets.push_back(static_cast<std::int64_t>(m.point_ids.size()));
+                m.types.push_back(sim::mesh::cell_type::triangle);
+            }
+            const sim::mesh::Neighbours n = sim::mesh::neighbours(m, sim::mesh::Kind::edge);
+            sim::kernel::MeshRule rule{text, chemicals, float64, 1 << 12};
+            std::vector<std::vector<double>> start(static_cast<std::size_t>(chemicals), {0.1, 0.5, 0.9, 0.3, 0.7, 0.2});
+            sim::kernel::MeshRun run(rule, 6, n.max_neighbors, n.indices, n.weights, start);
+            try {
+                run.step(2, 1);
+            } catch (const sim::kernel::KernelError&) {
+            }
+            (void)run.chemical(0);
+            return Outcome::accepted;
+        }
+        sim::kernel::ImageRule rule;
+        rule.text = text;
+        rule.chemicals = chemicals;
+        rule.float64 = float64;
+        rule.block[0] = (pick & 4) ? 4 : 1;
+        rule.trip_budget = 1 << 12;
+        const int w = shape == 0 ? 16 : shape == 1 ? 8 : 4, h = shape == 0 ? 1 : shape == 1 ? 8 : 4, d = shape == 2 ? 4 : 1;
+        std::vector<sim::Grid<double>> start;
+        for (int c = 0; c < chemicals; ++c) {
+            sim::Grid<double> g(h * d, w);
+            for (std::size_t i = 0; i < g.size(); ++i) g.data()[i] = 0.1 * static_cast<double>((i * static_cast<std::size_t>(c + 3)) % 11);
+            start.push_back(std::move(g));
+        }
+        sim::kernel::ImageRun run(rule, w, h, d, start);
+        // a fault of the run (an index out of range, a division by zero, a
+        // number gone infinite) stops it with its own error: no bug
+        try {
+            run.step(2, 1 + (pick >> 5) % 2);
+        } catch (const sim::kernel::KernelError&) {
+        }
+        for (int c = 0; c < chemicals; ++c) (void)run.chemical(c);
+    } catch (const sim::kernel::KernelError&) {
+        return Outcome::refused;
+    }
+    return Outcome::accepted;
+}
+
+Outcome mesh(const std::uint8_t* data, std::size_t size) {
+    try {
+        const ready::vtu::UnstructuredGrid g = ready::vtu::read_vtu(text_of(data, size));
+        // what a read mesh is used for: its neighbours by each kind, and back out
+        for (const sim::mesh::Kind kind : {sim::mesh::Kind::vertex, sim::mesh::Kind::edge, sim::mesh::Kind::face}) {
+            try {
+                (void)sim::mesh::neighbours(g.mesh, kind);
+            } catch (const std::invalid_argument&) {
+                return Outcome::refused;  // mixed cell types: Ready refuses them too
+            }
+        }
+        (void)ready::vtu::write_vtu(g);
+    } catch (const ready::vtu::DataError&) {
+        return Outcome::refused;
+    }
+    return Outcome::accepted;
+}
+
 const std::vector<Target>& targets() {
     static const std::vector<Target> all = {
         {"description", description},
@@ -344,6 +428,8 @@ const std::vector<Target>& targets() {
         {"caption_text", caption_text},
         {"vtk_arrays", vtk_arrays},
         {"ready_pattern", ready_pattern},
+        {"kernel", kernel},
+        {"mesh", mesh},
     };
     return all;
 }

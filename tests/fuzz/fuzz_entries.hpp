@@ -83,6 +83,16 @@ Outcome vtk_arrays(const std::uint8_t* data, std::size_t size);
 // description::UsageError in one line.
 Outcome ready_pattern(const std::uint8_t* data, std::size_t size);
 
+// A kernel rule (sim/kernel/): the first byte picks the run (chemicals,
+// numbers, blocks, a 1-D, 2-D or 3-D grid, or a small mesh), the rest is
+// the kernel. An accepted kernel runs 2 steps (a fault it meets stops it
+// with its own error); refused: sim::kernel::KernelError.
+Outcome kernel(const std::uint8_t* data, std::size_t size);
+// A mesh file (ready/vtu.hpp): read, its neighbours by vertex, edge and
+// face, and written back. Refused: ready::vtu::DataError, or a mesh of
+// more than one cell type (std::invalid_argument, as Ready refuses it).
+Outcome mesh(const std::uint8_t* data, std::size_t size);
+
 struct Target {
     const char* name;  // the folder under tests/fuzz/corpus/ and regressions/
     Outcome (*entry)(const std::uint8_t*, std::size_t);
