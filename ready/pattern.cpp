@@ -256,6 +256,25 @@ void layout(toml::table& root, int steps, const Grid& grid) {
     }
 }
 
+// What every pattern's description begins with: its id, title (the
+// rule's name), source, scene, seed and caption (Ready's description).
+template <class Origin>
+toml::table description_head(const Pattern& out, const XMLElement* rd, const XMLElement* rule_element,
+                             const std::string& name, const char* scene, const Origin& origin) {
+    toml::table root;
+    root.insert("id", out.id);
+    const std::string rule_name = text_attribute(rule_element, "name", "");
+    root.insert("title", rule_name.empty() ? out.id : as_text(rule_name, 120));
+    origin("description.title", "<rule name>");
+    root.insert("source", "Ready's pattern " + printable_short(name, 120) + " (GollyGang/Ready)");
+    root.insert("scene", scene);
+    root.insert("seed", 1);
+    const std::string caption = plain_text(child(rd, "description") ? child(rd, "description")->GetText() : "");
+    if (!caption.empty()) root.insert("caption", as_text(caption, 64 * 1024));
+    origin("description.caption", "<description>");
+    return root;
+}
+
 // A mesh (.vtu): Ready's MeshRD. Its cells and their chemicals are read
 // whole (ready/vtu.hpp checks every count and index); the rule becomes
 // the description of the mesh scene that runs it.
@@ -313,17 +332,7 @@ Pattern read_mesh(const std::string& text, const std::filesystem::path& file, co
         out.origins[key] = printable_short(name, 120) + (where.empty() ? "" : " " + where);
     };
     const int steps = options.steps.value_or(1000);
-    toml::table root;
-    root.insert("id", out.id);
-    const std::string rule_name = text_attribute(rule_element, "name", "");
-    root.insert("title", rule_name.empty() ? out.id : as_text(rule_name, 120));
-    origin("description.title", "<rule name>");
-    root.insert("source", "Ready's pattern " + printable_short(name, 120) + " (GollyGang/Ready)");
-    root.insert("scene", "mesh");
-    root.insert("seed", 1);
-    const std::string caption = plain_text(child(rd, "description") ? child(rd, "description")->GetText() : "");
-    if (!caption.empty()) root.insert("caption", as_text(caption, 64 * 1024));
-    origin("description.caption", "<description>");
+    toml::table root = description_head(out, rd, rule_element, name, "mesh", origin);
     toml::table params;
     params.insert("chemicals", chemicals);
     origin("params.chemicals", "<" + kind + " number_of_chemicals>");
@@ -421,17 +430,7 @@ Pattern read(const std::string& text, const std::filesystem::path& file, const R
     }
 
     const int steps = options.steps.value_or(1000);
-    toml::table root;
-    root.insert("id", out.id);
-    const std::string rule_name = text_attribute(rule_element, "name", "");
-    root.insert("title", rule_name.empty() ? out.id : as_text(rule_name, 120));
-    origin("description.title", "<rule name>");
-    root.insert("source", "Ready's pattern " + printable_short(name, 120) + " (GollyGang/Ready)");
-    root.insert("scene", "formula");
-    root.insert("seed", 1);
-    const std::string caption = plain_text(child(rd, "description") ? child(rd, "description")->GetText() : "");
-    if (!caption.empty()) root.insert("caption", as_text(caption, 64 * 1024));
-    origin("description.caption", "<description>");
+    toml::table root = description_head(out, rd, rule_element, name, "formula", origin);
 
     toml::table params;
     params.insert("chemicals", rule.chemicals);
