@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
 
 #include "description/catalog.hpp"
 #include "description/stored_mesh.hpp"
@@ -223,11 +225,7 @@ public:
         }
         // compiled once here: a kernel figgen cannot run is refused before anything runs
         try {
-            const std::vector<std::vector<double>> zero(static_cast<std::size_t>(m_.chemicals),
-                                                        std::vector<double>(cells(), 0.0));
-            const sim::kernel::MeshRun probe(rule_, cells(), neighbours_.max_neighbors, neighbours_.indices,
-                                             neighbours_.weights, zero);
-            operations_ = probe.operations();
+            operations_ = sim::kernel::mesh_kernel_operations(rule_, cells(), neighbours_.max_neighbors);
         } catch (const sim::kernel::KernelError& e) {
             if (!m_.kernel.empty()) throw SettingError("params.kernel", "...", e.what());
             throw SettingError("params.formula", "...", said_of_formula(e.what(), formula_line_));
@@ -401,9 +399,16 @@ private:
         const std::vector<std::string> names = catalog_mesh_names();
         if (std::find(names.begin(), names.end(), name) == names.end())
             params_.refuse("mesh", "one of figgen's meshes: " + catalog_meshes_said());
+        // read once a process: a description's scene is read again for
+        // every check (figgen describe, the estimates, the render)
+        static std::mutex lock;
+        static std::map<std::string, std::shared_ptr<const description::StoredMesh>> read;
+        const std::lock_guard<std::mutex> held(lock);
+        if (const auto known = read.find(name); known != read.end()) return known->second;
         try {
             const ready::Pattern p = ready::read_pattern(description::catalog_dir() / "meshes" / (name + ".vtu"));
             if (!p.mesh) params_.refuse("mesh", "one of figgen's meshes: " + catalog_meshes_said());
+            read[name] = p.mesh;
             return p.mesh;
         } catch (const description::FileError& e) {
             params_.refuse("mesh", "...", e.what());

@@ -333,11 +333,11 @@ std::string mesh_formula_kernel(const std::string& formula, int chemicals, bool 
     return k;
 }
 
-MeshRun::MeshRun(const MeshRule& rule, long long cells, int max_neighbors, const std::vector<int>& indices,
-                 const std::vector<float>& weights, const std::vector<std::vector<double>>& start) {
-    if (max_neighbors < 0 || static_cast<long long>(indices.size()) != cells * max_neighbors ||
-        indices.size() != weights.size())
-        throw std::invalid_argument("a mesh run's neighbour lists are cells x max_neighbors");
+namespace {
+
+// A mesh kernel's parameters: the chemicals' buffers, then the neighbour
+// indices, their weights and max_neighbors.
+std::vector<Extra> mesh_extras(const std::vector<int>& indices, const std::vector<float>& weights, int max_neighbors) {
     std::vector<Extra> extras(3);
     extras[0].kind = Extra::Kind::ints;
     extras[0].ints.assign(indices.begin(), indices.end());
@@ -345,9 +345,33 @@ MeshRun::MeshRun(const MeshRule& rule, long long cells, int max_neighbors, const
     extras[1].floats = weights;
     extras[2].kind = Extra::Kind::value;
     extras[2].value = max_neighbors;
+    return extras;
+}
+
+}  // namespace
+
+int mesh_kernel_operations(const MeshRule& rule, long long cells, int max_neighbors) {
+    Interface iface;
+    iface.global[0] = cells;
+    iface.trip_budget = rule.trip_budget;
+    const Scalar s = rule.float64 ? Scalar::f64 : Scalar::f32;
+    for (int io = 0; io < 2; ++io)
+        for (int c = 0; c < rule.chemicals; ++c)
+            iface.parameters.push_back(Binding{io == 0 ? Binding::Kind::input : Binding::Kind::output, s, 0});
+    iface.parameters.push_back(Binding{Binding::Kind::input, Scalar::i32, 0});
+    iface.parameters.push_back(Binding{Binding::Kind::input, Scalar::f32, 0});
+    iface.parameters.push_back(Binding{Binding::Kind::value, Scalar::i32, max_neighbors});
+    return compile(parse(rule.text), iface).operations;
+}
+
+MeshRun::MeshRun(const MeshRule& rule, long long cells, int max_neighbors, const std::vector<int>& indices,
+                 const std::vector<float>& weights, const std::vector<std::vector<double>>& start) {
+    if (max_neighbors < 0 || static_cast<long long>(indices.size()) != cells * max_neighbors ||
+        indices.size() != weights.size())
+        throw std::invalid_argument("a mesh run's neighbour lists are cells x max_neighbors");
     const long long global[3] = {cells, 1, 1};
-    run_ = std::make_unique<KernelRun>(rule.text, rule.chemicals, rule.float64, cells, global, std::move(extras), start,
-                                       rule.trip_budget);
+    run_ = std::make_unique<KernelRun>(rule.text, rule.chemicals, rule.float64, cells, global,
+                                       mesh_extras(indices, weights, max_neighbors), start, rule.trip_budget);
 }
 
 }  // namespace sim::kernel

@@ -137,6 +137,11 @@ private:
     std::unique_ptr<KernelRun> run_;
 };
 
+// The operations of `rule`'s kernel compiled for a mesh of `cells` cells
+// (a MeshRun's operations()), without its buffers: KernelError for a
+// kernel figgen cannot run, before anything runs.
+int mesh_kernel_operations(const MeshRule& rule, long long cells, int max_neighbors);
+
 // Bytes a mesh run keeps: two buffers a chemical, the stamps, the
 // neighbour lists.
 long long mesh_run_bytes(const MeshRule& rule, long long cells, int max_neighbors);
