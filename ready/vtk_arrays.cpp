@@ -303,7 +303,9 @@ namespace {
 
 // The least and most values of `type`, as int64 (UInt64's most: int64's, all figgen keeps).
 std::int64_t least(IntegerType t) {
-    return t.is_signed ? -(std::int64_t{1} << (8 * t.bytes - 1)) : 0;
+    if (!t.is_signed) return 0;
+    if (t.bytes == 8) return std::numeric_limits<std::int64_t>::min();
+    return -(std::int64_t{1} << (8 * t.bytes - 1));
 }
 std::int64_t most(IntegerType t) {
     if (t.bytes == 8) return std::numeric_limits<std::int64_t>::max();

@@ -264,10 +264,10 @@ void read_cells(const XMLElement* cells_element, Arrays& arrays, std::uint64_t c
     const std::vector<std::int64_t> ends = arrays.integers(offsets_array, offsets_name, cells);
     std::int64_t before = 0;
     for (std::size_t c = 0; c < ends.size(); ++c) {
-        const std::int64_t n = ends[c] - before;  // no wrap: before >= 0 and ends[c] is int64
         if (ends[c] < before)
             throw DataError(offsets_name + " gives cell " + std::to_string(c) + " the end " + std::to_string(ends[c]) +
                             ", before the previous cell's " + std::to_string(before) + ": the offsets must increase");
+        const std::int64_t n = ends[c] - before;  // no wrap: ends[c] >= before >= 0
         const auto [least, exact] = points_of_type(types[c]);
         if (n < least || n > sim::mesh::max_cell_points || (exact && n != least))
             throw DataError(offsets_name + " gives cell " + std::to_string(c) + " (" + type_name(types[c]) + ") " +
