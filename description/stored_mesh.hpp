@@ -12,6 +12,7 @@ namespace description {
 struct StoredMesh {
     // As sim::mesh::Mesh holds them (sim/mesh/mesh.hpp), checked by the reader.
     std::vector<double> points;            // x, y, z of each point
+    bool points_float64 = false;           // the file's points are Float64 (else Float32)
     std::vector<std::int64_t> offsets{0};  // cell c's points: point_ids[offsets[c] .. offsets[c + 1])
     std::vector<std::int64_t> point_ids;
     std::vector<std::uint8_t> types;       // each cell's VTK type

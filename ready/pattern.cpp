@@ -319,6 +319,7 @@ Pattern read_mesh(const std::string& text, const std::filesystem::path& file, co
     }
     if (grid.mesh.cell_count() == 0) throw Refused("its mesh has no cells");
     stored->points = std::move(grid.mesh.points);
+    stored->points_float64 = grid.points_float64;
     stored->offsets = std::move(grid.mesh.offsets);
     stored->point_ids = std::move(grid.mesh.point_ids);
     stored->types = std::move(grid.mesh.types);

@@ -124,6 +124,40 @@ int mesh_chemicals(const Description& d) {
     return count ? static_cast<int>(std::clamp<long long>(*count, 1, formula::max_chemicals)) : 2;
 }
 
+// figgen's own meshes: the .vtu files of the catalog's meshes/ folder,
+// named by their stems. A description names one, never a path: the name is
+// looked up among the files there.
+std::vector<std::string> catalog_mesh_names() {
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(description::catalog_dir() / "meshes", ec))
+        if (e.path().extension() == ".vtu") names.push_back(e.path().stem().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+std::string catalog_meshes_said() {
+    std::string said;
+    for (const std::string& n : catalog_mesh_names()) said += (said.empty() ? "\"" : ", \"") + n + "\"";
+    return said.empty() ? "none installed" : said;
+}
+
+// The catalog's mesh `name`, or null where there is none of that name;
+// throws description::FileError where its file cannot be read. Read once a
+// process: a description's scene is read again for every check (figgen
+// describe, the estimates, the render).
+std::shared_ptr<const description::StoredMesh> catalog_mesh_named(const std::string& name) {
+    const std::vector<std::string> names = catalog_mesh_names();
+    if (std::find(names.begin(), names.end(), name) == names.end()) return nullptr;
+    static std::mutex lock;
+    static std::map<std::string, std::shared_ptr<const description::StoredMesh>> read;
+    const std::lock_guard<std::mutex> held(lock);
+    if (const auto known = read.find(name); known != read.end()) return known->second;
+    const ready::Pattern p = ready::read_pattern(description::catalog_dir() / "meshes" / (name + ".vtu"));
+    if (p.mesh) read[name] = p.mesh;
+    return p.mesh;
+}
+
 struct Style {
     FormulaStyle chemicals;
     double azimuth = 0, elevation = 15;  // a surface's or a lattice's view, degrees
@@ -134,7 +168,10 @@ Schema<Style> style_schema(int chemicals) {
     Schema<Style> s;
     s.part_at(
         formula_style_schema(chemicals), [](auto& v) -> auto& { return v.chemicals; });
-    s.number("azimuth", &Style::azimuth, "a surface's or a solid lattice's view: degrees about y (0: from +z)", -360, 360);
+    s.number("azimuth", &Style::azimuth,
+             "a surface's or a solid lattice's view: degrees about y (0: from +z; by default 0, or a three-quarter "
+             "view of a mesh half as long again one way as the other)",
+             -360, 360);
     s.number("elevation", &Style::elevation, "the same view's degrees above the horizontal", -89, 89);
     s.number("edge_width", &Style::edge_width, "a flat tiling's cell edges, pixels before --scale (under half a pixel: none)", 0, 10);
     return s;
@@ -144,6 +181,25 @@ Style style_defaults(int chemicals) {
     Style s;
     s.chemicals = formula_style_defaults(chemicals);
     return s;
+}
+
+// The view about y when the description gives none: from +z (0) for a
+// mesh about as deep as it is wide (the bunny, a lattice); a three-quarter
+// view of one at least half as long again one way as the other (the lion
+// and the zebra, long in z, are seen from their side and front, not from
+// the front alone).
+double default_azimuth(const sim::mesh::Mesh& m) {
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (std::size_t p = 0; p < m.point_count(); ++p)
+        for (int k = 0; k < 3; ++k) {
+            const double v = m.points[3 * p + static_cast<std::size_t>(k)];
+            lo[k] = p == 0 ? v : std::min(lo[k], v);
+            hi[k] = p == 0 ? v : std::max(hi[k], v);
+        }
+    const double wide = hi[0] - lo[0], deep = hi[2] - lo[2];
+    if (deep > 1.5 * wide) return 55;
+    if (wide > 1.5 * deep) return 35;
+    return 0;
 }
 
 // How a mesh is drawn: by the dimension of its cells and where its points lie.
@@ -202,6 +258,7 @@ public:
         cells_mesh_.faces = stored.faces;
         cells_mesh_.face_offsets = stored.face_offsets;
         look_ = look_of(cells_mesh_);
+        azimuth_ = style_.has("azimuth") ? s_.azimuth : default_azimuth(cells_mesh_);
         try {
             neighbours_ = mesh::neighbours(cells_mesh_, m_.neighbourhood);
         } catch (const std::invalid_argument& e) {
@@ -252,7 +309,6 @@ public:
 
     void render(Output& out) const override {
         StepRunner run(d_, options_, out);
-        const description::StoredMesh& stored = *mesh_;
         sim::kernel::MeshRun model(rule_, cells(), neighbours_.max_neighbors, neighbours_.indices, neighbours_.weights,
                                    start());
         const int shown = s_.chemicals.shown.front();
@@ -317,6 +373,7 @@ public:
         FigureDrawing figure{width, height, look_ != Look::tiling, [this, &panels, range, &geometry](render::Surface& s) {
                                  draw_figure(s, panels, range, geometry);
                              }};
+        figure.ready_state = [this, &model, range] { return ready_state(model, range); };
         run.write_figure(figure, meta);
     }
 
@@ -379,37 +436,11 @@ private:
         return m;
     }
 
-    // figgen's own meshes: the .vtu files of the catalog's meshes/ folder,
-    // named by their stems. A description names one, never a path: the
-    // name is looked up among the files there.
-    static std::vector<std::string> catalog_mesh_names() {
-        std::vector<std::string> names;
-        std::error_code ec;
-        for (const auto& e : std::filesystem::directory_iterator(description::catalog_dir() / "meshes", ec))
-            if (e.path().extension() == ".vtu") names.push_back(e.path().stem().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-    static std::string catalog_meshes_said() {
-        std::string said;
-        for (const std::string& n : catalog_mesh_names()) said += (said.empty() ? "\"" : ", \"") + n + "\"";
-        return said.empty() ? "none installed" : said;
-    }
     std::shared_ptr<const description::StoredMesh> catalog_mesh(const std::string& name) {
-        const std::vector<std::string> names = catalog_mesh_names();
-        if (std::find(names.begin(), names.end(), name) == names.end())
-            params_.refuse("mesh", "one of figgen's meshes: " + catalog_meshes_said());
-        // read once a process: a description's scene is read again for
-        // every check (figgen describe, the estimates, the render)
-        static std::mutex lock;
-        static std::map<std::string, std::shared_ptr<const description::StoredMesh>> read;
-        const std::lock_guard<std::mutex> held(lock);
-        if (const auto known = read.find(name); known != read.end()) return known->second;
         try {
-            const ready::Pattern p = ready::read_pattern(description::catalog_dir() / "meshes" / (name + ".vtu"));
-            if (!p.mesh) params_.refuse("mesh", "one of figgen's meshes: " + catalog_meshes_said());
-            read[name] = p.mesh;
-            return p.mesh;
+            auto found = catalog_mesh_named(name);
+            if (!found) params_.refuse("mesh", "one of figgen's meshes: " + catalog_meshes_said());
+            return found;
         } catch (const description::FileError& e) {
             params_.refuse("mesh", "...", e.what());
         }
@@ -555,7 +586,7 @@ private:
         std::vector<render::Ball> balls;
         for (const auto& [cell, f] : g.facets)
             for (glm::vec3 p : {f.a, f.b, f.c}) balls.push_back({p, 0});
-        render::Camera camera = render::frame_balls(balls, float(s_.azimuth), float(s_.elevation), view.w / view.h);
+        render::Camera camera = render::frame_balls(balls, float(azimuth_), float(s_.elevation), view.w / view.h);
         const glm::vec3 back = glm::normalize(camera.eye - camera.target);
         const glm::vec3 left = glm::normalize(glm::cross(back, camera.up));
         render::Light light;
@@ -587,6 +618,26 @@ private:
         render::draw_colour_bar(s, {last.x + last.w - 4 * sc, band + height * 0.1f, 4 * sc, height * 0.8f}, bar, style);
     }
 
+    // The run's last step and its rule, for Ready's own file (--format vtu).
+    ready::ReadyState ready_state(const sim::kernel::MeshRun& model, const Range& range) const {
+        ready::ReadyState s;
+        s.rule_name = d_.title;
+        s.description = d_.caption;
+        s.formula = m_.formula;
+        s.kernel = m_.kernel;
+        s.parameters = m_.parameters;
+        s.active_chemical = formula::chemical_name(s_.chemicals.shown.front());
+        s.low = range.low;
+        s.high = range.high;
+        s.float64 = m_.float64;
+        for (int c = 0; c < m_.chemicals; ++c) s.chemicals.push_back(model.chemical(c));
+        s.mesh = &cells_mesh_;
+        s.points_float64 = mesh_->points_float64;
+        static const char* kinds[] = {"vertex", "edge", "face"};
+        s.neighborhood = kinds[static_cast<int>(m_.neighbourhood)];
+        return s;
+    }
+
     nlohmann::json statistics(const std::vector<double>& v) const {
         double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0;
         for (double x : v) lo = std::min(lo, x), hi = std::max(hi, x), sum += x;
@@ -599,6 +650,7 @@ private:
     const Style s_;
     const FieldSpec spec_;
     Look look_ = Look::surface;
+    double azimuth_ = 0;  // style.azimuth, or the mesh's own (default_azimuth)
     mesh::Neighbours neighbours_;
     sim::kernel::MeshRule rule_;
     formula::Pattern overlays_;
@@ -610,10 +662,32 @@ std::unique_ptr<Scene> read_mesh(const Description& d, const SceneOptions& optio
     return std::make_unique<MeshScene>(d, options);
 }
 
+// The most the VTU file of the last step takes: the mesh's arrays and every
+// chemical's cells, 8 bytes a number at most, in base64 (zlib's blocks can
+// only grow by a few bytes each), and the XML around them with the rule's
+// name, description, formula or kernel and parameters.
+double vtu_disk(const Description& d) {
+    std::shared_ptr<const description::StoredMesh> m = d.stored_mesh;
+    if (!m) {
+        try {
+            m = catalog_mesh_named(d.params["mesh"].value_or(std::string()));
+        } catch (const description::FileError&) {
+        }
+    }
+    if (!m) return 0;  // the scene refuses it before anything is written
+    const double numbers = static_cast<double>(m->points.size() + m->point_ids.size() + m->offsets.size() +
+                                               m->faces.size() + m->face_offsets.size()) +
+                           static_cast<double>(m->cell_count()) * (1 + mesh_chemicals(d));
+    const double texts = static_cast<double>(d.title.size() + d.caption.size() +
+                                             d.params["formula"].value_or(std::string()).size() +
+                                             d.params["kernel"].value_or(std::string()).size());
+    return numbers * 8 * 1.34 * 1.01 + 65536 + 6 * texts + 200.0 * static_cast<double>(d.params.size());
+}
+
 }  // namespace
 
 SceneInfo mesh_scene() {
-    return {"mesh", read_mesh, {}};
+    return {.name = "mesh", .read = read_mesh, .colormap_keys = {}, .extra_files = {{.format = "vtu", .disk = vtu_disk}}};
 }
 
 }  // namespace scenes

@@ -147,6 +147,18 @@ std::vector<OutputFormat> make_table() {
                      const scenes::ExtraFile* file = scenes::extra_file(d, "vti");
                      return file ? file->disk(d) : 0.0;
                  }});
+    t.push_back({.name = "vtu",
+                 .suffix = ".vtu",
+                 .shown = "the VTU file",
+                 .help = "vtu (a mesh model's last step as Ready's file)",
+                 .link = "VTU",
+                 .json = {"vtu"},
+                 .wanted = [](const Description&, const OutputOptions& o) { return o.vtu; },
+                 .choose = [](OutputOptions& o) { o.vtu = true; },
+                 .disk = [](const Description& d, const OutputOptions&) {
+                     const scenes::ExtraFile* file = scenes::extra_file(d, "vtu");
+                     return file ? file->disk(d) : 0.0;
+                 }});
     return t;
 }
 

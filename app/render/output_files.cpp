@@ -12,6 +12,7 @@
 #include "base/version.hpp"
 #include "media/png_io.hpp"
 #include "ready/writers/vti_file.hpp"
+#include "ready/writers/vtu_file.hpp"
 #include "render/gl/canvas.hpp"
 #include "render/gl/gl_context.hpp"
 #include "render/vector/vector.hpp"
@@ -185,12 +186,16 @@ void FigureFiles::figure(const scenes::FigureDrawing& scene, nlohmann::json meta
         vector[f.name] = {{"file", file_name}, {"bytes", bytes}};
     }
     if (!vector.empty()) metadata["vector"] = std::move(vector);
-    if (options_.vti) {
-        if (!drawing.ready_state) throw std::logic_error(description_.id + ": its scene writes no VTI file");
-        const std::string file_name = description_.id + ".vti";
-        const std::string bytes = ready::ready_vti(drawing.ready_state());
+    for (const bool mesh : {false, true}) {
+        if (!(mesh ? options_.vtu : options_.vti)) continue;
+        const char* format = mesh ? "vtu" : "vti";
+        if (!drawing.ready_state) throw std::logic_error(description_.id + ": its scene writes no Ready file");
+        const ready::ReadyState state = drawing.ready_state();
+        if (!state.mesh != !mesh) throw std::logic_error(description_.id + ": its scene writes no ." + format + " file");
+        const std::string file_name = description_.id + "." + format;
+        const std::string bytes = mesh ? ready::ready_vtu(state) : ready::ready_vti(state);
         base::write_file_atomically(folder_, file_name, bytes);  // with the figure's other files
-        metadata["vti"] = {{"file", file_name}, {"bytes", bytes.size()}};
+        metadata[format] = {{"file", file_name}, {"bytes", bytes.size()}};
     }
     write_figure(description_, options_, folder_, memory_, image, std::move(metadata));
 }

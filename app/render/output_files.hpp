@@ -6,6 +6,7 @@
 //   <id>.webm           the film as VP9 in WebM, for the web (--format webm)
 //   <id>.pdf, <id>.svg  the figure as vector graphics (--format pdf, svg)
 //   <id>.vti            a formula model's last step as Ready's file (--format vti)
+//   <id>.vtu            a mesh model's last step as Ready's file (--format vtu)
 //   <id>-frames/NNNNN.png  the same frames as a PNG sequence (--frames)
 //   <id>.json           metadata of all of them: parameters, seed, per-panel
 //                       step, statistics and state hash, frame list

@@ -28,6 +28,7 @@ struct OutputOptions {
     bool webm = false;                  // write <id>.webm (VP9), made from the MP4 (kept only with `video`)
     std::set<std::string> chosen;       // the formats --format names that no flag above stands for (pdf, svg)
     bool vti = false;                   // write <id>.vti, a formula model's last step as Ready's file (--format vti)
+    bool vtu = false;                   // write <id>.vtu, a mesh model's last step as Ready's file (--format vtu)
     bool formats_given = false;         // --format was given: a description's figure.formats is not used
     bool transparent = false;           // no background in the PNG, PDF and SVG
     bool strict = false;                // refuse a formula model's timestep past its stability bound (--strict)

@@ -213,6 +213,9 @@ CheckedFigure check_target(const std::string& target, const std::optional<std::s
     if (options.vti && !scenes::extra_file(*d, "vti"))
         throw UsageError("--format vti: " + d->id + " is a " + d->scene +
                          " figure; the scenes that write a VTI file are " + scenes::scenes_writing("vti"));
+    if (options.vtu && !scenes::extra_file(*d, "vtu"))
+        throw UsageError("--format vtu: " + d->id + " is a " + d->scene +
+                         " figure; the scenes that write a VTU file are " + scenes::scenes_writing("vtu"));
     if (!s.cmap.empty()) scenes::apply_colormap(*d, s.cmap);
     if (s.fps && d->animation) d->animation->fps = *s.fps;
     auto scene = check_figure(*d, options);

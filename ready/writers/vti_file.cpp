@@ -3,12 +3,12 @@
 #include <tinyxml2.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
 #include "ready/vtk_arrays.hpp"
+#include "ready/writers/rd_element.hpp"
 
 namespace ready {
 
@@ -24,34 +24,7 @@ std::string ready_vti(const ReadyState& s) {
     vtk->SetAttribute("byte_order", "LittleEndian");
     vtk->SetAttribute("header_type", "UInt64");
     vtk->SetAttribute("compressor", "vtkZLibDataCompressor");
-    XMLElement* rd = vtk->InsertNewChildElement("RD");
-    rd->SetAttribute("format_version", 6);
-    rd->InsertNewChildElement("description")->SetText(s.description.c_str());
-    XMLElement* rule = rd->InsertNewChildElement("rule");
-    rule->SetAttribute("name", s.rule_name.c_str());
-    rule->SetAttribute("type", s.kernel.empty() ? "formula" : "kernel");
-    rule->SetAttribute("wrap", s.wrap ? 1 : 0);
-    rule->SetAttribute("neighborhood_type", "vertex");
-    for (const auto& [name, value] : s.parameters) {
-        XMLElement* p = rule->InsertNewChildElement("param");
-        p->SetAttribute("name", name.c_str());
-        char text[40];
-        std::snprintf(text, sizeof text, "%.9g", value);
-        p->SetText(text);
-    }
-    // a kernel rule: Ready's <kernel>, the whole kernel
-    XMLElement* f = rule->InsertNewChildElement(s.kernel.empty() ? "formula" : "kernel");
-    f->SetAttribute("number_of_chemicals", static_cast<int>(s.chemicals.size()));
-    f->SetAttribute("block_size_x", s.block_x);
-    f->SetAttribute("block_size_y", 1);
-    f->SetAttribute("block_size_z", 1);
-    if (s.kernel.empty()) f->SetAttribute("accuracy", s.accuracy.c_str());
-    f->SetText((s.kernel.empty() ? s.formula : s.kernel).c_str());
-    rd->InsertNewChildElement("initial_pattern_generator")->SetAttribute("apply_when_loading", "false");
-    XMLElement* rs = rd->InsertNewChildElement("render_settings");
-    rs->InsertNewChildElement("active_chemical")->SetAttribute("value", s.active_chemical.c_str());
-    if (s.low) rs->InsertNewChildElement("low")->SetAttribute("value", *s.low);
-    if (s.high) rs->InsertNewChildElement("high")->SetAttribute("value", *s.high);
+    add_rd_element(vtk, s);
     XMLElement* image = vtk->InsertNewChildElement("ImageData");
     const std::string extent = "0 " + std::to_string(s.width - 1) + " 0 " + std::to_string(s.height - 1) + " 0 " +
                                std::to_string(s.depth - 1);

@@ -265,7 +265,7 @@ def test_the_same_bits_as_the_command(figure, tmp_path):
 
 def test_a_bad_argument_names_the_argument():
     cases = [(dict(scale=9), "scale", "a number from 0.1 to 8"),
-             (dict(formats=("png", "gif")), "formats", "png, pdf, svg, mp4, webm, frames, vti"),
+             (dict(formats=("png", "gif")), "formats", "png, pdf, svg, mp4, webm, frames, vti, vtu"),
              (dict(threads=0), "threads", "an integer from 1 to 1024"),
              (dict(gl="vulkan"), "gl", "auto, osmesa, egl or egl-device")]
     for arguments, key, allowed in cases:
@@ -313,9 +313,9 @@ SAME_MISTAKES = [
     (dict(size=(1, 5)), ["--size", "1x5"], "size=(1, 5)", "--size 1x5", "WIDTHxHEIGHT, each 2..16384, e.g. 1200x600"),
     (dict(gl="foo"), ["--gl", "foo"], "gl='foo'", "--gl foo", "auto, osmesa, egl or egl-device"),
     (dict(formats="xyz"), ["--format", "xyz"], "formats='xyz'", "--format: xyz",
-     "png, pdf, svg, mp4, webm, frames, vti"),
+     "png, pdf, svg, mp4, webm, frames, vti, vtu"),
     (dict(formats=["png", "xyz"]), ["--format", "png,xyz"], "formats=['png', 'xyz']: 'xyz'", "--format: xyz",
-     "png, pdf, svg, mp4, webm, frames, vti"),
+     "png, pdf, svg, mp4, webm, frames, vti, vtu"),
 ]
 
 
