@@ -83,6 +83,7 @@ struct Frame {
     Type result{Scalar::i32, 0};
     std::vector<int> result_regs;
     int returned = 0;
+    int returns = 0;  // return statements compiled in its body
 };
 
 struct Target {
@@ -719,6 +720,7 @@ private:
     Value load(const Place& p) {
         if (p.kind == Place::Kind::var) return Value{p.type, p.regs};
         Value out{p.type, {}};
+        bool checked = false;  // the element's index, by the component before (in the same mask)
         for (int k : p.comps) {
             Op op;
             op.dst = temp();
@@ -727,6 +729,8 @@ private:
             if (p.kind == Place::Kind::buffer) {
                 op.fn = ops::buffer_load(p.type.scalar);
                 op.aux = p.view;
+                op.c = checked ? 1 : 0;
+                checked = true;
             } else {
                 op.fn = ops::array_load(p.type.scalar);
                 op.aux = p.array;
@@ -861,10 +865,23 @@ private:
         pop_scope();
         scopes_ = std::move(saved_scopes);
         targets_ = saved_targets;
+        const int returns = frames_.back().returns;
         frames_.pop_back();
         calls_.pop_back();
         block_ = outer;
         line_ = e.line;
+        // A body whose one return is its last statement (or that has none)
+        // ends with every lane it began with: it runs in line, in the
+        // caller's block and mask, without a call's masks.
+        std::vector<Op>& body = c_.blocks[static_cast<std::size_t>(node.body)].ops;
+        const bool last_returns = !body.empty() && body.back().fn == ops::jump() && body.back().aux == frame.returned;
+        if (returns == 0 || (returns == 1 && last_returns)) {
+            if (returns == 1) body.pop_back();
+            std::vector<Op>& here = c_.blocks[static_cast<std::size_t>(block_)].ops;
+            here.insert(here.end(), body.begin(), body.end());
+            body.clear();
+            return Value{f.result, frame.result_regs};
+        }
         c_.calls.push_back(node);
         Op op;
         op.fn = ops::call_node();
@@ -1280,6 +1297,7 @@ private:
             break;
         }
         case Stmt::Kind::return_: {
+            ++frames_.back().returns;
             const Frame f = frames_.back();  // a copy: calls in the value push frames
             if (s.expr) {
                 Value v = expr(*s.expr);

@@ -323,7 +323,12 @@ void op_math1(Ctx& c, const Op& op) {
             else if constexpr (M == Math1::fabs) return std::fabs(v);
             else if constexpr (M == Math1::floor) return std::floor(v);
             else if constexpr (M == Math1::ceil) return std::ceil(v);
-            else if constexpr (M == Math1::round) return std::round(v);
+            else if constexpr (M == Math1::round) {
+                // half away from zero, as std::round, without a call to libm:
+                // v - trunc(v) is exact (the same bits as std::round for every float)
+                const T r = std::trunc(v);
+                return std::fabs(v - r) >= T(0.5) ? r + std::copysign(T(1), v) : r;
+            }
             else if constexpr (M == Math1::trunc) return std::trunc(v);
             else if constexpr (M == Math1::rint) return std::nearbyint(v);
             else if constexpr (M == Math1::sign) return sign_of(v);
@@ -371,9 +376,57 @@ void op_math2(Ctx& c, const Op& op) {
     }
 }
 
+// d = fma(a, b, e) over n lanes. fma rounds once whether the CPU has the
+// instruction or libm computes it, so the clone with it (chosen once at
+// load time) gives the same bits; without it each lane is a libm call.
+template <class T>
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("fma", "default")))
+#endif
+[[gnu::noinline]] void fma_lanes(T* __restrict d, const T* __restrict a, const T* __restrict b, const T* __restrict e,
+                                 int n) {
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < n; ++l) d[l] = std::fma(a[l], b[l], e[l]);
+}
+
+template <class T>
+void op_fma(Ctx& c, const Op& op) {
+    const bool ua = c.uni[op.a], ub = c.uni[op.b], ue = c.uni[op.c];
+    T* d = reg<T>(c, op.dst);
+    const T* a = reg<T>(c, op.a);
+    const T* b = reg<T>(c, op.b);
+    const T* e = reg<T>(c, op.c);
+    if (ua && ub && ue) {
+        d[0] = std::fma(a[0], b[0], e[0]);
+        c.uni[op.dst] = 1;
+        return;
+    }
+    // a uniform operand spread to every lane first (d may be one of them)
+    alignas(64) T spread[3][lanes];
+    const auto lanes_of = [&](const T* x, bool u, int k) -> const T* {
+        if (!u) return x;
+        std::fill(spread[k], spread[k] + c.n, x[0]);
+        return spread[k];
+    };
+    const T* xa = lanes_of(a, ua, 0);
+    const T* xb = lanes_of(b, ub, 1);
+    const T* xe = lanes_of(e, ue, 2);
+    if (d == xa || d == xb || d == xe) {
+        alignas(64) T out[lanes];
+        fma_lanes<T>(out, xa, xb, xe, c.n);
+        std::memcpy(d, out, sizeof(T) * static_cast<std::size_t>(c.n));
+    } else {
+        fma_lanes<T>(d, xa, xb, xe, c.n);
+    }
+    c.uni[op.dst] = 0;
+}
+
 template <class T, ops::Math3 M>
 void op_math3(Ctx& c, const Op& op) {
     using ops::Math3;
+    if constexpr (M == Math3::fma && std::is_floating_point_v<T>) return op_fma<T>(c, op);
     map3<T>(c, op, [](T x, T y, T z) -> T {
         if constexpr (M == Math3::clamp) {
             if constexpr (std::is_floating_point_v<T>) return std::fmin(std::fmax(x, y), z);
@@ -457,6 +510,10 @@ int outside(Ctx& c, const std::int64_t* idx, bool uniform, long long bound) {
             if (m[l]) return l;
         return -1;
     }
+    const auto ubound = static_cast<std::uint64_t>(bound);
+    std::uint8_t any = 0;
+    for (int l = 0; l < c.n; ++l) any |= m[l] & static_cast<std::uint8_t>(static_cast<std::uint64_t>(idx[l]) >= ubound);
+    if (!any) return -1;
     for (int l = 0; l < c.n; ++l)
         if (m[l] && (idx[l] < 0 || idx[l] >= bound)) return l;
     return -1;
@@ -482,12 +539,15 @@ void op_buffer_load(Ctx& c, const Op& op) {
     const long long elements = c.launch->elements[view];
     const std::int64_t* idx = reg<std::int64_t>(c, op.a);
     const bool u = c.uni[op.a];
-    const int bad = outside(c, idx, u, elements);
-    if (bad >= 0) return fail(c, op.line, bad, buffer_message(v, idx[u ? 0 : bad], elements));
+    const bool checked = op.c == 1;  // another component of this element was loaded just before, and checked
+    if (!checked) {
+        const int bad = outside(c, idx, u, elements);
+        if (bad >= 0) return fail(c, op.line, bad, buffer_message(v, idx[u ? 0 : bad], elements));
+    }
     const T* data = static_cast<const T*>(v.output ? c.launch->out[view] : c.launch->data[view]);
     const int w = v.width;
     const std::uint8_t* m = mreg(c, c.cur);
-    if (v.output) {
+    if (v.output && !checked) {
         // an output is read where this work item wrote it, else what it
         // reads is another's, or undefined
         const std::int32_t* stamp = c.launch->stamps[view];
@@ -707,33 +767,46 @@ void op_switch(Ctx& c, const Op& op) {
     std::memset(mreg(c, s.broken), 0, lanes);
     const std::int64_t* sel = reg<std::int64_t>(c, s.selector);
     const bool u = c.uni[s.selector];
+    // Whether a value is among any segment's labels (a default takes the others).
+    const auto labelled = [&s](std::int64_t v) {
+        for (const SwitchNode::Segment& seg : s.segments)
+            for (std::int64_t label : seg.labels)
+                if (label == v) return true;
+        return false;
+    };
+    const auto hits = [&labelled](const SwitchNode::Segment& seg, std::int64_t v) {
+        for (std::int64_t label : seg.labels)
+            if (label == v) return true;
+        return seg.is_default && !labelled(v);
+    };
+    bool falling = false;  // some lane falls through into the next segment
     for (const SwitchNode::Segment& seg : s.segments) {
-        for (int l = 0; l < c.n; ++l) {
-            const std::int64_t v = sel[u ? 0 : l];
-            bool hit = false;
-            if (seg.is_default) {
-                hit = true;
-                for (const SwitchNode::Segment& other : s.segments)
-                    for (std::int64_t label : other.labels) hit = hit && label != v;
-            }
-            for (std::int64_t label : seg.labels) hit = hit || label == v;
-            enter[l] = static_cast<std::uint8_t>(fall[l] | (entry[l] & hit));
+        if (u) {
+            const bool hit = hits(seg, sel[0]);
+            if (!hit && !falling) continue;  // no lane enters it
+            if (hit)
+                for (int l = 0; l < c.n; ++l) enter[l] = static_cast<std::uint8_t>(fall[l] | entry[l]);
+            else
+                std::memcpy(enter, fall, lanes);
+        } else {
+            for (int l = 0; l < c.n; ++l)
+                enter[l] = static_cast<std::uint8_t>(fall[l] | (entry[l] & hits(seg, sel[l])));
         }
         set_mask(c, s.enter);
         if (c.any) exec(c, seg.block);
         if (c.stop) return;
         copy_mask(c, s.fall, c.cur);
+        falling = false;
+        for (int l = 0; l < c.n; ++l) falling = falling || fall[l];
     }
     // after it: the lanes that broke out, fell off its end, or matched no
     // label (without a default, a switch passes those by)
     const std::uint8_t* br = mreg(c, s.broken);
     bool has_default = false;
     for (const SwitchNode::Segment& seg : s.segments) has_default = has_default || seg.is_default;
+    const bool uniform_hit = u && (has_default || labelled(sel[0]));
     for (int l = 0; l < c.n; ++l) {
-        bool hit = has_default;
-        const std::int64_t v = sel[u ? 0 : l];
-        for (const SwitchNode::Segment& seg : s.segments)
-            for (std::int64_t label : seg.labels) hit = hit || label == v;
+        const bool hit = u ? uniform_hit : has_default || labelled(sel[l]);
         fall[l] |= br[l] | (entry[l] & !hit);
     }
     set_mask(c, s.fall);

@@ -42,7 +42,7 @@ OpFn mask_or();
 OpFn mask_not();                              // mask dst = !mask a (lanes of the chunk)
 
 OpFn check_index();                           // a (i64) within [0, i) in the mask, else fail naming array aux
-OpFn buffer_load(Scalar s);                   // dst = view aux's element a, component i
+OpFn buffer_load(Scalar s);                   // dst = view aux's element a, component i (c = 1: a, checked by the op before)
 OpFn buffer_store(Scalar s);                  // view aux's element a, component i = b, in the mask
 OpFn array_load(Scalar s);                    // dst = array aux's element a, component i
 OpFn array_store(Scalar s);                   // array aux's element a, component i = b, in the mask

@@ -8,6 +8,7 @@
 #endif
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -78,6 +79,12 @@ struct KernelRun::Impl {
     std::vector<std::vector<std::int32_t>> stamps;
     int current = 0;
     long long steps = 0;
+    // A step that takes under threaded_step_seconds on one thread runs on
+    // one: the team's start and barrier would cost as much as they save,
+    // and far more on a machine whose cores are busy. Timed on the run's
+    // first step; the bits are the same on any number of threads.
+    static constexpr double threaded_step_seconds = 2e-3;
+    bool one_thread_enough = false, timed = false;
     std::vector<std::unique_ptr<Lanes>> threads;
 
     double get(int k, int c, long long i) const {
@@ -239,7 +246,17 @@ void KernelRun::step(int steps, int threads) {
     Impl& m = *impl_;
     const int team = std::max(1, std::min(threads > 0 ? threads : omp_get_max_threads(), std::max(1, omp_get_num_procs())));
     while (static_cast<int>(m.threads.size()) < team) m.threads.push_back(std::make_unique<Lanes>(m.program));
-    for (int s = 0; s < steps; ++s) m.one_step(team);
+    for (int s = 0; s < steps; ++s) {
+        if (!m.timed && team > 1) {
+            const auto start = std::chrono::steady_clock::now();
+            m.one_step(1);
+            m.timed = true;
+            m.one_thread_enough =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < Impl::threaded_step_seconds;
+            continue;
+        }
+        m.one_step(m.one_thread_enough ? 1 : team);
+    }
 }
 
 std::vector<double> KernelRun::values(int chemical) const {
