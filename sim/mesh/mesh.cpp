@@ -1,6 +1,7 @@
 #include "sim/mesh/mesh.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -137,6 +138,22 @@ struct Links {
 class Finder {
 public:
     explicit Finder(const Mesh& m) : m_(m), links_(m), starts_(face_starts(m)) {}
+
+    // What finding every cell's neighbours costs, in the cells the links of
+    // its points pool (each pass over them sorts that many): the sum over
+    // cells of that count squared, as a vertex neighbourhood's ring passes
+    // over them about as often as it finds cells.
+    double work() const {
+        double w = 0;
+        for (std::size_t c = 0; c < m_.cell_count(); ++c) {
+            double pooled = 0;
+            for (std::int64_t p : points_of(m_, c))
+                pooled += static_cast<double>(links_.start[static_cast<std::size_t>(p) + 1] -
+                                              links_.start[static_cast<std::size_t>(p)]);
+            w += pooled * pooled;
+        }
+        return w;
+    }
 
     // vtkUnstructuredGrid::GetCellNeighbors(cell, pts) in VTK 9.1: the links
     // of every point of `pts` put together and sorted; a cell is a
@@ -351,6 +368,13 @@ Neighbours neighbours(const Mesh& m, Kind kind) {
         if (type != m.types.front())
             throw std::invalid_argument("mesh: its cells are of more than one type; Ready runs meshes of one");
     Finder finder(m);
+    if (const double work = finder.work(); work > max_neighbour_work) {
+        char said[160];
+        std::snprintf(said, sizeof said,
+                      "mesh: its cells share points with so many others that finding their neighbours would take "
+                      "%.2g steps; figgen takes at most %.2g", work, max_neighbour_work);
+        throw std::invalid_argument(said);
+    }
     std::vector<std::vector<int>> lists(cells);
     Neighbours out;
     for (std::size_t c = 0; c < cells; ++c) {

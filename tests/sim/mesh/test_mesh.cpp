@@ -117,6 +117,27 @@ TEST_CASE("meshes Ready cannot run are refused", "[mesh]") {
     CHECK_THROWS_AS(sim::mesh::neighbours(short_offsets, Kind::edge), std::invalid_argument);
 }
 
+TEST_CASE("a mesh whose cells crowd round one point is refused before its neighbours are searched", "[mesh][bounds]") {
+    // A fan of n triangles round point 0: each cell's points pool about n
+    // cells, so the search would cost about n^3 (n = 20,000: 8e12).
+    const auto fan = [](int n) {
+        std::vector<double> points = {0, 0, 0};
+        std::vector<std::vector<std::int64_t>> cells;
+        for (int k = 0; k <= n; ++k) {
+            const double a = 2 * M_PI * k / (n + 1);
+            points.insert(points.end(), {std::cos(a), std::sin(a), 0});
+        }
+        for (int k = 0; k < n; ++k) cells.push_back({0, 1 + k, 2 + k});
+        return mesh_of(points, cells, sim::mesh::cell_type::triangle);
+    };
+    CHECK_THROWS_WITH(sim::mesh::neighbours(fan(20000), Kind::vertex),
+                      Catch::Contains("finding their neighbours would take 8e+12 steps; figgen takes at most 4e+09"));
+    CHECK_THROWS_WITH(sim::mesh::neighbours(fan(20000), Kind::edge), Catch::Contains("figgen takes at most 4e+09"));
+    // A small fan is served: every cell a neighbour of every other by vertex.
+    const Neighbours small = sim::mesh::neighbours(fan(200), Kind::vertex);
+    CHECK(small.max_neighbors == 199);
+}
+
 TEST_CASE("the mesh Laplacian is Ready's kernel, in its order and rounding", "[mesh]") {
     const ready::vtu::UnstructuredGrid g = ready::vtu::read_vtu(testkit::slurp(fixtures / "bunny.vtu"));
     const Neighbours n = sim::mesh::neighbours(g.mesh, Kind::vertex);
