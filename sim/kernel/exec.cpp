@@ -32,6 +32,7 @@ struct Ctx {
     long long first = 0;
     Failure* failure = nullptr;
     std::uint32_t trips[lanes];
+    long long executed = 0;  // operations run, each over a chunk's lanes (Lanes::executed)
     std::unique_ptr<std::uint64_t[]> reg_storage;
     std::unique_ptr<std::uint8_t[]> uni_storage, mask_storage;
 };
@@ -68,6 +69,7 @@ void exec(Ctx& c, int block) {
     for (const Op& op : c.p->blocks[static_cast<std::size_t>(block)].ops) {
         if (!c.any) return;
         op.fn(c, op);
+        ++c.executed;
     }
 }
 
@@ -1106,6 +1108,8 @@ Lanes::Lanes(const Compiled& program) : ctx_(new Ctx) {
 }
 
 Lanes::~Lanes() { delete ctx_; }
+
+long long Lanes::executed() const { return ctx_->executed; }
 
 bool Lanes::run(const Launch& launch, long long first, int count, Failure& failure) {
     Ctx& c = *ctx_;

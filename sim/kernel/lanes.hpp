@@ -141,6 +141,9 @@ public:
     Lanes(const Lanes&) = delete;
     Lanes& operator=(const Lanes&) = delete;
     bool run(const Launch& launch, long long first, int count, Failure& failure);
+    // Operations run so far, each over one chunk's lanes: the work a step
+    // took, counted the same on every machine.
+    long long executed() const;
 
 private:
     Ctx* ctx_;

@@ -8,7 +8,6 @@
 #endif
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -79,12 +78,14 @@ struct KernelRun::Impl {
     std::vector<std::vector<std::int32_t>> stamps;
     int current = 0;
     long long steps = 0;
-    // A step that takes under threaded_step_seconds on one thread runs on
-    // one: the team's start and barrier would cost as much as they save,
-    // and far more on a machine whose cores are busy. Timed on the run's
-    // first step; the bits are the same on any number of threads.
-    static constexpr double threaded_step_seconds = 2e-3;
-    bool one_thread_enough = false, timed = false;
+    // A step of under threaded_step_operations (each over a chunk's lanes,
+    // counted on the run's first step) runs on one thread: the team's start
+    // and barrier would cost as much as they save, and far more on a
+    // machine whose cores are busy (Life on a Penrose tiling, about 6,000
+    // of them, 1 ms a step: 2 to 3 times slower on two threads of a busy
+    // 2-core machine). The bits are the same on any number of threads.
+    static constexpr long long threaded_step_operations = 20000;
+    bool one_thread_enough = false, counted = false;
     std::vector<std::unique_ptr<Lanes>> threads;
 
     double get(int k, int c, long long i) const {
@@ -247,12 +248,11 @@ void KernelRun::step(int steps, int threads) {
     const int team = std::max(1, std::min(threads > 0 ? threads : omp_get_max_threads(), std::max(1, omp_get_num_procs())));
     while (static_cast<int>(m.threads.size()) < team) m.threads.push_back(std::make_unique<Lanes>(m.program));
     for (int s = 0; s < steps; ++s) {
-        if (!m.timed && team > 1) {
-            const auto start = std::chrono::steady_clock::now();
+        if (!m.counted && team > 1) {
+            const long long before = m.threads[0]->executed();
             m.one_step(1);
-            m.timed = true;
-            m.one_thread_enough =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < Impl::threaded_step_seconds;
+            m.counted = true;
+            m.one_thread_enough = m.threads[0]->executed() - before < Impl::threaded_step_operations;
             continue;
         }
         m.one_step(m.one_thread_enough ? 1 : team);
