@@ -114,7 +114,11 @@ fuzz:
 # and scaled variants up to the largest documented values
 # (tests/app/test_memory_estimates.cpp): bench/results/memory.txt. Last,
 # twenty renders of tc7-1 from one Python process against twenty figgen
-# processes (bench/python_renders.py): bench/results/python.json.
+# processes (bench/python_renders.py): bench/results/python.json. And figgen
+# beside Ready's rdy (RDY=path, default build-rdy/rdy; skipped without it):
+# Gray-Scott formulas, and with READY_PATTERNS=DIR (Ready's Patterns/)
+# SmoothLife, Life on meshes and the bunny (bench/ready_speed.py):
+# bench/results/ready.json.
 bench: build
 	@scripts/deps.sh bench || echo "figgen: the book's route will be skipped" >&2
 	cmake --build $(BUILD) --target figgen_bench figgen_accuracy -j $(JOBS)
@@ -124,7 +128,7 @@ bench: build
 	$(BUILD)/bench/figgen_accuracy --results bench/results --figures out
 	FIGGEN_MEMORY_TABLE=bench/results/memory.txt $(BUILD)/tests/figgen_tests "[memory-sweep]"
 	PYTHONPATH=$(BUILD)/python /usr/bin/python3 bench/python_renders.py $(BUILD)/figgen | tee bench/results/python.json
-	/usr/bin/python3 bench/ready_speed.py $(BUILD)/figgen $${RDY:-build-rdy/rdy} | tee bench/results/ready.json
+	READY_PATTERNS=$(READY_PATTERNS) /usr/bin/python3 bench/ready_speed.py $(BUILD)/figgen $${RDY:-build-rdy/rdy} | tee bench/results/ready.json
 
 # Rewrites the image-checksum goldens under tests/golden/ from this machine's
 # renderer. Explicit only: CI never runs it.

@@ -12,6 +12,13 @@ GrayScott1984/Pearson1993.vti, from a square of noise): 64 x 64, 128 x 64, 256 x
 `render START.vti --set steps=N --format vti` (it writes its figure and the
 last step too), rdy `-i START.vti -n N -o OUT.vti`. The median of three
 runs of each, taken in turn; the ratio is figgen's time over rdy's.
+
+Then, where READY_PATTERNS names Ready's Patterns/ folder, kernel rules and
+meshes (docs/kernels.md): SmoothLife (smoothlifeL, smoothglider), Life on a
+Penrose tiling and on a torus, Gray-Scott on the bunny. Each starts from
+Ready's own state after one step (`rdy -i P -n 1 -o START`); both tools run
+N steps from it as above (figgen's --format vti or vtu); cell-updates per
+second are cells x N over the whole process's time.
 """
 import json, os, statistics, subprocess, sys, tempfile, time
 
@@ -91,7 +98,53 @@ def main():
             results.append({'grid': name, 'steps': steps, 'figgen_s': round(a, 3), 'rdy_s': round(b, 3),
                             'figgen_over_rdy': round(a / b, 3)})
             print(f'{name:>10}: {steps} steps, figgen {a:.2f} s, rdy {b:.2f} s, ratio {a / b:.2f}', file=sys.stderr)
-    print(json.dumps({'cases': results}, indent=2))
+    kernels = kernel_cases(figgen, rdy)
+    print(json.dumps({'cases': results, 'kernels': kernels}, indent=2))
+
+
+# (pattern under Patterns/, steps): rdy takes one to a few seconds on 2 cores
+KERNELS = [('SmoothLife2011/smoothlifeL.vti', 100), ('SmoothLife2011/smoothglider.vti', 100),
+           ('CellularAutomata/PenroseTilings/life.vtu', 10000), ('CellularAutomata/life_torus.vtu', 10000),
+           ('GrayScott1984/bunny.vtu', 2000)]
+
+
+def cells_of(path):
+    import vtkmodules.all as vtk
+    if path.endswith('.vtu'):
+        r = vtk.vtkXMLUnstructuredGridReader()
+    else:
+        r = vtk.vtkXMLImageDataReader()
+    r.SetFileName(path)
+    r.Update()
+    out = r.GetOutput()
+    return out.GetNumberOfCells() if path.endswith('.vtu') else out.GetNumberOfPoints()
+
+
+def kernel_cases(figgen, rdy):
+    patterns = os.environ.get('READY_PATTERNS')
+    if not patterns:
+        print('ready_speed: READY_PATTERNS (Ready\'s Patterns/ folder) not given: kernels and meshes skipped',
+              file=sys.stderr)
+        return []
+    results = []
+    with tempfile.TemporaryDirectory() as work:
+        for rel, steps in KERNELS:
+            ext = rel[-4:]
+            start = os.path.join(work, 'start' + ext)
+            timed([rdy, '-i', os.path.join(patterns, rel), '-n', '1', '-o', start])
+            cells = cells_of(start)
+            ours, theirs = [], []
+            for _ in range(3):
+                ours.append(timed([figgen, 'render', start, '--set', f'steps={steps}', '--set', 'id=figgen',
+                                   '--format', ext[1:], '--out', work]))
+                theirs.append(timed([rdy, '-i', start, '-n', str(steps), '-o', os.path.join(work, 'rdy' + ext)]))
+            a, b = statistics.median(ours), statistics.median(theirs)
+            results.append({'pattern': rel, 'cells': cells, 'steps': steps, 'figgen_s': round(a, 3),
+                            'rdy_s': round(b, 3), 'figgen_cell_updates_per_s': round(cells * steps / a),
+                            'rdy_cell_updates_per_s': round(cells * steps / b), 'figgen_over_rdy': round(a / b, 3)})
+            print(f'{rel:>42}: {cells} cells, {steps} steps, figgen {a:.2f} s ({cells * steps / a:.3g}/s), '
+                  f'rdy {b:.2f} s ({cells * steps / b:.3g}/s), ratio {a / b:.2f}', file=sys.stderr)
+    return results
 
 
 main()
