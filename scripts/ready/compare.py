@@ -3,6 +3,7 @@
 docs/ready-patterns.md's table.
 
     RDY_BUILD=build-rdy /usr/bin/python3 scripts/ready/compare.py READY/Patterns WORK > docs/ready-patterns.md
+    /usr/bin/python3 scripts/ready/compare.py READY/Patterns WORK --report-only   # the table of the rows so far
 
 (build/figgen must not be rebuilt while it runs; FIGGEN=path runs another copy.)
 
@@ -159,6 +160,7 @@ def amplifies(r):
 
 def main():
     patterns, work = sys.argv[1], sys.argv[2]
+    report_only = '--report-only' in sys.argv[3:]  # the rows kept so far; the others said not compared
     rows = []
     files = sorted(glob.glob(patterns + '/**/*.vti', recursive=True) + glob.glob(patterns + '/**/*.vtu', recursive=True))
     for path in files:
@@ -169,6 +171,8 @@ def main():
         kept = out + '/row.json'
         if os.path.exists(kept):
             row = json.load(open(kept))
+        elif report_only:
+            row = {'runs': False, 'error': 'not compared yet'}
         else:
             ran = figgen(path, '--set', 'steps=5', '--format', 'png', '--out', out, '--set', 'id=own')
             row = {'runs': ran.returncode == 0,
