@@ -125,7 +125,10 @@ def compare(path, kind, out):
     ran = figgen(start, '--set', 'steps=%d' % STEPS, '--format', fmt, '--out', out, '--set', 'id=float')
     row['seconds'] = time.time() - t
     if ran.returncode:
-        row['note'] = 'from Ready\'s start: ' + (ran.stderr.strip().splitlines() or ['?'])[-1]
+        if not all(np.all(np.isfinite(v)) for v in arrays(start).values()):
+            row['note'] = 'Ready\'s own start holds numbers that are not finite: nothing to compare from'
+        else:
+            row['note'] = 'from Ready\'s start: ' + (ran.stderr.strip().splitlines() or ['?'])[-1]
         return row
     a, b = arrays(out + '/float.' + fmt), arrays(last)
     if set(a) != set(b) or any(a[k].shape != b[k].shape for k in b):
