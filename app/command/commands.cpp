@@ -189,7 +189,7 @@ RenderCommand::RenderCommand(CLI::App& parent, bool merge) {
         ->capture_default_str()
         ->check(integer_in(0, 1023));
     app->add_option("figures", targets,
-                    "Figure ids (see `figgen list`), .toml description files, or Ready's pattern files (.vti)")
+                    "Figure ids (see `figgen list`), .toml description files, or Ready's pattern files (.vti, .vtu)")
         ->required();
     app->add_option("--out", out_dir, "Output folder, created if missing")->capture_default_str();
     app->add_option("--set", overrides,
