@@ -62,7 +62,8 @@ public:
         if (d.panels.back() > m_.steps)
             throw SettingError("figure.panels", shown_steps(d.panels), "steps up to params.steps (" +
                                                                             std::to_string(m_.steps) + ")");
-        if (d.animation && d.animation->last > m_.steps)
+        // Without the film (--no-video) its steps are not run and not checked.
+        if (options.film && d.animation && d.animation->last > m_.steps)
             throw SettingError("animation.steps", std::to_string(d.animation->last),
                                "steps up to params.steps (" + std::to_string(m_.steps) + ")");
         require_drawable(params_, "width", "the grid", m_.height, m_.width);
@@ -230,8 +231,11 @@ private:
     // The rows a 1-D run's space-time diagram keeps: every `stride`-th step
     // up to the last, at most space_time_rows of them.
     static constexpr int space_time_rows = 512;
-    // The last step any output shows, whatever part of the film a run makes.
-    int figure_last() const { return std::max(d_.panels.back(), d_.animation ? d_.animation->last : 0); }
+    // The last step any output shows, whatever part of the film a run makes
+    // (a run without the film may have been given one past params.steps).
+    int figure_last() const {
+        return std::max(d_.panels.back(), d_.animation ? std::min(d_.animation->last, m_.steps) : 0);
+    }
     int space_time_stride() const { return scenes::space_time_stride(figure_last(), space_time_rows); }
 
     // Every chemical where the run is.

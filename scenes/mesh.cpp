@@ -247,7 +247,7 @@ public:
         if (d.panels.empty()) throw SettingError("figure.panels", "[]", "the steps to show, e.g. [0, 500, 1000]");
         if (d.panels.back() > m_.steps)
             throw SettingError("figure.panels", "...", "steps up to params.steps (" + std::to_string(m_.steps) + ")");
-        if (d.animation && d.animation->last > m_.steps)
+        if (options.film && d.animation && d.animation->last > m_.steps)  // --no-video: no film to check
             throw SettingError("animation.steps", std::to_string(d.animation->last),
                                "steps up to params.steps (" + std::to_string(m_.steps) + ")");
         const description::StoredMesh& stored = *mesh_;

@@ -133,6 +133,22 @@ TEST_CASE("a formula description's mistakes are refused, naming the key and the 
     CHECK(refusal(rule) == "accepted");
 }
 
+TEST_CASE("a film past params.steps is refused, and not checked when no film is made", "[formula][scenes]") {
+    const std::string shorter = with("steps", "50") + "[animation]\nsteps = [0, 100]\n";
+    const std::string text = shorter.substr(0, shorter.find("panels = [0, 100]")) + "panels = [0, 50]" +
+                             shorter.substr(shorter.find("panels = [0, 100]") + 17);
+    const auto d = description::parse_description(text, "fx-test.toml");
+    scenes::SceneOptions film;
+    CHECK_THROWS_WITH(scenes::read_scene(d, film),
+                      Catch::StartsWith("animation.steps = 100 is not allowed: steps up to params.steps (50)"));
+    scenes::SceneOptions no_film;
+    no_film.film = false;
+    CHECK_NOTHROW(scenes::read_scene(d, no_film));
+    const auto meta = render_small(d);  // --no-video: the panels run, to step 50 and no further
+    REQUIRE(meta["panels"].size() == 2);
+    CHECK(meta["panels"][1]["step"] == 50);
+}
+
 TEST_CASE("a formula description's edges: read, refused where they cannot be, and said in the metadata", "[formula][scenes]") {
     CHECK_THAT(refusal(with("edges", "\"sideways\"")),
                Catch::StartsWith("edges = 'sideways' is not allowed: \"periodic\", \"neumann\" or \"dirichlet\""));
