@@ -376,6 +376,8 @@ Neighbours neighbours(const Mesh& m, Kind kind) {
         throw std::invalid_argument(said);
     }
     std::vector<std::vector<int>> lists(cells);
+    std::vector<int> about;  // a cell's neighbours by each of its points in turn
+    std::vector<std::size_t> about_start;
     Neighbours out;
     for (std::size_t c = 0; c < cells; ++c) {
         const int cell = static_cast<int>(c);
@@ -386,18 +388,30 @@ Neighbours neighbours(const Mesh& m, Kind kind) {
         switch (kind) {
         case Kind::vertex: {
             const Ids pts = points_of(m, c);
+            // The cells about each point, found once.
+            about.clear();
+            about_start.assign(1, 0);
+            for (std::size_t i = 0; i < pts.size(); ++i) {
+                const std::vector<int>& sharing = finder.sharing(cell, pts.subspan(i, 1));
+                about.insert(about.end(), sharing.begin(), sharing.end());
+                about_start.push_back(about.size());
+            }
             // Round and round the points, taking a cell only when it shares
             // an edge with the last one taken: Ready's way of listing them
-            // in a ring about the cell.
+            // in a ring about the cell. (A cell already taken is passed
+            // over before the edge test, which would change nothing.)
             std::size_t before = 0;
             do {
                 before = found.size();
                 for (std::size_t i = 0; i < pts.size(); ++i)
-                    for (int n : finder.sharing(cell, pts.subspan(i, 1)))
-                        if (found.empty() || finder.edge_neighbour(found.back(), n)) add_if_new(found, n);
+                    for (std::size_t k = about_start[i]; k < about_start[i + 1]; ++k) {
+                        const int n = about[k];
+                        if (std::find(found.begin(), found.end(), n) != found.end()) continue;
+                        if (found.empty() || finder.edge_neighbour(found.back(), n)) found.push_back(n);
+                    }
             } while (found.size() > before);
             // Then any left (where the mesh is not a manifold).
-            for (std::size_t i = 0; i < pts.size(); ++i) from_each(pts.subspan(i, 1));
+            for (int n : about) add_if_new(found, n);
             break;
         }
         case Kind::edge: finder.each_edge(c, from_each); break;
