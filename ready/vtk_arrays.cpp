@@ -164,7 +164,10 @@ std::vector<std::uint8_t> decode_base64(std::string_view spaced, const Encoding&
     if (!e.compressed) {
         const std::size_t head = base64_chars(header);
         if (text.size() < head) throw DataError("an array's header is cut short");
-        check_holds(word(base64(text.substr(0, head)).data(), e.header), expected);
+        // Padding ('=') among the header's characters decodes to fewer bytes than the word.
+        const std::vector<std::uint8_t> words = base64(text.substr(0, head));
+        if (words.size() < header) throw DataError("an array's header is cut short");
+        check_holds(word(words.data(), e.header), expected);
         const std::size_t chars = base64_chars(header + expected);
         if (text.size() < chars) throw DataError("an array is cut short");
         const std::vector<std::uint8_t> all = base64(text.substr(0, chars));

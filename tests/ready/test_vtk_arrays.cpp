@@ -132,6 +132,9 @@ TEST_CASE("a header that lies about counts or sizes is refused in words", "[read
     CHECK_THAT(refusal_raw(plain + std::string(16, 'x'), 20, {4, false}), Contains("holds 16 bytes; its extent needs 20"));
     CHECK_THAT(refusal_base64("AAAA", 16, {4, false}), Contains("an array's header is cut short"));
     CHECK_THAT(refusal_base64("EAAAAA==", 16, {4, false}), Contains("an array is cut short"));
+    // Padding inside the header's twelve characters: they decode to 7 bytes, not the 8 of its word
+    // (a fuzzer's find: the word was read past them).
+    CHECK_THAT(refusal_base64("AAAAAAAAAA==AAAAAAAAAAAA", 8, {8, false}), Contains("an array's header is cut short"));
     CHECK_THAT(refusal_base64("EAAA*AAA", 16, {4, false}), Contains("a character outside base64"));
     // More than figgen reads at all.
     CHECK_THAT(refusal_raw("", std::uint64_t{1} << 40), Contains("larger than figgen reads"));
