@@ -28,6 +28,24 @@ bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && st
 
 }  // namespace
 
+std::vector<Tube> box_edges(glm::vec3 lo, glm::vec3 hi, float radius, glm::vec4 colour) {
+    std::vector<Tube> edges;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int k = 0; k < 4; ++k) {
+            glm::vec3 a, b;
+            for (int i = 0, bit = 0; i < 3; ++i) {
+                if (i == axis) {
+                    a[i] = lo[i], b[i] = hi[i];
+                } else {
+                    a[i] = b[i] = (k >> bit & 1) ? hi[i] : lo[i];
+                    ++bit;
+                }
+            }
+            edges.push_back({a, b, radius, radius, colour});
+        }
+    return edges;
+}
+
 Camera frame_bounds(glm::vec3 lo, glm::vec3 hi, float azimuth_degrees, float elevation_degrees, float aspect,
                     float fov_degrees) {
     const float azimuth = glm::radians(azimuth_degrees), elevation = glm::radians(elevation_degrees);

@@ -50,6 +50,10 @@ struct Camera {
 Camera frame_bounds(glm::vec3 lo, glm::vec3 hi, float azimuth_degrees, float elevation_degrees, float aspect,
                     float fov_degrees = 35);
 
+// The twelve edges of the box lo..hi, each a tube of `radius` and `colour`:
+// along x, then y, then z.
+std::vector<Tube> box_edges(glm::vec3 lo, glm::vec3 hi, float radius, glm::vec4 colour);
+
 // The box (lo, hi) that holds every tube, radii included.
 std::pair<glm::vec3, glm::vec3> tube_bounds(const std::vector<Tube>& tubes);
 

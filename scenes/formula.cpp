@@ -407,22 +407,8 @@ private:
                     double turned = 0) const {
         const glm::vec3 lo(0, 0, -float(m_.height - 1)), hi(float(m_.width - 1), float(m_.depth - 1), 0);
         // The box's twelve edges, thin and grey.
-        std::vector<render::Tube> edges;
-        const float r = 0.004f * float(std::max({m_.width, m_.height, m_.depth}));
-        const glm::vec4 grey(0.55f, 0.55f, 0.55f, 1);
-        for (int axis = 0; axis < 3; ++axis)
-            for (int k = 0; k < 4; ++k) {
-                glm::vec3 a, b;
-                for (int i = 0, bit = 0; i < 3; ++i) {
-                    if (i == axis) {
-                        a[i] = lo[i], b[i] = hi[i];
-                    } else {
-                        a[i] = b[i] = (k >> bit & 1) ? hi[i] : lo[i];
-                        ++bit;
-                    }
-                }
-                edges.push_back({a, b, r, r, grey});
-            }
+        const std::vector<render::Tube> edges = render::box_edges(
+            lo, hi, 0.004f * float(std::max({m_.width, m_.height, m_.depth})), {0.55f, 0.55f, 0.55f, 1});
         render::Camera camera = render::frame_bounds(lo, hi, float(35 + 360 * turned), 25, view.w / view.h);
         if (turned > 0) {
             // Turning, the camera keeps the distance at which the box fits from every side.

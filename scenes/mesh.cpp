@@ -170,9 +170,10 @@ Schema<Style> style_schema(int chemicals) {
         formula_style_schema(chemicals), [](auto& v) -> auto& { return v.chemicals; });
     s.number("azimuth", &Style::azimuth,
              "a surface's or a solid lattice's view: degrees about y (0: from +z; by default 0, or a three-quarter "
-             "view of a mesh half as long again one way as the other)",
+             "view of a mesh half as long again one way as the other, and 35 for a solid lattice)",
              -360, 360);
-    s.number("elevation", &Style::elevation, "the same view's degrees above the horizontal", -89, 89);
+    s.number("elevation", &Style::elevation,
+             "the same view's degrees above the horizontal (by default 15, and 25 for a solid lattice)", -89, 89);
     s.number("edge_width", &Style::edge_width, "a flat tiling's cell edges, pixels before --scale (under half a pixel: none)", 0, 10);
     return s;
 }
@@ -258,7 +259,9 @@ public:
         cells_mesh_.faces = stored.faces;
         cells_mesh_.face_offsets = stored.face_offsets;
         look_ = look_of(cells_mesh_);
-        azimuth_ = style_.has("azimuth") ? s_.azimuth : default_azimuth(cells_mesh_);
+        // A solid lattice from a three-quarter view above, as a 3-D grid's isosurface is seen.
+        azimuth_ = style_.has("azimuth") ? s_.azimuth : look_ == Look::solid ? 35 : default_azimuth(cells_mesh_);
+        elevation_ = style_.has("elevation") || look_ != Look::solid ? s_.elevation : 25;
         try {
             neighbours_ = mesh::neighbours(cells_mesh_, m_.neighbourhood);
         } catch (const std::invalid_argument& e) {
@@ -374,6 +377,7 @@ public:
                                  draw_figure(s, panels, range, geometry);
                              }};
         figure.ready_state = [this, &model, range] { return ready_state(model, range); };
+        if (look_ != Look::tiling) meta["mesh"]["view"] = {{"azimuth", azimuth_}, {"elevation", elevation_}};
         run.write_figure(figure, meta);
     }
 
@@ -586,12 +590,20 @@ private:
         std::vector<render::Ball> balls;
         for (const auto& [cell, f] : g.facets)
             for (glm::vec3 p : {f.a, f.b, f.c}) balls.push_back({p, 0});
-        render::Camera camera = render::frame_balls(balls, float(azimuth_), float(s_.elevation), view.w / view.h);
+        // A lattice's box, thin and grey (Ready's bounding box): where its live cells are within it.
+        std::vector<render::Tube> box;
+        if (look_ == Look::solid && !balls.empty()) {
+            glm::vec3 lo = balls.front().centre, hi = lo;
+            for (const render::Ball& b : balls) lo = glm::min(lo, b.centre), hi = glm::max(hi, b.centre);
+            box = render::box_edges(lo, hi, 0.003f * glm::length(hi - lo), {0.55f, 0.55f, 0.55f, 1});
+            for (const render::Tube& t : box) balls.push_back({t.a, t.radius_a});  // its corners framed too
+        }
+        render::Camera camera = render::frame_balls(balls, float(azimuth_), float(elevation_), view.w / view.h);
         const glm::vec3 back = glm::normalize(camera.eye - camera.target);
         const glm::vec3 left = glm::normalize(glm::cross(back, camera.up));
         render::Light light;
         light.direction = 0.8f * back + 0.5f * camera.up + 0.3f * left;
-        render::draw_tubes(s, view, {}, facets, camera, light, 8);
+        render::draw_tubes(s, view, box, facets, camera, light, 8);
     }
 
     void draw_figure(render::Surface& s, const std::vector<std::pair<int, std::vector<double>>>& panels,
@@ -650,7 +662,8 @@ private:
     const Style s_;
     const FieldSpec spec_;
     Look look_ = Look::surface;
-    double azimuth_ = 0;  // style.azimuth, or the mesh's own (default_azimuth)
+    double azimuth_ = 0;    // style.azimuth, or the mesh's own (default_azimuth, or 35 for a lattice)
+    double elevation_ = 15;  // style.elevation, or 25 for a lattice
     mesh::Neighbours neighbours_;
     sim::kernel::MeshRule rule_;
     formula::Pattern overlays_;

@@ -5,12 +5,14 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "figgen_run.hpp"
+#include "media/png_io.hpp"
 
 namespace fs = std::filesystem;
 
@@ -167,4 +169,44 @@ TEST_CASE("a mesh kernel that reads outside its buffers stops with its line, ste
     CHECK_THAT(run.output, Catch::Contains("kernel line 6, step 1, work item (3000, 0, 0): index 103000 of a_in is "
                                            "outside 0 to 3009"));
     CHECK((!fs::exists(out) || fs::is_empty(out)));
+}
+
+TEST_CASE("a solid lattice is drawn as its occupied cells inside its box, from above three-quarters", "[ready][vtu]") {
+    // Two polyhedra side by side (x 0..1 and 1..2), a = 0.2 and 0.9, still (D = 0): of the colour
+    // range 0..1, only the second cell is at or above the middle, and drawn.
+    const fs::path out = testkit::fresh_dir("mesh-lattice");
+    std::string text = edited("polyhedra-ascii.vtu", "number_of_chemicals=\"2\"", "number_of_chemicals=\"1\"");
+    text.erase(text.find("delta_b = D * laplacian_b;"), 26);
+    text.replace(text.find("0.5 1.5"), 7, "0.2 0.9");
+    text.replace(text.find("name=\"D\">0.5<"), 13, "name=\"D\">0.0<");
+    fs::create_directories(out / "in");
+    testkit::spill(out / "in" / "polyhedra-ascii.vtu", text);
+    const auto run = testkit::figgen("render " + (out / "in" / "polyhedra-ascii.vtu").string() +
+                                     " --set steps=2 --set figure.panels=[2] --no-video --set figure.size=[500,300] --out " + out.string());
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    const nlohmann::json meta = nlohmann::json::parse(testkit::slurp(out / "polyhedra-ascii.json"));
+    CHECK(meta["mesh"]["drawn_as"] == "solid");
+    CHECK(meta["mesh"]["view"] == nlohmann::json({{"azimuth", 35.0}, {"elevation", 25.0}}));
+    const render::Image png = media::read_png(out / "polyhedra-ascii.png").image;
+    // The box's edges are grey (0.55); the drawn cell is coloured. Their extents in x, across the page.
+    int grey = 0, coloured = 0, grey_lo = png.width, grey_hi = -1, cell_lo = png.width, cell_hi = -1;
+    for (int y = 0; y < png.height; ++y)
+        for (int x = 0; x < png.width * 7 / 10; ++x) {  // the colour bar is at the right
+            const std::uint8_t* p = png.pixel(x, y);
+            const int spread = std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]});
+            if (spread < 8 && p[0] > 110 && p[0] < 170) {
+                ++grey;
+                grey_lo = std::min(grey_lo, x), grey_hi = std::max(grey_hi, x);
+            } else if (spread > 80) {
+                ++coloured;
+                cell_lo = std::min(cell_lo, x), cell_hi = std::max(cell_hi, x);
+            }
+        }
+    CHECK(grey > 200);
+    CHECK(coloured > 2000);
+    // The cell is at x 1..2 of a box 0..2: the box's empty half shows left of it.
+    const int left = std::min(grey_lo, cell_lo), right = std::max(grey_hi, cell_hi);
+    CHECK(grey_lo < cell_lo - 20);
+    CHECK(cell_lo > left + (right - left) / 4);
 }
