@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -409,7 +410,19 @@ Outcome mesh(const std::uint8_t* data, std::size_t size) {
                 return Outcome::refused;  // mixed cell types: Ready refuses them too
             }
         }
-        (void)ready::vtu::write_vtu(g);
+        // Written out, it reads back as the same mesh and the same values, bit for bit.
+        const ready::vtu::UnstructuredGrid back = ready::vtu::read_vtu(ready::vtu::write_vtu(g));
+        const auto same_bits = [](const std::vector<double>& x, const std::vector<double>& y) {
+            return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
+        };
+        bool same = same_bits(back.mesh.points, g.mesh.points) && back.mesh.offsets == g.mesh.offsets &&
+                    back.mesh.point_ids == g.mesh.point_ids && back.mesh.types == g.mesh.types &&
+                    back.mesh.faces == g.mesh.faces && back.cell_data.size() == g.cell_data.size();
+        for (std::size_t i = 0; same && i < g.cell_data.size(); ++i)
+            same = back.cell_data[i].name == g.cell_data[i].name &&
+                   back.cell_data[i].components == g.cell_data[i].components &&
+                   same_bits(back.cell_data[i].values, g.cell_data[i].values);
+        if (!same) throw std::logic_error("a mesh written back by write_vtu reads as another");
     } catch (const ready::vtu::DataError&) {
         return Outcome::refused;
     }
