@@ -49,7 +49,7 @@ void set_mask(Ctx& c, int m) {
     c.cur = m;
     const std::uint8_t* k = mreg(c, m);
     int count = 0;
-    for (int l = 0; l < c.n; ++l) count += k[l];
+    for (int l = 0, cn = c.n; l < cn; ++l) count += k[l];
     c.any = count > 0 && !c.stop;
     c.all = count == c.n;
 }
@@ -80,11 +80,23 @@ inline void expand(Ctx& c, int r) {
     if (!c.uni[r]) return;
     T* d = reg<T>(c, r);
     const T v = d[0];
-    for (int l = 1; l < c.n; ++l) d[l] = v;
+    for (int l = 1, cn = c.n; l < cn; ++l) d[l] = v;
     c.uni[r] = 0;
 }
 
 // d = f(a) over the lanes, uniform when a is.
+// std::trunc's bits without a call to libm, so that a loop of it
+// vectorises: below 2^23 (2^52) a float (double) has a fraction, and the
+// integer conversion drops it; the sign is kept for -0. At or above, and
+// for infinities and NaN, the value is its own. Exhaustively equal to
+// std::trunc over every float, and over 3e8 doubles and their edges.
+template <class T>
+inline T trunc_exact(T v) {
+    using I = std::conditional_t<sizeof(T) == 4, std::int32_t, std::int64_t>;
+    const T whole = sizeof(T) == 4 ? T(8388608.0) : T(4503599627370496.0);
+    return std::fabs(v) < whole ? std::copysign(T(static_cast<I>(v)), v) : v;
+}
+
 template <class D, class A, class F>
 inline void map1(Ctx& c, const Op& op, F f) {
     D* d = reg<D>(c, op.dst);
@@ -94,7 +106,7 @@ inline void map1(Ctx& c, const Op& op, F f) {
         c.uni[op.dst] = 1;
         return;
     }
-    for (int l = 0; l < c.n; ++l) d[l] = f(a[l]);
+    for (int l = 0, cn = c.n; l < cn; ++l) d[l] = f(a[l]);
     c.uni[op.dst] = 0;
 }
 
@@ -134,7 +146,7 @@ inline void map3(Ctx& c, const Op& op, F f) {
         c.uni[op.dst] = 1;
         return;
     }
-    for (int l = 0; l < c.n; ++l) d[l] = f(a[ua ? 0 : l], b[ub ? 0 : l], e[ue ? 0 : l]);
+    for (int l = 0, cn = c.n; l < cn; ++l) d[l] = f(a[ua ? 0 : l], b[ub ? 0 : l], e[ue ? 0 : l]);
     c.uni[op.dst] = 0;
 }
 
@@ -192,9 +204,9 @@ void op_assign(Ctx& c, const Op& op) {
     const std::uint8_t* m = mreg(c, c.cur);
     if (c.uni[op.a]) {
         const T v = a[0];
-        for (int l = 0; l < c.n; ++l) d[l] = m[l] ? v : d[l];
+        for (int l = 0, cn = c.n; l < cn; ++l) d[l] = m[l] ? v : d[l];
     } else {
-        for (int l = 0; l < c.n; ++l) d[l] = m[l] ? a[l] : d[l];
+        for (int l = 0, cn = c.n; l < cn; ++l) d[l] = m[l] ? a[l] : d[l];
     }
 }
 
@@ -328,10 +340,10 @@ void op_math1(Ctx& c, const Op& op) {
             else if constexpr (M == Math1::round) {
                 // half away from zero, as std::round, without a call to libm:
                 // v - trunc(v) is exact (the same bits as std::round for every float)
-                const T r = std::trunc(v);
+                const T r = trunc_exact(v);
                 return std::fabs(v - r) >= T(0.5) ? r + std::copysign(T(1), v) : r;
             }
-            else if constexpr (M == Math1::trunc) return std::trunc(v);
+            else if constexpr (M == Math1::trunc) return trunc_exact(v);
             else if constexpr (M == Math1::rint) return std::nearbyint(v);
             else if constexpr (M == Math1::sign) return sign_of(v);
             else if constexpr (M == Math1::erf) return std::erf(v);
@@ -454,13 +466,13 @@ void op_select(Ctx& c, const Op& op) {
     const std::uint8_t* m = mreg(c, op.c);
     const bool ua = c.uni[op.a], ub = c.uni[op.b];
     bool all = true, none = true;
-    for (int l = 0; l < c.n; ++l) (m[l] ? none : all) = false;
+    for (int l = 0, cn = c.n; l < cn; ++l) (m[l] ? none : all) = false;
     if ((all && ub) || (none && ua)) {
         d[0] = all ? b[0] : a[0];
         c.uni[op.dst] = 1;
         return;
     }
-    for (int l = 0; l < c.n; ++l) d[l] = m[l] ? b[ub ? 0 : l] : a[ua ? 0 : l];
+    for (int l = 0, cn = c.n; l < cn; ++l) d[l] = m[l] ? b[ub ? 0 : l] : a[ua ? 0 : l];
     c.uni[op.dst] = 0;
 }
 
@@ -470,37 +482,37 @@ void op_to_mask(Ctx& c, const Op& op) {
     const T* a = reg<T>(c, op.a);
     if (c.uni[op.a]) std::memset(d, a[0] != T(0), static_cast<std::size_t>(c.n));
     else
-        for (int l = 0; l < c.n; ++l) d[l] = a[l] != T(0);
+        for (int l = 0, cn = c.n; l < cn; ++l) d[l] = a[l] != T(0);
 }
 
 template <class T>
 void op_sign_mask(Ctx& c, const Op& op) {
     std::uint8_t* d = mreg(c, op.dst);
     const T* a = reg<T>(c, op.a);
-    for (int l = 0; l < c.n; ++l) d[l] = a[c.uni[op.a] ? 0 : l] < T(0);
+    for (int l = 0, cn = c.n; l < cn; ++l) d[l] = a[c.uni[op.a] ? 0 : l] < T(0);
 }
 
 void op_from_mask(Ctx& c, const Op& op) {
     std::int32_t* d = reg<std::int32_t>(c, op.dst);
     const std::uint8_t* a = mreg(c, op.a);
-    for (int l = 0; l < c.n; ++l) d[l] = a[l];
+    for (int l = 0, cn = c.n; l < cn; ++l) d[l] = a[l];
     c.uni[op.dst] = 0;
 }
 
 void op_mask_and(Ctx& c, const Op& op) {
     std::uint8_t* d = mreg(c, op.dst);
     const std::uint8_t *a = mreg(c, op.a), *b = mreg(c, op.b);
-    for (int l = 0; l < c.n; ++l) d[l] = a[l] & b[l];
+    for (int l = 0, cn = c.n; l < cn; ++l) d[l] = a[l] & b[l];
 }
 void op_mask_or(Ctx& c, const Op& op) {
     std::uint8_t* d = mreg(c, op.dst);
     const std::uint8_t *a = mreg(c, op.a), *b = mreg(c, op.b);
-    for (int l = 0; l < c.n; ++l) d[l] = a[l] | b[l];
+    for (int l = 0, cn = c.n; l < cn; ++l) d[l] = a[l] | b[l];
 }
 void op_mask_not(Ctx& c, const Op& op) {
     std::uint8_t* d = mreg(c, op.dst);
     const std::uint8_t* a = mreg(c, op.a);
-    for (int l = 0; l < c.n; ++l) d[l] = a[l] ^ 1;
+    for (int l = 0, cn = c.n; l < cn; ++l) d[l] = a[l] ^ 1;
 }
 
 // The first lane of the mask whose index is outside [0, bound), or -1.
@@ -508,15 +520,15 @@ int outside(Ctx& c, const std::int64_t* idx, bool uniform, long long bound) {
     const std::uint8_t* m = mreg(c, c.cur);
     if (uniform) {
         if (idx[0] >= 0 && idx[0] < bound) return -1;
-        for (int l = 0; l < c.n; ++l)
+        for (int l = 0, cn = c.n; l < cn; ++l)
             if (m[l]) return l;
         return -1;
     }
     const auto ubound = static_cast<std::uint64_t>(bound);
     std::uint8_t any = 0;
-    for (int l = 0; l < c.n; ++l) any |= m[l] & static_cast<std::uint8_t>(static_cast<std::uint64_t>(idx[l]) >= ubound);
+    for (int l = 0, cn = c.n; l < cn; ++l) any |= m[l] & static_cast<std::uint8_t>(static_cast<std::uint64_t>(idx[l]) >= ubound);
     if (!any) return -1;
-    for (int l = 0; l < c.n; ++l)
+    for (int l = 0, cn = c.n; l < cn; ++l)
         if (m[l] && (idx[l] < 0 || idx[l] >= bound)) return l;
     return -1;
 }
@@ -553,7 +565,7 @@ void op_buffer_load(Ctx& c, const Op& op) {
         // an output is read where this work item wrote it, else what it
         // reads is another's, or undefined
         const std::int32_t* stamp = c.launch->stamps[view];
-        for (int l = 0; l < c.n; ++l) {
+        for (int l = 0, cn = c.n; l < cn; ++l) {
             if (!m[l]) continue;
             const std::int64_t i = idx[u ? 0 : l];
             const std::int32_t who = std::atomic_ref<const std::int32_t>(stamp[i]).load(std::memory_order_relaxed);
@@ -570,9 +582,9 @@ void op_buffer_load(Ctx& c, const Op& op) {
         return;
     }
     if (c.all) {
-        for (int l = 0; l < c.n; ++l) d[l] = data[idx[l] * w + op.i];
+        for (int l = 0, cn = c.n; l < cn; ++l) d[l] = data[idx[l] * w + op.i];
     } else {
-        for (int l = 0; l < c.n; ++l) d[l] = m[l] ? data[idx[l] * w + op.i] : T(0);
+        for (int l = 0, cn = c.n; l < cn; ++l) d[l] = m[l] ? data[idx[l] * w + op.i] : T(0);
     }
     c.uni[op.dst] = 0;
 }
@@ -592,7 +604,7 @@ void op_buffer_store(Ctx& c, const Op& op) {
     const bool ub = c.uni[op.b];
     const std::uint8_t* m = mreg(c, c.cur);
     const int w = v.width;
-    for (int l = 0; l < c.n; ++l) {
+    for (int l = 0, cn = c.n; l < cn; ++l) {
         if (!m[l]) continue;
         const std::int64_t i = idx[u ? 0 : l];
         const auto me = static_cast<std::int32_t>(c.first + l);
@@ -628,7 +640,7 @@ void op_array_load(Ctx& c, const Op& op) {
         }
         return;
     }
-    for (int l = 0; l < c.n; ++l) {
+    for (int l = 0, cn = c.n; l < cn; ++l) {
         const std::int64_t i = idx[l];
         if (i < 0 || i >= a.count) {
             d[l] = 0;
@@ -654,7 +666,7 @@ void op_array_store(Ctx& c, const Op& op) {
         return op_assign<T>(c, as);
     }
     const std::uint8_t* m = mreg(c, c.cur);
-    for (int l = 0; l < c.n; ++l) {
+    for (int l = 0, cn = c.n; l < cn; ++l) {
         if (!m[l]) continue;
         const int r = a.base + static_cast<int>(idx[l]) * a.width + static_cast<int>(op.i);
         expand<T>(c, r);
@@ -678,7 +690,7 @@ void op_if(Ctx& c, const Op& op) {
     std::uint8_t* t = mreg(c, f.then_mask);
     std::uint8_t* e = mreg(c, f.else_mask);
     int nt = 0, ne = 0;
-    for (int l = 0; l < c.n; ++l) {
+    for (int l = 0, cn = c.n; l < cn; ++l) {
         t[l] = m[l] & k[l];
         e[l] = m[l] & (k[l] ^ 1);
         nt += t[l];
@@ -703,7 +715,7 @@ void op_if(Ctx& c, const Op& op) {
         if (c.stop) return;
     }
     const std::uint8_t* after = mreg(c, f.else_block >= 0 ? c.cur : f.else_mask);
-    for (int l = 0; l < c.n; ++l) j[l] |= after[l];
+    for (int l = 0, cn = c.n; l < cn; ++l) j[l] |= after[l];
     set_mask(c, f.join);
 }
 
@@ -725,7 +737,7 @@ void op_loop(Ctx& c, const Op& op) {
             if (L.cond >= 0) {
                 const std::uint8_t* k = mreg(c, L.cond);
                 int count = 0;
-                for (int l = 0; l < c.n; ++l) {
+                for (int l = 0, cn = c.n; l < cn; ++l) {
                     ex[l] |= lm[l] & (k[l] ^ 1);
                     lm[l] &= k[l];
                     count += lm[l];
@@ -735,7 +747,7 @@ void op_loop(Ctx& c, const Op& op) {
             }
         }
         first = false;
-        for (int l = 0; l < c.n; ++l) {
+        for (int l = 0, cn = c.n; l < cn; ++l) {
             c.trips[l] += lm[l];
             if (c.trips[l] > budget)
                 return fail(c, op.line, l,
@@ -746,7 +758,7 @@ void op_loop(Ctx& c, const Op& op) {
         if (c.stop) return;
         const std::uint8_t* after = mreg(c, c.cur);
         const std::uint8_t* cont = mreg(c, L.continued);
-        for (int l = 0; l < c.n; ++l) lm[l] = after[l] | cont[l];
+        for (int l = 0, cn = c.n; l < cn; ++l) lm[l] = after[l] | cont[l];
         if (L.step >= 0) {
             set_mask(c, L.lm);
             if (c.any) exec(c, L.step);
@@ -755,7 +767,7 @@ void op_loop(Ctx& c, const Op& op) {
         }
     }
     const std::uint8_t* br = mreg(c, L.broken);
-    for (int l = 0; l < c.n; ++l) ex[l] |= br[l];
+    for (int l = 0, cn = c.n; l < cn; ++l) ex[l] |= br[l];
     set_mask(c, L.exit);
 }
 
@@ -787,11 +799,11 @@ void op_switch(Ctx& c, const Op& op) {
             const bool hit = hits(seg, sel[0]);
             if (!hit && !falling) continue;  // no lane enters it
             if (hit)
-                for (int l = 0; l < c.n; ++l) enter[l] = static_cast<std::uint8_t>(fall[l] | entry[l]);
+                for (int l = 0, cn = c.n; l < cn; ++l) enter[l] = static_cast<std::uint8_t>(fall[l] | entry[l]);
             else
                 std::memcpy(enter, fall, lanes);
         } else {
-            for (int l = 0; l < c.n; ++l)
+            for (int l = 0, cn = c.n; l < cn; ++l)
                 enter[l] = static_cast<std::uint8_t>(fall[l] | (entry[l] & hits(seg, sel[l])));
         }
         set_mask(c, s.enter);
@@ -799,7 +811,7 @@ void op_switch(Ctx& c, const Op& op) {
         if (c.stop) return;
         copy_mask(c, s.fall, c.cur);
         falling = false;
-        for (int l = 0; l < c.n; ++l) falling = falling || fall[l];
+        for (int l = 0, cn = c.n; l < cn; ++l) falling = falling || fall[l];
     }
     // after it: the lanes that broke out, fell off its end, or matched no
     // label (without a default, a switch passes those by)
@@ -807,7 +819,7 @@ void op_switch(Ctx& c, const Op& op) {
     bool has_default = false;
     for (const SwitchNode::Segment& seg : s.segments) has_default = has_default || seg.is_default;
     const bool uniform_hit = u && (has_default || labelled(sel[0]));
-    for (int l = 0; l < c.n; ++l) {
+    for (int l = 0, cn = c.n; l < cn; ++l) {
         const bool hit = u ? uniform_hit : has_default || labelled(sel[l]);
         fall[l] |= br[l] | (entry[l] & !hit);
     }
@@ -821,7 +833,7 @@ void op_guard(Ctx& c, const Op& op) {
     const std::uint8_t* k = mreg(c, g.cond);
     std::uint8_t* f = mreg(c, g.first_mask);
     std::uint8_t* s = mreg(c, g.second_mask);
-    for (int l = 0; l < c.n; ++l) {
+    for (int l = 0, cn = c.n; l < cn; ++l) {
         f[l] = m[l] & k[l];
         s[l] = m[l] & (k[l] ^ 1);
     }
@@ -841,7 +853,7 @@ void op_guard(Ctx& c, const Op& op) {
 void op_jump(Ctx& c, const Op& op) {
     std::uint8_t* d = mreg(c, op.aux);
     const std::uint8_t* m = mreg(c, c.cur);
-    for (int l = 0; l < c.n; ++l) d[l] |= m[l];
+    for (int l = 0, cn = c.n; l < cn; ++l) d[l] |= m[l];
     c.cur = 0;
     c.any = false;
     c.all = false;
@@ -854,7 +866,7 @@ void op_call(Ctx& c, const Op& op) {
     if (c.stop) return;
     std::uint8_t* d = mreg(c, k.join);
     const std::uint8_t *m = mreg(c, c.cur), *r = mreg(c, k.returned);
-    for (int l = 0; l < c.n; ++l) d[l] = m[l] | r[l];
+    for (int l = 0, cn = c.n; l < cn; ++l) d[l] = m[l] | r[l];
     set_mask(c, k.join);
 }
 
