@@ -515,6 +515,20 @@ void op_mask_not(Ctx& c, const Op& op) {
     for (int l = 0, cn = c.n; l < cn; ++l) d[l] = a[l] ^ 1;
 }
 
+// Whether a lane of the mask (n lanes) has an index at or past ubound (a
+// negative one, as unsigned, is past it). The compare of 64-bit lanes
+// vectorises from SSE4.2 on, past the build's SSE2 baseline: the clone
+// for the CPU is chosen once at load time; the answer is the same.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+[[gnu::noinline]] bool any_past(const std::uint8_t* __restrict m, const std::int64_t* __restrict idx, int n,
+                                std::uint64_t ubound) {
+    std::uint8_t any = 0;
+    for (int l = 0; l < n; ++l) any |= m[l] & static_cast<std::uint8_t>(static_cast<std::uint64_t>(idx[l]) >= ubound);
+    return any != 0;
+}
+
 // The first lane of the mask whose index is outside [0, bound), or -1.
 int outside(Ctx& c, const std::int64_t* idx, bool uniform, long long bound) {
     const std::uint8_t* m = mreg(c, c.cur);
@@ -524,10 +538,7 @@ int outside(Ctx& c, const std::int64_t* idx, bool uniform, long long bound) {
             if (m[l]) return l;
         return -1;
     }
-    const auto ubound = static_cast<std::uint64_t>(bound);
-    std::uint8_t any = 0;
-    for (int l = 0, cn = c.n; l < cn; ++l) any |= m[l] & static_cast<std::uint8_t>(static_cast<std::uint64_t>(idx[l]) >= ubound);
-    if (!any) return -1;
+    if (!any_past(m, idx, c.n, static_cast<std::uint64_t>(bound))) return -1;
     for (int l = 0, cn = c.n; l < cn; ++l)
         if (m[l] && (idx[l] < 0 || idx[l] >= bound)) return l;
     return -1;
