@@ -4,7 +4,8 @@
 // them: a surface in space (the Stanford bunny) lit and shaded, coloured
 // by the chemical; a flat tiling (Penrose's rhombi, triangles, hexagons) as
 // its polygons filled by state with thin edges, in vector output too; a
-// lattice of solid cells as the cells at or above the middle of the range.
+// lattice of solid cells as the cells at or above the middle of the range,
+// inside the lattice's box, from a three-quarter view above.
 // The mesh and the cells' start come from the Ready pattern file (.vtu)
 // that is rendered: a description file cannot name a file to read.
 #include <algorithm>

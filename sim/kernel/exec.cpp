@@ -22,7 +22,10 @@ namespace sim::kernel {
 
 struct Ctx {
     const Compiled* p = nullptr;
-    int n = 0;                      // lanes of this chunk
+    // Lanes of this chunk. A lane loop copies it first (`for (int l = 0,
+    // cn = c.n; l < cn; ++l)`): the masks are bytes, a store to one may
+    // alias n, and a loop that reads c.n each lane is not vectorised.
+    int n = 0;
     std::uint64_t* regs = nullptr;  // registers x lanes
     std::uint8_t* uni = nullptr;    // a flag a register
     std::uint8_t* masks = nullptr;  // mask registers x lanes
